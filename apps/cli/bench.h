@@ -1,0 +1,27 @@
+// `nephele bench`: the seed's frame-rate study (seed 000, section 4) for both march modes.
+#pragma once
+
+#include <string>
+
+#include "scene_flags.h"
+
+namespace CLI {
+class App;
+}
+
+namespace nephele::cli {
+
+struct BenchOptions {
+  SceneFlags scene;
+  std::string out_dir = "bench-out";  // CSV, JSON and plot go here
+  int frames = 3;                     // timed frames per configuration (after one warm-up)
+  bool quick = false;                 // fewer points, small resolutions (for tests)
+  std::string device;
+  bool verbose = false;
+  bool validation = false;
+};
+
+void add_bench_flags(CLI::App& cmd, BenchOptions& options);
+int run_bench(const BenchOptions& options);
+
+}  // namespace nephele::cli

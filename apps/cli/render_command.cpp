@@ -1,0 +1,103 @@
+#include "render_command.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "nephele/error.h"
+#include "nephele/image.h"
+#include "nephele/scene_io.h"
+
+namespace nephele::cli {
+
+namespace fs = std::filesystem;
+
+void add_device_flags(CLI::App& cmd, std::string& device, bool& verbose, bool& validation) {
+  cmd.add_option("--device", device, "use the Vulkan device whose name contains this text");
+  cmd.add_flag("--verbose,-v", verbose, "print the resolved scene, device and pass timings");
+  cmd.add_flag("--validation", validation, "enable the Khronos validation layer");
+}
+
+void add_render_flags(CLI::App& cmd, RenderOptions& options) {
+  add_scene_flags(cmd, options.scene);
+  cmd.add_option("--output,-o", options.output, "image to write: .png (tone-mapped) or .exr (HDR)")
+      ->capture_default_str();
+  cmd.add_option("--stats-json", options.stats_json, "write frame statistics as JSON");
+  add_device_flags(cmd, options.device, options.verbose, options.validation);
+}
+
+void check_writable_file(const std::string& path, const std::string& parameter) {
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (path.empty() || fs::is_directory(p, ec))
+    throw InputError(parameter + " '" + path + "': must name a file, not a folder");
+  if (!fs::is_directory(dir, ec))
+    throw InputError(parameter + " '" + path + "': folder '" + dir.string() + "' does not exist");
+  if (access(dir.c_str(), W_OK) != 0)
+    throw InputError(parameter + " '" + path + "': folder '" + dir.string() + "' is not writable");
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw RuntimeError("cannot write '" + path + "'");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw RuntimeError("cannot write '" + path + "': " + ec.message());
+  }
+}
+
+std::string stats_to_json(const FrameStats& stats) {
+  nlohmann::json j;
+  j["device"] = stats.device;
+  j["width"] = stats.width;
+  j["height"] = stats.height;
+  j["frame_ms"] = stats.frame_ms;
+  j["wall_ms"] = stats.wall_ms;
+  j["mean_luminance"] = stats.mean_luminance;
+  j["cloud_cover_fraction"] = stats.cloud_cover_fraction;
+  nlohmann::json passes = nlohmann::json::object();
+  for (const PassTiming& p : stats.passes) passes[p.name] = p.ms;
+  j["passes_ms"] = passes;
+  return j.dump(2) + "\n";
+}
+
+int run_render(const RenderOptions& options) {
+  // Everything the user typed is checked before any work, so a bad flag writes nothing.
+  const Scene scene = resolve_scene(options.scene);
+  check_output_path(options.output, "--output");
+  if (!options.stats_json.empty()) check_writable_file(options.stats_json, "--stats-json");
+  if (options.verbose) std::cerr << "# resolved scene\n" << scene_to_toml(scene);
+
+  Renderer renderer({options.device, options.validation, options.verbose});
+  const Frame frame = renderer.render(scene);
+  write_image(frame.color, options.output, scene.output.exposure);
+  if (!options.stats_json.empty()) write_text_file(options.stats_json, stats_to_json(frame.stats));
+  if (options.verbose)
+    std::fprintf(stderr, "nephele: %dx%d on %s: %.1f ms GPU, %.1f ms wall\n", frame.stats.width,
+                 frame.stats.height, frame.stats.device.c_str(), frame.stats.frame_ms,
+                 frame.stats.wall_ms);
+  if (options.validation && renderer.validation_messages() > 0) {
+    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n",
+                 renderer.validation_messages());
+    return 1;
+  }
+  std::cout << options.output << "\n";
+  return 0;
+}
+
+}  // namespace nephele::cli

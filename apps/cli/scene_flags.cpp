@@ -1,0 +1,280 @@
+// nephele CLI — scene flags: registration, parsing, application to a Scene.
+#include "scene_flags.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cfloat>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <map>
+#include <variant>
+#include <vector>
+
+#include "nephele/error.h"
+#include "nephele/scene_io.h"
+
+namespace nephele::cli {
+namespace {
+
+// Where a flag's value goes in the Scene; monostate for the flags resolve_scene handles itself.
+using Target =
+    std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
+                 glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&), std::string& (*)(Scene&),
+                 MarchMode& (*)(Scene&)>;
+
+struct FlagSpec {
+  const char* flag;
+  std::optional<std::string> SceneFlags::*member;
+  const char* key;  // scene key the flag sets: validation messages on it name the flag
+  Target target;
+  const char* type_name;
+  const char* help;
+};
+
+// TO(clouds.coverage) is the Target of Scene::clouds.coverage.
+#define TO(path) +[](Scene& s) -> auto& { return s.path; }
+
+// In the order they are applied (and listed by --help).
+const std::vector<FlagSpec>& flag_specs() {
+  using F = SceneFlags;
+  static const std::vector<FlagSpec> specs = {
+      {"--scene", &F::scene_file, "", {}, "FILE",
+       "scene file (TOML); relative paths inside it are relative to its folder"},
+      {"--preset", &F::preset, "", {}, "NAME", "built-in scene to start from (default: default)"},
+      {"--width", &F::width, "output.width", TO(output.width), "N", "image width, pixels"},
+      {"--height", &F::height, "output.height", TO(output.height), "N", "image height, pixels"},
+      {"--camera-pos", &F::camera_pos, "camera.position_m", TO(camera.position_m), "E,N,U",
+       "camera position (m): east, north, up"},
+      {"--camera-altitude-m", &F::camera_altitude_m, "camera.altitude_m",
+       TO(camera.position_m.z), "A", "camera height above the ground (m)"},
+      {"--view-dir", &F::view_dir, "camera.view_dir", TO(camera.view_dir), "E,N,U",
+       "looking direction: east, north, up"},
+      {"--fov-deg", &F::fov_deg, "camera.fov_deg", TO(camera.fov_deg), "F",
+       "vertical field of view (deg), (0, 180)"},
+      {"--sun-dir", &F::sun_dir, "sun.direction", TO(sun.direction), "E,N,U",
+       "direction towards the sun: east, north, up"},
+      {"--sun-elevation-deg", &F::sun_elevation_deg, "", {}, "E",
+       "sun elevation above the horizon (deg), [-90, 90]"},
+      {"--sun-azimuth-deg", &F::sun_azimuth_deg, "", {}, "A",
+       "sun azimuth from north through east (deg)"},
+      {"--sun-illuminance", &F::sun_illuminance, "sun.illuminance", TO(sun.illuminance), "X",
+       "sunlight scale at the top of the atmosphere, >= 0"},
+      {"--coverage", &F::coverage, "clouds.coverage", TO(clouds.coverage), "C",
+       "cloud coverage, [0, 1]"},
+      {"--density", &F::density, "clouds.density", TO(clouds.density), "D",
+       "cloud density scale, [0, 1]"},
+      {"--cloud-bottom-m", &F::cloud_bottom_m, "clouds.bottom_altitude_m",
+       TO(clouds.bottom_altitude_m), "M", "cloud layer bottom above the ground (m)"},
+      {"--cloud-top-m", &F::cloud_top_m, "clouds.top_altitude_m", TO(clouds.top_altitude_m), "M",
+       "cloud layer top above the ground (m)"},
+      {"--extinction-per-m", &F::extinction_per_m, "clouds.extinction_per_m",
+       TO(clouds.extinction_per_m), "X", "cloud extinction at density 1 (1/m), > 0"},
+      {"--attenuation", &F::attenuation, "clouds.attenuation", TO(clouds.attenuation), "X",
+       "extinction multiplier along view rays, >= 0"},
+      {"--light-attenuation", &F::light_attenuation, "clouds.light_attenuation",
+       TO(clouds.light_attenuation), "X", "extinction multiplier along light rays, >= 0"},
+      {"--albedo", &F::albedo, "clouds.albedo", TO(clouds.albedo), "X",
+       "cloud single-scattering albedo, [0, 1]"},
+      {"--g-forward", &F::g_forward, "clouds.phase_g_forward", TO(clouds.phase_g_forward), "G",
+       "forward phase lobe asymmetry, [0, 1)"},
+      {"--g-backward", &F::g_backward, "clouds.phase_g_backward", TO(clouds.phase_g_backward),
+       "G", "backward phase lobe asymmetry, (-1, 0]"},
+      {"--lobe-weight", &F::lobe_weight, "clouds.phase_lobe_weight", TO(clouds.phase_lobe_weight),
+       "W", "weight of the forward lobe, [0, 1]"},
+      {"--powder", &F::powder, "clouds.powder_strength", TO(clouds.powder_strength), "X",
+       "powder effect strength, [0, 1]"},
+      {"--ambient", &F::ambient, "clouds.ambient_strength", TO(clouds.ambient_strength), "X",
+       "sky ambient light on clouds, >= 0"},
+      {"--wind-mps", &F::wind_mps, "clouds.wind_mps", TO(clouds.wind_mps), "E,N",
+       "wind velocity (m/s): east, north"},
+      {"--weather-map", &F::weather_map, "clouds.weather_map", TO(clouds.weather_map), "FILE",
+       "weather map PNG (RGBA) instead of the procedural one"},
+      {"--time-s", &F::time_s, "time_s", TO(time_s), "T", "animation time (s)"},
+      {"--seed", &F::seed, "noise_seed", TO(noise_seed), "N", "noise seed, [0, 4294967295]"},
+      {"--steps", &F::steps, "quality.primary_steps", TO(quality.primary_steps), "N",
+       "march steps through the cloud layer, [1, 1024]"},
+      {"--light-steps", &F::light_steps, "quality.light_steps", TO(quality.light_steps), "N",
+       "light march steps towards the sun, [1, 64]"},
+      {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
+       "march algorithm: default, or baseline (the seed's, as written)"},
+      {"--exposure", &F::exposure, "output.exposure", TO(output.exposure), "X",
+       "linear exposure before tone mapping, > 0"},
+  };
+  return specs;
+}
+
+#undef TO
+
+[[noreturn]] void fail(const std::string& flag, const std::string& text, const std::string& what) {
+  throw InputError(flag + " " + text + ": " + what);
+}
+
+// The whole of `text` as a number ("1.5", "-2", "1e-3", "nan"); a leading '+' is allowed.
+std::optional<double> to_number(std::string_view text) {
+  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  if (text.starts_with('+')) text.remove_prefix(1);
+  double value = 0.0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || text.empty()) return {};
+  return value;
+}
+
+float to_float(const std::string& flag, const std::string& text, std::string_view part) {
+  std::optional<double> value = to_number(part);
+  if (!value) fail(flag, text, "expected a number");
+  if (std::isfinite(*value) && std::fabs(*value) > FLT_MAX) fail(flag, text, "is out of range");
+  return static_cast<float>(*value);
+}
+
+int64_t to_integer(const std::string& flag, const std::string& text, int64_t min, int64_t max) {
+  std::string_view digits = text;
+  if (digits.starts_with('+')) digits.remove_prefix(1);
+  int64_t value = 0;
+  auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (error != std::errc() || end != digits.data() + digits.size() || value < min || value > max)
+    fail(flag, text,
+         "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  return value;
+}
+
+// "E,N,U" into `size` floats.
+void to_vector(const std::string& flag, const std::string& text, int size, float* out) {
+  static const char* const kComponents[] = {"", "", "E,N", "E,N,U"};
+  std::vector<std::string_view> parts;
+  std::string_view rest = text;
+  for (size_t comma; (comma = rest.find(',')) != std::string_view::npos;) {
+    parts.push_back(rest.substr(0, comma));
+    rest.remove_prefix(comma + 1);
+  }
+  parts.push_back(rest);
+  bool ok = parts.size() == static_cast<size_t>(size);
+  for (size_t i = 0; ok && i < parts.size(); ++i) ok = to_number(parts[i]).has_value();
+  if (!ok)
+    fail(flag, text,
+         "expected " + std::to_string(size) + " comma-separated numbers " + kComponents[size]);
+  for (int i = 0; i < size; ++i) out[i] = to_float(flag, text, parts[i]);
+}
+
+void parse_into(const std::string& flag, const std::string& text, float& out) {
+  out = to_float(flag, text, text);
+}
+void parse_into(const std::string& flag, const std::string& text, int& out) {
+  out = static_cast<int>(to_integer(flag, text, INT_MIN, INT_MAX));
+}
+void parse_into(const std::string& flag, const std::string& text, uint32_t& out) {
+  out = static_cast<uint32_t>(to_integer(flag, text, 0, UINT32_MAX));
+}
+void parse_into(const std::string& flag, const std::string& text, glm::vec2& out) {
+  to_vector(flag, text, 2, &out.x);
+}
+void parse_into(const std::string& flag, const std::string& text, glm::vec3& out) {
+  to_vector(flag, text, 3, &out.x);
+}
+void parse_into(const std::string&, const std::string& text, std::string& out) { out = text; }
+void parse_into(const std::string& flag, const std::string& text, MarchMode& out) {
+  std::optional<MarchMode> mode = parse_march_mode(text);
+  if (!mode) fail(flag, text, "expected default or baseline");
+  out = *mode;
+}
+
+void check_conflicts(const SceneFlags& flags) {
+  if (flags.scene_file && flags.preset)
+    throw InputError(
+        "--scene and --preset cannot be combined (a scene file can start from a preset with "
+        "preset = \"NAME\")");
+  if (flags.camera_pos && flags.camera_altitude_m)
+    throw InputError(
+        "--camera-pos and --camera-altitude-m cannot be combined (the altitude is the position's "
+        "up component)");
+  if (flags.sun_dir && (flags.sun_elevation_deg || flags.sun_azimuth_deg))
+    throw InputError(
+        "--sun-dir cannot be combined with --sun-elevation-deg or --sun-azimuth-deg (both set the "
+        "sun direction)");
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+Scene load_base(const SceneFlags& flags) {
+  if (flags.scene_file) return load_scene_file(*flags.scene_file);
+  std::string name = flags.preset.value_or("default");
+  std::vector<std::string> names = preset_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw InputError("--preset '" + name + "': unknown preset (available: " + join(names) + ")");
+  return load_preset(name);
+}
+
+// --sun-elevation-deg / --sun-azimuth-deg: the angle not given keeps its current value.
+void apply_sun_angles(const SceneFlags& flags, Scene& scene) {
+  if (!flags.sun_elevation_deg && !flags.sun_azimuth_deg) return;
+  SunAngles angles = sun_angles_from_direction(scene.sun.direction);
+  if (flags.sun_elevation_deg) {
+    const std::string& text = *flags.sun_elevation_deg;
+    angles.elevation_deg = to_float("--sun-elevation-deg", text, text);
+    if (!(angles.elevation_deg >= -90.0 && angles.elevation_deg <= 90.0))
+      fail("--sun-elevation-deg", text, "must be in [-90, 90]");
+  }
+  if (flags.sun_azimuth_deg) {
+    const std::string& text = *flags.sun_azimuth_deg;
+    angles.azimuth_deg = to_float("--sun-azimuth-deg", text, text);
+    if (!std::isfinite(angles.azimuth_deg)) fail("--sun-azimuth-deg", text, "must be finite");
+  }
+  scene.sun.direction = sun_direction_from_angles(angles.elevation_deg, angles.azimuth_deg);
+}
+
+// Validation names a parameter by its flag when a flag set it, otherwise by its scene key
+// prefixed with where the scene came from.
+ParamNamer make_namer(const SceneFlags& flags) {
+  std::map<std::string, std::string> flag_of_key;
+  for (const FlagSpec& spec : flag_specs())
+    if (*spec.key && (flags.*spec.member).has_value()) flag_of_key[spec.key] = spec.flag;
+  std::string origin = flags.scene_file ? *flags.scene_file
+                                        : "preset '" + flags.preset.value_or("default") + "'";
+  return [flag_of_key, origin](const std::string& key) {
+    auto found = flag_of_key.find(key);
+    return found != flag_of_key.end() ? found->second : origin + ": " + key;
+  };
+}
+
+}  // namespace
+
+void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
+  for (const FlagSpec& spec : flag_specs()) {
+    auto member = spec.member;
+    std::string help = spec.help;
+    if (spec.member == &SceneFlags::preset) help += "; one of: " + join(preset_names());
+    cmd.add_option_function<std::string>(
+           spec.flag, [&flags, member](const std::string& value) { flags.*member = value; },
+           help)
+        ->type_name(spec.type_name)
+        ->group("Scene");
+  }
+}
+
+Scene resolve_scene(const SceneFlags& flags) {
+  check_conflicts(flags);
+  Scene scene = load_base(flags);
+  for (const FlagSpec& spec : flag_specs()) {
+    const std::optional<std::string>& text = flags.*spec.member;
+    if (!text) continue;
+    std::visit(
+        [&](auto target) {
+          if constexpr (!std::is_same_v<decltype(target), std::monostate>)
+            parse_into(spec.flag, *text, target(scene));
+        },
+        spec.target);
+  }
+  apply_sun_angles(flags, scene);
+  if (flags.camera_pos && !(scene.camera.position_m.z >= 0.0f))
+    fail("--camera-pos", *flags.camera_pos,
+         "the up component must be >= 0 (the camera is below the ground)");
+  validate_scene(scene, make_namer(flags));
+  return scene;
+}
+
+}  // namespace nephele::cli

@@ -1,0 +1,36 @@
+// nephele CLI — the command-line flags that choose and modify the scene.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "nephele/scene.h"
+
+namespace CLI {
+class App;
+}
+
+namespace nephele::cli {
+
+// Each flag as typed, unset when not given. resolve_scene parses them, so that a malformed
+// value ("abc", "1,2") is an InputError naming the flag, like every other input error.
+struct SceneFlags {
+  std::optional<std::string> scene_file;  // --scene FILE
+  std::optional<std::string> preset;      // --preset NAME; "default" when neither is given
+  std::optional<std::string> width, height;
+  std::optional<std::string> camera_altitude_m, camera_pos, view_dir, fov_deg;
+  std::optional<std::string> sun_dir, sun_elevation_deg, sun_azimuth_deg, sun_illuminance;
+  std::optional<std::string> coverage, density, cloud_bottom_m, cloud_top_m, extinction_per_m;
+  std::optional<std::string> attenuation, light_attenuation, albedo, g_forward, g_backward;
+  std::optional<std::string> lobe_weight, powder, ambient, wind_mps, weather_map;
+  std::optional<std::string> time_s, seed, steps, light_steps, mode, exposure;
+};
+
+// Registers --scene, --preset and the scene overrides on `cmd`, writing into `flags`.
+void add_scene_flags(CLI::App& cmd, SceneFlags& flags);
+
+// Loads --scene or --preset, applies every override, validates. Throws InputError with a
+// message naming the flag when the value came from one ("--coverage 1.5: must be in [0, 1]").
+Scene resolve_scene(const SceneFlags& flags);
+
+}  // namespace nephele::cli

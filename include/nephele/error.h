@@ -1,0 +1,22 @@
+// nephele — errors reported at the boundary (scene load, CLI, API call).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace nephele {
+
+// Invalid input: the message names the parameter, the value and what is allowed,
+// e.g. "clouds.coverage = 1.5: must be in [0, 1]". The CLI prints it and exits 2.
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+// Failure of the machine, not of the input (no Vulkan device, device lost, I/O).
+class RuntimeError : public std::runtime_error {
+ public:
+  explicit RuntimeError(const std::string& message) : std::runtime_error(message) {}
+};
+
+}  // namespace nephele

@@ -1,0 +1,46 @@
+// nephele — linear HDR images and their writers.
+#pragma once
+
+#include <glm/vec4.hpp>
+#include <string>
+#include <vector>
+
+namespace nephele {
+
+// Linear HDR RGBA, row-major, row 0 at the top.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> pixels;
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h), glm::vec4(0.0f)) {}
+  glm::vec4& at(int x, int y) { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
+  const glm::vec4& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
+};
+
+// Relative luminance of linear Rec.709 RGB.
+float luminance(const glm::vec4& rgb);
+
+// Tone map (exposure, ACES fit) and encode as 8-bit sRGB RGBA, alpha 255; 4 bytes a pixel.
+// NaN and negative values give 0, large ones 255.
+std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure);
+
+// Writes by extension, case-insensitive: .png (tone-mapped 8-bit sRGB, alpha 255) or .exr
+// (linear half float RGBA, ZIP; `exposure` applies to PNG only, an EXR keeps the values as
+// they are). Writes to a temporary file beside the target and renames, so a failed write
+// leaves nothing behind. Throws InputError for an unsupported extension or an empty image,
+// RuntimeError naming the path on I/O failure.
+void write_image(const Image& image, const std::string& path, float exposure = 1.0f);
+
+// Throws InputError naming `parameter` if `path` cannot be written as an image (unknown
+// extension, an existing directory, its directory missing or not writable). Writes nothing.
+// The message reads e.g. "--output 'x.jpg': unsupported image format (allowed: .png, .exr)".
+void check_output_path(const std::string& path, const std::string& parameter);
+
+// Reads a PNG (8-bit values as stored, scaled to [0, 1], no sRGB decode; always RGBA) or an
+// EXR (linear; missing alpha reads as 1), recognised by content, not by name.
+// Throws InputError naming the path if it cannot be read.
+Image read_image(const std::string& path);
+
+}  // namespace nephele

@@ -1,0 +1,96 @@
+// nephele — scene parameters: plain structs, units in names, no Vulkan.
+//
+// Frame: local east-north-up (ENU). x east, y north, z up, metres; the origin
+// is on the ground (altitude 0) below the start position. Azimuths are degrees
+// from north through east. Directions need not be normalised but must be
+// finite and non-zero.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace nephele {
+
+struct CameraParams {
+  glm::vec3 position_m{0.0f, 0.0f, 2.0f};  // ENU, metres
+  glm::vec3 view_dir{0.0f, 1.0f, 0.25f};   // ENU, looking direction
+  float fov_deg = 70.0f;                   // vertical field of view, (0, 180)
+};
+
+struct SunParams {
+  glm::vec3 direction{0.0f, 0.7f, 0.35f};  // ENU, towards the sun
+  float illuminance = 20.0f;               // radiance scale of sunlight at the top of the atmosphere
+  float disk_angular_radius_deg = 0.2666f;  // apparent radius of the sun disk
+};
+
+// Planet and single-scattering sky (seed 000, formulas 1.11-1.13; Nishita-style integration).
+struct AtmosphereParams {
+  float planet_radius_km = 6360.0f;
+  float atmosphere_height_km = 100.0f;             // top of the atmosphere above ground
+  glm::vec3 rayleigh_scattering_per_m{5.802e-6f, 13.558e-6f, 33.1e-6f};  // sigma_s at sea level
+  float rayleigh_scale_height_m = 8000.0f;
+  float mie_scattering_per_m = 3.996e-6f;          // sigma_s at sea level
+  float mie_extinction_per_m = 4.44e-6f;           // sigma_t at sea level (absorption included)
+  float mie_scale_height_m = 1200.0f;
+  float mie_g = 0.8f;                               // Cornette-Shanks asymmetry, [0, 1)
+  int view_samples = 16;                            // samples along the view ray
+  int light_samples = 8;                            // samples towards the sun
+};
+
+// One volumetric cloud layer between two spheres (seed 000, section 2.2).
+struct CloudParams {
+  float bottom_altitude_m = 1500.0f;  // cloud layer bottom above ground
+  float top_altitude_m = 4000.0f;     // cloud layer top above ground, > bottom
+  float coverage = 0.45f;             // [0, 1]; 1 = sky fully covered
+  float density = 0.5f;               // [0, 1]; scales the cloud density field (seed u_density)
+  float extinction_per_m = 0.08f;     // sigma_t at density field value 1 (1/m), > 0
+  float attenuation = 1.0f;           // multiplier on sigma_t along view rays (seed u_attenuation)
+  float light_attenuation = 1.0f;     // multiplier on sigma_t along light rays (seed u_attenuation2)
+  float albedo = 0.99f;               // single-scattering albedo sigma_s / sigma_t, [0, 1]
+  float phase_g_forward = 0.8f;       // forward Henyey-Greenstein lobe, [0, 1)
+  float phase_g_backward = -0.3f;     // backward lobe, (-1, 0]
+  float phase_lobe_weight = 0.7f;     // weight of the forward lobe, [0, 1] (seed DUAL_LOBE_WEIGHT)
+  float powder_strength = 1.0f;       // [0, 1]; 0 disables the powder term (seed 1.9)
+  float ambient_strength = 1.0f;      // >= 0; scales sky ambient light on clouds
+  glm::vec2 wind_mps{8.0f, 2.0f};     // east, north wind speed (m/s)
+  float base_noise_period_m = 6000.0f;    // horizontal period of the base 128^3 noise tile, > 0
+  float detail_noise_period_m = 900.0f;   // period of the detail 32^3 noise tile, > 0
+  float detail_erosion = 0.35f;           // [0, 1]; how much detail noise erodes the base shape
+  float weather_period_m = 40000.0f;      // size of one weather-map tile on the ground, > 0
+  std::string weather_map;                // PNG path (RGBA as in seed 2.2.2); empty = procedural
+};
+
+enum class MarchMode {
+  Default,   // jittered, distance-adaptive step count, early exit, longer light march
+  Baseline,  // the seed's algorithm as written: fixed 64-step march, 4-sample light march
+};
+
+struct QualityParams {
+  MarchMode mode = MarchMode::Default;
+  int primary_steps = 96;  // [1, 1024] steps through the cloud layer
+  int light_steps = 6;     // [1, 64] steps of the light march towards the sun
+};
+
+struct OutputParams {
+  int width = 900;    // pixels, [1, 16384]
+  int height = 600;   // pixels, [1, 16384]
+  float exposure = 1.0f;  // linear scale before tone mapping, > 0
+};
+
+struct Scene {
+  CameraParams camera;
+  SunParams sun;
+  AtmosphereParams atmosphere;
+  CloudParams clouds;
+  QualityParams quality;
+  OutputParams output;
+  float time_s = 0.0f;       // animation time (s): moves clouds with the wind
+  uint32_t noise_seed = 1;   // seeds the noise textures and the procedural weather map
+};
+
+const char* to_string(MarchMode mode);
+
+}  // namespace nephele

@@ -1,0 +1,213 @@
+#version 450
+// Pass 3: clouds. Per pixel, march the view ray through the cloud shell between two spheres
+// (seed 000, 2.2) compositing front to back (formulas 1.5, 1.6) with Beer-Lambert attenuation,
+// a light march towards the sun, dual-lobe Henyey-Greenstein phase, the powder term and ambient
+// light (1.4, listings B.1-B.3). Writes rgb in-scattered radiance and a = transmittance.
+//
+// MARCH_MODE (specialization constant) selects the variant:
+//   0 default:  distance-adaptive steps with per-pixel jitter, detail noise only where the
+//               base shape is non-zero, longer light march, multiple-scattering octaves,
+//               early exit at T < 0.01.
+//   1 baseline: the seed's algorithm as written: fixed step (layer thickness / 64), at most 128
+//               steps, 4-sample light march (3 short steps and one 6x), colour extinction
+//               (0.8, 0.8, 1.0), no jitter, no skipping.
+#extension GL_GOOGLE_include_directive : require
+#include "common/bindings_inc.glsl"
+#include "common/math_inc.glsl"
+#include "common/phase_inc.glsl"
+#include "common/clouds_inc.glsl"
+
+layout(constant_id = 0) const int MARCH_MODE = 0;
+layout(local_size_x = 8, local_size_y = 8) in;
+
+const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
+
+float altitude_fraction(vec3 pos) {
+  return cloud_height_fraction(length(pos), frame.radii_m.z, frame.radii_m.w);
+}
+
+// Cloud density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z.
+float cloud_density(vec3 pos, bool with_detail) {
+  float h = altitude_fraction(pos);
+  if (h <= 0.0f || h >= 1.0f) return 0.0f;
+  vec2 ground_xy = pos.xy - frame.wind_offset_m.xy;  // clouds drift with the wind
+  vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + 0.5f, 0.0f);
+  float coverage = cloud_local_coverage(weather.r, weather.g, frame.cloud_shape.x);
+  if (coverage <= 0.0f) return 0.0f;
+  float shape_gradient = cloud_shape_gradient(h, weather.b);
+  if (shape_gradient <= 0.0f) return 0.0f;
+  float density_gradient =
+      cloud_density_gradient(h) * weather.a * 2.0f * frame.cloud_shape.y;
+
+  float altitude_m = length(pos) - frame.radii_m.x;
+  vec3 uvw = vec3(ground_xy, altitude_m) * frame.cloud_noise.x;
+  vec4 base = textureLod(base_noise, uvw, 0.0f);
+  if (MARCH_MODE == 1) {
+    // Seed: low-frequency noise 85% plus detail noise 15%, then coverage and height shape.
+    float detail = textureLod(detail_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.y, 0.0f).r;
+    float noise = base.r * 0.85f + detail * 0.15f;
+    return cloud_apply_coverage(noise * shape_gradient, coverage) * density_gradient;
+  }
+  // Schneider: Worley fBm (GBA) carves the Perlin-Worley (R), coverage cuts, detail erodes.
+  float worley = base.g * 0.625f + base.b * 0.25f + base.a * 0.125f;
+  float shape = saturate(remap(base.r, worley - 1.0f, 1.0f, 0.0f, 1.0f));
+  shape = cloud_apply_coverage(shape * shape_gradient, coverage);
+  if (shape <= 0.0f) return 0.0f;
+  if (with_detail) {
+    vec3 d = textureLod(detail_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.y, 0.0f).rgb;
+    shape = cloud_erode(shape, d.r * 0.625f + d.g * 0.25f + d.b * 0.125f, h,
+                        frame.cloud_noise.w);
+  }
+  return shape * density_gradient;
+}
+
+// Optical depth towards the sun from pos (without the view-independent extinction scale).
+float light_optical_depth(vec3 pos, vec3 sun) {
+  float thickness = frame.radii_m.w - frame.radii_m.z;
+  float depth = 0.0f;
+  if (MARCH_MODE == 1) {
+    // Listing B.2: three steps of 1% of the layer thickness, the fourth six times longer.
+    float step_m = thickness * 0.01f;
+    for (int i = 0; i < 4; ++i) {
+      float s = i == 3 ? step_m * 6.0f : step_m;
+      pos += sun * s;
+      depth += cloud_density(pos, true) * s;
+    }
+    return depth;
+  }
+  // Steps growing linearly, covering half the layer thickness; midpoint samples.
+  int n = frame.steps.y;
+  float unit = 0.5f * thickness / float(n * (n + 1) / 2);
+  float t = 0.0f;
+  for (int i = 1; i <= n; ++i) {
+    float s = unit * float(i);
+    depth += cloud_density(pos + sun * (t + 0.5f * s), i <= 2) * s;
+    t += s;
+  }
+  return depth;
+}
+
+// The part of the view ray inside the cloud shell: (t_enter, t_exit), empty if exit <= enter.
+vec2 shell_segment(vec3 eye, vec3 dir) {
+  float r = length(eye);
+  vec2 inner = ray_sphere(eye, dir, frame.radii_m.z);
+  vec2 outer = ray_sphere(eye, dir, frame.radii_m.w);
+  vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
+  if (outer.y <= 0.0f) return vec2(0.0f);  // the shell is behind
+  float t_enter;
+  float t_exit;
+  if (r < frame.radii_m.z) {  // below the layer: from leaving the inner sphere to the outer
+    if (ground.x > 0.0f) return vec2(0.0f);  // looking at the ground
+    t_enter = inner.y;
+    t_exit = outer.y;
+  } else if (r <= frame.radii_m.w) {  // inside the layer
+    t_enter = 0.0f;
+    t_exit = inner.x > 0.0f ? inner.x : outer.y;
+  } else {  // above: from entering the outer sphere to the inner sphere or out again
+    t_enter = max(outer.x, 0.0f);
+    t_exit = inner.x > 0.0f ? inner.x : outer.y;
+  }
+  return vec2(t_enter, t_exit);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  int width = frame.size.x;
+  int height = frame.size.y;
+  if (pixel.x >= width || pixel.y >= height) return;
+  int index = pixel.y * width + pixel.x;
+
+  vec3 eye = frame.camera_pos_m.xyz;
+  vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
+                        frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
+                        float(pixel.y), float(width), float(height));
+  vec3 sun = frame.sun_dir.xyz;
+  float mu = dot(dir, sun);
+  vec2 segment = shell_segment(eye, dir);
+  if (segment.y <= segment.x) {
+    cloud_out[index] = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    return;
+  }
+
+  float sigma_scale = frame.cloud_shape.z;  // sigma_t (1/m) at density field 1
+  float view_atten = frame.cloud_light.x;
+  float light_atten = frame.cloud_light.y;
+  float powder = frame.cloud_light.z;
+  float albedo = frame.cloud_shape.w;
+  vec3 sun_light = frame.sun_at_clouds.rgb;
+  vec3 ambient = frame.ambient_at_clouds.rgb * frame.cloud_light.w;
+  float g_f = frame.cloud_phase.x;
+  float g_b = frame.cloud_phase.y;
+  float lobe = frame.cloud_phase.z;
+  float thickness = frame.radii_m.w - frame.radii_m.z;
+
+  vec3 scattered = vec3(0.0f);
+  vec3 transmittance = vec3(1.0f);
+
+  if (MARCH_MODE == 1) {
+    // Seed listing B.3: fixed steps from the entry point, stop on leaving the layer.
+    float step_m = thickness / 64.0f;
+    float phase = dual_lobe_hg(g_f, g_b, lobe, mu);
+    for (int i = 0; i < 128; ++i) {
+      float t = segment.x + float(i) * step_m;
+      if (t > segment.y) break;
+      vec3 pos = eye + dir * t;
+      float density = cloud_density(pos, true);
+      if (density > 0.01f) {
+        vec3 tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten *
+                         SEED_EXTINCTION_MULT;
+        vec3 beer = exp(-tau_light) * phase;
+        vec3 powder_term = 1.0f - exp(-2.0f * tau_light);
+        vec3 energy = beer * mix(2.0f * powder_term, vec3(1.0f), remap(mu, -1.0f, 1.0f, 0.0f, 1.0f));
+        energy = mix(exp(-tau_light) * phase, energy, powder);
+        vec3 luminance = albedo * (ambient + sun_light * energy);
+        vec3 step_t = exp(-density * step_m * sigma_scale * view_atten * SEED_EXTINCTION_MULT);
+        scattered += transmittance * luminance * (1.0f - step_t);
+        transmittance *= step_t;
+        if (length(transmittance) <= 0.01f) {
+          transmittance = vec3(0.0f);
+          break;
+        }
+      }
+    }
+  } else {
+    // Steps of at least thickness / primary_steps, growing with distance (1% of t) so far
+    // rays stay affordable; jittered per pixel so the step pattern becomes fine noise.
+    float base_step = thickness / float(frame.steps.x);
+    float jitter = interleaved_gradient_noise(float(pixel.x), float(pixel.y));
+    float t = segment.x;
+    float step_m = max(base_step, 0.01f * t);
+    t += step_m * jitter;
+    int max_steps = 3 * frame.steps.x;
+    // Multiple-scattering approximation (Wrenninge et al. 2013): octaves with attenuated
+    // extinction, contribution and eccentricity, a = b = c = 1/2.
+    float phase0 = dual_lobe_hg(g_f, g_b, lobe, mu);
+    float phase1 = dual_lobe_hg(g_f * 0.5f, g_b * 0.5f, lobe, mu);
+    float phase2 = dual_lobe_hg(g_f * 0.25f, g_b * 0.25f, lobe, mu);
+    for (int i = 0; i < max_steps && t < segment.y; ++i) {
+      step_m = max(base_step, 0.01f * t);
+      vec3 pos = eye + dir * t;
+      float density = cloud_density(pos, true);
+      if (density > 0.0f) {
+        float sigma_t = density * sigma_scale * view_atten;
+        float tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten;
+        float energy = cloud_beer_powder(tau_light, mu, powder) * phase0 +
+                       0.5f * cloud_beer_powder(0.5f * tau_light, mu, powder) * phase1 +
+                       0.25f * cloud_beer_powder(0.25f * tau_light, mu, powder) * phase2;
+        float h = altitude_fraction(pos);
+        vec3 luminance = albedo * (sun_light * energy + ambient * mix(0.5f, 1.0f, h));
+        float step_t = exp(-sigma_t * step_m);
+        // Energy-conserving integration over the step (Hillaire 2016).
+        scattered += transmittance * luminance * (1.0f - step_t);
+        transmittance *= step_t;
+        if (transmittance.x < 0.01f) {
+          transmittance = vec3(0.0f);
+          break;
+        }
+      }
+      t += step_m;
+    }
+  }
+  float t_mean = (transmittance.r + transmittance.g + transmittance.b) / 3.0f;
+  cloud_out[index] = vec4(scattered, t_mean);
+}

@@ -1,0 +1,20 @@
+// The one descriptor set every pass uses (src/render/passes.cpp creates its layout).
+#ifndef NEPHELE_BINDINGS_INC
+#define NEPHELE_BINDINGS_INC
+
+#extension GL_GOOGLE_include_directive : require
+#include "common/params_inc.glsl"
+
+layout(std140, set = 0, binding = 0) uniform FrameBlock { FrameParams frame; };
+layout(set = 0, binding = 1, rgba8) uniform writeonly image3D base_noise_out;
+layout(set = 0, binding = 2, rgba8) uniform writeonly image3D detail_noise_out;
+layout(set = 0, binding = 3, rgba8) uniform writeonly image2D weather_out;
+layout(set = 0, binding = 4) uniform sampler3D base_noise;
+layout(set = 0, binding = 5) uniform sampler3D detail_noise;
+layout(set = 0, binding = 6) uniform sampler2D weather_map;
+// Per pixel: rgb in-scattered cloud radiance, a cloud transmittance.
+layout(std430, set = 0, binding = 7) buffer CloudBuffer { vec4 cloud_out[]; };
+// Per pixel: linear HDR radiance of the final image.
+layout(std430, set = 0, binding = 8) buffer ColorBuffer { vec4 color_out[]; };
+
+#endif

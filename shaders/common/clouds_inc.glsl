@@ -1,0 +1,59 @@
+// Cloud density model of seed 000 (section 2.2.2, listing B.1) in physical units, split into
+// the pure parts (here, compiled as C++ for tests) and the texture lookups (clouds.comp).
+#ifndef NEPHELE_CLOUDS_INC
+#define NEPHELE_CLOUDS_INC
+
+// Height fraction in the layer: 0 at the cloud bottom sphere, 1 at the top sphere.
+float cloud_height_fraction(float radius_m, float bottom_radius_m, float top_radius_m) {
+  return (radius_m - bottom_radius_m) / (top_radius_m - bottom_radius_m);
+}
+
+// Shape height gradient SA (listing B.1): rounds the bottom over the lowest 7% of the layer and
+// tapers the top from 20% of the weather map's maximum height `max_height` (B channel) to it.
+float cloud_shape_gradient(float h, float max_height) {
+  float bottom = saturate(remap(h, 0.0f, 0.07f, 0.0f, 1.0f));
+  float top = saturate(remap(h, max_height * 0.2f, max(max_height, 1e-3f), 1.0f, 0.0f));
+  return bottom * top;
+}
+
+// Density height gradient DA without the weather and density factors (listing B.1): density
+// grows with height (h times soft ramps at both ends), so bases are thin and tops dense.
+float cloud_density_gradient(float h) {
+  float bottom = h * saturate(remap(h, 0.0f, 0.15f, 0.0f, 1.0f));
+  float top = h * saturate(remap(h, 0.9f, 1.0f, 1.0f, 0.0f));
+  return bottom * top;
+}
+
+// Local coverage in [0, 1] from the weather map's low (R) and high (G) coverage channels and
+// the global coverage c in [0, 1]. c = 0.5 takes the weather map as it is; c -> 0 removes all
+// cloud, c -> 1 covers everything (the seed's WMc = max(R, saturate(c - 0.5) * G * 2) with
+// c rescaled so its ends mean "clear" and "overcast").
+float cloud_local_coverage(float weather_low, float weather_high, float coverage) {
+  float wm = max(weather_low, saturate(coverage - 0.5f) * weather_high * 2.0f);
+  return saturate(wm + 2.0f * coverage - 1.0f);
+}
+
+// Shape from noise and coverage (listing B.1): noise below 1 - coverage is cut away, the rest
+// is rescaled to [0, 1].
+float cloud_apply_coverage(float shape_noise, float local_coverage) {
+  if (local_coverage <= 0.0f) return 0.0f;
+  return saturate(remap(shape_noise, 1.0f - local_coverage, 1.0f, 0.0f, 1.0f));
+}
+
+// Erosion by detail noise (Schneider 2015): detail fBm cuts wisps into the edges; inverted
+// near the base for billows above and wisps below.
+float cloud_erode(float base, float detail_fbm, float h, float erosion) {
+  float detail = mix(detail_fbm, 1.0f - detail_fbm, saturate(h * 5.0f));
+  return saturate(remap(base, detail * erosion, 1.0f, 0.0f, 1.0f));
+}
+
+// Light reaching a sample (listing B.2, formulas 1.7, 1.9, 1.10): Beer-Lambert exp(-tau) times
+// the powder term mix(2 (1 - exp(-2 tau)), 1, (mu + 1) / 2), with `powder` in [0, 1] blending
+// it in. tau is the optical depth towards the sun.
+float cloud_beer_powder(float tau, float mu, float powder) {
+  float beer = exp(-tau);
+  float powder_term = mix(2.0f * (1.0f - exp(-2.0f * tau)), 1.0f, 0.5f * (mu + 1.0f));
+  return beer * mix(1.0f, powder_term, powder);
+}
+
+#endif

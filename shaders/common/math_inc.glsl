@@ -1,0 +1,49 @@
+// Pure math shared by the shaders and by C++ tests (src/render/glsl.h compiles this file as C++:
+// keep to the GLSL subset GLM accepts — float literals with f, no swizzles, no out parameters).
+#ifndef NEPHELE_MATH_INC
+#define NEPHELE_MATH_INC
+
+const float PI = 3.14159265358979f;
+
+float saturate(float x) { return clamp(x, 0.0f, 1.0f); }
+
+// Linear map of v from [lo, hi] to [new_lo, new_hi] (seed 000, listing B.1); not clamped.
+float remap(float v, float lo, float hi, float new_lo, float new_hi) {
+  return new_lo + (v - lo) / (hi - lo) * (new_hi - new_lo);
+}
+
+// Ray-sphere intersection (seed 000, 2.1-2.5): the roots t0 <= t1 of
+// |origin + t dir - centre|^2 = r^2 for a sphere centred at the origin, dir a unit vector.
+// Written in the numerically stable form (Haines et al., Ray Tracing Gems ch. 7): the
+// discriminant is r^2 - |f|^2 with f the perpendicular from the centre to the ray, and the
+// roots come from q = -b - sign(b) sqrt(disc) as t = c/q and t = q, so rays from the ground
+// of a 6360 km planet keep metre accuracy in float. A miss returns (-1, -1).
+vec2 ray_sphere(vec3 origin, vec3 dir, float radius) {
+  float b = dot(origin, dir);
+  vec3 f = origin - b * dir;
+  float f_len = length(f);
+  float disc = (radius - f_len) * (radius + f_len);
+  if (disc < 0.0f) return vec2(-1.0f, -1.0f);
+  float o_len = length(origin);
+  float c = (o_len - radius) * (o_len + radius);
+  float q = -b - (b >= 0.0f ? 1.0f : -1.0f) * sqrt(disc);
+  if (q == 0.0f) return vec2(0.0f, 0.0f);
+  float t_a = c / q;
+  float t_b = q;
+  return vec2(min(t_a, t_b), max(t_a, t_b));
+}
+
+// Direction of the camera ray through pixel (x, y) of a width x height image, row 0 at the top.
+vec3 camera_ray(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float aspect, float x,
+                float y, float width, float height) {
+  float sx = (2.0f * (x + 0.5f) / width - 1.0f) * tan_half_fov * aspect;
+  float sy = (1.0f - 2.0f * (y + 0.5f) / height) * tan_half_fov;
+  return normalize(forward + sx * right + sy * up);
+}
+
+// Interleaved gradient noise (Jimenez 2014): a per-pixel value in [0, 1) for ray jitter.
+float interleaved_gradient_noise(float x, float y) {
+  return fract(52.9829189f * fract(0.06711056f * x + 0.00583715f * y));
+}
+
+#endif

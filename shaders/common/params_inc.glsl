@@ -1,0 +1,40 @@
+// The one definition of every GPU struct, included by GLSL and by C++ (src/render/gpu_params.h).
+// Every member is a vec4, ivec4 or mat4, so std140 and std430 layouts equal the C++ layout
+// (static_asserts on size in C++). Lengths in metres in a planet-centred frame: origin at the
+// planet centre, +z through the ground point below the start position, x east, y north there.
+#ifndef NEPHELE_PARAMS_INC
+#define NEPHELE_PARAMS_INC
+
+#ifdef __cplusplus
+namespace nephele::gpu {
+using glm::ivec4;
+using glm::mat4;
+using glm::vec4;
+#endif
+
+struct FrameParams {
+  vec4 camera_pos_m;        // xyz camera position (m, planet frame); w tan(vertical fov / 2)
+  vec4 camera_forward;      // xyz unit view direction; w aspect (width / height)
+  vec4 camera_right;        // xyz unit right vector
+  vec4 camera_up;           // xyz unit up vector (image up)
+  vec4 sun_dir;             // xyz unit vector towards the sun; w cos(sun angular radius)
+  vec4 sun_illuminance;     // rgb solar illuminance at the top of the atmosphere; w unused
+  vec4 sun_at_clouds;       // rgb sunlight reaching the middle of the cloud layer; w unused
+  vec4 ambient_at_clouds;   // rgb mean sky radiance over the upper hemisphere at the clouds
+  vec4 radii_m;             // x planet, y atmosphere top, z cloud bottom, w cloud top (m)
+  vec4 rayleigh;            // rgb sigma_s at sea level (1/m); w scale height (m)
+  vec4 mie;                 // x sigma_s (1/m), y sigma_t (1/m), z scale height (m), w g
+  vec4 cloud_shape;         // x coverage [0,1], y density [0,1], z sigma_t at density 1 (1/m), w albedo
+  vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
+  vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w unused
+  vec4 cloud_noise;         // x 1/base period, y 1/detail period, z 1/weather period (1/m), w erosion
+  vec4 wind_offset_m;       // xy wind displacement (m) = wind * time; zw unused
+  ivec4 size;               // x width, y height, z frame index, w noise seed
+  ivec4 steps;              // x primary steps, y light steps, z sky view samples, w sky light samples
+};
+
+#ifdef __cplusplus
+}  // namespace nephele::gpu
+#endif
+
+#endif

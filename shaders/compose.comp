@@ -1,0 +1,60 @@
+#version 450
+// Pass 4: compose. Sky (single scattering, seed 000 section 1.5) behind and between the
+// clouds, the sun disk with limb darkening drawn separately so clouds occlude it, and the
+// clouds over both: color = background * T_cloud + cloud in-scattering (seed listing B.3).
+#extension GL_GOOGLE_include_directive : require
+#include "common/bindings_inc.glsl"
+#include "common/math_inc.glsl"
+#include "common/phase_inc.glsl"
+#include "common/atmosphere_inc.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+const float GROUND_ALBEDO = 0.1f;
+
+Atmosphere frame_atmosphere() {
+  Atmosphere a;
+  a.planet_radius_m = frame.radii_m.x;
+  a.top_radius_m = frame.radii_m.y;
+  a.rayleigh_sigma_s = frame.rayleigh.rgb;
+  a.rayleigh_height_m = frame.rayleigh.w;
+  a.mie_sigma_s = frame.mie.x;
+  a.mie_sigma_t = frame.mie.y;
+  a.mie_height_m = frame.mie.z;
+  a.mie_g = frame.mie.w;
+  return a;
+}
+
+// Solar disk radiance per unit illuminance, with limb darkening I(m)/I(1) = 1 - u (1 - m),
+// m = cos of the angle at the sun's surface, u = 0.6 (a visible-band average); normalised so
+// the disk integrates to the illuminance.
+float sun_disk(vec3 dir, vec3 sun, float cos_radius) {
+  float cos_angle = dot(dir, sun);
+  if (cos_angle < cos_radius) return 0.0f;
+  float sin_radius_sq = 1.0f - cos_radius * cos_radius;
+  float r = sqrt(saturate((1.0f - cos_angle * cos_angle) / max(sin_radius_sq, 1e-12f)));
+  float m = sqrt(1.0f - r * r);
+  const float u = 0.6f;
+  float solid_angle = 2.0f * PI * (1.0f - cos_radius);
+  return (1.0f - u * (1.0f - m)) / ((1.0f - u / 3.0f) * solid_angle);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  int width = frame.size.x;
+  int height = frame.size.y;
+  if (pixel.x >= width || pixel.y >= height) return;
+  int index = pixel.y * width + pixel.x;
+
+  vec3 eye = frame.camera_pos_m.xyz;
+  vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
+                        frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
+                        float(pixel.y), float(width), float(height));
+  vec3 sun = frame.sun_dir.xyz;
+  SkySample sky = sky_single_scattering(frame_atmosphere(), eye, dir, sun, frame.steps.z,
+                                        frame.steps.w, GROUND_ALBEDO);
+  vec3 background = sky.radiance + sky.transmittance * sun_disk(dir, sun, frame.sun_dir.w);
+  vec4 cloud = cloud_out[index];
+  vec3 color = (background * cloud.a) * frame.sun_illuminance.rgb + cloud.rgb;
+  color_out[index] = vec4(color, 1.0f);
+}

@@ -1,0 +1,70 @@
+// Headless Vulkan context: instance, optional validation, one compute queue.
+// Picks a real GPU when there is one, otherwise a CPU device (Mesa lavapipe).
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <string>
+
+namespace nephele::gpu {
+
+struct ContextOptions {
+  std::string device;       // substring of the device name; empty = best by type
+  bool validation = false;  // VK_LAYER_KHRONOS_validation + debug messenger
+  bool verbose = false;
+};
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options);
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkDevice device() const { return device_; }
+  VkPhysicalDevice physical_device() const { return physical_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queue_family() const { return queue_family_; }
+  VkCommandPool command_pool() const { return pool_; }
+  const std::string& device_name() const { return device_name_; }
+  bool is_cpu() const { return is_cpu_; }
+  double timestamp_period_ns() const { return timestamp_period_ns_; }
+  bool has_timestamps() const { return has_timestamps_; }
+  int validation_messages() const { return validation_messages_.load(); }
+
+  uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;
+
+  // Records with `record`, submits, and waits for completion.
+  template <typename F>
+  void submit_and_wait(F&& record) {
+    VkCommandBuffer cmd = begin_commands();
+    record(cmd);
+    end_and_wait(cmd);
+  }
+
+ private:
+  VkCommandBuffer begin_commands();
+  void end_and_wait(VkCommandBuffer cmd);
+  void pick_physical_device(const std::string& wanted);
+  static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                      VkDebugUtilsMessageTypeFlagsEXT,
+                                                      const VkDebugUtilsMessengerCallbackDataEXT*,
+                                                      void*);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  uint32_t queue_family_ = 0;
+  std::string device_name_;
+  bool is_cpu_ = false;
+  bool has_timestamps_ = false;
+  double timestamp_period_ns_ = 1.0;
+  std::atomic<int> validation_messages_{0};
+};
+
+}  // namespace nephele::gpu

@@ -1,0 +1,179 @@
+#include "gpu/kernel.h"
+
+#include "gpu/vk_check.h"
+#include "nephele_embedded.h"
+
+namespace nephele_shaders {
+extern const EmbeddedFile kFiles[];
+extern const size_t kFileCount;
+}  // namespace nephele_shaders
+
+namespace nephele::gpu {
+
+DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
+  const VkDescriptorType types[] = {
+      VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+      VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,          VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
+  VkDescriptorSetLayoutBinding bindings[kCount];
+  for (uint32_t i = 0; i < kCount; ++i)
+    bindings[i] = {i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layout_info.bindingCount = kCount;
+  layout_info.pBindings = bindings;
+  NEPHELE_VK(vkCreateDescriptorSetLayout(device_, &layout_info, nullptr, &layout_));
+
+  VkPipelineLayoutCreateInfo pipeline_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipeline_info.setLayoutCount = 1;
+  pipeline_info.pSetLayouts = &layout_;
+  NEPHELE_VK(vkCreatePipelineLayout(device_, &pipeline_info, nullptr, &pipeline_layout_));
+
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3},
+                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
+  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = 4;
+  pool_info.pPoolSizes = sizes;
+  NEPHELE_VK(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_));
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = pool_;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &layout_;
+  NEPHELE_VK(vkAllocateDescriptorSets(device_, &alloc, &set_));
+}
+
+DescriptorSet::~DescriptorSet() {
+  vkDestroyDescriptorPool(device_, pool_, nullptr);
+  vkDestroyPipelineLayout(device_, pipeline_layout_, nullptr);
+  vkDestroyDescriptorSetLayout(device_, layout_, nullptr);
+}
+
+void DescriptorSet::bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type) {
+  VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set_;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = type;
+  write.pBufferInfo = &info;
+  vkUpdateDescriptorSets(device_, 1, &write, 0, nullptr);
+}
+
+static void write_image(VkDevice device, VkDescriptorSet set, uint32_t binding,
+                        VkDescriptorType type, const Texture& texture) {
+  VkDescriptorImageInfo info{texture.sampler(), texture.view(), VK_IMAGE_LAYOUT_GENERAL};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = type;
+  write.pImageInfo = &info;
+  vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+}
+
+void DescriptorSet::bind_storage_image(Binding binding, const Texture& texture) {
+  write_image(device_, set_, binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, texture);
+}
+
+void DescriptorSet::bind_sampled_image(Binding binding, const Texture& texture) {
+  write_image(device_, set_, binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, texture);
+}
+
+Kernel::Kernel(Context& ctx, const DescriptorSet& set, const std::string& spv_name,
+               const std::vector<int32_t>& specialization)
+    : device_(ctx.device()) {
+  const EmbeddedFile* spv =
+      find_embedded(nephele_shaders::kFiles, nephele_shaders::kFileCount, spv_name);
+  if (!spv) throw RuntimeError("shader '" + spv_name + "' is not embedded in this build");
+
+  VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  module_info.codeSize = spv->size;
+  module_info.pCode = reinterpret_cast<const uint32_t*>(spv->data);
+  VkShaderModule module;
+  NEPHELE_VK(vkCreateShaderModule(device_, &module_info, nullptr, &module));
+
+  std::vector<VkSpecializationMapEntry> entries;
+  for (uint32_t i = 0; i < specialization.size(); ++i)
+    entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
+  VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(),
+                            specialization.size() * sizeof(int32_t), specialization.data()};
+
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = specialization.empty() ? nullptr : &spec;
+  info.layout = set.pipeline_layout();
+  VkResult result = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+  vkDestroyShaderModule(device_, module, nullptr);
+  check(result, ("vkCreateComputePipelines(" + spv_name + ")").c_str());
+}
+
+Kernel::~Kernel() { vkDestroyPipeline(device_, pipeline_, nullptr); }
+
+PassTimer::PassTimer(Context& ctx, uint32_t max_passes) : ctx_(ctx), max_passes_(max_passes) {
+  if (!ctx.has_timestamps()) return;
+  VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  info.queryCount = 2 * max_passes;
+  NEPHELE_VK(vkCreateQueryPool(ctx.device(), &info, nullptr, &pool_));
+}
+
+PassTimer::~PassTimer() {
+  if (pool_) vkDestroyQueryPool(ctx_.device(), pool_, nullptr);
+}
+
+void PassTimer::reset(VkCommandBuffer cmd) {
+  names_.clear();
+  if (pool_) vkCmdResetQueryPool(cmd, pool_, 0, 2 * max_passes_);
+}
+
+void PassTimer::begin(VkCommandBuffer cmd, const std::string& name) {
+  if (names_.size() >= max_passes_) throw RuntimeError("PassTimer: too many passes");
+  names_.push_back(name);
+  if (pool_)
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool_,
+                        uint32_t(2 * (names_.size() - 1)));
+}
+
+void PassTimer::end(VkCommandBuffer cmd) {
+  if (pool_)
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_,
+                        uint32_t(2 * names_.size() - 1));
+}
+
+std::vector<std::pair<std::string, double>> PassTimer::results() const {
+  std::vector<std::pair<std::string, double>> out;
+  if (!pool_ || names_.empty()) return out;
+  std::vector<uint64_t> stamps(2 * names_.size());
+  NEPHELE_VK(vkGetQueryPoolResults(ctx_.device(), pool_, 0, uint32_t(stamps.size()),
+                                   stamps.size() * sizeof(uint64_t), stamps.data(),
+                                   sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  for (size_t i = 0; i < names_.size(); ++i)
+    out.emplace_back(names_[i],
+                     double(stamps[2 * i + 1] - stamps[2 * i]) * ctx_.timestamp_period_ns() * 1e-6);
+  return out;
+}
+
+void dispatch(VkCommandBuffer cmd, const Kernel& kernel, const DescriptorSet& set,
+              PassTimer& timer, const std::string& name, uint32_t size_x, uint32_t size_y,
+              uint32_t size_z, uint32_t local_x, uint32_t local_y, uint32_t local_z) {
+  timer.begin(cmd, name);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
+  VkDescriptorSet handle = set.set();
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipeline_layout(), 0, 1,
+                          &handle, 0, nullptr);
+  vkCmdDispatch(cmd, (size_x + local_x - 1) / local_x, (size_y + local_y - 1) / local_y,
+                (size_z + local_z - 1) / local_z);
+  compute_barrier(cmd);
+  timer.end(cmd);
+}
+
+}  // namespace nephele::gpu

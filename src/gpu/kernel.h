@@ -1,0 +1,91 @@
+// Compute kernels: one descriptor-set layout shared by every pass (shaders/common/
+// bindings_inc.glsl), compute pipelines from embedded SPIR-V, and per-pass timestamps.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+#include "gpu/resources.h"
+
+namespace nephele::gpu {
+
+// Bindings of bindings_inc.glsl.
+enum Binding : uint32_t {
+  kFrameParams = 0,
+  kBaseNoiseOut = 1,
+  kDetailNoiseOut = 2,
+  kWeatherOut = 3,
+  kBaseNoise = 4,
+  kDetailNoise = 5,
+  kWeatherMap = 6,
+  kCloudBuffer = 7,
+  kColorBuffer = 8,
+};
+
+class DescriptorSet {
+ public:
+  explicit DescriptorSet(Context& ctx);
+  ~DescriptorSet();
+  DescriptorSet(const DescriptorSet&) = delete;
+  DescriptorSet& operator=(const DescriptorSet&) = delete;
+
+  VkPipelineLayout pipeline_layout() const { return pipeline_layout_; }
+  VkDescriptorSet set() const { return set_; }
+  void bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type);
+  void bind_storage_image(Binding binding, const Texture& texture);
+  void bind_sampled_image(Binding binding, const Texture& texture);
+
+ private:
+  VkDevice device_;
+  VkDescriptorSetLayout layout_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+// A compute pipeline from the embedded SPIR-V file `spv_name` (e.g. "clouds.comp.spv"),
+// with integer specialization constants 0..n-1 set to `specialization`.
+class Kernel {
+ public:
+  Kernel(Context& ctx, const DescriptorSet& set, const std::string& spv_name,
+         const std::vector<int32_t>& specialization = {});
+  ~Kernel();
+  Kernel(const Kernel&) = delete;
+  Kernel& operator=(const Kernel&) = delete;
+  VkPipeline pipeline() const { return pipeline_; }
+
+ private:
+  VkDevice device_;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+};
+
+// Timestamps around passes of one command buffer.
+class PassTimer {
+ public:
+  PassTimer(Context& ctx, uint32_t max_passes);
+  ~PassTimer();
+  PassTimer(const PassTimer&) = delete;
+  PassTimer& operator=(const PassTimer&) = delete;
+  void reset(VkCommandBuffer cmd);
+  void begin(VkCommandBuffer cmd, const std::string& name);
+  void end(VkCommandBuffer cmd);
+  // After the command buffer completed: (name, milliseconds) per pass.
+  std::vector<std::pair<std::string, double>> results() const;
+
+ private:
+  Context& ctx_;
+  VkQueryPool pool_ = VK_NULL_HANDLE;
+  uint32_t max_passes_;
+  std::vector<std::string> names_;
+};
+
+// Binds `kernel` with the shared set, dispatches ceil(size / local) groups, adds a barrier,
+// and times it: the body of every pass.
+void dispatch(VkCommandBuffer cmd, const Kernel& kernel, const DescriptorSet& set,
+              PassTimer& timer, const std::string& name, uint32_t size_x, uint32_t size_y,
+              uint32_t size_z, uint32_t local_x, uint32_t local_y, uint32_t local_z);
+
+}  // namespace nephele::gpu

@@ -1,0 +1,160 @@
+#include "gpu/resources.h"
+
+#include <utility>
+
+#include "gpu/vk_check.h"
+
+namespace nephele::gpu {
+
+Buffer::Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage)
+    : device_(ctx.device()), size_(size) {
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  NEPHELE_VK(vkCreateBuffer(device_, &info, nullptr, &buffer_));
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(device_, buffer_, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = ctx.memory_type(
+      req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+  NEPHELE_VK(vkBindBufferMemory(device_, buffer_, memory_, 0));
+  NEPHELE_VK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+}
+
+Buffer& Buffer::operator=(Buffer&& other) noexcept {
+  if (this != &other) {
+    reset();
+    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+    buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    size_ = std::exchange(other.size_, 0);
+    mapped_ = std::exchange(other.mapped_, nullptr);
+  }
+  return *this;
+}
+
+void Buffer::reset() {
+  if (!device_) return;
+  if (mapped_) vkUnmapMemory(device_, memory_);
+  vkDestroyBuffer(device_, buffer_, nullptr);
+  vkFreeMemory(device_, memory_, nullptr);
+  device_ = VK_NULL_HANDLE;
+}
+
+Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format)
+    : device_(ctx.device()), width_(width), height_(height), depth_(depth) {
+  const bool is_3d = depth > 1;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = is_3d ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width, height, depth};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+               VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  NEPHELE_VK(vkCreateImage(device_, &info, nullptr, &image_));
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(device_, image_, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex =
+      ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+  NEPHELE_VK(vkBindImageMemory(device_, image_, memory_, 0));
+
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = image_;
+  view.viewType = is_3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
+  view.format = format;
+  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &view_));
+
+  // Noise and weather tile seamlessly: trilinear filtering with repeat addressing.
+  VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sampler.magFilter = VK_FILTER_LINEAR;
+  sampler.minFilter = VK_FILTER_LINEAR;
+  sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sampler.addressModeU = sampler.addressModeV = sampler.addressModeW =
+      VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  sampler.maxLod = 0.0f;
+  NEPHELE_VK(vkCreateSampler(device_, &sampler, nullptr, &sampler_));
+
+  // Move to GENERAL once; it stays there.
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    barrier.srcAccessMask = 0;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                            VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image_;
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                         0, nullptr, 0, nullptr, 1, &barrier);
+  });
+}
+
+Texture& Texture::operator=(Texture&& other) noexcept {
+  if (this != &other) {
+    reset();
+    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+    image_ = std::exchange(other.image_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
+    width_ = other.width_;
+    height_ = other.height_;
+    depth_ = other.depth_;
+  }
+  return *this;
+}
+
+void Texture::reset() {
+  if (!device_) return;
+  vkDestroySampler(device_, sampler_, nullptr);
+  vkDestroyImageView(device_, view_, nullptr);
+  vkDestroyImage(device_, image_, nullptr);
+  vkFreeMemory(device_, memory_, nullptr);
+  device_ = VK_NULL_HANDLE;
+}
+
+static VkBufferImageCopy whole_image_copy(const Texture& t) {
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {t.width(), t.height(), t.depth()};
+  return region;
+}
+
+void Texture::record_upload(VkCommandBuffer cmd, const Buffer& staging) const {
+  VkBufferImageCopy region = whole_image_copy(*this);
+  vkCmdCopyBufferToImage(cmd, staging.handle(), image_, VK_IMAGE_LAYOUT_GENERAL, 1, &region);
+  compute_barrier(cmd);
+}
+
+void Texture::record_download(VkCommandBuffer cmd, const Buffer& staging) const {
+  compute_barrier(cmd);
+  VkBufferImageCopy region = whole_image_copy(*this);
+  vkCmdCopyImageToBuffer(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, staging.handle(), 1, &region);
+  compute_barrier(cmd);
+}
+
+void compute_barrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                          VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                           VK_PIPELINE_STAGE_HOST_BIT,
+                       0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace nephele::gpu

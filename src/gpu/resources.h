@@ -1,0 +1,70 @@
+// GPU buffers and images with their memory; RAII, move-only.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+
+#include "gpu/context.h"
+
+namespace nephele::gpu {
+
+// A host-visible, coherent buffer (storage, uniform or transfer), persistently mapped.
+class Buffer {
+ public:
+  Buffer() = default;
+  Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage);
+  ~Buffer() { reset(); }
+  Buffer(Buffer&& other) noexcept { *this = std::move(other); }
+  Buffer& operator=(Buffer&& other) noexcept;
+
+  VkBuffer handle() const { return buffer_; }
+  VkDeviceSize size() const { return size_; }
+  void* data() const { return mapped_; }
+
+ private:
+  void reset();
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;
+};
+
+// A device-local 2D or 3D image kept in VK_IMAGE_LAYOUT_GENERAL, so compute shaders
+// can write it as a storage image and sample it (with its own sampler) later.
+class Texture {
+ public:
+  Texture() = default;
+  // depth == 1 makes a 2D image. Sampled with trilinear filtering and repeat addressing.
+  Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format);
+  ~Texture() { reset(); }
+  Texture(Texture&& other) noexcept { *this = std::move(other); }
+  Texture& operator=(Texture&& other) noexcept;
+
+  VkImage image() const { return image_; }
+  VkImageView view() const { return view_; }
+  VkSampler sampler() const { return sampler_; }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  uint32_t depth() const { return depth_; }
+
+  // Copies tightly packed texels from `staging` into the image (recorded into `cmd`).
+  void record_upload(VkCommandBuffer cmd, const Buffer& staging) const;
+  // Copies the image into `staging` (recorded into `cmd`).
+  void record_download(VkCommandBuffer cmd, const Buffer& staging) const;
+
+ private:
+  void reset();
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkImageView view_ = VK_NULL_HANDLE;
+  VkSampler sampler_ = VK_NULL_HANDLE;
+  uint32_t width_ = 0, height_ = 0, depth_ = 0;
+};
+
+// A full memory barrier between compute/transfer work (shader writes -> reads).
+void compute_barrier(VkCommandBuffer cmd);
+
+}  // namespace nephele::gpu

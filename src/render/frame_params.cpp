@@ -1,0 +1,101 @@
+#include "render/frame_params.h"
+
+#include <cmath>
+
+namespace nephele {
+
+glm::vec3 planet_from_enu(const Scene& scene, const glm::vec3& enu_m) {
+  return {enu_m.x, enu_m.y, scene.atmosphere.planet_radius_km * 1000.0f + enu_m.z};
+}
+
+glsl::Atmosphere make_atmosphere(const Scene& scene) {
+  const AtmosphereParams& p = scene.atmosphere;
+  glsl::Atmosphere a;
+  a.planet_radius_m = p.planet_radius_km * 1000.0f;
+  a.top_radius_m = (p.planet_radius_km + p.atmosphere_height_km) * 1000.0f;
+  a.rayleigh_sigma_s = p.rayleigh_scattering_per_m;
+  a.rayleigh_height_m = p.rayleigh_scale_height_m;
+  a.mie_sigma_s = p.mie_scattering_per_m;
+  a.mie_sigma_t = p.mie_extinction_per_m;
+  a.mie_height_m = p.mie_scale_height_m;
+  a.mie_g = p.mie_g;
+  return a;
+}
+
+CameraBasis camera_basis(const glm::vec3& view_dir) {
+  CameraBasis b;
+  b.forward = glm::normalize(view_dir);
+  // Looking straight up or down, "up" on the image is north.
+  glm::vec3 world_up = std::abs(b.forward.z) > 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+  b.right = glm::normalize(glm::cross(b.forward, world_up));
+  b.up = glm::cross(b.right, b.forward);
+  return b;
+}
+
+namespace {
+
+// Mean sky radiance over all directions at `pos` per unit solar illuminance: the light an
+// isotropic scatterer receives from the sky (Fibonacci sphere, 64 directions).
+glm::vec3 mean_sky_radiance(const glsl::Atmosphere& atmosphere, const glm::vec3& pos,
+                            const glm::vec3& sun) {
+  constexpr int kDirections = 64;
+  const float golden = glsl::PI * (3.0f - std::sqrt(5.0f));
+  glm::vec3 sum(0.0f);
+  for (int i = 0; i < kDirections; ++i) {
+    float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(kDirections);
+    float r = std::sqrt(1.0f - z * z);
+    glm::vec3 dir(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
+    sum += glsl::sky_single_scattering(atmosphere, pos, dir, sun, 8, 4, 0.1f).radiance;
+  }
+  return sum / float(kDirections);
+}
+
+}  // namespace
+
+gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
+  const CloudParams& c = scene.clouds;
+  const glsl::Atmosphere atmosphere = make_atmosphere(scene);
+  const float planet_m = atmosphere.planet_radius_m;
+  const CameraBasis basis = camera_basis(scene.camera.view_dir);
+  const glm::vec3 sun = glm::normalize(scene.sun.direction);
+  const float aspect = float(scene.output.width) / float(scene.output.height);
+  const float tan_half_fov = std::tan(glm::radians(scene.camera.fov_deg) * 0.5f);
+
+  gpu::FrameParams f{};
+  f.camera_pos_m = glm::vec4(planet_from_enu(scene, scene.camera.position_m), tan_half_fov);
+  f.camera_forward = glm::vec4(basis.forward, aspect);
+  f.camera_right = glm::vec4(basis.right, 0.0f);
+  f.camera_up = glm::vec4(basis.up, 0.0f);
+  f.sun_dir = glm::vec4(sun, std::cos(glm::radians(scene.sun.disk_angular_radius_deg)));
+  const glm::vec3 illuminance(scene.sun.illuminance);
+  f.sun_illuminance = glm::vec4(illuminance, 0.0f);
+
+  // Sunlight and sky light at the middle of the cloud layer above the camera: reddened by the
+  // atmosphere when the sun is low.
+  const glm::vec3 cloud_mid(scene.camera.position_m.x, scene.camera.position_m.y,
+                            planet_m + 0.5f * (c.bottom_altitude_m + c.top_altitude_m));
+  f.sun_at_clouds = glm::vec4(
+      illuminance * glsl::atmosphere_transmittance_to_top(atmosphere, cloud_mid, sun, 32), 0.0f);
+  f.ambient_at_clouds =
+      glm::vec4(illuminance * mean_sky_radiance(atmosphere, cloud_mid, sun), 0.0f);
+
+  f.radii_m = glm::vec4(planet_m, atmosphere.top_radius_m, planet_m + c.bottom_altitude_m,
+                        planet_m + c.top_altitude_m);
+  f.rayleigh = glm::vec4(atmosphere.rayleigh_sigma_s, atmosphere.rayleigh_height_m);
+  f.mie = glm::vec4(atmosphere.mie_sigma_s, atmosphere.mie_sigma_t, atmosphere.mie_height_m,
+                    atmosphere.mie_g);
+  f.cloud_shape = glm::vec4(c.coverage, c.density, c.extinction_per_m, c.albedo);
+  f.cloud_light = glm::vec4(c.attenuation, c.light_attenuation, c.powder_strength,
+                            c.ambient_strength);
+  f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight, 0.0f);
+  f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
+                            1.0f / c.weather_period_m, c.detail_erosion);
+  f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);
+  f.size = glm::ivec4(scene.output.width, scene.output.height, frame_index,
+                      int(scene.noise_seed & 0x7fffffff));
+  f.steps = glm::ivec4(scene.quality.primary_steps, scene.quality.light_steps,
+                       scene.atmosphere.view_samples, scene.atmosphere.light_samples);
+  return f;
+}
+
+}  // namespace nephele

@@ -1,0 +1,11 @@
+// C++ view of the GPU structs (one definition: shaders/common/params_inc.glsl).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "common/params_inc.glsl"
+
+namespace nephele::gpu {
+static_assert(sizeof(FrameParams) == 18 * 16, "FrameParams must be 18 vec4s (std140 layout)");
+static_assert(alignof(FrameParams) <= 16);
+}  // namespace nephele::gpu

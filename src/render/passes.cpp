@@ -1,0 +1,70 @@
+#include "render/passes.h"
+
+#include "render/gpu_params.h"
+
+namespace nephele {
+
+GpuState::GpuState(gpu::Context& c)
+    : ctx(c),
+      set(c),
+      noise_base_kernel(c, set, "noise_base.comp.spv"),
+      noise_detail_kernel(c, set, "noise_detail.comp.spv"),
+      weather_kernel(c, set, "weather.comp.spv"),
+      clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
+      clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
+      compose_kernel(c, set, "compose.comp.spv"),
+      timer(c, 8),
+      frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
+      base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
+      detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
+                   VK_FORMAT_R8G8B8A8_UNORM),
+      weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM) {
+  set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  set.bind_storage_image(gpu::kBaseNoiseOut, base_noise);
+  set.bind_storage_image(gpu::kDetailNoiseOut, detail_noise);
+  set.bind_storage_image(gpu::kWeatherOut, weather_map);
+  set.bind_sampled_image(gpu::kBaseNoise, base_noise);
+  set.bind_sampled_image(gpu::kDetailNoise, detail_noise);
+  set.bind_sampled_image(gpu::kWeatherMap, weather_map);
+  resize(1, 1);
+}
+
+void GpuState::resize(int w, int h) {
+  if (w == width && h == height) return;
+  const VkDeviceSize bytes = VkDeviceSize(w) * VkDeviceSize(h) * 4 * sizeof(float);
+  cloud_buffer = gpu::Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  color_buffer = gpu::Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  set.bind_buffer(gpu::kCloudBuffer, cloud_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  set.bind_buffer(gpu::kColorBuffer, color_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  width = w;
+  height = h;
+}
+
+void pass_noise_base(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.noise_base_kernel, s.set, s.timer, "noise_base", kBaseNoiseSize,
+                kBaseNoiseSize, kBaseNoiseSize, 4, 4, 4);
+}
+
+void pass_noise_detail(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.noise_detail_kernel, s.set, s.timer, "noise_detail", kDetailNoiseSize,
+                kDetailNoiseSize, kDetailNoiseSize, 4, 4, 4);
+}
+
+void pass_weather(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.weather_kernel, s.set, s.timer, "weather", kWeatherMapSize,
+                kWeatherMapSize, 1, 8, 8, 1);
+}
+
+void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
+  const gpu::Kernel& kernel =
+      mode == MarchMode::Baseline ? s.clouds_baseline_kernel : s.clouds_default_kernel;
+  gpu::dispatch(cmd, kernel, s.set, s.timer, "clouds", uint32_t(s.width), uint32_t(s.height), 1,
+                8, 8, 1);
+}
+
+void pass_compose(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.compose_kernel, s.set, s.timer, "compose", uint32_t(s.width),
+                uint32_t(s.height), 1, 8, 8, 1);
+}
+
+}  // namespace nephele

@@ -1,0 +1,39 @@
+// The render passes: each one .comp shader and one short function that records it.
+#pragma once
+
+#include <memory>
+
+#include "gpu/context.h"
+#include "gpu/kernel.h"
+#include "gpu/resources.h"
+#include "nephele/scene.h"
+
+namespace nephele {
+
+constexpr uint32_t kBaseNoiseSize = 128;    // seed 000, 2.2.2: base shape noise 128^3
+constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
+constexpr uint32_t kWeatherMapSize = 512;   // procedural weather map 512^2
+
+// Everything the passes read and write.
+struct GpuState {
+  explicit GpuState(gpu::Context& ctx);
+  void resize(int width, int height);  // (re)allocates the per-pixel buffers
+
+  gpu::Context& ctx;
+  gpu::DescriptorSet set;
+  gpu::Kernel noise_base_kernel, noise_detail_kernel, weather_kernel;
+  gpu::Kernel clouds_default_kernel, clouds_baseline_kernel, compose_kernel;
+  gpu::PassTimer timer;
+  gpu::Buffer frame_params;
+  gpu::Texture base_noise, detail_noise, weather_map;
+  gpu::Buffer cloud_buffer, color_buffer;
+  int width = 0, height = 0;
+};
+
+void pass_noise_base(VkCommandBuffer cmd, GpuState& s);
+void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
+void pass_weather(VkCommandBuffer cmd, GpuState& s);
+void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
+void pass_compose(VkCommandBuffer cmd, GpuState& s);
+
+}  // namespace nephele

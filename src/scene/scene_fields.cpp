@@ -1,0 +1,165 @@
+// nephele — the table of scene keys, MarchMode names, number formatting.
+#include "scene/scene_fields.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+#include "nephele/scene_io.h"
+
+namespace nephele {
+
+const char* to_string(MarchMode mode) {
+  switch (mode) {
+    case MarchMode::Default:
+      return "default";
+    case MarchMode::Baseline:
+      return "baseline";
+  }
+  return "unknown";
+}
+
+std::optional<MarchMode> parse_march_mode(std::string_view text) {
+  if (text == "default") return MarchMode::Default;
+  if (text == "baseline") return MarchMode::Baseline;
+  return std::nullopt;
+}
+
+namespace scene_detail {
+
+// FIELD(camera, fov_deg, note) is the key camera.fov_deg for Scene::camera.fov_deg; the unary +
+// turns the capture-less lambda into the function pointer that FieldAccess holds.
+#define FIELD(section, name, note) \
+  Field { #name, +[](Scene& s) -> auto& { return s.section.name; }, note }
+#define TOP_FIELD(name, note) \
+  Field { #name, +[](Scene& s) -> auto& { return s.name; }, note }
+
+const std::vector<Section>& scene_sections() {
+  static const std::vector<Section> sections = {
+      {"",
+       {TOP_FIELD(time_s, "animation time (s); clouds move with the wind"),
+        TOP_FIELD(noise_seed, "seeds the noise textures and the procedural weather map")},
+       {"preset"}},
+      {"camera",
+       {FIELD(camera, position_m, "east, north, up (m)"),
+        FIELD(camera, view_dir, "looking direction, ENU"),
+        FIELD(camera, fov_deg, "vertical field of view, (0, 180)")},
+       {"altitude_m"}},
+      {"sun",
+       {FIELD(sun, direction, "towards the sun, ENU"),
+        FIELD(sun, illuminance, "radiance scale of sunlight at the top of the atmosphere"),
+        FIELD(sun, disk_angular_radius_deg, "apparent radius of the sun disk")},
+       {"elevation_deg", "azimuth_deg"}},
+      {"atmosphere",
+       {FIELD(atmosphere, planet_radius_km, ""),
+        FIELD(atmosphere, atmosphere_height_km, "top of the atmosphere above ground"),
+        FIELD(atmosphere, rayleigh_scattering_per_m, "sigma_s at sea level, rgb"),
+        FIELD(atmosphere, rayleigh_scale_height_m, ""),
+        FIELD(atmosphere, mie_scattering_per_m, "sigma_s at sea level"),
+        FIELD(atmosphere, mie_extinction_per_m, "sigma_t at sea level, >= mie_scattering_per_m"),
+        FIELD(atmosphere, mie_scale_height_m, ""),
+        FIELD(atmosphere, mie_g, "Cornette-Shanks asymmetry, [0, 1)"),
+        FIELD(atmosphere, view_samples, "[1, 256]"),
+        FIELD(atmosphere, light_samples, "[1, 256]")},
+       {}},
+      {"clouds",
+       {FIELD(clouds, bottom_altitude_m, "above ground"),
+        FIELD(clouds, top_altitude_m, "above ground, > bottom_altitude_m"),
+        FIELD(clouds, coverage, "[0, 1]"),
+        FIELD(clouds, density, "[0, 1]"),
+        FIELD(clouds, extinction_per_m, "sigma_t at density 1, > 0"),
+        FIELD(clouds, attenuation, "sigma_t multiplier along view rays, >= 0"),
+        FIELD(clouds, light_attenuation, "sigma_t multiplier along light rays, >= 0"),
+        FIELD(clouds, albedo, "[0, 1]"),
+        FIELD(clouds, phase_g_forward, "[0, 1)"),
+        FIELD(clouds, phase_g_backward, "(-1, 0]"),
+        FIELD(clouds, phase_lobe_weight, "weight of the forward lobe, [0, 1]"),
+        FIELD(clouds, powder_strength, "[0, 1]"),
+        FIELD(clouds, ambient_strength, ">= 0"),
+        FIELD(clouds, wind_mps, "east, north (m/s)"),
+        FIELD(clouds, base_noise_period_m, "> 0"),
+        FIELD(clouds, detail_noise_period_m, "> 0"),
+        FIELD(clouds, detail_erosion, "[0, 1]"),
+        FIELD(clouds, weather_period_m, "> 0"),
+        FIELD(clouds, weather_map, "PNG path; empty = procedural")},
+       {}},
+      {"quality",
+       {FIELD(quality, mode, "\"default\" or \"baseline\""),
+        FIELD(quality, primary_steps, "[1, 1024]"),
+        FIELD(quality, light_steps, "[1, 64]")},
+       {}},
+      {"output",
+       {FIELD(output, width, "pixels, [1, 16384]"),
+        FIELD(output, height, "pixels, [1, 16384]"),
+        FIELD(output, exposure, "linear scale before tone mapping, > 0")},
+       {}},
+  };
+  return sections;
+}
+
+#undef TOP_FIELD
+#undef FIELD
+
+template <typename T>
+static std::string shortest(T value) {
+  char buffer[64];
+  auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string format_float(float value) { return shortest(value); }
+std::string format_double(double value) { return shortest(value); }
+
+// Reads `text` the way toml++ does (as a double) and narrows it like the scene reader.
+static bool reads_back_as(const std::string& text, float value) {
+  double parsed = 0.0;
+  auto result = std::from_chars(text.data(), text.data() + text.size(), parsed);
+  if (result.ec != std::errc()) return false;
+  float narrowed = static_cast<float>(parsed);
+  return narrowed == value || (std::isnan(narrowed) && std::isnan(value));
+}
+
+std::string toml_float(float value) {
+  std::string text = format_float(value);
+  // Shortest float digits can, very rarely, round differently when read as a double first;
+  // the exact double value of the float always reads back.
+  if (!reads_back_as(text, value)) text = format_double(static_cast<double>(value));
+  // TOML reads "2" as an integer; the reader accepts that, but a float looks like one.
+  if (text.find_first_of(".eni") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string toml_quote(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+          char escaped[8];
+          std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned char>(c));
+          out += escaped;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace scene_detail
+}  // namespace nephele

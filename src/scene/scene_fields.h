@@ -1,0 +1,47 @@
+// nephele — internal: the table of scene keys shared by the TOML reader and writer, and
+// number formatting shared with validation.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "nephele/scene.h"
+
+namespace nephele::scene_detail {
+
+// Reference to one field of a Scene; the alternative says the field's type.
+using FieldAccess =
+    std::variant<float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
+                 glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&), std::string& (*)(Scene&),
+                 MarchMode& (*)(Scene&)>;
+
+struct Field {
+  std::string_view name;  // key inside its table, e.g. "coverage"
+  FieldAccess access;
+  std::string_view note;  // comment written by scene_to_toml; may be empty
+};
+
+struct Section {
+  std::string_view name;  // TOML table name; "" for the top level
+  std::vector<Field> fields;
+  std::vector<std::string_view> extra_keys;  // keys the reader handles itself
+};
+
+// Every field of Scene, in the order scene_to_toml writes them; the top level comes first.
+const std::vector<Section>& scene_sections();
+
+// Shortest text that reads back as the same value: "1.5", "5.802e-06", "nan", "-inf".
+std::string format_float(float value);
+std::string format_double(double value);
+// A TOML float literal that toml++ reads back (via double) as exactly `value`.
+std::string toml_float(float value);
+// A TOML basic string literal, quoted and escaped.
+std::string toml_quote(std::string_view text);
+
+}  // namespace nephele::scene_detail

@@ -1,0 +1,356 @@
+// nephele — reading scene files and presets (TOML, via toml++).
+#include "nephele/scene_io.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "nephele/error.h"
+#include "nephele_embedded.h"
+#include "scene/scene_fields.h"
+
+namespace nephele_presets {  // defined by the generated embedded_presets.cpp
+extern const EmbeddedFile kFiles[];
+extern const size_t kFileCount;
+}  // namespace nephele_presets
+
+namespace nephele {
+namespace {
+
+using scene_detail::Field;
+using scene_detail::Section;
+
+// A preset may start from another preset; this bounds the chain (and breaks cycles).
+constexpr int kMaxPresetDepth = 8;
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+// One-line rendering of a TOML value for error messages, e.g. "abc" or [1, 2].
+std::string describe(const toml::node& node) {
+  std::string text;
+  if (const auto* s = node.as_string()) {
+    text = scene_detail::toml_quote(s->get());
+  } else if (const auto* i = node.as_integer()) {
+    text = std::to_string(i->get());
+  } else if (const auto* f = node.as_floating_point()) {
+    text = scene_detail::format_double(f->get());
+  } else if (const auto* b = node.as_boolean()) {
+    text = b->get() ? "true" : "false";
+  } else if (const auto* a = node.as_array()) {
+    std::vector<std::string> items;
+    for (const toml::node& item : *a) items.push_back(describe(item));
+    text = "[" + join(items) + "]";
+  } else if (node.is_table()) {
+    text = "{...}";
+  } else {  // dates and times
+    std::ostringstream out;
+    node.visit([&out](const auto& value) { out << value; });
+    text = out.str();
+  }
+  constexpr size_t kMaxChars = 60;
+  if (text.size() > kMaxChars) text = text.substr(0, kMaxChars - 3) + "...";
+  return text;
+}
+
+const Field* find_field(const Section& section, std::string_view name) {
+  for (const Field& field : section.fields)
+    if (field.name == name) return &field;
+  return nullptr;
+}
+
+bool is_extra_key(const Section& section, std::string_view name) {
+  return std::find(section.extra_keys.begin(), section.extra_keys.end(), name) !=
+         section.extra_keys.end();
+}
+
+// Keys allowed in a section, for "unknown key" messages; nested sections as [name].
+std::string allowed_keys(const Section& section) {
+  std::vector<std::string> names;
+  for (const Field& field : section.fields) names.emplace_back(field.name);
+  for (std::string_view extra : section.extra_keys) names.emplace_back(extra);
+  if (section.name.empty())
+    for (const Section& nested : scene_detail::scene_sections())
+      if (!nested.name.empty()) names.push_back("[" + std::string(nested.name) + "]");
+  return join(names);
+}
+
+const EmbeddedFile* find_preset_file(const std::string& name) {
+  return find_embedded(nephele_presets::kFiles, nephele_presets::kFileCount, name + ".toml");
+}
+
+Scene parse_preset(const EmbeddedFile& file, int depth);
+
+// Applies one TOML document to a Scene; `depth` counts the presets being read around it.
+class SceneReader {
+ public:
+  SceneReader(std::string source, std::string base_dir, int depth)
+      : source_(std::move(source)), base_dir_(std::move(base_dir)), depth_(depth) {}
+
+  Scene read(std::string_view text) const {
+    toml::table root;
+    try {
+      root = toml::parse(text, source_);
+    } catch (const toml::parse_error& error) {
+      std::string description(error.description());
+      std::replace(description.begin(), description.end(), '\n', ' ');
+      fail(error.source(), "malformed TOML: " + description);
+    }
+    Scene scene;
+    if (const toml::node* preset = root.get("preset")) scene = read_preset(*preset);
+    const Section& top = scene_detail::scene_sections().front();
+    for (const auto& [key, node] : root) {
+      std::string name(key.str());
+      if (name == "preset") continue;
+      if (const Field* field = find_field(top, name)) {
+        assign(*field, name, node, scene);
+        continue;
+      }
+      const Section* section = find_table(name);
+      if (!section)
+        fail(key.source(), "unknown key '" + name +
+                               "' (allowed at the top level: " + allowed_keys(top) + ")");
+      const toml::table* table = node.as_table();
+      if (!table) fail_value(node, name, "expected a table [" + name + "]");
+      read_table(*section, *table, scene);
+    }
+    return scene;
+  }
+
+ private:
+  // "file:line:column: message"; the position is left out when toml++ has none.
+  [[noreturn]] void fail(const toml::source_region& where, const std::string& message) const {
+    std::string position;
+    if (where.begin.line > 0)
+      position = ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column);
+    throw InputError(source_ + position + ": " + message);
+  }
+
+  [[noreturn]] void fail_value(const toml::node& node, const std::string& key,
+                               const std::string& what) const {
+    fail(node.source(), key + " = " + describe(node) + ": " + what);
+  }
+
+  static const Section* find_table(std::string_view name) {
+    for (const Section& section : scene_detail::scene_sections())
+      if (!section.name.empty() && section.name == name) return &section;
+    return nullptr;
+  }
+
+  void read_table(const Section& section, const toml::table& table, Scene& scene) const {
+    for (const auto& [key, node] : table) {
+      std::string name(key.str());
+      std::string full_key = std::string(section.name) + "." + name;
+      if (is_extra_key(section, name)) continue;  // read below, after the plain fields
+      const Field* field = find_field(section, name);
+      if (!field)
+        fail(key.source(), "unknown key '" + full_key + "' (allowed in [" +
+                               std::string(section.name) + "]: " + allowed_keys(section) + ")");
+      assign(*field, full_key, node, scene);
+    }
+    if (section.name == "camera") read_camera_altitude(table, scene);
+    if (section.name == "sun") read_sun_angles(table, scene);
+  }
+
+  void assign(const Field& field, const std::string& key, const toml::node& node,
+              Scene& scene) const {
+    std::visit([&](auto access) { read_value(node, key, access(scene)); }, field.access);
+    if (key == "clouds.weather_map") scene.clouds.weather_map = resolve_path(scene.clouds.weather_map);
+  }
+
+  // A relative path in a file is relative to the file's folder.
+  std::string resolve_path(const std::string& path) const {
+    std::filesystem::path p(path);
+    if (path.empty() || base_dir_.empty() || p.is_absolute()) return path;
+    return (std::filesystem::path(base_dir_) / p).lexically_normal().string();
+  }
+
+  double read_number(const toml::node& node, const std::string& key) const {
+    if (const auto* i = node.as_integer()) return static_cast<double>(i->get());
+    if (const auto* f = node.as_floating_point()) return f->get();
+    fail_value(node, key, "expected a number");
+  }
+
+  int64_t read_integer(const toml::node& node, const std::string& key, int64_t min,
+                       int64_t max) const {
+    const auto* i = node.as_integer();
+    if (!i || i->get() < min || i->get() > max)
+      fail_value(node, key,
+                 "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    return i->get();
+  }
+
+  void read_value(const toml::node& node, const std::string& key, float& out) const {
+    out = static_cast<float>(read_number(node, key));
+  }
+  void read_value(const toml::node& node, const std::string& key, int& out) const {
+    out = static_cast<int>(read_integer(node, key, INT_MIN, INT_MAX));
+  }
+  void read_value(const toml::node& node, const std::string& key, uint32_t& out) const {
+    out = static_cast<uint32_t>(read_integer(node, key, 0, UINT32_MAX));
+  }
+  void read_value(const toml::node& node, const std::string& key, glm::vec2& out) const {
+    read_vector(node, key, 2, &out.x);
+  }
+  void read_value(const toml::node& node, const std::string& key, glm::vec3& out) const {
+    read_vector(node, key, 3, &out.x);
+  }
+  void read_value(const toml::node& node, const std::string& key, std::string& out) const {
+    const auto* s = node.as_string();
+    if (!s) fail_value(node, key, "expected a string");
+    out = s->get();
+  }
+  void read_value(const toml::node& node, const std::string& key, MarchMode& out) const {
+    const auto* s = node.as_string();
+    std::optional<MarchMode> mode = s ? parse_march_mode(s->get()) : std::nullopt;
+    if (!mode) fail_value(node, key, "expected \"default\" or \"baseline\"");
+    out = *mode;
+  }
+
+  // `out` points at `size` consecutive floats (glm vectors are laid out so).
+  void read_vector(const toml::node& node, const std::string& key, size_t size, float* out) const {
+    const toml::array* array = node.as_array();
+    bool ok = array && array->size() == size &&
+              std::all_of(array->begin(), array->end(),
+                          [](const toml::node& item) { return item.is_number(); });
+    if (!ok) fail_value(node, key, "expected an array of " + std::to_string(size) + " numbers");
+    for (size_t i = 0; i < size; ++i) out[i] = static_cast<float>(read_number((*array)[i], key));
+  }
+
+  // camera.altitude_m is another way to write position_m's up component.
+  void read_camera_altitude(const toml::table& table, Scene& scene) const {
+    const toml::node* altitude = table.get("altitude_m");
+    if (!altitude) return;
+    if (table.contains("position_m"))
+      fail_value(*altitude, "camera.altitude_m",
+                 "camera.position_m is given too; give one of them (altitude_m sets its up "
+                 "component)");
+    scene.camera.position_m.z = static_cast<float>(read_number(*altitude, "camera.altitude_m"));
+  }
+
+  // sun.elevation_deg / sun.azimuth_deg replace the direction; one alone keeps the other angle.
+  void read_sun_angles(const toml::table& table, Scene& scene) const {
+    const toml::node* elevation = table.get("elevation_deg");
+    const toml::node* azimuth = table.get("azimuth_deg");
+    if (!elevation && !azimuth) return;
+    const toml::node& first = elevation ? *elevation : *azimuth;
+    if (table.contains("direction"))
+      fail(first.source(),
+           "sun.direction and sun.elevation_deg/azimuth_deg are both given; give one form");
+    SunAngles angles = sun_angles_from_direction(scene.sun.direction);
+    if (elevation) {
+      angles.elevation_deg = read_number(*elevation, "sun.elevation_deg");
+      if (!(angles.elevation_deg >= -90.0 && angles.elevation_deg <= 90.0))
+        fail_value(*elevation, "sun.elevation_deg", "must be in [-90, 90]");
+    }
+    if (azimuth) {
+      angles.azimuth_deg = read_number(*azimuth, "sun.azimuth_deg");
+      if (!std::isfinite(angles.azimuth_deg))
+        fail_value(*azimuth, "sun.azimuth_deg", "must be finite");
+    }
+    scene.sun.direction = sun_direction_from_angles(angles.elevation_deg, angles.azimuth_deg);
+  }
+
+  Scene read_preset(const toml::node& node) const {
+    const auto* name = node.as_string();
+    const EmbeddedFile* file = name ? find_preset_file(name->get()) : nullptr;
+    if (!file)
+      fail_value(node, "preset", "unknown preset (available: " + join(preset_names()) + ")");
+    if (depth_ >= kMaxPresetDepth)
+      fail_value(node, "preset", "presets refer to each other too deeply (a cycle?)");
+    return parse_preset(*file, depth_ + 1);
+  }
+
+  std::string source_;
+  std::string base_dir_;
+  int depth_;
+};
+
+Scene parse_preset(const EmbeddedFile& file, int depth) {
+  std::string_view text(reinterpret_cast<const char*>(file.data), file.size);
+  return SceneReader(std::string("presets/") + file.name, "", depth).read(text);
+}
+
+// sin of an angle in degrees, exact at multiples of 90 so that the cardinal directions
+// come out exact: elevation 90 is (0, 0, 1), not (-4e-8, 0, 1).
+double sin_deg(double degrees) {
+  double reduced = std::fmod(degrees, 360.0);
+  if (reduced < 0.0) reduced += 360.0;
+  if (reduced == 0.0 || reduced == 180.0) return 0.0;
+  if (reduced == 90.0) return 1.0;
+  if (reduced == 270.0) return -1.0;
+  return std::sin(reduced * std::numbers::pi / 180.0);
+}
+
+double cos_deg(double degrees) { return sin_deg(degrees + 90.0); }
+
+}  // namespace
+
+Scene parse_scene_toml(std::string_view text, const std::string& source_name,
+                       const std::string& base_dir) {
+  return SceneReader(source_name, base_dir, 0).read(text);
+}
+
+Scene load_scene_file(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw InputError(path + ": cannot read the scene file: it is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read the scene file: " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": cannot read the scene file: read error");
+  std::string base_dir = std::filesystem::path(path).parent_path().string();
+  return parse_scene_toml(text.str(), path, base_dir);
+}
+
+Scene load_preset(const std::string& name) {
+  const EmbeddedFile* file = find_preset_file(name);
+  if (!file)
+    throw InputError("preset '" + name + "': unknown preset (available: " +
+                     join(preset_names()) + ")");
+  return parse_preset(*file, 0);
+}
+
+std::vector<std::string> preset_names() {
+  std::vector<std::string> names;
+  for (size_t i = 0; i < nephele_presets::kFileCount; ++i) {
+    std::string_view name = nephele_presets::kFiles[i].name;
+    if (name.ends_with(".toml")) names.emplace_back(name.substr(0, name.size() - 5));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+glm::vec3 sun_direction_from_angles(double elevation_deg, double azimuth_deg) {
+  double horizontal = cos_deg(elevation_deg);
+  return glm::vec3(static_cast<float>(horizontal * sin_deg(azimuth_deg)),
+                   static_cast<float>(horizontal * cos_deg(azimuth_deg)),
+                   static_cast<float>(sin_deg(elevation_deg)));
+}
+
+SunAngles sun_angles_from_direction(const glm::vec3& direction) {
+  double x = direction.x, y = direction.y, z = direction.z;
+  double length = std::sqrt(x * x + y * y + z * z);
+  if (!(length > 0.0) || !std::isfinite(length)) return {};
+  SunAngles angles;
+  angles.elevation_deg = std::asin(std::clamp(z / length, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  if (x != 0.0 || y != 0.0) {
+    angles.azimuth_deg = std::atan2(x, y) * 180.0 / std::numbers::pi;
+    if (angles.azimuth_deg < 0.0) angles.azimuth_deg += 360.0;
+  }
+  return angles;
+}
+
+}  // namespace nephele

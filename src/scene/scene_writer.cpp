@@ -1,0 +1,54 @@
+// nephele — writing a scene as TOML (the --verbose dump; it reads back to the same scene).
+#include <cstdio>
+
+#include "nephele/scene_io.h"
+#include "scene/scene_fields.h"
+
+namespace nephele {
+namespace {
+
+using scene_detail::toml_float;
+
+std::string toml_value(float value) { return toml_float(value); }
+std::string toml_value(int value) { return std::to_string(value); }
+std::string toml_value(uint32_t value) { return std::to_string(value); }
+std::string toml_value(const std::string& value) { return scene_detail::toml_quote(value); }
+std::string toml_value(MarchMode mode) { return scene_detail::toml_quote(to_string(mode)); }
+
+template <typename Vector>
+std::string toml_value(const Vector& v) {
+  std::string text = "[";
+  for (int i = 0; i < Vector::length(); ++i) text += (i == 0 ? "" : ", ") + toml_float(v[i]);
+  return text + "]";
+}
+
+// A comment giving the sun direction as angles, which is how people think of it.
+std::string sun_angles_note(const glm::vec3& direction) {
+  SunAngles angles = sun_angles_from_direction(direction);
+  char text[96];
+  std::snprintf(text, sizeof text, "elevation %.2f deg, azimuth %.2f deg", angles.elevation_deg,
+                angles.azimuth_deg);
+  return text;
+}
+
+}  // namespace
+
+std::string scene_to_toml(const Scene& scene) {
+  Scene copy = scene;  // the field table hands out mutable references
+  std::string out = "# nephele scene, fully resolved\n";
+  for (const scene_detail::Section& section : scene_detail::scene_sections()) {
+    if (!section.name.empty()) out += "\n[" + std::string(section.name) + "]\n";
+    for (const scene_detail::Field& field : section.fields) {
+      std::string line = std::string(field.name) + " = ";
+      std::visit([&](auto access) { line += toml_value(access(copy)); }, field.access);
+      std::string note(field.note);
+      if (section.name == "sun" && field.name == "direction")
+        note += "; " + sun_angles_note(scene.sun.direction);
+      if (!note.empty()) line += "  # " + note;
+      out += line + "\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace nephele

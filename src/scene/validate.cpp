@@ -1,0 +1,213 @@
+// nephele — range checks on a resolved scene.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "nephele/error.h"
+#include "nephele/scene_io.h"
+#include "scene/scene_fields.h"
+
+namespace nephele {
+namespace {
+
+using scene_detail::format_float;
+
+// Throws InputError naming a parameter the way the caller wants it named (scene key or flag).
+class Checker {
+ public:
+  explicit Checker(const ParamNamer& namer) : namer_(namer) {}
+
+  // Closed interval [min, max] unless an end is marked open.
+  void in_range(const std::string& key, float value, float min, float max, bool min_open = false,
+                bool max_open = false) const {
+    bool ok = (min_open ? value > min : value >= min) && (max_open ? value < max : value <= max);
+    if (!ok)
+      fail(key, format_float(value),
+           std::string("must be in ") + (min_open ? "(" : "[") + format_float(min) + ", " +
+               format_float(max) + (max_open ? ")" : "]"));
+  }
+
+  void in_range(const std::string& key, int value, int min, int max) const {
+    if (value < min || value > max)
+      fail(key, std::to_string(value),
+           "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  }
+
+  void positive(const std::string& key, float value) const {
+    if (!(std::isfinite(value) && value > 0.0f))
+      fail(key, format_float(value), "must be a finite number > 0");
+  }
+
+  void non_negative(const std::string& key, float value) const {
+    if (!(std::isfinite(value) && value >= 0.0f))
+      fail(key, format_float(value), "must be a finite number >= 0");
+  }
+
+  void finite(const std::string& key, float value) const {
+    if (!std::isfinite(value)) fail(key, format_float(value), "must be finite");
+  }
+
+  template <typename Vector>
+  void finite(const std::string& key, const Vector& v) const {
+    for (int i = 0; i < Vector::length(); ++i)
+      if (!std::isfinite(v[i])) fail(key, vector_text(key, v), "must be finite");
+  }
+
+  template <typename Vector>
+  void non_negative(const std::string& key, const Vector& v) const {
+    for (int i = 0; i < Vector::length(); ++i)
+      if (!(std::isfinite(v[i]) && v[i] >= 0.0f))
+        fail(key, vector_text(key, v), "must be finite and >= 0 in every component");
+  }
+
+  void direction(const std::string& key, const glm::vec3& v) const {
+    bool finite = std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    if (!finite || (v.x == 0.0f && v.y == 0.0f && v.z == 0.0f))
+      fail(key, vector_text(key, v), "must be a finite, non-zero vector");
+  }
+
+  // `value` must be < `other` (another parameter, named in the message).
+  void less_than(const std::string& key, float value, const std::string& other_key,
+                 float other) const {
+    if (!(value < other))
+      fail(key, format_float(value),
+           "must be < " + display(other_key).name + " (" + format_float(other) + ")");
+  }
+
+  void readable_file(const std::string& key, const std::string& path) const {
+    std::ifstream file(path, std::ios::binary);
+    std::error_code error;
+    if (!file || std::filesystem::is_directory(path, error))
+      fail(key, is_flag(key) ? path : scene_detail::toml_quote(path), "cannot read the file");
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& value,
+                         const std::string& what) const {
+    Display shown = display(key);
+    throw InputError(shown.name + (shown.flag ? " " : " = ") + value + ": " + what);
+  }
+
+ private:
+  struct Display {
+    std::string name;
+    bool flag = false;  // a command-line flag: "--x value" rather than "key = value"
+  };
+
+  Display display(const std::string& key) const {
+    std::string name = namer_ ? namer_(key) : std::string();
+    if (name.empty()) return {key, false};
+    return {name, name.starts_with("--")};
+  }
+
+  bool is_flag(const std::string& key) const { return display(key).flag; }
+
+  // "(0, 1, 0.25)" for a scene key, "0,1,0.25" for a flag (as it would be typed).
+  template <typename Vector>
+  std::string vector_text(const std::string& key, const Vector& v) const {
+    bool flag = is_flag(key);
+    std::string text = flag ? "" : "(";
+    for (int i = 0; i < Vector::length(); ++i)
+      text += (i == 0 ? "" : (flag ? "," : ", ")) + format_float(v[i]);
+    return flag ? text : text + ")";
+  }
+
+  const ParamNamer& namer_;
+};
+
+void check_camera(const Checker& check, const CameraParams& camera) {
+  check.finite("camera.position_m", camera.position_m);
+  if (!(camera.position_m.z >= 0.0f))
+    check.fail("camera.altitude_m", format_float(camera.position_m.z),
+               "must be >= 0 (the camera is below the ground)");
+  check.direction("camera.view_dir", camera.view_dir);
+  check.in_range("camera.fov_deg", camera.fov_deg, 0.0f, 180.0f, true, true);
+}
+
+void check_sun(const Checker& check, const SunParams& sun) {
+  check.direction("sun.direction", sun.direction);
+  check.non_negative("sun.illuminance", sun.illuminance);
+  check.in_range("sun.disk_angular_radius_deg", sun.disk_angular_radius_deg, 0.0f, 90.0f, false,
+                 true);
+}
+
+void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) {
+  check.positive("atmosphere.planet_radius_km", atmosphere.planet_radius_km);
+  check.positive("atmosphere.atmosphere_height_km", atmosphere.atmosphere_height_km);
+  check.non_negative("atmosphere.rayleigh_scattering_per_m", atmosphere.rayleigh_scattering_per_m);
+  check.positive("atmosphere.rayleigh_scale_height_m", atmosphere.rayleigh_scale_height_m);
+  check.non_negative("atmosphere.mie_scattering_per_m", atmosphere.mie_scattering_per_m);
+  check.non_negative("atmosphere.mie_extinction_per_m", atmosphere.mie_extinction_per_m);
+  // Extinction is scattering plus absorption, so it cannot be smaller.
+  if (!(atmosphere.mie_extinction_per_m >= atmosphere.mie_scattering_per_m))
+    check.fail("atmosphere.mie_extinction_per_m", format_float(atmosphere.mie_extinction_per_m),
+               "must be >= atmosphere.mie_scattering_per_m (" +
+                   format_float(atmosphere.mie_scattering_per_m) + ")");
+  check.positive("atmosphere.mie_scale_height_m", atmosphere.mie_scale_height_m);
+  check.in_range("atmosphere.mie_g", atmosphere.mie_g, 0.0f, 1.0f, false, true);
+  check.in_range("atmosphere.view_samples", atmosphere.view_samples, 1, 256);
+  check.in_range("atmosphere.light_samples", atmosphere.light_samples, 1, 256);
+}
+
+void check_clouds(const Checker& check, const CloudParams& clouds) {
+  check.non_negative("clouds.bottom_altitude_m", clouds.bottom_altitude_m);
+  check.finite("clouds.top_altitude_m", clouds.top_altitude_m);
+  check.less_than("clouds.bottom_altitude_m", clouds.bottom_altitude_m, "clouds.top_altitude_m",
+                  clouds.top_altitude_m);
+  check.in_range("clouds.coverage", clouds.coverage, 0.0f, 1.0f);
+  check.in_range("clouds.density", clouds.density, 0.0f, 1.0f);
+  check.positive("clouds.extinction_per_m", clouds.extinction_per_m);
+  check.non_negative("clouds.attenuation", clouds.attenuation);
+  check.non_negative("clouds.light_attenuation", clouds.light_attenuation);
+  check.in_range("clouds.albedo", clouds.albedo, 0.0f, 1.0f);
+  check.in_range("clouds.phase_g_forward", clouds.phase_g_forward, 0.0f, 1.0f, false, true);
+  check.in_range("clouds.phase_g_backward", clouds.phase_g_backward, -1.0f, 0.0f, true, false);
+  check.in_range("clouds.phase_lobe_weight", clouds.phase_lobe_weight, 0.0f, 1.0f);
+  check.in_range("clouds.powder_strength", clouds.powder_strength, 0.0f, 1.0f);
+  check.non_negative("clouds.ambient_strength", clouds.ambient_strength);
+  check.finite("clouds.wind_mps", clouds.wind_mps);
+  check.positive("clouds.base_noise_period_m", clouds.base_noise_period_m);
+  check.positive("clouds.detail_noise_period_m", clouds.detail_noise_period_m);
+  check.in_range("clouds.detail_erosion", clouds.detail_erosion, 0.0f, 1.0f);
+  check.positive("clouds.weather_period_m", clouds.weather_period_m);
+  if (!clouds.weather_map.empty()) check.readable_file("clouds.weather_map", clouds.weather_map);
+}
+
+// The cloud layer must lie inside the atmosphere the sky is integrated over.
+void check_layers(const Checker& check, const Scene& scene) {
+  float atmosphere_top_m = scene.atmosphere.atmosphere_height_km * 1000.0f;
+  if (!(scene.clouds.top_altitude_m < atmosphere_top_m))
+    check.fail("clouds.top_altitude_m", format_float(scene.clouds.top_altitude_m),
+               "must be below the top of the atmosphere (atmosphere.atmosphere_height_km = " +
+                   format_float(scene.atmosphere.atmosphere_height_km) + ", i.e. " +
+                   format_float(atmosphere_top_m) + " m)");
+}
+
+void check_quality(const Checker& check, const QualityParams& quality) {
+  if (quality.mode != MarchMode::Default && quality.mode != MarchMode::Baseline)
+    check.fail("quality.mode", std::to_string(static_cast<int>(quality.mode)),
+               "must be default or baseline");
+  check.in_range("quality.primary_steps", quality.primary_steps, 1, 1024);
+  check.in_range("quality.light_steps", quality.light_steps, 1, 64);
+}
+
+void check_output(const Checker& check, const OutputParams& output) {
+  check.in_range("output.width", output.width, 1, 16384);
+  check.in_range("output.height", output.height, 1, 16384);
+  check.positive("output.exposure", output.exposure);
+}
+
+}  // namespace
+
+void validate_scene(const Scene& scene, const ParamNamer& display_name) {
+  Checker check(display_name);
+  check_camera(check, scene.camera);
+  check_sun(check, scene.sun);
+  check_atmosphere(check, scene.atmosphere);
+  check_clouds(check, scene.clouds);
+  check_layers(check, scene);
+  check_quality(check, scene.quality);
+  check_output(check, scene.output);
+  check.finite("time_s", scene.time_s);
+}
+
+}  // namespace nephele

@@ -1,0 +1,632 @@
+// Scene files, presets, validation, TOML round trip.
+#include "nephele/scene_io.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+
+#include "nephele/error.h"
+
+namespace nephele {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// The message of the InputError `fn` throws; fails the test when it throws nothing.
+std::string input_error(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no InputError thrown";
+  return "";
+}
+
+std::string parse_error(const std::string& toml) {
+  return input_error([&] { parse_scene_toml(toml, "scene.toml"); });
+}
+
+std::string validate_error(const std::function<void(Scene&)>& change) {
+  Scene scene;
+  change(scene);
+  return input_error([&] { validate_scene(scene); });
+}
+
+// Bit-exact comparison of every field (NaN-free scenes only).
+void expect_same_scene(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.camera.position_m, b.camera.position_m);
+  EXPECT_EQ(a.camera.view_dir, b.camera.view_dir);
+  EXPECT_EQ(a.camera.fov_deg, b.camera.fov_deg);
+  EXPECT_EQ(a.sun.direction, b.sun.direction);
+  EXPECT_EQ(a.sun.illuminance, b.sun.illuminance);
+  EXPECT_EQ(a.sun.disk_angular_radius_deg, b.sun.disk_angular_radius_deg);
+  const AtmosphereParams &aa = a.atmosphere, &ba = b.atmosphere;
+  EXPECT_EQ(aa.planet_radius_km, ba.planet_radius_km);
+  EXPECT_EQ(aa.atmosphere_height_km, ba.atmosphere_height_km);
+  EXPECT_EQ(aa.rayleigh_scattering_per_m, ba.rayleigh_scattering_per_m);
+  EXPECT_EQ(aa.rayleigh_scale_height_m, ba.rayleigh_scale_height_m);
+  EXPECT_EQ(aa.mie_scattering_per_m, ba.mie_scattering_per_m);
+  EXPECT_EQ(aa.mie_extinction_per_m, ba.mie_extinction_per_m);
+  EXPECT_EQ(aa.mie_scale_height_m, ba.mie_scale_height_m);
+  EXPECT_EQ(aa.mie_g, ba.mie_g);
+  EXPECT_EQ(aa.view_samples, ba.view_samples);
+  EXPECT_EQ(aa.light_samples, ba.light_samples);
+  const CloudParams &ac = a.clouds, &bc = b.clouds;
+  EXPECT_EQ(ac.bottom_altitude_m, bc.bottom_altitude_m);
+  EXPECT_EQ(ac.top_altitude_m, bc.top_altitude_m);
+  EXPECT_EQ(ac.coverage, bc.coverage);
+  EXPECT_EQ(ac.density, bc.density);
+  EXPECT_EQ(ac.extinction_per_m, bc.extinction_per_m);
+  EXPECT_EQ(ac.attenuation, bc.attenuation);
+  EXPECT_EQ(ac.light_attenuation, bc.light_attenuation);
+  EXPECT_EQ(ac.albedo, bc.albedo);
+  EXPECT_EQ(ac.phase_g_forward, bc.phase_g_forward);
+  EXPECT_EQ(ac.phase_g_backward, bc.phase_g_backward);
+  EXPECT_EQ(ac.phase_lobe_weight, bc.phase_lobe_weight);
+  EXPECT_EQ(ac.powder_strength, bc.powder_strength);
+  EXPECT_EQ(ac.ambient_strength, bc.ambient_strength);
+  EXPECT_EQ(ac.wind_mps, bc.wind_mps);
+  EXPECT_EQ(ac.base_noise_period_m, bc.base_noise_period_m);
+  EXPECT_EQ(ac.detail_noise_period_m, bc.detail_noise_period_m);
+  EXPECT_EQ(ac.detail_erosion, bc.detail_erosion);
+  EXPECT_EQ(ac.weather_period_m, bc.weather_period_m);
+  EXPECT_EQ(ac.weather_map, bc.weather_map);
+  EXPECT_EQ(a.quality.mode, b.quality.mode);
+  EXPECT_EQ(a.quality.primary_steps, b.quality.primary_steps);
+  EXPECT_EQ(a.quality.light_steps, b.quality.light_steps);
+  EXPECT_EQ(a.output.width, b.output.width);
+  EXPECT_EQ(a.output.height, b.output.height);
+  EXPECT_EQ(a.output.exposure, b.output.exposure);
+  EXPECT_EQ(a.time_s, b.time_s);
+  EXPECT_EQ(a.noise_seed, b.noise_seed);
+}
+
+void expect_near(const glm::vec3& actual, const glm::vec3& expected) {
+  EXPECT_NEAR(actual.x, expected.x, 1e-6f);
+  EXPECT_NEAR(actual.y, expected.y, 1e-6f);
+  EXPECT_NEAR(actual.z, expected.z, 1e-6f);
+}
+
+// A scene in which every field differs from the defaults, with awkward float values.
+Scene unusual_scene() {
+  Scene s;
+  s.camera = {{-12.5f, 3e4f, 123.456f}, {0.1f, -0.2f, 0.3f}, 33.3f};
+  s.sun = {{-0.3f, 0.4f, 1e-7f}, 7.25f, 0.55f};
+  s.atmosphere = {6371.5f, 80.0f, {1e-6f, 2.5e-5f, 3.3333e-5f}, 7994.0f, 2.1e-5f, 2.3e-5f,
+                  1234.5f, 0.76f, 32, 12};
+  s.clouds = {800.0f, 5321.25f, 0.123f, 0.987f, 0.0421f, 1.7f, 0.6f, 0.93f, 0.66f, -0.41f,
+              0.33f, 0.25f, 1.9f, {-3.5f, 12.0f}, 7000.5f, 850.0f, 0.12f, 35000.0f,
+              "/maps/\"quoted\" \\ weather.png"};
+  s.quality = {MarchMode::Baseline, 64, 4};
+  s.output = {1920, 1080, 2.5f};
+  s.time_s = 12.75f;
+  s.noise_seed = 4294967295u;
+  return s;
+}
+
+// ---------------------------------------------------------------- defaults and presets
+
+TEST(SceneDefaults, Validate) { EXPECT_NO_THROW(validate_scene(Scene{})); }
+
+TEST(SceneDefaults, MarchModeNamesRoundTrip) {
+  EXPECT_STREQ(to_string(MarchMode::Default), "default");
+  EXPECT_STREQ(to_string(MarchMode::Baseline), "baseline");
+  EXPECT_EQ(parse_march_mode("default"), MarchMode::Default);
+  EXPECT_EQ(parse_march_mode("baseline"), MarchMode::Baseline);
+  EXPECT_EQ(parse_march_mode("Baseline"), std::nullopt);
+  EXPECT_EQ(parse_march_mode(""), std::nullopt);
+}
+
+TEST(ScenePresets, AllPresentLoadAndValidate) {
+  std::vector<std::string> names = preset_names();
+  for (const char* expected :
+       {"default", "seed-baseline", "overcast", "sunset", "above-clouds", "inside-cloud"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    Scene scene;
+    ASSERT_NO_THROW(scene = load_preset(name));
+    EXPECT_NO_THROW(validate_scene(scene));
+  }
+}
+
+TEST(ScenePresets, EachStartsWithADescriptiveComment) {
+  for (const std::string& name : preset_names()) {
+    std::ifstream file(std::string(NEPHELE_SOURCE_DIR) + "/presets/" + name + ".toml");
+    std::string first_line;
+    std::getline(file, first_line);
+    EXPECT_TRUE(first_line.starts_with("# ") && first_line.size() > 20) << name;
+  }
+}
+
+TEST(ScenePresets, UnknownNameListsAvailable) {
+  std::string message = input_error([] { load_preset("foo"); });
+  EXPECT_NE(message.find("'foo'"), std::string::npos) << message;
+  EXPECT_NE(message.find("unknown preset"), std::string::npos) << message;
+  EXPECT_NE(message.find("default, "), std::string::npos) << message;
+  EXPECT_NE(message.find("overcast"), std::string::npos) << message;
+}
+
+TEST(ScenePresets, ShowWhatTheirNamesSay) {
+  Scene fair = load_preset("default");
+  SunAngles sun = sun_angles_from_direction(fair.sun.direction);
+  EXPECT_NEAR(sun.elevation_deg, 35.0, 1.0);
+  // Sun behind the camera: horizontal sun and view directions point apart.
+  glm::vec3 view = fair.camera.view_dir;
+  EXPECT_LT(view.x * fair.sun.direction.x + view.y * fair.sun.direction.y, 0.0f);
+  EXPECT_LT(fair.camera.position_m.z, fair.clouds.bottom_altitude_m);
+
+  Scene baseline = load_preset("seed-baseline");
+  EXPECT_EQ(baseline.quality.mode, MarchMode::Baseline);
+  EXPECT_EQ(baseline.clouds.phase_g_backward, -baseline.clouds.phase_g_forward);
+
+  EXPECT_GE(load_preset("overcast").clouds.coverage, 0.9f);
+
+  Scene sunset = load_preset("sunset");
+  SunAngles low = sun_angles_from_direction(sunset.sun.direction);
+  EXPECT_NEAR(low.elevation_deg, 4.0, 1.0);
+  // Camera looks towards the sun's azimuth.
+  glm::vec3 look = sunset.camera.view_dir;
+  EXPECT_GT(look.x * sunset.sun.direction.x + look.y * sunset.sun.direction.y, 0.0f);
+
+  Scene above = load_preset("above-clouds");
+  EXPECT_EQ(above.camera.position_m.z, 6000.0f);
+  EXPECT_GT(above.camera.position_m.z, above.clouds.top_altitude_m);
+  EXPECT_LT(above.camera.view_dir.z, 0.0f);
+
+  Scene inside = load_preset("inside-cloud");
+  EXPECT_EQ(inside.camera.position_m.z, 2500.0f);
+  EXPECT_GT(inside.camera.position_m.z, inside.clouds.bottom_altitude_m);
+  EXPECT_LT(inside.camera.position_m.z, inside.clouds.top_altitude_m);
+}
+
+// ---------------------------------------------------------------- parsing
+
+TEST(SceneToml, EmptyTextGivesDefaults) {
+  expect_same_scene(parse_scene_toml("", "scene.toml"), Scene{});
+}
+
+TEST(SceneToml, AppliesValuesOnTopOfDefaults) {
+  Scene scene = parse_scene_toml(R"(
+time_s = 3.5
+noise_seed = 42
+[camera]
+position_m = [10, 20.5, 30]
+fov_deg = 50
+[clouds]
+coverage = 0.8
+wind_mps = [-1.5, 4]
+[quality]
+mode = "baseline"
+light_steps = 12
+[output]
+width = 640
+)",
+                                 "scene.toml");
+  EXPECT_EQ(scene.time_s, 3.5f);
+  EXPECT_EQ(scene.noise_seed, 42u);
+  EXPECT_EQ(scene.camera.position_m, glm::vec3(10.0f, 20.5f, 30.0f));
+  EXPECT_EQ(scene.camera.fov_deg, 50.0f);  // an integer where a float is expected
+  EXPECT_EQ(scene.clouds.coverage, 0.8f);
+  EXPECT_EQ(scene.clouds.wind_mps, glm::vec2(-1.5f, 4.0f));
+  EXPECT_EQ(scene.quality.mode, MarchMode::Baseline);
+  EXPECT_EQ(scene.quality.light_steps, 12);
+  EXPECT_EQ(scene.output.width, 640);
+  // Untouched fields keep the defaults.
+  Scene defaults;
+  EXPECT_EQ(scene.output.height, defaults.output.height);
+  EXPECT_EQ(scene.clouds.density, defaults.clouds.density);
+  EXPECT_EQ(scene.camera.view_dir, defaults.camera.view_dir);
+}
+
+TEST(SceneToml, InlineAndDottedTablesWork) {
+  Scene scene = parse_scene_toml("clouds.coverage = 0.2\noutput = { height = 300 }\n", "s.toml");
+  EXPECT_EQ(scene.clouds.coverage, 0.2f);
+  EXPECT_EQ(scene.output.height, 300);
+}
+
+TEST(SceneToml, PresetIsTheStartingPointWhereverItIsWritten) {
+  // `preset` after a table header would belong to the table, so it sits first; the values
+  // below it must win over the preset's even though toml++ sorts keys.
+  Scene scene =
+      parse_scene_toml("preset = \"overcast\"\n[clouds]\ncoverage = 0.3\n", "scene.toml");
+  Scene overcast = load_preset("overcast");
+  EXPECT_EQ(scene.clouds.coverage, 0.3f);
+  EXPECT_EQ(scene.clouds.bottom_altitude_m, overcast.clouds.bottom_altitude_m);
+  EXPECT_NE(overcast.clouds.bottom_altitude_m, Scene{}.clouds.bottom_altitude_m);
+}
+
+TEST(SceneToml, UnknownPresetIsAnError) {
+  std::string message = parse_error("preset = \"nope\"\n");
+  EXPECT_NE(message.find("preset = \"nope\": unknown preset (available: "), std::string::npos)
+      << message;
+}
+
+TEST(SceneToml, UnknownKeyListsAllowedKeys) {
+  std::string message = parse_error("[clouds]\ncovrage = 0.5\n");
+  EXPECT_EQ(message.rfind("scene.toml:2:1: unknown key 'clouds.covrage' (allowed in [clouds]: "
+                          "bottom_altitude_m, top_altitude_m, coverage",
+                          0),
+            0u)
+      << message;
+  EXPECT_NE(message.find("weather_map)"), std::string::npos) << message;
+}
+
+TEST(SceneToml, UnknownTopLevelKeyAndTable) {
+  std::string message = parse_error("tme_s = 1\n");
+  EXPECT_NE(message.find("unknown key 'tme_s' (allowed at the top level: time_s, noise_seed, "
+                         "preset, [camera]"),
+            std::string::npos)
+      << message;
+  message = parse_error("[cloud]\ncoverage = 0.5\n");
+  EXPECT_NE(message.find("unknown key 'cloud'"), std::string::npos) << message;
+  message = parse_error("[clouds.extra]\nx = 1\n");
+  EXPECT_NE(message.find("unknown key 'clouds.extra'"), std::string::npos) << message;
+}
+
+TEST(SceneToml, WrongTypesNameKeyAndValue) {
+  EXPECT_EQ(parse_error("[clouds]\ncoverage = \"abc\"\n"),
+            "scene.toml:2:12: clouds.coverage = \"abc\": expected a number");
+  EXPECT_NE(parse_error("[camera]\nview_dir = [1, 2]\n")
+                .find("camera.view_dir = [1, 2]: expected an array of 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(parse_error("[camera]\nview_dir = [1, 2, \"x\"]\n")
+                .find("camera.view_dir = [1, 2, \"x\"]: expected an array of 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(parse_error("[clouds]\nwind_mps = 3\n")
+                .find("clouds.wind_mps = 3: expected an array of 2 numbers"),
+            std::string::npos);
+  EXPECT_NE(parse_error("[output]\nwidth = 900.5\n")
+                .find("output.width = 900.5: expected an integer"),
+            std::string::npos);
+  EXPECT_NE(parse_error("[output]\nwidth = 3000000000\n").find("output.width = 3000000000"),
+            std::string::npos);
+  EXPECT_NE(parse_error("noise_seed = -1\n")
+                .find("noise_seed = -1: expected an integer in [0, 4294967295]"),
+            std::string::npos);
+  EXPECT_NE(parse_error("[quality]\nmode = \"fast\"\n")
+                .find("quality.mode = \"fast\": expected \"default\" or \"baseline\""),
+            std::string::npos);
+  EXPECT_NE(parse_error("[clouds]\nweather_map = 5\n")
+                .find("clouds.weather_map = 5: expected a string"),
+            std::string::npos);
+  EXPECT_NE(parse_error("camera = 5\n").find("camera = 5: expected a table [camera]"),
+            std::string::npos);
+  EXPECT_NE(parse_error("time_s = true\n").find("time_s = true: expected a number"),
+            std::string::npos);
+}
+
+TEST(SceneToml, MalformedTomlGivesPosition) {
+  std::string message = parse_error("time_s = 1\n\n[camera\nfov_deg = 3\n");
+  EXPECT_EQ(message.rfind("scene.toml:3:", 0), 0u) << message;
+  EXPECT_NE(message.find("malformed TOML: "), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(SceneToml, AltitudeSetsPositionUp) {
+  Scene scene = parse_scene_toml("[camera]\naltitude_m = 250\n", "scene.toml");
+  EXPECT_EQ(scene.camera.position_m, glm::vec3(0.0f, 0.0f, 250.0f));
+  std::string message = parse_error("[camera]\nposition_m = [0, 0, 5]\naltitude_m = 250\n");
+  EXPECT_NE(message.find("camera.altitude_m = 250: camera.position_m is given too"),
+            std::string::npos)
+      << message;
+}
+
+TEST(SceneSunAngles, ConvertToDirections) {
+  expect_near(sun_direction_from_angles(90.0, 0.0), {0.0f, 0.0f, 1.0f});
+  expect_near(sun_direction_from_angles(90.0, 123.0), {0.0f, 0.0f, 1.0f});
+  expect_near(sun_direction_from_angles(0.0, 90.0), {1.0f, 0.0f, 0.0f});  // east
+  expect_near(sun_direction_from_angles(0.0, 0.0), {0.0f, 1.0f, 0.0f});   // north
+  expect_near(sun_direction_from_angles(0.0, 270.0), {-1.0f, 0.0f, 0.0f});
+  expect_near(sun_direction_from_angles(30.0, 180.0),
+              {0.0f, -std::sqrt(3.0f) / 2.0f, 0.5f});  // south, 30 deg up
+  expect_near(sun_direction_from_angles(45.0, 45.0), {0.5f, 0.5f, std::sqrt(0.5f)});
+  // Exact at the cardinal points, not merely close.
+  EXPECT_EQ(sun_direction_from_angles(90.0, 0.0), glm::vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_EQ(sun_direction_from_angles(0.0, 90.0), glm::vec3(1.0f, 0.0f, 0.0f));
+}
+
+TEST(SceneSunAngles, InverseConversion) {
+  for (double elevation : {-30.0, 0.0, 4.0, 35.0, 89.0})
+    for (double azimuth : {0.0, 10.0, 90.0, 150.0, 270.0, 359.0}) {
+      SunAngles angles =
+          sun_angles_from_direction(3.0f * sun_direction_from_angles(elevation, azimuth));
+      EXPECT_NEAR(angles.elevation_deg, elevation, 1e-4);
+      EXPECT_NEAR(angles.azimuth_deg, azimuth, 1e-4);
+    }
+}
+
+TEST(SceneToml, SunAnglesReplaceDirection) {
+  Scene scene =
+      parse_scene_toml("[sun]\nelevation_deg = 0\nazimuth_deg = 90\n", "scene.toml");
+  expect_near(scene.sun.direction, {1.0f, 0.0f, 0.0f});
+  scene = parse_scene_toml("[sun]\nelevation_deg = 90\n", "scene.toml");
+  expect_near(scene.sun.direction, {0.0f, 0.0f, 1.0f});
+  // Only the azimuth: the default direction's elevation is kept.
+  scene = parse_scene_toml("[sun]\nazimuth_deg = 90\n", "scene.toml");
+  double default_elevation = sun_angles_from_direction(Scene{}.sun.direction).elevation_deg;
+  SunAngles angles = sun_angles_from_direction(scene.sun.direction);
+  EXPECT_NEAR(angles.elevation_deg, default_elevation, 1e-4);
+  EXPECT_NEAR(angles.azimuth_deg, 90.0, 1e-4);
+}
+
+TEST(SceneToml, SunFormsConflictAndAnglesAreChecked) {
+  std::string message =
+      parse_error("[sun]\ndirection = [0, 1, 1]\nelevation_deg = 30\n");
+  EXPECT_NE(message.find("sun.direction and sun.elevation_deg/azimuth_deg are both given"),
+            std::string::npos)
+      << message;
+  message = parse_error("[sun]\nelevation_deg = 95\n");
+  EXPECT_NE(message.find("sun.elevation_deg = 95: must be in [-90, 90]"), std::string::npos)
+      << message;
+  message = parse_error("[sun]\nazimuth_deg = nan\n");
+  EXPECT_NE(message.find("sun.azimuth_deg = nan: must be finite"), std::string::npos) << message;
+}
+
+TEST(SceneToml, RelativeWeatherMapResolvesAgainstBaseDir) {
+  std::string toml = "[clouds]\nweather_map = \"maps/w.png\"\n";
+  EXPECT_EQ(parse_scene_toml(toml, "s.toml", "/data/scenes").clouds.weather_map,
+            "/data/scenes/maps/w.png");
+  EXPECT_EQ(parse_scene_toml(toml, "s.toml", "").clouds.weather_map, "maps/w.png");
+  EXPECT_EQ(parse_scene_toml("[clouds]\nweather_map = \"/abs/w.png\"\n", "s.toml", "/data")
+                .clouds.weather_map,
+            "/abs/w.png");
+  EXPECT_EQ(parse_scene_toml("[clouds]\nweather_map = \"\"\n", "s.toml", "/data")
+                .clouds.weather_map,
+            "");
+}
+
+// ---------------------------------------------------------------- files
+
+class SceneFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("nephele_scene_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "maps");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+  fs::path dir_;
+};
+
+TEST_F(SceneFile, LoadResolvesWeatherMapNextToTheFile) {
+  write(dir_ / "maps" / "w.png", "not really a png");
+  write(dir_ / "scene.toml", "[clouds]\nweather_map = \"maps/w.png\"\ncoverage = 0.7\n");
+  Scene scene = load_scene_file((dir_ / "scene.toml").string());
+  EXPECT_EQ(scene.clouds.coverage, 0.7f);
+  EXPECT_EQ(fs::path(scene.clouds.weather_map), dir_ / "maps" / "w.png");
+  EXPECT_NO_THROW(validate_scene(scene));
+}
+
+TEST_F(SceneFile, ErrorsNameTheFile) {
+  std::string path = (dir_ / "bad.toml").string();
+  write(path, "[clouds]\ncoverage = \"abc\"\n");
+  std::string message = input_error([&] { load_scene_file(path); });
+  EXPECT_EQ(message.rfind(path + ":2:", 0), 0u) << message;
+}
+
+TEST_F(SceneFile, MissingFileOrDirectoryIsAnInputError) {
+  std::string missing = (dir_ / "missing.toml").string();
+  std::string message = input_error([&] { load_scene_file(missing); });
+  EXPECT_NE(message.find(missing), std::string::npos) << message;
+  message = input_error([&] { load_scene_file(dir_.string()); });
+  EXPECT_NE(message.find("directory"), std::string::npos) << message;
+}
+
+// ---------------------------------------------------------------- validation
+
+struct BadValue {
+  const char* expected;  // start of the message: "key = value"
+  std::function<void(Scene&)> change;
+};
+
+class SceneValidate : public ::testing::TestWithParam<BadValue> {};
+
+TEST_P(SceneValidate, RejectsWithKeyAndValue) {
+  std::string message = validate_error(GetParam().change);
+  EXPECT_EQ(message.rfind(GetParam().expected, 0), 0u) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+const BadValue kBadValues[] = {
+    {"camera.position_m = (nan, 0, 2)", [](Scene& s) { s.camera.position_m.x = kNaN; }},
+    {"camera.altitude_m = -1", [](Scene& s) { s.camera.position_m.z = -1.0f; }},
+    {"camera.view_dir = (0, 0, 0)", [](Scene& s) { s.camera.view_dir = glm::vec3(0.0f); }},
+    {"camera.view_dir = (nan, 1, 0)", [](Scene& s) { s.camera.view_dir = {kNaN, 1.0f, 0.0f}; }},
+    {"camera.view_dir = (0, inf, 0)", [](Scene& s) { s.camera.view_dir = {0.0f, kInf, 0.0f}; }},
+    {"camera.fov_deg = 0", [](Scene& s) { s.camera.fov_deg = 0.0f; }},
+    {"camera.fov_deg = 180", [](Scene& s) { s.camera.fov_deg = 180.0f; }},
+    {"camera.fov_deg = nan", [](Scene& s) { s.camera.fov_deg = kNaN; }},
+    {"sun.direction = (0, 0, 0)", [](Scene& s) { s.sun.direction = glm::vec3(0.0f); }},
+    {"sun.direction = (0, -inf, 1)", [](Scene& s) { s.sun.direction = {0.0f, -kInf, 1.0f}; }},
+    {"sun.illuminance = -1", [](Scene& s) { s.sun.illuminance = -1.0f; }},
+    {"sun.illuminance = inf", [](Scene& s) { s.sun.illuminance = kInf; }},
+    {"sun.disk_angular_radius_deg = 90", [](Scene& s) { s.sun.disk_angular_radius_deg = 90.0f; }},
+    {"atmosphere.planet_radius_km = 0", [](Scene& s) { s.atmosphere.planet_radius_km = 0.0f; }},
+    {"atmosphere.atmosphere_height_km = -5",
+     [](Scene& s) { s.atmosphere.atmosphere_height_km = -5.0f; }},
+    {"atmosphere.rayleigh_scattering_per_m = (-1, 0, 0)",
+     [](Scene& s) { s.atmosphere.rayleigh_scattering_per_m = {-1.0f, 0.0f, 0.0f}; }},
+    {"atmosphere.rayleigh_scale_height_m = 0",
+     [](Scene& s) { s.atmosphere.rayleigh_scale_height_m = 0.0f; }},
+    {"atmosphere.mie_scattering_per_m = nan",
+     [](Scene& s) { s.atmosphere.mie_scattering_per_m = kNaN; }},
+    {"atmosphere.mie_extinction_per_m = 1e-06",
+     [](Scene& s) { s.atmosphere.mie_extinction_per_m = 1e-6f; }},
+    {"atmosphere.mie_scale_height_m = nan",
+     [](Scene& s) { s.atmosphere.mie_scale_height_m = kNaN; }},
+    {"atmosphere.mie_g = 1", [](Scene& s) { s.atmosphere.mie_g = 1.0f; }},
+    {"atmosphere.mie_g = -0.1", [](Scene& s) { s.atmosphere.mie_g = -0.1f; }},
+    {"atmosphere.view_samples = 0", [](Scene& s) { s.atmosphere.view_samples = 0; }},
+    {"atmosphere.light_samples = 257", [](Scene& s) { s.atmosphere.light_samples = 257; }},
+    {"clouds.top_altitude_m = 4000: must be below the top of the atmosphere",
+     [](Scene& s) { s.atmosphere.atmosphere_height_km = 3.0f; }},
+    {"clouds.bottom_altitude_m = -1", [](Scene& s) { s.clouds.bottom_altitude_m = -1.0f; }},
+    {"clouds.bottom_altitude_m = 4000: must be < clouds.top_altitude_m (4000)",
+     [](Scene& s) { s.clouds.bottom_altitude_m = 4000.0f; }},
+    {"clouds.bottom_altitude_m = 1500: must be < clouds.top_altitude_m (1000)",
+     [](Scene& s) { s.clouds.top_altitude_m = 1000.0f; }},
+    {"clouds.top_altitude_m = inf", [](Scene& s) { s.clouds.top_altitude_m = kInf; }},
+    {"clouds.coverage = 1.5: must be in [0, 1]", [](Scene& s) { s.clouds.coverage = 1.5f; }},
+    {"clouds.coverage = -0.01", [](Scene& s) { s.clouds.coverage = -0.01f; }},
+    {"clouds.coverage = nan", [](Scene& s) { s.clouds.coverage = kNaN; }},
+    {"clouds.density = 1.01", [](Scene& s) { s.clouds.density = 1.01f; }},
+    {"clouds.extinction_per_m = 0", [](Scene& s) { s.clouds.extinction_per_m = 0.0f; }},
+    {"clouds.extinction_per_m = inf", [](Scene& s) { s.clouds.extinction_per_m = kInf; }},
+    {"clouds.attenuation = -0.5", [](Scene& s) { s.clouds.attenuation = -0.5f; }},
+    {"clouds.light_attenuation = nan", [](Scene& s) { s.clouds.light_attenuation = kNaN; }},
+    {"clouds.albedo = 1.1", [](Scene& s) { s.clouds.albedo = 1.1f; }},
+    {"clouds.phase_g_forward = 1: must be in [0, 1)",
+     [](Scene& s) { s.clouds.phase_g_forward = 1.0f; }},
+    {"clouds.phase_g_forward = -0.2", [](Scene& s) { s.clouds.phase_g_forward = -0.2f; }},
+    {"clouds.phase_g_backward = 0.1", [](Scene& s) { s.clouds.phase_g_backward = 0.1f; }},
+    {"clouds.phase_g_backward = -1: must be in (-1, 0]",
+     [](Scene& s) { s.clouds.phase_g_backward = -1.0f; }},
+    {"clouds.phase_lobe_weight = 1.5", [](Scene& s) { s.clouds.phase_lobe_weight = 1.5f; }},
+    {"clouds.powder_strength = 2", [](Scene& s) { s.clouds.powder_strength = 2.0f; }},
+    {"clouds.ambient_strength = -1", [](Scene& s) { s.clouds.ambient_strength = -1.0f; }},
+    {"clouds.wind_mps = (nan, 2)", [](Scene& s) { s.clouds.wind_mps.x = kNaN; }},
+    {"clouds.base_noise_period_m = 0", [](Scene& s) { s.clouds.base_noise_period_m = 0.0f; }},
+    {"clouds.detail_noise_period_m = -900",
+     [](Scene& s) { s.clouds.detail_noise_period_m = -900.0f; }},
+    {"clouds.detail_erosion = 2", [](Scene& s) { s.clouds.detail_erosion = 2.0f; }},
+    {"clouds.weather_period_m = inf", [](Scene& s) { s.clouds.weather_period_m = kInf; }},
+    {"clouds.weather_map = \"/nonexistent/nephele/w.png\": cannot read the file",
+     [](Scene& s) { s.clouds.weather_map = "/nonexistent/nephele/w.png"; }},
+    {"quality.primary_steps = 0", [](Scene& s) { s.quality.primary_steps = 0; }},
+    {"quality.primary_steps = 1025: must be in [1, 1024]",
+     [](Scene& s) { s.quality.primary_steps = 1025; }},
+    {"quality.light_steps = 0", [](Scene& s) { s.quality.light_steps = 0; }},
+    {"quality.light_steps = 65: must be in [1, 64]", [](Scene& s) { s.quality.light_steps = 65; }},
+    {"output.width = 0", [](Scene& s) { s.output.width = 0; }},
+    {"output.width = 16385: must be in [1, 16384]", [](Scene& s) { s.output.width = 16385; }},
+    {"output.height = -1", [](Scene& s) { s.output.height = -1; }},
+    {"output.exposure = 0", [](Scene& s) { s.output.exposure = 0.0f; }},
+    {"output.exposure = nan", [](Scene& s) { s.output.exposure = kNaN; }},
+    {"time_s = inf", [](Scene& s) { s.time_s = kInf; }},
+};
+
+INSTANTIATE_TEST_SUITE_P(Scene, SceneValidate, ::testing::ValuesIn(kBadValues));
+
+TEST(SceneValidateExact, MessagesAreOneCompleteLine) {
+  EXPECT_EQ(validate_error([](Scene& s) { s.clouds.coverage = 1.5f; }),
+            "clouds.coverage = 1.5: must be in [0, 1]");
+  EXPECT_EQ(validate_error([](Scene& s) { s.camera.view_dir = glm::vec3(0.0f); }),
+            "camera.view_dir = (0, 0, 0): must be a finite, non-zero vector");
+  EXPECT_EQ(validate_error([](Scene& s) { s.output.exposure = -2.0f; }),
+            "output.exposure = -2: must be a finite number > 0");
+}
+
+TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
+  std::vector<std::function<void(Scene&)>> fine = {
+      [](Scene& s) { s.clouds.coverage = 0.0f; },
+      [](Scene& s) { s.clouds.coverage = 1.0f; },
+      [](Scene& s) { s.clouds.density = 0.0f; },
+      [](Scene& s) { s.clouds.albedo = 1.0f; },
+      [](Scene& s) { s.clouds.phase_g_forward = 0.0f; },
+      [](Scene& s) { s.clouds.phase_g_backward = 0.0f; },
+      [](Scene& s) { s.clouds.phase_lobe_weight = 1.0f; },
+      [](Scene& s) { s.clouds.bottom_altitude_m = 0.0f; },
+      [](Scene& s) { s.camera.position_m.z = 0.0f; },
+      [](Scene& s) { s.camera.fov_deg = 179.9f; },
+      [](Scene& s) { s.camera.view_dir = {0.0f, 0.0f, -1e-3f}; },
+      [](Scene& s) { s.quality.primary_steps = 1; },
+      [](Scene& s) { s.quality.primary_steps = 1024; },
+      [](Scene& s) { s.quality.light_steps = 64; },
+      [](Scene& s) { s.output.width = 16384; },
+      [](Scene& s) { s.output.height = 1; },
+      [](Scene& s) { s.atmosphere.view_samples = 256; },
+      [](Scene& s) { s.sun.illuminance = 0.0f; },
+      [](Scene& s) { s.time_s = -5.0f; },
+  };
+  for (size_t i = 0; i < fine.size(); ++i) {
+    Scene scene;
+    fine[i](scene);
+    EXPECT_NO_THROW(validate_scene(scene)) << "case " << i;
+  }
+}
+
+TEST(SceneValidateExact, NamerCanShowFlags) {
+  ParamNamer namer = [](const std::string& key) -> std::string {
+    if (key == "clouds.coverage") return "--coverage";
+    if (key == "camera.view_dir") return "--view-dir";
+    if (key == "clouds.top_altitude_m") return "--cloud-top-m";
+    if (key == "clouds.weather_map") return "--weather-map";
+    if (key == "output.width") return "my.toml: output.width";
+    return "";
+  };
+  auto error_with = [&](const std::function<void(Scene&)>& change) {
+    Scene scene;
+    change(scene);
+    return input_error([&] { validate_scene(scene, namer); });
+  };
+  EXPECT_EQ(error_with([](Scene& s) { s.clouds.coverage = 1.5f; }),
+            "--coverage 1.5: must be in [0, 1]");
+  EXPECT_EQ(error_with([](Scene& s) { s.camera.view_dir = glm::vec3(0.0f); }),
+            "--view-dir 0,0,0: must be a finite, non-zero vector");
+  EXPECT_EQ(error_with([](Scene& s) { s.clouds.top_altitude_m = 1000.0f; }),
+            "clouds.bottom_altitude_m = 1500: must be < --cloud-top-m (1000)");
+  EXPECT_EQ(error_with([](Scene& s) { s.clouds.weather_map = "/nonexistent/w.png"; }),
+            "--weather-map /nonexistent/w.png: cannot read the file");
+  EXPECT_EQ(error_with([](Scene& s) { s.output.width = 0; }),
+            "my.toml: output.width = 0: must be in [1, 16384]");
+}
+
+// ---------------------------------------------------------------- round trip
+
+TEST(SceneRoundTrip, DefaultsAndPresets) {
+  expect_same_scene(parse_scene_toml(scene_to_toml(Scene{}), "dump.toml"), Scene{});
+  for (const std::string& name : preset_names()) {
+    SCOPED_TRACE(name);
+    Scene preset = load_preset(name);
+    expect_same_scene(parse_scene_toml(scene_to_toml(preset), "dump.toml"), preset);
+  }
+}
+
+TEST(SceneRoundTrip, EveryFieldExactly) {
+  Scene scene = unusual_scene();
+  std::string toml = scene_to_toml(scene);
+  SCOPED_TRACE(toml);
+  expect_same_scene(parse_scene_toml(toml, "dump.toml"), scene);
+  // Sanity check of the comparison itself: it must notice a difference.
+  Scene other = scene;
+  other.clouds.detail_erosion = 0.5f;
+  EXPECT_NE(scene_to_toml(other), toml);
+}
+
+TEST(SceneRoundTrip, AwkwardFloatsSurvive) {
+  // Values whose shortest decimal form is long, tiny, huge or not a float literal at all.
+  const float values[] = {0.1f, 1.0f / 3.0f, 16777217.0f, 3.4028235e38f, 1.17549435e-38f,
+                          1e-45f, -0.0f, 2.0f, 123456789.0f, 0.3f, 5.802e-6f};
+  for (float value : values) {
+    Scene scene;
+    scene.time_s = value;
+    Scene back = parse_scene_toml(scene_to_toml(scene), "dump.toml");
+    EXPECT_EQ(back.time_s, value) << scene_to_toml(scene);
+    EXPECT_EQ(std::signbit(back.time_s), std::signbit(value));
+  }
+}
+
+TEST(SceneRoundTrip, OutputIsCommentedAndHasAllTables) {
+  std::string toml = scene_to_toml(Scene{});
+  for (const char* table :
+       {"[camera]", "[sun]", "[atmosphere]", "[clouds]", "[quality]", "[output]"})
+    EXPECT_NE(toml.find(table), std::string::npos) << table;
+  EXPECT_NE(toml.find("mode = \"default\""), std::string::npos) << toml;
+  EXPECT_NE(toml.find("# towards the sun, ENU; elevation"), std::string::npos) << toml;
+}
+
+}  // namespace
+}  // namespace nephele
