@@ -2,7 +2,9 @@
 // Pass 3: clouds. Per pixel, march the view ray through the cloud shell between two spheres
 // (seed 000, 2.2) compositing front to back (formulas 1.5, 1.6) with Beer-Lambert attenuation,
 // a light march towards the sun, dual-lobe Henyey-Greenstein phase, the powder term and ambient
-// light (1.4, listings B.1-B.3). Writes rgb in-scattered radiance and a = transmittance.
+// light (1.4, listings B.1-B.3). Writes two vec4 per pixel: (rgb in-scattered radiance
+// attenuated by the air between the eye and each sample, a = cloud transmittance) and
+// (x = haze weight: the share of the cloud's light replaced by the air's in-scattering, yzw 0).
 //
 // MARCH_MODE (specialization constant) selects the variant:
 //   0 default:  distance-adaptive steps with per-pixel jitter, detail noise only where the
@@ -87,6 +89,31 @@ float light_optical_depth(vec3 pos, vec3 sun) {
   return depth;
 }
 
+// Transmittance of the air over `dist_m` from the eye to a cloud sample at altitude
+// `sample_alt_m`, with the extinction taken at the mean altitude (a simple aerial perspective;
+// distant clouds fade into the haze of the sky behind them).
+vec3 air_transmittance(float eye_alt_m, float sample_alt_m, float dist_m) {
+  float h = max(0.5f * (eye_alt_m + sample_alt_m), 0.0f);
+  vec3 sigma_t = frame.rayleigh.rgb * exp(-h / frame.rayleigh.w) + frame.mie.y * exp(-h / frame.mie.z);
+  return exp(-sigma_t * dist_m);
+}
+
+// Cloud shadow on the ground: transmittance from the ground point this ray hits towards the
+// sun through the cloud layer (8 samples of the base shape), 1 when the ray misses the ground.
+float ground_shadow(vec3 eye, vec3 dir, vec3 sun) {
+  vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
+  if (ground.x <= 0.0f) return 1.0f;
+  vec3 p = eye + dir * ground.x;
+  vec2 inner = ray_sphere(p, sun, frame.radii_m.z);
+  vec2 outer = ray_sphere(p, sun, frame.radii_m.w);
+  if (inner.y <= 0.0f || outer.y <= inner.y) return 1.0f;
+  const int n = 8;
+  float ds = (outer.y - inner.y) / float(n);
+  float depth = 0.0f;
+  for (int i = 0; i < n; ++i) depth += cloud_density(p + sun * (inner.y + (float(i) + 0.5f) * ds), false);
+  return exp(-depth * ds * frame.cloud_shape.z * frame.cloud_light.y);
+}
+
 // The part of the view ray inside the cloud shell: (t_enter, t_exit), empty if exit <= enter.
 vec2 shell_segment(vec3 eye, vec3 dir) {
   float r = length(eye);
@@ -124,10 +151,14 @@ void main() {
   vec3 sun = frame.sun_dir.xyz;
   float mu = dot(dir, sun);
   vec2 segment = shell_segment(eye, dir);
+  float shadow = ground_shadow(eye, dir, sun);
   if (segment.y <= segment.x) {
-    cloud_out[index] = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    cloud_out[2 * index] = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    cloud_out[2 * index + 1] = vec4(0.0f, shadow, 0.0f, 0.0f);
     return;
   }
+  float eye_alt_m = length(eye) - frame.radii_m.x;
+  float haze = 0.0f;
 
   float sigma_scale = frame.cloud_shape.z;  // sigma_t (1/m) at density field 1
   float view_atten = frame.cloud_light.x;
@@ -162,7 +193,9 @@ void main() {
         energy = mix(exp(-tau_light) * phase, energy, powder);
         vec3 luminance = albedo * (ambient + sun_light * energy);
         vec3 step_t = exp(-density * step_m * sigma_scale * view_atten * SEED_EXTINCTION_MULT);
-        scattered += transmittance * luminance * (1.0f - step_t);
+        vec3 air = air_transmittance(eye_alt_m, length(pos) - frame.radii_m.x, t);
+        scattered += transmittance * air * luminance * (1.0f - step_t);
+        haze += transmittance.g * (1.0f - air.g) * (1.0f - step_t.g);
         transmittance *= step_t;
         if (length(transmittance) <= 0.01f) {
           transmittance = vec3(0.0f);
@@ -197,8 +230,10 @@ void main() {
         float h = altitude_fraction(pos);
         vec3 luminance = albedo * (sun_light * energy + ambient * mix(0.5f, 1.0f, h));
         float step_t = exp(-sigma_t * step_m);
+        vec3 air = air_transmittance(eye_alt_m, length(pos) - frame.radii_m.x, t);
         // Energy-conserving integration over the step (Hillaire 2016).
-        scattered += transmittance * luminance * (1.0f - step_t);
+        scattered += transmittance * air * luminance * (1.0f - step_t);
+        haze += transmittance.x * (1.0f - air.g) * (1.0f - step_t);
         transmittance *= step_t;
         if (transmittance.x < 0.01f) {
           transmittance = vec3(0.0f);
@@ -209,5 +244,6 @@ void main() {
     }
   }
   float t_mean = (transmittance.r + transmittance.g + transmittance.b) / 3.0f;
-  cloud_out[index] = vec4(scattered, t_mean);
+  cloud_out[2 * index] = vec4(scattered, t_mean);
+  cloud_out[2 * index + 1] = vec4(haze, shadow, 0.0f, 0.0f);
 }

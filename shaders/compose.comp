@@ -1,7 +1,8 @@
 #version 450
 // Pass 4: compose. Sky (single scattering, seed 000 section 1.5) behind and between the
 // clouds, the sun disk with limb darkening drawn separately so clouds occlude it, and the
-// clouds over both: color = background * T_cloud + cloud in-scattering (seed listing B.3).
+// clouds over both: color = background * T_cloud + cloud in-scattering (seed listing B.3),
+// plus the haze in front of distant clouds.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
@@ -51,10 +52,15 @@ void main() {
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
                         float(pixel.y), float(width), float(height));
   vec3 sun = frame.sun_dir.xyz;
+  vec3 ambient = frame.ambient_at_clouds.rgb / frame.sun_illuminance.rgb;
   SkySample sky = sky_single_scattering(frame_atmosphere(), eye, dir, sun, frame.steps.z,
-                                        frame.steps.w, GROUND_ALBEDO);
-  vec3 background = sky.radiance + sky.transmittance * sun_disk(dir, sun, frame.sun_dir.w);
-  vec4 cloud = cloud_out[index];
-  vec3 color = (background * cloud.a) * frame.sun_illuminance.rgb + cloud.rgb;
+                                        frame.steps.w, GROUND_ALBEDO, ambient);
+  vec4 cloud = cloud_out[2 * index];
+  float haze = cloud_out[2 * index + 1].x;
+  float ground_shadow = cloud_out[2 * index + 1].y;  // cloud transmittance towards the sun
+  vec3 background = sky.radiance + sky.ground_sun * ground_shadow +
+                    sky.transmittance * sun_disk(dir, sun, frame.sun_dir.w);
+  // The air in front of a cloud scatters as the sky does along this direction.
+  vec3 color = (background * cloud.a + sky.radiance * haze) * frame.sun_illuminance.rgb + cloud.rgb;
   color_out[index] = vec4(color, 1.0f);
 }

@@ -18,10 +18,9 @@ namespace nephele::cli {
 namespace {
 
 // Where a flag's value goes in the Scene; monostate for the flags resolve_scene handles itself.
-using Target =
-    std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
-                 glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&), std::string& (*)(Scene&),
-                 MarchMode& (*)(Scene&)>;
+using Target = std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&),
+                            uint32_t& (*)(Scene&), glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
+                            std::string& (*)(Scene&), MarchMode& (*)(Scene&)>;
 
 struct FlagSpec {
   const char* flag;
@@ -33,30 +32,47 @@ struct FlagSpec {
 };
 
 // TO(clouds.coverage) is the Target of Scene::clouds.coverage.
-#define TO(path) +[](Scene& s) -> auto& { return s.path; }
+#define TO(path)            \
+  +[](Scene & s) -> auto& { \
+    return s.path;          \
+  }
 
 // In the order they are applied (and listed by --help).
 const std::vector<FlagSpec>& flag_specs() {
   using F = SceneFlags;
   static const std::vector<FlagSpec> specs = {
-      {"--scene", &F::scene_file, "", {}, "FILE",
+      {"--scene",
+       &F::scene_file,
+       "",
+       {},
+       "FILE",
        "scene file (TOML); relative paths inside it are relative to its folder"},
       {"--preset", &F::preset, "", {}, "NAME", "built-in scene to start from (default: default)"},
-      {"--width", &F::width, "output.width", TO(output.width), "N", "image width, pixels"},
-      {"--height", &F::height, "output.height", TO(output.height), "N", "image height, pixels"},
+      {"--width", &F::width, "output.width", TO(output.width), "N",
+       "image width (pixels), [1, 16384]"},
+      {"--height", &F::height, "output.height", TO(output.height), "N",
+       "image height (pixels), [1, 16384]"},
       {"--camera-pos", &F::camera_pos, "camera.position_m", TO(camera.position_m), "E,N,U",
        "camera position (m): east, north, up"},
-      {"--camera-altitude-m", &F::camera_altitude_m, "camera.altitude_m",
-       TO(camera.position_m.z), "A", "camera height above the ground (m)"},
+      {"--camera-altitude-m", &F::camera_altitude_m, "camera.altitude_m", TO(camera.position_m.z),
+       "A", "camera height above the ground (m)"},
       {"--view-dir", &F::view_dir, "camera.view_dir", TO(camera.view_dir), "E,N,U",
        "looking direction: east, north, up"},
       {"--fov-deg", &F::fov_deg, "camera.fov_deg", TO(camera.fov_deg), "F",
        "vertical field of view (deg), (0, 180)"},
       {"--sun-dir", &F::sun_dir, "sun.direction", TO(sun.direction), "E,N,U",
        "direction towards the sun: east, north, up"},
-      {"--sun-elevation-deg", &F::sun_elevation_deg, "", {}, "E",
+      {"--sun-elevation-deg",
+       &F::sun_elevation_deg,
+       "",
+       {},
+       "E",
        "sun elevation above the horizon (deg), [-90, 90]"},
-      {"--sun-azimuth-deg", &F::sun_azimuth_deg, "", {}, "A",
+      {"--sun-azimuth-deg",
+       &F::sun_azimuth_deg,
+       "",
+       {},
+       "A",
        "sun azimuth from north through east (deg)"},
       {"--sun-illuminance", &F::sun_illuminance, "sun.illuminance", TO(sun.illuminance), "X",
        "sunlight scale at the top of the atmosphere, >= 0"},
@@ -78,8 +94,8 @@ const std::vector<FlagSpec>& flag_specs() {
        "cloud single-scattering albedo, [0, 1]"},
       {"--g-forward", &F::g_forward, "clouds.phase_g_forward", TO(clouds.phase_g_forward), "G",
        "forward phase lobe asymmetry, [0, 1)"},
-      {"--g-backward", &F::g_backward, "clouds.phase_g_backward", TO(clouds.phase_g_backward),
-       "G", "backward phase lobe asymmetry, (-1, 0]"},
+      {"--g-backward", &F::g_backward, "clouds.phase_g_backward", TO(clouds.phase_g_backward), "G",
+       "backward phase lobe asymmetry, (-1, 0]"},
       {"--lobe-weight", &F::lobe_weight, "clouds.phase_lobe_weight", TO(clouds.phase_lobe_weight),
        "W", "weight of the forward lobe, [0, 1]"},
       {"--powder", &F::powder, "clouds.powder_strength", TO(clouds.powder_strength), "X",
@@ -172,7 +188,9 @@ void parse_into(const std::string& flag, const std::string& text, glm::vec2& out
 void parse_into(const std::string& flag, const std::string& text, glm::vec3& out) {
   to_vector(flag, text, 3, &out.x);
 }
-void parse_into(const std::string&, const std::string& text, std::string& out) { out = text; }
+void parse_into(const std::string&, const std::string& text, std::string& out) {
+  out = text;
+}
 void parse_into(const std::string& flag, const std::string& text, MarchMode& out) {
   std::optional<MarchMode> mode = parse_march_mode(text);
   if (!mode) fail(flag, text, "expected default or baseline");
@@ -233,8 +251,8 @@ ParamNamer make_namer(const SceneFlags& flags) {
   std::map<std::string, std::string> flag_of_key;
   for (const FlagSpec& spec : flag_specs())
     if (*spec.key && (flags.*spec.member).has_value()) flag_of_key[spec.key] = spec.flag;
-  std::string origin = flags.scene_file ? *flags.scene_file
-                                        : "preset '" + flags.preset.value_or("default") + "'";
+  std::string origin =
+      flags.scene_file ? *flags.scene_file : "preset '" + flags.preset.value_or("default") + "'";
   return [flag_of_key, origin](const std::string& key) {
     auto found = flag_of_key.find(key);
     return found != flag_of_key.end() ? found->second : origin + ": " + key;
@@ -249,8 +267,7 @@ void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
     std::string help = spec.help;
     if (spec.member == &SceneFlags::preset) help += "; one of: " + join(preset_names());
     cmd.add_option_function<std::string>(
-           spec.flag, [&flags, member](const std::string& value) { flags.*member = value; },
-           help)
+           spec.flag, [&flags, member](const std::string& value) { flags.*member = value; }, help)
         ->type_name(spec.type_name)
         ->group("Scene");
   }

@@ -46,7 +46,7 @@ struct CloudParams {
   float top_altitude_m = 4000.0f;     // cloud layer top above ground, > bottom
   float coverage = 0.45f;             // [0, 1]; 1 = sky fully covered
   float density = 0.5f;               // [0, 1]; scales the cloud density field (seed u_density)
-  float extinction_per_m = 0.08f;     // sigma_t at density field value 1 (1/m), > 0
+  float extinction_per_m = 1.0f;      // sigma_t at density field value 1 (1/m), > 0
   float attenuation = 1.0f;           // multiplier on sigma_t along view rays (seed u_attenuation)
   float light_attenuation = 1.0f;     // multiplier on sigma_t along light rays (seed u_attenuation2)
   float albedo = 0.99f;               // single-scattering albedo sigma_s / sigma_t, [0, 1]
@@ -56,9 +56,9 @@ struct CloudParams {
   float powder_strength = 1.0f;       // [0, 1]; 0 disables the powder term (seed 1.9)
   float ambient_strength = 1.0f;      // >= 0; scales sky ambient light on clouds
   glm::vec2 wind_mps{8.0f, 2.0f};     // east, north wind speed (m/s)
-  float base_noise_period_m = 6000.0f;    // horizontal period of the base 128^3 noise tile, > 0
-  float detail_noise_period_m = 900.0f;   // period of the detail 32^3 noise tile, > 0
-  float detail_erosion = 0.35f;           // [0, 1]; how much detail noise erodes the base shape
+  float base_noise_period_m = 4500.0f;    // horizontal period of the base 128^3 noise tile, > 0
+  float detail_noise_period_m = 400.0f;   // period of the detail 32^3 noise tile, > 0
+  float detail_erosion = 0.6f;            // [0, 1]; how much detail noise erodes the base shape
   float weather_period_m = 40000.0f;      // size of one weather-map tile on the ground, > 0
   std::string weather_map;                // PNG path (RGBA as in seed 2.2.2); empty = procedural
 };
@@ -77,7 +77,7 @@ struct QualityParams {
 struct OutputParams {
   int width = 900;    // pixels, [1, 16384]
   int height = 600;   // pixels, [1, 16384]
-  float exposure = 1.0f;  // linear scale before tone mapping, > 0
+  float exposure = 0.5f;  // linear scale before tone mapping, > 0
 };
 
 struct Scene {

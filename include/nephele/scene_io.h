@@ -9,12 +9,11 @@
 #pragma once
 
 #include <functional>
+#include <glm/vec3.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "nephele/scene.h"
 

@@ -42,17 +42,20 @@ vec3 atmosphere_transmittance_to_top(Atmosphere a, vec3 pos, vec3 dir, int sampl
 }
 
 struct SkySample {
-  vec3 radiance;       // in-scattered radiance per unit solar illuminance (1/sr), plus ground
+  vec3 radiance;       // in-scattered radiance per unit solar illuminance (1/sr), plus the
+                       // ground's sky-lit part
+  vec3 ground_sun;     // the ground's sun-lit radiance as seen (the caller may shadow it)
   vec3 transmittance;  // from the eye to the end of the ray (0 if the ground was hit)
 };
 
 // Radiance seen from `eye` along unit `dir`, per unit solar illuminance, for the sun in unit
 // direction `sun`. A ray that hits the ground ends there and adds the ground (Lambertian,
-// albedo `ground_albedo`, lit by the attenuated sun).
+// albedo `ground_albedo`, lit by the attenuated sun and by sky radiance `sky_ambient`).
 SkySample sky_single_scattering(Atmosphere a, vec3 eye, vec3 dir, vec3 sun, int view_samples,
-                                int light_samples, float ground_albedo) {
+                                int light_samples, float ground_albedo, vec3 sky_ambient) {
   SkySample result;
   result.radiance = vec3(0.0f);
+  result.ground_sun = vec3(0.0f);
   result.transmittance = vec3(1.0f);
   float r_eye = length(eye);
   vec2 top = ray_sphere(eye, dir, a.top_radius_m);
@@ -89,8 +92,8 @@ SkySample sky_single_scattering(Atmosphere a, vec3 eye, vec3 dir, vec3 sun, int 
     vec3 p = eye + dir * t_end;
     vec3 n = normalize(p);
     vec3 t_sun = atmosphere_transmittance_to_top(a, p, sun, light_samples);
-    vec3 ground = ground_albedo / PI * t_sun * max(dot(n, sun), 0.0f);
-    result.radiance += result.transmittance * ground;
+    result.ground_sun = result.transmittance * ground_albedo / PI * t_sun * max(dot(n, sun), 0.0f);
+    result.radiance += result.transmittance * ground_albedo * sky_ambient;
     result.transmittance = vec3(0.0f);
   }
   return result;

@@ -12,7 +12,8 @@ layout(set = 0, binding = 3, rgba8) uniform writeonly image2D weather_out;
 layout(set = 0, binding = 4) uniform sampler3D base_noise;
 layout(set = 0, binding = 5) uniform sampler3D detail_noise;
 layout(set = 0, binding = 6) uniform sampler2D weather_map;
-// Per pixel: rgb in-scattered cloud radiance, a cloud transmittance.
+// Two per pixel (clouds.comp): (rgb in-scattered cloud radiance, a cloud transmittance),
+// (x haze weight, yzw unused).
 layout(std430, set = 0, binding = 7) buffer CloudBuffer { vec4 cloud_out[]; };
 // Per pixel: linear HDR radiance of the final image.
 layout(std430, set = 0, binding = 8) buffer ColorBuffer { vec4 color_out[]; };

@@ -45,7 +45,9 @@ glm::vec3 mean_sky_radiance(const glsl::Atmosphere& atmosphere, const glm::vec3&
     float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(kDirections);
     float r = std::sqrt(1.0f - z * z);
     glm::vec3 dir(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
-    sum += glsl::sky_single_scattering(atmosphere, pos, dir, sun, 8, 4, 0.1f).radiance;
+    const glsl::SkySample sky =
+        glsl::sky_single_scattering(atmosphere, pos, dir, sun, 8, 4, 0.1f, glm::vec3(0.0f));
+    sum += sky.radiance + sky.ground_sun;
   }
   return sum / float(kDirections);
 }

@@ -32,7 +32,7 @@ GpuState::GpuState(gpu::Context& c)
 void GpuState::resize(int w, int h) {
   if (w == width && h == height) return;
   const VkDeviceSize bytes = VkDeviceSize(w) * VkDeviceSize(h) * 4 * sizeof(float);
-  cloud_buffer = gpu::Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  cloud_buffer = gpu::Buffer(ctx, 2 * bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   color_buffer = gpu::Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   set.bind_buffer(gpu::kCloudBuffer, cloud_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   set.bind_buffer(gpu::kColorBuffer, color_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);

@@ -34,9 +34,11 @@ std::string weather_key(const Scene& scene) {
                                           : "file:" + scene.clouds.weather_map;
 }
 
-Image read_buffer(const gpu::Buffer& buffer, int width, int height) {
+// Reads one vec4 per pixel from a buffer holding `stride` vec4s per pixel.
+Image read_buffer(const gpu::Buffer& buffer, int width, int height, int stride = 1) {
   Image image(width, height);
-  std::memcpy(image.pixels.data(), buffer.data(), image.pixels.size() * sizeof(glm::vec4));
+  const auto* src = static_cast<const glm::vec4*>(buffer.data());
+  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = src[i * size_t(stride)];
   return image;
 }
 
@@ -138,7 +140,7 @@ Frame Renderer::render(const Scene& scene) {
 
   Frame frame;
   frame.color = read_buffer(s.color_buffer, s.width, s.height);
-  frame.clouds = read_buffer(s.cloud_buffer, s.width, s.height);
+  frame.clouds = read_buffer(s.cloud_buffer, s.width, s.height, 2);
   FrameStats& stats = frame.stats;
   stats.device = impl_->ctx.device_name();
   stats.width = s.width;

@@ -29,10 +29,20 @@ namespace scene_detail {
 
 // FIELD(camera, fov_deg, note) is the key camera.fov_deg for Scene::camera.fov_deg; the unary +
 // turns the capture-less lambda into the function pointer that FieldAccess holds.
-#define FIELD(section, name, note) \
-  Field { #name, +[](Scene& s) -> auto& { return s.section.name; }, note }
-#define TOP_FIELD(name, note) \
-  Field { #name, +[](Scene& s) -> auto& { return s.name; }, note }
+#define FIELD(section, name, note)   \
+  Field {                            \
+#name, +[](Scene & s) -> auto& { \
+      return s.section.name;         \
+    }                                \
+    , note                           \
+  }
+#define TOP_FIELD(name, note)        \
+  Field {                            \
+#name, +[](Scene & s) -> auto& { \
+      return s.name;                 \
+    }                                \
+    , note                           \
+  }
 
 const std::vector<Section>& scene_sections() {
   static const std::vector<Section> sections = {
@@ -59,38 +69,30 @@ const std::vector<Section>& scene_sections() {
         FIELD(atmosphere, mie_extinction_per_m, "sigma_t at sea level, >= mie_scattering_per_m"),
         FIELD(atmosphere, mie_scale_height_m, ""),
         FIELD(atmosphere, mie_g, "Cornette-Shanks asymmetry, [0, 1)"),
-        FIELD(atmosphere, view_samples, "[1, 256]"),
-        FIELD(atmosphere, light_samples, "[1, 256]")},
+        FIELD(atmosphere, view_samples, "[1, 256]"), FIELD(atmosphere, light_samples, "[1, 256]")},
        {}},
       {"clouds",
        {FIELD(clouds, bottom_altitude_m, "above ground"),
         FIELD(clouds, top_altitude_m, "above ground, > bottom_altitude_m"),
-        FIELD(clouds, coverage, "[0, 1]"),
-        FIELD(clouds, density, "[0, 1]"),
+        FIELD(clouds, coverage, "[0, 1]"), FIELD(clouds, density, "[0, 1]"),
         FIELD(clouds, extinction_per_m, "sigma_t at density 1, > 0"),
         FIELD(clouds, attenuation, "sigma_t multiplier along view rays, >= 0"),
         FIELD(clouds, light_attenuation, "sigma_t multiplier along light rays, >= 0"),
-        FIELD(clouds, albedo, "[0, 1]"),
-        FIELD(clouds, phase_g_forward, "[0, 1)"),
+        FIELD(clouds, albedo, "[0, 1]"), FIELD(clouds, phase_g_forward, "[0, 1)"),
         FIELD(clouds, phase_g_backward, "(-1, 0]"),
         FIELD(clouds, phase_lobe_weight, "weight of the forward lobe, [0, 1]"),
-        FIELD(clouds, powder_strength, "[0, 1]"),
-        FIELD(clouds, ambient_strength, ">= 0"),
-        FIELD(clouds, wind_mps, "east, north (m/s)"),
-        FIELD(clouds, base_noise_period_m, "> 0"),
-        FIELD(clouds, detail_noise_period_m, "> 0"),
-        FIELD(clouds, detail_erosion, "[0, 1]"),
+        FIELD(clouds, powder_strength, "[0, 1]"), FIELD(clouds, ambient_strength, ">= 0"),
+        FIELD(clouds, wind_mps, "east, north (m/s)"), FIELD(clouds, base_noise_period_m, "> 0"),
+        FIELD(clouds, detail_noise_period_m, "> 0"), FIELD(clouds, detail_erosion, "[0, 1]"),
         FIELD(clouds, weather_period_m, "> 0"),
         FIELD(clouds, weather_map, "PNG path; empty = procedural")},
        {}},
       {"quality",
        {FIELD(quality, mode, "\"default\" or \"baseline\""),
-        FIELD(quality, primary_steps, "[1, 1024]"),
-        FIELD(quality, light_steps, "[1, 64]")},
+        FIELD(quality, primary_steps, "[1, 1024]"), FIELD(quality, light_steps, "[1, 64]")},
        {}},
       {"output",
-       {FIELD(output, width, "pixels, [1, 16384]"),
-        FIELD(output, height, "pixels, [1, 16384]"),
+       {FIELD(output, width, "pixels, [1, 16384]"), FIELD(output, height, "pixels, [1, 16384]"),
         FIELD(output, exposure, "linear scale before tone mapping, > 0")},
        {}},
   };
@@ -107,8 +109,12 @@ static std::string shortest(T value) {
   return std::string(buffer, result.ptr);
 }
 
-std::string format_float(float value) { return shortest(value); }
-std::string format_double(double value) { return shortest(value); }
+std::string format_float(float value) {
+  return shortest(value);
+}
+std::string format_double(double value) {
+  return shortest(value);
+}
 
 // Reads `text` the way toml++ does (as a double) and narrows it like the scene reader.
 static bool reads_back_as(const std::string& text, float value) {

@@ -3,23 +3,21 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
-
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 
 #include "nephele/scene.h"
 
 namespace nephele::scene_detail {
 
 // Reference to one field of a Scene; the alternative says the field's type.
-using FieldAccess =
-    std::variant<float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
-                 glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&), std::string& (*)(Scene&),
-                 MarchMode& (*)(Scene&)>;
+using FieldAccess = std::variant<float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
+                                 glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
+                                 std::string& (*)(Scene&), MarchMode& (*)(Scene&)>;
 
 struct Field {
   std::string_view name;  // key inside its table, e.g. "coverage"

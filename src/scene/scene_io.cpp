@@ -1,6 +1,8 @@
 // nephele — reading scene files and presets (TOML, via toml++).
 #include "nephele/scene_io.h"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <climits>
@@ -10,8 +12,6 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
-
-#include <toml++/toml.h>
 
 #include "nephele/error.h"
 #include "nephele_embedded.h"
@@ -119,8 +119,8 @@ class SceneReader {
       }
       const Section* section = find_table(name);
       if (!section)
-        fail(key.source(), "unknown key '" + name +
-                               "' (allowed at the top level: " + allowed_keys(top) + ")");
+        fail(key.source(),
+             "unknown key '" + name + "' (allowed at the top level: " + allowed_keys(top) + ")");
       const toml::table* table = node.as_table();
       if (!table) fail_value(node, name, "expected a table [" + name + "]");
       read_table(*section, *table, scene);
@@ -166,7 +166,8 @@ class SceneReader {
   void assign(const Field& field, const std::string& key, const toml::node& node,
               Scene& scene) const {
     std::visit([&](auto access) { read_value(node, key, access(scene)); }, field.access);
-    if (key == "clouds.weather_map") scene.clouds.weather_map = resolve_path(scene.clouds.weather_map);
+    if (key == "clouds.weather_map")
+      scene.clouds.weather_map = resolve_path(scene.clouds.weather_map);
   }
 
   // A relative path in a file is relative to the file's folder.
@@ -186,8 +187,9 @@ class SceneReader {
                        int64_t max) const {
     const auto* i = node.as_integer();
     if (!i || i->get() < min || i->get() > max)
-      fail_value(node, key,
-                 "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+      fail_value(
+          node, key,
+          "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
     return i->get();
   }
 
@@ -293,7 +295,9 @@ double sin_deg(double degrees) {
   return std::sin(reduced * std::numbers::pi / 180.0);
 }
 
-double cos_deg(double degrees) { return sin_deg(degrees + 90.0); }
+double cos_deg(double degrees) {
+  return sin_deg(degrees + 90.0);
+}
 
 }  // namespace
 
@@ -318,8 +322,8 @@ Scene load_scene_file(const std::string& path) {
 Scene load_preset(const std::string& name) {
   const EmbeddedFile* file = find_preset_file(name);
   if (!file)
-    throw InputError("preset '" + name + "': unknown preset (available: " +
-                     join(preset_names()) + ")");
+    throw InputError("preset '" + name + "': unknown preset (available: " + join(preset_names()) +
+                     ")");
   return parse_preset(*file, 0);
 }
 

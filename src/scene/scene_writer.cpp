@@ -9,11 +9,21 @@ namespace {
 
 using scene_detail::toml_float;
 
-std::string toml_value(float value) { return toml_float(value); }
-std::string toml_value(int value) { return std::to_string(value); }
-std::string toml_value(uint32_t value) { return std::to_string(value); }
-std::string toml_value(const std::string& value) { return scene_detail::toml_quote(value); }
-std::string toml_value(MarchMode mode) { return scene_detail::toml_quote(to_string(mode)); }
+std::string toml_value(float value) {
+  return toml_float(value);
+}
+std::string toml_value(int value) {
+  return std::to_string(value);
+}
+std::string toml_value(uint32_t value) {
+  return std::to_string(value);
+}
+std::string toml_value(const std::string& value) {
+  return scene_detail::toml_quote(value);
+}
+std::string toml_value(MarchMode mode) {
+  return scene_detail::toml_quote(to_string(mode));
+}
 
 template <typename Vector>
 std::string toml_value(const Vector& v) {

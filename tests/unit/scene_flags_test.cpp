@@ -57,13 +57,39 @@ TEST(SceneFlags, RegistersExactlyTheSceneSpellings) {
   CLI::App app("test");
   SceneFlags flags;
   add_scene_flags(app, flags);
-  for (const char* flag :
-       {"--scene", "--preset", "--width", "--height", "--camera-altitude-m", "--camera-pos",
-        "--view-dir", "--fov-deg", "--sun-dir", "--sun-elevation-deg", "--sun-azimuth-deg",
-        "--sun-illuminance", "--coverage", "--density", "--cloud-bottom-m", "--cloud-top-m",
-        "--extinction-per-m", "--attenuation", "--light-attenuation", "--albedo", "--g-forward",
-        "--g-backward", "--lobe-weight", "--powder", "--ambient", "--wind-mps", "--time-s",
-        "--seed", "--steps", "--light-steps", "--mode", "--weather-map", "--exposure"})
+  for (const char* flag : {"--scene",
+                           "--preset",
+                           "--width",
+                           "--height",
+                           "--camera-altitude-m",
+                           "--camera-pos",
+                           "--view-dir",
+                           "--fov-deg",
+                           "--sun-dir",
+                           "--sun-elevation-deg",
+                           "--sun-azimuth-deg",
+                           "--sun-illuminance",
+                           "--coverage",
+                           "--density",
+                           "--cloud-bottom-m",
+                           "--cloud-top-m",
+                           "--extinction-per-m",
+                           "--attenuation",
+                           "--light-attenuation",
+                           "--albedo",
+                           "--g-forward",
+                           "--g-backward",
+                           "--lobe-weight",
+                           "--powder",
+                           "--ambient",
+                           "--wind-mps",
+                           "--time-s",
+                           "--seed",
+                           "--steps",
+                           "--light-steps",
+                           "--mode",
+                           "--weather-map",
+                           "--exposure"})
     EXPECT_NO_THROW(app.get_option(flag)) << flag;
   for (const char* flag : {"--output", "--stats-json", "--verbose", "--device"})
     EXPECT_THROW(app.get_option(flag), CLI::OptionNotFound) << flag;
@@ -93,7 +119,8 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--density", "0.1"}, [](const Scene& s) { return s.clouds.density == 0.1f; }},
       {{"--cloud-bottom-m", "900"},
        [](const Scene& s) { return s.clouds.bottom_altitude_m == 900.0f; }},
-      {{"--cloud-top-m", "7000"}, [](const Scene& s) { return s.clouds.top_altitude_m == 7000.0f; }},
+      {{"--cloud-top-m", "7000"},
+       [](const Scene& s) { return s.clouds.top_altitude_m == 7000.0f; }},
       {{"--extinction-per-m", "0.02"},
        [](const Scene& s) { return s.clouds.extinction_per_m == 0.02f; }},
       {{"--attenuation", "1.5"}, [](const Scene& s) { return s.clouds.attenuation == 1.5f; }},
@@ -101,8 +128,7 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
        [](const Scene& s) { return s.clouds.light_attenuation == 0.5f; }},
       {{"--albedo", "0.9"}, [](const Scene& s) { return s.clouds.albedo == 0.9f; }},
       {{"--g-forward", "0.6"}, [](const Scene& s) { return s.clouds.phase_g_forward == 0.6f; }},
-      {{"--g-backward", "-0.6"},
-       [](const Scene& s) { return s.clouds.phase_g_backward == -0.6f; }},
+      {{"--g-backward", "-0.6"}, [](const Scene& s) { return s.clouds.phase_g_backward == -0.6f; }},
       {{"--lobe-weight", "0.25"},
        [](const Scene& s) { return s.clouds.phase_lobe_weight == 0.25f; }},
       {{"--powder", "0"}, [](const Scene& s) { return s.clouds.powder_strength == 0.0f; }},
@@ -195,7 +221,8 @@ TEST(SceneFlags, MalformedValuesNameTheFlag) {
             "--width 12.5: expected an integer in [-2147483648, 2147483647]");
   EXPECT_EQ(resolve_error({"--seed", "-1"}), "--seed -1: expected an integer in [0, 4294967295]");
   EXPECT_EQ(resolve_error({"--mode", "fast"}), "--mode fast: expected default or baseline");
-  EXPECT_EQ(resolve_error({"--sun-elevation-deg", "x"}), "--sun-elevation-deg x: expected a number");
+  EXPECT_EQ(resolve_error({"--sun-elevation-deg", "x"}),
+            "--sun-elevation-deg x: expected a number");
   EXPECT_EQ(resolve_error({"--sun-elevation-deg", "91"}),
             "--sun-elevation-deg 91: must be in [-90, 90]");
   EXPECT_EQ(resolve_error({"--sun-azimuth-deg", "inf"}), "--sun-azimuth-deg inf: must be finite");
@@ -227,9 +254,8 @@ class SceneFlagsFile : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("nephele_flags_test_" + std::string(::testing::UnitTest::GetInstance()
-                                                     ->current_test_info()
-                                                     ->name()));
+           ("nephele_flags_test_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -249,8 +275,7 @@ TEST_F(SceneFlagsFile, SceneFileThenOverrides) {
 TEST_F(SceneFlagsFile, FileValuesAreNamedWithTheFile) {
   std::string path = (dir_ / "scene.toml").string();
   std::ofstream(path) << "[clouds]\ncoverage = 1.5\n";
-  EXPECT_EQ(resolve_error({"--scene", path}),
-            path + ": clouds.coverage = 1.5: must be in [0, 1]");
+  EXPECT_EQ(resolve_error({"--scene", path}), path + ": clouds.coverage = 1.5: must be in [0, 1]");
   // A flag can repair what the file got wrong: validation runs after the overrides.
   EXPECT_EQ(resolve({"--scene", path, "--coverage", "0.5"}).clouds.coverage, 0.5f);
 }
