@@ -268,8 +268,8 @@ struct Text {
 };
 
 // stb_easy_font covers ASCII 32-126 and reads out of bounds on anything else: control
-// characters become spaces; a few common UTF-8 characters get an ASCII stand-in ("µs" reads
-// "us"), any other UTF-8 sequence becomes one '?'.
+// characters become spaces; common UTF-8 characters get an ASCII stand-in ("µs" reads "us",
+// "é" reads "e"), any other UTF-8 sequence becomes one '?'.
 std::string printable(const std::string& text) {
   std::string out;
   for (size_t i = 0; i < text.size();) {
@@ -290,21 +290,62 @@ std::string printable(const std::string& text) {
     }
     i += size_t(used);
     switch (code) {
-      case 0xB5: case 0x3BC: out += 'u'; break;            // micro sign, mu
-      case 0xD7: out += 'x'; break;                         // multiplication sign
-      case 0xB7: case 0x22C5: out += '.'; break;            // middle dot, dot operator
-      case 0xB1: out += "+-"; break;
-      case 0xB2: out += '2'; break;
-      case 0xB3: out += '3'; break;
-      case 0x2010: case 0x2011: case 0x2012: case 0x2013: case 0x2014: case 0x2212:
+      case 0xB5:
+      case 0x3BC:
+        out += 'u';
+        break;  // micro sign, mu
+      case 0xD7:
+        out += 'x';
+        break;  // multiplication sign
+      case 0xB7:
+      case 0x22C5:
+        out += '.';
+        break;  // middle dot, dot operator
+      case 0xB1:
+        out += "+-";
+        break;
+      case 0xB2:
+        out += '2';
+        break;
+      case 0xB3:
+        out += '3';
+        break;
+      case 0x2010:
+      case 0x2011:
+      case 0x2012:
+      case 0x2013:
+      case 0x2014:
+      case 0x2212:
         out += '-';
         break;
-      case 0x2018: case 0x2019: out += '\''; break;
-      case 0x201C: case 0x201D: out += '"'; break;
-      case 0x2264: out += "<="; break;
-      case 0x2265: out += ">="; break;
-      case 0xA0: case 0x2009: case 0x202F: out += ' '; break;  // no-break, thin spaces
-      default: out += '?';
+      case 0x2018:
+      case 0x2019:
+        out += '\'';
+        break;
+      case 0x201C:
+      case 0x201D:
+        out += '"';
+        break;
+      case 0x2264:
+        out += "<=";
+        break;
+      case 0x2265:
+        out += ">=";
+        break;
+      case 0xA0:
+      case 0x2009:
+      case 0x202F:
+        out += ' ';
+        break;  // no-break, thin spaces
+      default:
+        if (code >= 0xC0 && code <= 0xFF) {
+          // Latin-1 letters without their accents ("café" reads "cafe").
+          static constexpr char kLatin1[] =
+              "AAAAAAACEEEEIIIIDNOOOOOxOUUUUYPsaaaaaaaceeeeiiiidnooooo/ouuuuypy";
+          out += kLatin1[code - 0xC0];
+        } else {
+          out += '?';
+        }
     }
   }
   return out;
@@ -603,8 +644,8 @@ bool usable(double v, bool log) {
 
 // Where the chart's parts go, in pixels.
 struct Layout {
-  Box frame;   // the frame's outer box; its 1-px border lies inside it
-  Box inside;  // inside the border: where the series are drawn
+  Box frame;                              // the frame's outer box; its 1-px border lies inside it
+  Box inside;                             // inside the border: where the series are drawn
   double x0 = 0, x1 = 1, y0 = 0, y1 = 1;  // pixel positions of the axis ends (y0: top)
 };
 
@@ -772,15 +813,15 @@ void draw_chart(Canvas& canvas, const PlotSpec& spec) {
     const int px = clamp_to_int(std::floor(map.px(x_axis.major[i].value)), -1, width);
     canvas.fill({px, inside.y0, px + 1, inside.y1}, kGridColour);
     canvas.fill({px, frame.y1, px + 1, frame.y1 + kTickLength}, kFrameColour);
-    draw_text_at(canvas, x_labels[i], px + 0.5, frame.y1 + kTickLength + kTickLabelGap, 0.5, 0.0,
-                 s, kTextColour);
+    draw_text_at(canvas, x_labels[i], px + 0.5, frame.y1 + kTickLength + kTickLabelGap, 0.5, 0.0, s,
+                 kTextColour);
   }
   for (size_t i = 0; i < y_axis.major.size(); ++i) {
     const int py = clamp_to_int(std::floor(map.py(y_axis.major[i].value)), -1, height);
     canvas.fill({inside.x0, py, inside.x1, py + 1}, kGridColour);
     canvas.fill({frame.x0 - kTickLength, py, frame.x0, py + 1}, kFrameColour);
-    draw_text_at(canvas, y_labels[i], frame.x0 - kTickLength - kTickLabelGap, py + 0.5, 1.0, 0.5,
-                 s, kTextColour);
+    draw_text_at(canvas, y_labels[i], frame.x0 - kTickLength - kTickLabelGap, py + 0.5, 1.0, 0.5, s,
+                 kTextColour);
   }
 
   // Series, later ones over earlier ones.
@@ -884,8 +925,7 @@ void write_plot_png(const PlotSpec& spec, const std::string& path) {
   write_png(path, spec.width, spec.height, rgba);
 }
 
-void write_plot_grid_png(const std::vector<PlotSpec>& specs, int columns,
-                         const std::string& path) {
+void write_plot_grid_png(const std::vector<PlotSpec>& specs, int columns, const std::string& path) {
   if (specs.empty()) throw InputError("plot grid '" + path + "': no charts to draw");
   if (columns < 1) {
     throw InputError("plot grid '" + path + "': columns = " + std::to_string(columns) +

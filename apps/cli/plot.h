@@ -23,8 +23,8 @@ struct PlotSeries {
 struct PlotSpec {
   std::string title, x_label, y_label;
   std::vector<PlotSeries> series;
-  bool log_y = false;  // logarithmic y axis (values must be > 0)
-  bool log_x = false;  // logarithmic x axis (values must be > 0)
+  bool log_y = false;             // logarithmic y axis (values must be > 0)
+  bool log_x = false;             // logarithmic x axis (values must be > 0)
   int width = 900, height = 600;  // pixels, each in [64, 8192]
 };
 

@@ -82,7 +82,7 @@ std::string allowed_keys(const Section& section) {
   for (std::string_view extra : section.extra_keys) names.emplace_back(extra);
   if (section.name.empty())
     for (const Section& nested : scene_detail::scene_sections())
-      if (!nested.name.empty()) names.push_back("[" + std::string(nested.name) + "]");
+      if (!nested.name.empty()) names.push_back(std::string("[").append(nested.name).append("]"));
   return join(names);
 }
 

@@ -166,7 +166,8 @@ TEST(Plot, LineIsDrawnBetweenPoints) {
 
 TEST(Plot, SeriesGetDistinctColours) {
   PlotSpec spec;
-  spec.series = {{"a", {0, 1, 2}, {1, 2, 3}}, {"b", {0, 1, 2}, {3, 2, 1}}, {"c", {0, 1, 2}, {2, 2.5, 2}}};
+  spec.series = {
+      {"a", {0, 1, 2}, {1, 2, 3}}, {"b", {0, 1, 2}, {3, 2, 1}}, {"c", {0, 1, 2}, {2, 2.5, 2}}};
   const std::vector<unsigned char> rgba = render_plot(spec);
   EXPECT_GT(count_colour(rgba, spec.width, spec.height, kBlue), 100);
   EXPECT_GT(count_colour(rgba, spec.width, spec.height, kOrange), 100);
@@ -193,18 +194,18 @@ TEST(Plot, TextIsDrawn) {
 
 TEST(Plot, DegenerateInputsRender) {
   std::vector<PlotSpec> specs(10);
-  specs[0].series = {};                                           // no series at all
-  specs[1].series = {{"empty", {}, {}}};                          // an empty series
-  specs[2].series = {{"one", {3.0}, {7.0}}};                      // a single point
-  specs[3].series = {{"flat", {1, 2, 3}, {5, 5, 5}}};             // all-equal y
-  specs[4].series = {{"zeros", {0, 0, 0}, {0, 0, 0}}};            // one point, three times
+  specs[0].series = {};                                              // no series at all
+  specs[1].series = {{"empty", {}, {}}};                             // an empty series
+  specs[2].series = {{"one", {3.0}, {7.0}}};                         // a single point
+  specs[3].series = {{"flat", {1, 2, 3}, {5, 5, 5}}};                // all-equal y
+  specs[4].series = {{"zeros", {0, 0, 0}, {0, 0, 0}}};               // one point, three times
   specs[5].series = {{"bad", {kNaN, 1, 2, kInf}, {1, kNaN, 2, 3}}};  // non-finite values
-  specs[6].log_y = true;                                          // <= 0 on a log axis
+  specs[6].log_y = true;                                             // <= 0 on a log axis
   specs[6].series = {{"log", {1, 2, 3, 4}, {0.0, -1.0, 5.0, 50.0}}};
   specs[7].log_y = true;
   specs[7].series = {{"all bad", {1, 2}, {0.0, -3.0}}};
   specs[8].title = "\x01\t\xff caf\xc3\xa9 \xce\xbcs \xe2\x80\x94 \xf0\x9f\x98\x80";  // not ASCII
-  specs[8].x_label = std::string(400, 'x');                      // wider than the chart
+  specs[8].x_label = std::string(400, 'x');  // wider than the chart
   specs[8].series = {{"huge", {-1.7e308, 1.7e308}, {1e-320, 1.7e308}}};
   specs[9].log_y = true;
   specs[9].series = {{"tiny", {1, 2}, {5e-324, 1e-310}}};  // subnormal

@@ -176,10 +176,12 @@ TEST(ScenePresets, UnknownNameListsAvailable) {
   EXPECT_NE(message.find("overcast"), std::string::npos) << message;
 }
 
+// Loose bounds on purpose: the values get tuned by eye, the character must stay.
 TEST(ScenePresets, ShowWhatTheirNamesSay) {
   Scene fair = load_preset("default");
   SunAngles sun = sun_angles_from_direction(fair.sun.direction);
-  EXPECT_NEAR(sun.elevation_deg, 35.0, 1.0);
+  EXPECT_GT(sun.elevation_deg, 20.0);
+  EXPECT_LT(sun.elevation_deg, 50.0);
   // Sun behind the camera: horizontal sun and view directions point apart.
   glm::vec3 view = fair.camera.view_dir;
   EXPECT_LT(view.x * fair.sun.direction.x + view.y * fair.sun.direction.y, 0.0f);
@@ -189,22 +191,24 @@ TEST(ScenePresets, ShowWhatTheirNamesSay) {
   EXPECT_EQ(baseline.quality.mode, MarchMode::Baseline);
   EXPECT_EQ(baseline.clouds.phase_g_backward, -baseline.clouds.phase_g_forward);
 
-  EXPECT_GE(load_preset("overcast").clouds.coverage, 0.9f);
+  Scene overcast = load_preset("overcast");
+  EXPECT_GE(overcast.clouds.coverage, fair.clouds.coverage + 0.2f);
+  EXPECT_GT(overcast.clouds.top_altitude_m - overcast.clouds.bottom_altitude_m,
+            fair.clouds.top_altitude_m - fair.clouds.bottom_altitude_m);
 
   Scene sunset = load_preset("sunset");
   SunAngles low = sun_angles_from_direction(sunset.sun.direction);
-  EXPECT_NEAR(low.elevation_deg, 4.0, 1.0);
+  EXPECT_GT(low.elevation_deg, 0.0);
+  EXPECT_LT(low.elevation_deg, 10.0);
   // Camera looks towards the sun's azimuth.
   glm::vec3 look = sunset.camera.view_dir;
   EXPECT_GT(look.x * sunset.sun.direction.x + look.y * sunset.sun.direction.y, 0.0f);
 
   Scene above = load_preset("above-clouds");
-  EXPECT_EQ(above.camera.position_m.z, 6000.0f);
   EXPECT_GT(above.camera.position_m.z, above.clouds.top_altitude_m);
   EXPECT_LT(above.camera.view_dir.z, 0.0f);
 
   Scene inside = load_preset("inside-cloud");
-  EXPECT_EQ(inside.camera.position_m.z, 2500.0f);
   EXPECT_GT(inside.camera.position_m.z, inside.clouds.bottom_altitude_m);
   EXPECT_LT(inside.camera.position_m.z, inside.clouds.top_altitude_m);
 }

@@ -1,0 +1,211 @@
+// The shaders' pure functions (shaders/common/*_inc.glsl compiled as C++) against closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/glsl.h"
+
+namespace g = nephele::glsl;
+using glm::vec2;
+using glm::vec3;
+
+namespace {
+
+// Integrates f(mu) over the unit sphere: 2 pi * integral over mu in [-1, 1] (midpoint rule).
+template <typename F>
+double integrate_sphere(F f, int n = 200000) {
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double mu = -1.0 + (i + 0.5) * 2.0 / n;
+    sum += f(float(mu));
+  }
+  return 2.0 * M_PI * sum * 2.0 / n;
+}
+
+}  // namespace
+
+TEST(RaySphere, FromOutsideHitsNearAndFarSide) {
+  vec2 t = g::ray_sphere(vec3(0, 0, -10), vec3(0, 0, 1), 2.0f);
+  EXPECT_FLOAT_EQ(t.x, 8.0f);
+  EXPECT_FLOAT_EQ(t.y, 12.0f);
+}
+
+TEST(RaySphere, FromInsideHasOneRootBehind) {
+  vec2 t = g::ray_sphere(vec3(0, 0, 0.5f), vec3(0, 0, 1), 2.0f);
+  EXPECT_FLOAT_EQ(t.x, -2.5f);
+  EXPECT_FLOAT_EQ(t.y, 1.5f);
+}
+
+TEST(RaySphere, TangentRayTouchesOnce) {
+  vec2 t = g::ray_sphere(vec3(-5, 2, 0), vec3(1, 0, 0), 2.0f);
+  EXPECT_NEAR(t.x, 5.0f, 1e-3f);
+  EXPECT_NEAR(t.y, 5.0f, 1e-3f);
+}
+
+TEST(RaySphere, MissReturnsNegativeRoots) {
+  vec2 t = g::ray_sphere(vec3(-5, 2.5f, 0), vec3(1, 0, 0), 2.0f);
+  EXPECT_LT(t.y, 0.0f);
+  vec2 behind = g::ray_sphere(vec3(0, 0, 10), vec3(0, 0, 1), 2.0f);
+  EXPECT_LT(behind.y, 0.0f);  // sphere entirely behind the ray
+}
+
+TEST(RaySphere, PlanetScaleStaysAccurateInFloat) {
+  // Straight up from the ground of a 6360 km planet to a shell 1500 m up: exactly 1500 m.
+  const float r = 6360e3f;
+  vec2 t = g::ray_sphere(vec3(0, 0, r + 2.0f), vec3(0, 0, 1), r + 1500.0f);
+  EXPECT_NEAR(t.y, 1498.0f, 0.5f);
+  // Horizontal ray from the ground to the same shell: sqrt((r + h)^2 - r^2).
+  vec2 h = g::ray_sphere(vec3(0, 0, r), vec3(1, 0, 0), r + 1500.0f);
+  const double expected = std::sqrt((double(r) + 1500.0) * (double(r) + 1500.0) - double(r) * r);
+  EXPECT_NEAR(h.y, expected, expected * 1e-4);
+}
+
+TEST(Remap, MapsEndpointsAndExtrapolates) {
+  EXPECT_FLOAT_EQ(g::remap(0.5f, 0.0f, 1.0f, 10.0f, 20.0f), 15.0f);
+  EXPECT_FLOAT_EQ(g::remap(2.0f, 1.0f, 3.0f, 0.0f, 1.0f), 0.5f);
+  EXPECT_FLOAT_EQ(g::remap(4.0f, 1.0f, 3.0f, 0.0f, 1.0f), 1.5f);
+  EXPECT_FLOAT_EQ(g::remap(0.2f, 0.0f, 1.0f, 1.0f, 0.0f), 0.8f);
+}
+
+TEST(Phase, HenyeyGreensteinIntegratesToOneAndMeanCosineIsG) {
+  for (float gg : {-0.5f, 0.0f, 0.3f, 0.8f}) {
+    EXPECT_NEAR(integrate_sphere([&](float mu) { return g::henyey_greenstein(gg, mu); }), 1.0,
+                2e-3)
+        << "g = " << gg;
+    double mean_cos =
+        integrate_sphere([&](float mu) { return mu * g::henyey_greenstein(gg, mu); });
+    EXPECT_NEAR(mean_cos, gg, 2e-3) << "g = " << gg;
+  }
+}
+
+TEST(Phase, ForwardLobePeaksWhenLookingAtTheLight) {
+  // mu = dot(view direction, direction to the sun) = 1 looking straight at the sun.
+  EXPECT_GT(g::henyey_greenstein(0.8f, 1.0f), 10.0f * g::henyey_greenstein(0.8f, -1.0f));
+  EXPECT_FLOAT_EQ(g::henyey_greenstein(0.0f, 0.3f), float(1.0 / (4.0 * M_PI)));
+}
+
+TEST(Phase, DualLobeRayleighAndCornetteShanksIntegrateToOne) {
+  EXPECT_NEAR(integrate_sphere([](float mu) { return g::dual_lobe_hg(0.8f, -0.3f, 0.7f, mu); }),
+              1.0, 2e-3);
+  double dual_mean = integrate_sphere(
+      [](float mu) { return mu * g::dual_lobe_hg(0.8f, -0.3f, 0.7f, mu); });
+  EXPECT_NEAR(dual_mean, 0.7 * 0.8 + 0.3 * -0.3, 3e-3);
+  EXPECT_NEAR(integrate_sphere([](float mu) { return g::rayleigh_phase(mu); }), 1.0, 1e-4);
+  EXPECT_NEAR(integrate_sphere([](float mu) { return g::cornette_shanks_phase(0.8f, mu); }), 1.0,
+              3e-3);
+}
+
+TEST(Noise, PerlinTilesWithItsPeriod) {
+  for (int i = 0; i < 50; ++i) {
+    vec3 p(0.37f * i, 1.3f + 0.11f * i, 2.9f - 0.07f * i);
+    const int period = 4;
+    float a = g::perlin_tiled(p, period, 7u);
+    EXPECT_NEAR(a, g::perlin_tiled(p + vec3(period, 0, 0), period, 7u), 1e-5f);
+    EXPECT_NEAR(a, g::perlin_tiled(p + vec3(0, period, 0), period, 7u), 1e-5f);
+    EXPECT_NEAR(a, g::perlin_tiled(p + vec3(0, 0, -period), period, 7u), 1e-5f);
+  }
+}
+
+TEST(Noise, WorleyTilesAndStaysInRange) {
+  float lo = 1.0f, hi = 0.0f;
+  for (int i = 0; i < 400; ++i) {
+    vec3 p(0.173f * i, std::fmod(0.61f * i, 5.0f), std::fmod(0.29f * i, 7.0f));
+    const int period = 5;
+    float w = g::worley_tiled(p, period, 3u);
+    lo = std::min(lo, w);
+    hi = std::max(hi, w);
+    EXPECT_GE(w, 0.0f);
+    EXPECT_LE(w, 1.0f);
+    EXPECT_NEAR(w, g::worley_tiled(p + vec3(period, -period, period), period, 3u), 1e-5f);
+  }
+  EXPECT_LT(lo, 0.4f);  // spans most of its range: not a constant
+  EXPECT_GT(hi, 0.8f);
+}
+
+TEST(Noise, WorleyIsOneAtAFeaturePoint) {
+  // The feature point of cell (1, 2, 3) sits at cell + hash.
+  vec3 feature = vec3(1, 2, 3) + g::hash_cell(glm::ivec3(1, 2, 3), 9u);
+  EXPECT_NEAR(g::worley_tiled(feature, 8, 9u), 1.0f, 1e-5f);
+}
+
+TEST(Noise, FbmTilesOverTheUnitCube) {
+  for (int i = 0; i < 30; ++i) {
+    vec3 uvw(0.031f * i, 0.5f, 0.017f * i);
+    EXPECT_NEAR(g::worley_fbm(uvw, 4, 1u), g::worley_fbm(uvw + vec3(1, 0, 0), 4, 1u), 1e-4f);
+    EXPECT_NEAR(g::perlin_worley(uvw, 4, 1u), g::perlin_worley(uvw + vec3(0, 1, 1), 4, 1u),
+                1e-4f);
+  }
+}
+
+TEST(CloudModel, CoverageEndsMeanClearAndOvercast) {
+  for (float r : {0.0f, 0.3f, 0.99f})
+    for (float gr : {0.0f, 0.7f}) {
+      EXPECT_EQ(g::cloud_local_coverage(r, gr, 0.0f), 0.0f);
+      EXPECT_EQ(g::cloud_local_coverage(r, gr, 1.0f), 1.0f);
+    }
+  EXPECT_FLOAT_EQ(g::cloud_local_coverage(0.4f, 0.9f, 0.5f), 0.4f);  // the map as it is
+  EXPECT_EQ(g::cloud_apply_coverage(0.9f, 0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(g::cloud_apply_coverage(0.7f, 1.0f), 0.7f);
+  EXPECT_EQ(g::cloud_apply_coverage(0.2f, 0.5f), 0.0f);  // noise below 1 - coverage is cut
+}
+
+TEST(CloudModel, HeightGradientsVanishOutsideTheLayer) {
+  EXPECT_EQ(g::cloud_shape_gradient(0.0f, 1.0f), 0.0f);
+  EXPECT_EQ(g::cloud_shape_gradient(0.8f, 0.6f), 0.0f);  // above the weather map's max height
+  EXPECT_FLOAT_EQ(g::cloud_shape_gradient(0.1f, 1.0f), 1.0f);
+  EXPECT_EQ(g::cloud_density_gradient(0.0f), 0.0f);
+  EXPECT_EQ(g::cloud_density_gradient(1.0f), 0.0f);
+  EXPECT_GT(g::cloud_density_gradient(0.8f), g::cloud_density_gradient(0.3f));  // dense tops
+}
+
+TEST(CloudModel, BeerPowderFollowsTheSeedsFormula) {
+  // Without powder: Beer-Lambert alone.
+  EXPECT_FLOAT_EQ(g::cloud_beer_powder(1.5f, 0.2f, 0.0f), std::exp(-1.5f));
+  // Looking at the sun (mu = 1) the powder term is 1; looking away it is 2 (1 - e^-2tau).
+  EXPECT_FLOAT_EQ(g::cloud_beer_powder(0.5f, 1.0f, 1.0f), std::exp(-0.5f));
+  EXPECT_NEAR(g::cloud_beer_powder(0.5f, -1.0f, 1.0f), std::exp(-0.5f) * 2.0f * (1.0f - std::exp(-1.0f)),
+              1e-6f);
+}
+
+TEST(Atmosphere, TransmittanceStraightUpMatchesTheClosedForm) {
+  g::Atmosphere a;
+  a.planet_radius_m = 6360e3f;
+  a.top_radius_m = 6460e3f;
+  a.rayleigh_sigma_s = vec3(5.802e-6f, 13.558e-6f, 33.1e-6f);
+  a.rayleigh_height_m = 8000.0f;
+  a.mie_sigma_s = 3.996e-6f;
+  a.mie_sigma_t = 4.44e-6f;
+  a.mie_height_m = 1200.0f;
+  a.mie_g = 0.8f;
+  // Optical depth of an exponential profile from 0 to H_top: sigma H (1 - exp(-H_top / H)).
+  const double top = 100e3;
+  for (int c = 0; c < 3; ++c) {
+    double tau = a.rayleigh_sigma_s[c] * 8000.0 * (1 - std::exp(-top / 8000.0)) +
+                 4.44e-6 * 1200.0 * (1 - std::exp(-top / 1200.0));
+    vec3 t = g::atmosphere_transmittance_to_top(a, vec3(0, 0, a.planet_radius_m), vec3(0, 0, 1),
+                                                400);
+    EXPECT_NEAR(t[c], std::exp(-tau), 1e-3) << "channel " << c;
+  }
+  // Below the horizon the planet blocks the sun.
+  EXPECT_EQ(g::atmosphere_transmittance_to_top(a, vec3(0, 0, a.planet_radius_m + 10.0f),
+                                               glm::normalize(vec3(1, 0, -0.2f)), 16)
+                .x,
+            0.0f);
+}
+
+TEST(Atmosphere, SkyIsBlueAtNoonAndRedderNearTheHorizonAtSunset) {
+  g::Atmosphere a{6360e3f, 6460e3f, vec3(5.802e-6f, 13.558e-6f, 33.1e-6f), 8000.0f,
+                  3.996e-6f,  4.44e-6f, 1200.0f, 0.8f};
+  vec3 eye(0, 0, a.planet_radius_m + 2.0f);
+  vec3 noon_sun = glm::normalize(vec3(0, 0.3f, 1));
+  vec3 zenith = g::sky_single_scattering(a, eye, vec3(0, 0, 1), noon_sun, 32, 16, 0.1f, vec3(0))
+                    .radiance;
+  EXPECT_GT(zenith.b, zenith.g);
+  EXPECT_GT(zenith.g, zenith.r);
+  vec3 low_sun = glm::normalize(vec3(0, 1, 0.03f));
+  vec3 toward_sun =
+      g::sky_single_scattering(a, eye, glm::normalize(vec3(0, 1, 0.05f)), low_sun, 32, 16, 0.1f,
+                               vec3(0))
+          .radiance;
+  EXPECT_GT(toward_sun.r / toward_sun.b, zenith.r / zenith.b * 3.0f);
+}
