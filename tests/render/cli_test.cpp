@@ -1,0 +1,139 @@
+// End-to-end tests of the `nephele` binary: bad input gets one line naming the parameter and
+// value, exit status 2, and no output file; a good render writes the image and its stats.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int status;
+  std::string output;  // stdout and stderr
+};
+
+CliRun run_cli(const std::string& args) {
+  const std::string command = std::string(NEPHELE_CLI_PATH) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(NEPHELE_TEST_OUTPUT_DIR) /
+           ("cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write_scene(const std::string& text) const {
+    const std::string p = path("scene.toml");
+    std::ofstream(p) << text;
+    return p;
+  }
+  // Runs a render that must fail with exit status 2, one error line containing every
+  // string in `expected`, and no image written.
+  void expect_rejected(const std::string& args, std::initializer_list<std::string> expected) {
+    const std::string out = path("out.png");
+    const CliRun r = run_cli("render -o " + out + " " + args);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    for (const std::string& e : expected) EXPECT_NE(r.output.find(e), std::string::npos)
+        << "expected '" << e << "' in: " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(CliTest, RendersPngAndStatsJson) {
+  const std::string out = path("sky.png"), stats = path("stats.json");
+  const CliRun r = run_cli("render --preset default --width 64 --height 40 --validation -o " + out +
+                        " --stats-json " + stats);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(out), std::string::npos) << "prints the image path";
+  EXPECT_GT(fs::file_size(out), 100u);
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+  for (const char* key : {"device", "width", "height", "frame_ms", "mean_luminance",
+                          "cloud_cover_fraction"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["width"], 64);
+  EXPECT_EQ(j["height"], 40);
+  EXPECT_GT(j["mean_luminance"].get<double>(), 0.0);
+}
+
+TEST_F(CliTest, RendersExrFromASceneFile) {
+  const std::string scene = write_scene("preset = \"default\"\n[clouds]\ncoverage = 0.6\n");
+  const std::string out = path("sky.exr");
+  const CliRun r = run_cli("render --scene " + scene + " --width 40 --height 24 -o " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_GT(fs::file_size(out), 100u);
+}
+
+TEST_F(CliTest, VerbosePrintsTheResolvedSceneAndDevice) {
+  const CliRun r = run_cli("render --width 16 --height 16 --coverage 0.3 --verbose -o " +
+                        path("v.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("coverage = 0.3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("device:"), std::string::npos) << r.output;
+}
+
+TEST_F(CliTest, RejectsZeroNanAndInfiniteVectors) {
+  expect_rejected("--view-dir 0,0,0", {"--view-dir", "0,0,0"});
+  expect_rejected("--sun-dir 0,0,0", {"--sun-dir", "0,0,0"});
+  expect_rejected("--view-dir nan,0,1", {"--view-dir", "nan"});
+  expect_rejected("--sun-dir 1,inf,0", {"--sun-dir", "inf"});
+}
+
+TEST_F(CliTest, RejectsBadResolutionCoverageDensityAndLayer) {
+  expect_rejected("--width 0", {"--width", "0"});
+  expect_rejected("--height -5", {"--height", "-5"});
+  expect_rejected("--coverage 1.5", {"--coverage", "1.5", "[0, 1]"});
+  expect_rejected("--coverage -0.1", {"--coverage", "-0.1"});
+  expect_rejected("--density 2", {"--density", "2"});
+  expect_rejected("--cloud-bottom-m 4000 --cloud-top-m 3000", {"--cloud-bottom-m", "4000"});
+  expect_rejected("--cloud-bottom-m 3000 --cloud-top-m 3000", {"3000"});
+}
+
+TEST_F(CliTest, RejectsBadSceneFiles) {
+  expect_rejected("--scene " + write_scene("[clouds]\ncovrage = 0.5\n"), {"covrage"});
+  expect_rejected("--scene " + write_scene("[clouds]\ncoverage = \"lots\"\n"),
+                  {"clouds.coverage", "lots"});
+  expect_rejected("--scene " + write_scene("[clouds\ncoverage = 0.5\n"), {"malformed TOML"});
+  expect_rejected("--scene " + path("missing.toml"), {"missing.toml"});
+  expect_rejected("--preset nosuch", {"nosuch", "default"});
+}
+
+TEST_F(CliTest, RejectsAnOutputPathThatCannotBeWritten) {
+  const CliRun r = run_cli("render --width 8 --height 8 -o " + path("no/such/dir/x.png"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--output"), std::string::npos) << r.output;
+  const CliRun r2 = run_cli("render --width 8 --height 8 -o " + path("x.jpg"));
+  EXPECT_EQ(r2.status, 2) << r2.output;
+  EXPECT_NE(r2.output.find(".png"), std::string::npos) << r2.output;
+  const CliRun r3 = run_cli("render --width 8 --height 8 -o " + path("x.png") + " --stats-json " +
+                         path("nodir/s.json"));
+  EXPECT_EQ(r3.status, 2) << r3.output;
+  EXPECT_FALSE(fs::exists(path("x.png")));
+}
+
+TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
+  expect_rejected("--coverag 0.5", {"--coverag"});
+  expect_rejected("--coverage abc", {"--coverage", "abc"});
+  expect_rejected("--view-dir 1,2", {"--view-dir", "1,2"});
+}
