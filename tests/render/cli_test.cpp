@@ -137,3 +137,21 @@ TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
   expect_rejected("--coverage abc", {"--coverage", "abc"});
   expect_rejected("--view-dir 1,2", {"--view-dir", "1,2"});
 }
+
+TEST_F(CliTest, BenchQuickWritesCsvJsonAndPlot) {
+  const CliRun r = run_cli("bench --quick --frames 1 --width 48 --height 32 --out-dir " +
+                           path("bench"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream csv(path("bench/bench.csv"));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "sweep,mode,density,coverage,width,height,gpu_ms,fps,wall_ms");
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 2 * (3 + 3 + 2));  // two modes x (density, coverage, resolution sweeps)
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("bench/bench.json")));
+  EXPECT_GT(j["default_fps"].get<double>(), 0.0);
+  EXPECT_GT(j["baseline_fps"].get<double>(), 0.0);
+  EXPECT_TRUE(j.contains("speedup_vs_baseline"));
+  EXPECT_GT(fs::file_size(path("bench/bench.png")), 1000u);
+}
