@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <stb/stb_image_write.h>
 
 #include "nephele/error.h"
 #include "nephele/renderer.h"
@@ -195,4 +197,31 @@ TEST_F(RenderTest, WindMovesTheClouds) {
   for (size_t i = 0; i < a.clouds.pixels.size(); ++i)
     diff += std::abs(a.clouds.pixels[i].a - b.clouds.pixels[i].a);
   EXPECT_GT(diff / double(a.clouds.pixels.size()), 0.02);
+}
+
+TEST_F(RenderTest, WeatherMapFromPngControlsWhereCloudsAre) {
+  // Left half of the map clear (R = 0), right half covered (R = 1); map origin at the image
+  // centre, so looking east (+x) sees cloud and looking west sees none.
+  const std::string path = std::string(NEPHELE_TEST_OUTPUT_DIR) + "/weather_half.png";
+  std::filesystem::create_directories(NEPHELE_TEST_OUTPUT_DIR);
+  std::vector<unsigned char> rgba(64 * 64 * 4);
+  for (int i = 0; i < 64 * 64; ++i) {
+    rgba[4 * i + 0] = (i % 64) >= 32 ? 255 : 0;  // R: low-altitude coverage
+    rgba[4 * i + 1] = 0;                         // G: high-altitude coverage
+    rgba[4 * i + 2] = 255;                       // B: maximum height
+    rgba[4 * i + 3] = 255;                       // A: density
+  }
+  ASSERT_TRUE(stbi_write_png(path.c_str(), 64, 64, 4, rgba.data(), 64 * 4));
+  Scene s = small_scene();
+  s.clouds.weather_map = path;
+  s.clouds.coverage = 0.5f;
+  s.clouds.weather_period_m = 20000.0f;  // the view stays within one tile
+  s.camera.position_m = {0.0f, 0.0f, 0.0f};
+  s.camera.fov_deg = 30.0f;
+  s.camera.view_dir = {1.0f, 0.0f, 1.2f};  // east, up
+  const double east = render(s).stats.cloud_cover_fraction;
+  s.camera.view_dir = {-1.0f, 0.0f, 1.2f};  // west, up
+  const double west = render(s).stats.cloud_cover_fraction;
+  EXPECT_GT(east, 0.3);
+  EXPECT_EQ(west, 0.0);
 }

@@ -1,0 +1,94 @@
+// Device test: the noise textures generated on the GPU tile seamlessly (opposite faces match)
+// and their channels carry noise, not constants.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "gpu/context.h"
+#include "nephele/scene.h"
+#include "render/frame_params.h"
+#include "render/passes.h"
+
+namespace {
+
+struct Volume {
+  uint32_t size;
+  std::vector<unsigned char> texels;  // RGBA8
+  float at(uint32_t x, uint32_t y, uint32_t z, int c) const {
+    return texels[4 * ((size_t(z) * size + y) * size + x) + c] / 255.0f;
+  }
+};
+
+Volume download(nephele::gpu::Context& ctx, const nephele::gpu::Texture& texture) {
+  Volume v{texture.width(), {}};
+  const size_t bytes = size_t(v.size) * v.size * v.size * 4;
+  nephele::gpu::Buffer staging(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) { texture.record_download(cmd, staging); });
+  v.texels.resize(bytes);
+  std::memcpy(v.texels.data(), staging.data(), bytes);
+  return v;
+}
+
+// Mean |difference| across the wrap-around seam along x (texel N-1 next to texel 0), and mean
+// |difference| between interior neighbours. A tiling texture has similar values for both; one
+// that does not tile has a seam as different as two random texels.
+void seam_and_interior(const Volume& v, int c, double& seam, double& interior) {
+  seam = interior = 0.0;
+  size_t n_seam = 0, n_interior = 0;
+  const uint32_t n = v.size;
+  for (uint32_t z = 0; z < n; z += 3)
+    for (uint32_t y = 0; y < n; y += 3) {
+      seam += std::abs(v.at(n - 1, y, z, c) - v.at(0, y, z, c));
+      seam += std::abs(v.at(y, n - 1, z, c) - v.at(y, 0, z, c));
+      seam += std::abs(v.at(y, z, n - 1, c) - v.at(y, z, 0, c));
+      n_seam += 3;
+      const uint32_t x = n / 2;
+      interior += std::abs(v.at(x, y, z, c) - v.at(x + 1, y, z, c));
+      interior += std::abs(v.at(y, x, z, c) - v.at(y, x + 1, z, c));
+      interior += std::abs(v.at(y, z, x, c) - v.at(y, z, x + 1, c));
+      n_interior += 3;
+    }
+  seam /= double(n_seam);
+  interior /= double(n_interior);
+}
+
+double random_pair_difference(const Volume& v, int c) {
+  double sum = 0.0;
+  const uint32_t n = v.size;
+  for (uint32_t i = 0; i < 1000; ++i)
+    sum += std::abs(v.at((i * 7) % n, (i * 13) % n, (i * 29) % n, c) -
+                    v.at((i * 17 + n / 2) % n, (i * 3 + 5) % n, (i * 11 + 1) % n, c));
+  return sum / 1000.0;
+}
+
+}  // namespace
+
+TEST(NoiseTextures, TileSeamlesslyAndCarryNoise) {
+  nephele::gpu::Context ctx({"", true, false});
+  nephele::GpuState state(ctx);
+  const nephele::gpu::FrameParams params = nephele::make_frame_params(nephele::Scene{}, 0);
+  std::memcpy(state.frame_params.data(), &params, sizeof(params));
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    state.timer.reset(cmd);
+    nephele::pass_noise_base(cmd, state);
+    nephele::pass_noise_detail(cmd, state);
+  });
+  const Volume base = download(ctx, state.base_noise);
+  const Volume detail = download(ctx, state.detail_noise);
+  ASSERT_EQ(base.size, 128u);
+  ASSERT_EQ(detail.size, 32u);
+
+  for (const auto& [volume, channels, label] :
+       {std::tuple{&base, 4, "base"}, std::tuple{&detail, 3, "detail"}}) {
+    for (int c = 0; c < channels; ++c) {
+      double seam, interior;
+      seam_and_interior(*volume, c, seam, interior);
+      const double random = random_pair_difference(*volume, c);
+      EXPECT_GT(random, 0.03) << label << " channel " << c << " looks constant";
+      EXPECT_LT(seam, 1.5 * interior + 0.01) << label << " channel " << c << " has a seam";
+      EXPECT_LT(interior, 0.5 * random) << label << " channel " << c << " is not smooth";
+    }
+  }
+  EXPECT_EQ(ctx.validation_messages(), 0);
+}
