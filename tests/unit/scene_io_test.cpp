@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -550,7 +552,16 @@ const BadValue kBadValues[] = {
     {"time_s = inf", [](Scene& s) { s.time_s = kInf; }},
 };
 
-INSTANTIATE_TEST_SUITE_P(Scene, SceneValidate, ::testing::ValuesIn(kBadValues));
+// Test names from the expected message: "clouds.coverage = 1.5" -> "3_clouds_coverage_1_5".
+INSTANTIATE_TEST_SUITE_P(Scene, SceneValidate, ::testing::ValuesIn(kBadValues),
+                         [](const ::testing::TestParamInfo<BadValue>& info) {
+                           std::string name = std::to_string(info.index) + "_";
+                           for (const char* c = info.param.expected; *c; ++c)
+                             if (std::isalnum(static_cast<unsigned char>(*c))) name += *c;
+                             else if (name.back() != '_') name += '_';
+                           while (name.back() == '_') name.pop_back();
+                           return name;
+                         });
 
 TEST(SceneValidateExact, MessagesAreOneCompleteLine) {
   EXPECT_EQ(validate_error([](Scene& s) { s.clouds.coverage = 1.5f; }),
