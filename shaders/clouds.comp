@@ -77,9 +77,11 @@ float light_optical_depth(vec3 pos, vec3 sun) {
     }
     return depth;
   }
-  // Steps growing linearly, covering half the layer thickness; midpoint samples.
+  // Steps growing linearly up to the top of the layer along the sun (at most two layer
+  // thicknesses, for a low sun), so a sample near the base sees the dense tops above it.
   int n = frame.steps.y;
-  float unit = 0.5f * thickness / float(n * (n + 1) / 2);
+  float to_top = ray_sphere(pos, sun, frame.radii_m.w).y;
+  float unit = min(to_top, 2.0f * thickness) / float(n * (n + 1) / 2);
   float t = 0.0f;
   for (int i = 1; i <= n; ++i) {
     float s = unit * float(i);
@@ -99,19 +101,37 @@ vec3 air_transmittance(float eye_alt_m, float sample_alt_m, float dist_m) {
 }
 
 // Cloud shadow on the ground: transmittance from the ground point this ray hits towards the
-// sun through the cloud layer (8 samples of the base shape), 1 when the ray misses the ground.
+// sun through the cloud layer (16 samples of the full density: coarser sampling turns thin
+// wisps into deep shadow), 1 when the ray misses the ground.
 float ground_shadow(vec3 eye, vec3 dir, vec3 sun) {
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   if (ground.x <= 0.0f) return 1.0f;
-  vec3 p = eye + dir * ground.x;
+  vec3 p = normalize(eye + dir * ground.x) * (frame.radii_m.x + 1.0f);
   vec2 inner = ray_sphere(p, sun, frame.radii_m.z);
   vec2 outer = ray_sphere(p, sun, frame.radii_m.w);
   if (inner.y <= 0.0f || outer.y <= inner.y) return 1.0f;
-  const int n = 8;
+  const int n = 16;
   float ds = (outer.y - inner.y) / float(n);
   float depth = 0.0f;
-  for (int i = 0; i < n; ++i) depth += cloud_density(p + sun * (inner.y + (float(i) + 0.5f) * ds), false);
+  for (int i = 0; i < n; ++i) depth += cloud_density(p + sun * (inner.y + (float(i) + 0.5f) * ds), true);
   return exp(-depth * ds * frame.cloud_shape.z * frame.cloud_light.y);
+}
+
+// Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):
+// octave i scatters with contribution a^i, extinction b^i and eccentricity c^i. b < 1 lets
+// light reach deep into the cloud as repeated forward scattering does, so thick clouds keep
+// their brightness instead of turning grey. a = 0.6, b = 0.4, c = 0.5, four octaves.
+float multiple_scattering(float tau_light, float mu, float powder) {
+  float energy = 0.0f;
+  float a = 1.0f, b = 1.0f, c = 1.0f;
+  for (int i = 0; i < 4; ++i) {
+    float phase = dual_lobe_hg(frame.cloud_phase.x * c, frame.cloud_phase.y * c, frame.cloud_phase.z, mu);
+    energy += a * cloud_beer_powder(b * tau_light, mu, powder) * phase;
+    a *= 0.6f;
+    b *= 0.4f;
+    c *= 0.5f;
+  }
+  return energy;
 }
 
 // The part of the view ray inside the cloud shell: (t_enter, t_exit), empty if exit <= enter.
@@ -204,41 +224,55 @@ void main() {
       }
     }
   } else {
-    // Steps of at least thickness / primary_steps, growing with distance (1% of t) so far
-    // rays stay affordable; jittered per pixel so the step pattern becomes fine noise.
+    // Coarse steps of at least thickness / primary_steps, growing with distance (1% of t) so
+    // far rays stay affordable, jittered per pixel so the step pattern becomes fine noise. On
+    // the first hit the march steps back one coarse step and goes on in fine steps of about
+    // half a mean free path, so lighting is sampled where the cloud's surface really is
+    // (a coarse sample lands up to a step deep, where the sun is already attenuated); after
+    // four empty fine samples past that hit it returns to coarse steps.
     float base_step = thickness / float(frame.steps.x);
     float jitter = interleaved_gradient_noise(float(pixel.x), float(pixel.y));
-    float t = segment.x;
-    float step_m = max(base_step, 0.01f * t);
-    t += step_m * jitter;
-    int max_steps = 3 * frame.steps.x;
-    // Multiple-scattering approximation (Wrenninge et al. 2013): octaves with attenuated
-    // extinction, contribution and eccentricity, a = b = c = 1/2.
-    float phase0 = dual_lobe_hg(g_f, g_b, lobe, mu);
-    float phase1 = dual_lobe_hg(g_f * 0.5f, g_b * 0.5f, lobe, mu);
-    float phase2 = dual_lobe_hg(g_f * 0.25f, g_b * 0.25f, lobe, mu);
+    float t = segment.x + max(base_step, 0.01f * segment.x) * jitter;
+    int max_steps = 4 * frame.steps.x;
+    bool fine = false;
+    int misses = 0;
+    float fine_until = 0.0f;  // stay fine at least past the coarse sample that hit
+    float fine_step = base_step;
     for (int i = 0; i < max_steps && t < segment.y; ++i) {
-      step_m = max(base_step, 0.01f * t);
+      float coarse_step = max(base_step, 0.01f * t);
       vec3 pos = eye + dir * t;
       float density = cloud_density(pos, true);
-      if (density > 0.0f) {
-        float sigma_t = density * sigma_scale * view_atten;
-        float tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten;
-        float energy = cloud_beer_powder(tau_light, mu, powder) * phase0 +
-                       0.5f * cloud_beer_powder(0.5f * tau_light, mu, powder) * phase1 +
-                       0.25f * cloud_beer_powder(0.25f * tau_light, mu, powder) * phase2;
-        float h = altitude_fraction(pos);
-        vec3 luminance = albedo * (sun_light * energy + ambient * mix(0.5f, 1.0f, h));
-        float step_t = exp(-sigma_t * step_m);
-        vec3 air = air_transmittance(eye_alt_m, length(pos) - frame.radii_m.x, t);
-        // Energy-conserving integration over the step (Hillaire 2016).
-        scattered += transmittance * air * luminance * (1.0f - step_t);
-        haze += transmittance.x * (1.0f - air.g) * (1.0f - step_t);
-        transmittance *= step_t;
-        if (transmittance.x < 0.01f) {
-          transmittance = vec3(0.0f);
-          break;
+      if (density <= 0.0f) {
+        if (fine && ++misses >= 4 && t > fine_until) fine = false;
+        t += fine ? fine_step : coarse_step;
+        continue;
+      }
+      float sigma_t = density * sigma_scale * view_atten;
+      if (!fine) {
+        fine = true;
+        fine_until = t;
+        if (i > 0) {  // step back to where the previous (empty) coarse sample was
+          t = max(t - coarse_step, segment.x);
+          fine_step = clamp(0.5f / sigma_t, 2.0f, coarse_step);
+          continue;
         }
+      }
+      misses = 0;
+      float step_m = clamp(0.5f / sigma_t, 2.0f, coarse_step);
+      fine_step = step_m;
+      float tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten;
+      float energy = multiple_scattering(tau_light, mu, powder);
+      float h = altitude_fraction(pos);
+      vec3 luminance = albedo * (sun_light * energy + ambient * mix(0.5f, 1.0f, h));
+      float step_t = exp(-sigma_t * step_m);
+      vec3 air = air_transmittance(eye_alt_m, length(pos) - frame.radii_m.x, t);
+      // Energy-conserving integration over the step (Hillaire 2016).
+      scattered += transmittance * air * luminance * (1.0f - step_t);
+      haze += transmittance.x * (1.0f - air.g) * (1.0f - step_t);
+      transmittance *= step_t;
+      if (transmittance.x < 0.01f) {
+        transmittance = vec3(0.0f);
+        break;
       }
       t += step_m;
     }

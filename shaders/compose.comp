@@ -52,9 +52,9 @@ void main() {
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
                         float(pixel.y), float(width), float(height));
   vec3 sun = frame.sun_dir.xyz;
-  vec3 ambient = frame.ambient_at_clouds.rgb / frame.sun_illuminance.rgb;
+  vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
   SkySample sky = sky_single_scattering(frame_atmosphere(), eye, dir, sun, frame.steps.z,
-                                        frame.steps.w, GROUND_ALBEDO, ambient);
+                                        frame.steps.w, GROUND_ALBEDO, ground_sky);
   vec4 cloud = cloud_out[2 * index];
   float haze = cloud_out[2 * index + 1].x;
   float ground_shadow = cloud_out[2 * index + 1].y;  // cloud transmittance towards the sun

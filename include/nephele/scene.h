@@ -58,7 +58,7 @@ struct CloudParams {
   glm::vec2 wind_mps{8.0f, 2.0f};     // east, north wind speed (m/s)
   float base_noise_period_m = 4500.0f;    // horizontal period of the base 128^3 noise tile, > 0
   float detail_noise_period_m = 400.0f;   // period of the detail 32^3 noise tile, > 0
-  float detail_erosion = 0.6f;            // [0, 1]; how much detail noise erodes the base shape
+  float detail_erosion = 0.8f;            // [0, 1]; how much detail noise erodes the base shape
   float weather_period_m = 40000.0f;      // size of one weather-map tile on the ground, > 0
   std::string weather_map;                // PNG path (RGBA as in seed 2.2.2); empty = procedural
 };

@@ -89,8 +89,9 @@ SkySample sky_single_scattering(Atmosphere a, vec3 eye, vec3 dir, vec3 sun, int 
   result.transmittance = exp(-tau_view);
   result.radiance = inscatter;
   if (hits_ground) {
-    vec3 p = eye + dir * t_end;
-    vec3 n = normalize(p);
+    // The ground point, lifted 1 m so its own sphere does not shadow it through rounding.
+    vec3 n = normalize(eye + dir * t_end);
+    vec3 p = n * (a.planet_radius_m + 1.0f);
     vec3 t_sun = atmosphere_transmittance_to_top(a, p, sun, light_samples);
     result.ground_sun = result.transmittance * ground_albedo / PI * t_sun * max(dot(n, sun), 0.0f);
     result.radiance += result.transmittance * ground_albedo * sky_ambient;

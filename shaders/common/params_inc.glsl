@@ -20,7 +20,9 @@ struct FrameParams {
   vec4 sun_dir;             // xyz unit vector towards the sun; w cos(sun angular radius)
   vec4 sun_illuminance;     // rgb solar illuminance at the top of the atmosphere; w unused
   vec4 sun_at_clouds;       // rgb sunlight reaching the middle of the cloud layer; w unused
-  vec4 ambient_at_clouds;   // rgb mean sky radiance over the upper hemisphere at the clouds
+  vec4 ambient_at_clouds;   // rgb mean sky radiance over all directions at the clouds
+  vec4 ground_sky_light;    // rgb sky irradiance on the ground / pi (radiance of a white
+                            // Lambertian ground lit by the sky alone)
   vec4 radii_m;             // x planet, y atmosphere top, z cloud bottom, w cloud top (m)
   vec4 rayleigh;            // rgb sigma_s at sea level (1/m); w scale height (m)
   vec4 mie;                 // x sigma_s (1/m), y sigma_t (1/m), z scale height (m), w g

@@ -52,6 +52,28 @@ glm::vec3 mean_sky_radiance(const glsl::Atmosphere& atmosphere, const glm::vec3&
   return sum / float(kDirections);
 }
 
+// Sky irradiance on a horizontal surface at `pos` divided by pi, per unit solar illuminance:
+// the cosine-weighted mean sky radiance over the upper hemisphere (64 directions).
+glm::vec3 sky_irradiance_over_pi(const glsl::Atmosphere& atmosphere, const glm::vec3& pos,
+                                 const glm::vec3& sun) {
+  constexpr int kDirections = 64;
+  const float golden = glsl::PI * (3.0f - std::sqrt(5.0f));
+  const glm::vec3 up = glm::normalize(pos);
+  const glm::vec3 east = glm::normalize(glm::cross(glm::vec3(0, 1, 0), up));
+  const glm::vec3 north = glm::cross(up, east);
+  glm::vec3 sum(0.0f);
+  for (int i = 0; i < kDirections; ++i) {
+    // Cosine-weighted: sin^2(elevation from zenith) uniform in [0, 1].
+    float s2 = (float(i) + 0.5f) / float(kDirections);
+    float sin_t = std::sqrt(s2), cos_t = std::sqrt(1.0f - s2);
+    glm::vec3 dir = sin_t * (std::cos(golden * float(i)) * east + std::sin(golden * float(i)) * north) +
+                    cos_t * up;
+    sum += glsl::sky_single_scattering(atmosphere, pos, dir, sun, 8, 4, 0.1f, glm::vec3(0.0f))
+               .radiance;
+  }
+  return sum / float(kDirections);
+}
+
 }  // namespace
 
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
@@ -80,6 +102,9 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
       illuminance * glsl::atmosphere_transmittance_to_top(atmosphere, cloud_mid, sun, 32), 0.0f);
   f.ambient_at_clouds =
       glm::vec4(illuminance * mean_sky_radiance(atmosphere, cloud_mid, sun), 0.0f);
+  const glm::vec3 ground(scene.camera.position_m.x, scene.camera.position_m.y, planet_m + 1.0f);
+  f.ground_sky_light =
+      glm::vec4(illuminance * sky_irradiance_over_pi(atmosphere, ground, sun), 0.0f);
 
   f.radii_m = glm::vec4(planet_m, atmosphere.top_radius_m, planet_m + c.bottom_altitude_m,
                         planet_m + c.top_altitude_m);
