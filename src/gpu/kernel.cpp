@@ -53,27 +53,29 @@ DescriptorSet::~DescriptorSet() {
   vkDestroyDescriptorSetLayout(device_, layout_, nullptr);
 }
 
-void DescriptorSet::bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type) {
-  VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set_;
-  write.dstBinding = binding;
-  write.descriptorCount = 1;
-  write.descriptorType = type;
-  write.pBufferInfo = &info;
-  vkUpdateDescriptorSets(device_, 1, &write, 0, nullptr);
-}
-
-static void write_image(VkDevice device, VkDescriptorSet set, uint32_t binding,
-                        VkDescriptorType type, const Texture& texture) {
-  VkDescriptorImageInfo info{texture.sampler(), texture.view(), VK_IMAGE_LAYOUT_GENERAL};
+// One descriptor write of `type` at `binding`, from a buffer or an image info.
+static void write_descriptor(VkDevice device, VkDescriptorSet set, uint32_t binding,
+                             VkDescriptorType type, const VkDescriptorBufferInfo* buffer,
+                             const VkDescriptorImageInfo* image) {
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstSet = set;
   write.dstBinding = binding;
   write.descriptorCount = 1;
   write.descriptorType = type;
-  write.pImageInfo = &info;
+  write.pBufferInfo = buffer;
+  write.pImageInfo = image;
   vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+}
+
+void DescriptorSet::bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type) {
+  VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
+  write_descriptor(device_, set_, binding, type, &info, nullptr);
+}
+
+static void write_image(VkDevice device, VkDescriptorSet set, uint32_t binding,
+                        VkDescriptorType type, const Texture& texture) {
+  VkDescriptorImageInfo info{texture.sampler(), texture.view(), VK_IMAGE_LAYOUT_GENERAL};
+  write_descriptor(device, set, binding, type, nullptr, &info);
 }
 
 void DescriptorSet::bind_storage_image(Binding binding, const Texture& texture) {

@@ -7,6 +7,9 @@
 
 // The functions get internal linkage (unnamed namespace): each file that includes this one
 // has its own copy, as a shader does.
+// Each includer uses only some of them.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
 namespace nephele::glsl {
 using namespace glm;
 namespace {
@@ -17,3 +20,4 @@ namespace {
 #include "common/clouds_inc.glsl"
 }  // namespace
 }  // namespace nephele::glsl
+#pragma GCC diagnostic pop

@@ -25,6 +25,7 @@ struct Renderer::Impl {
 
   void update_textures(const Scene& scene);
   void upload_weather_png(const std::string& path);
+  void resize_weather_map(uint32_t width, uint32_t height);
 };
 
 namespace {
@@ -64,14 +65,17 @@ double cloud_cover_fraction(const Scene& scene, const Image& clouds) {
 
 }  // namespace
 
+// A PNG weather map of another size replaces the texture (and its descriptors).
+void Renderer::Impl::resize_weather_map(uint32_t width, uint32_t height) {
+  if (state.weather_map.width() == width && state.weather_map.height() == height) return;
+  state.weather_map = gpu::Texture(ctx, width, height, 1, VK_FORMAT_R8G8B8A8_UNORM);
+  state.set.bind_storage_image(gpu::kWeatherOut, state.weather_map);
+  state.set.bind_sampled_image(gpu::kWeatherMap, state.weather_map);
+}
+
 void Renderer::Impl::upload_weather_png(const std::string& path) {
   Image png = read_image(path);
-  if (png.width != int(state.weather_map.width()) || png.height != int(state.weather_map.height())) {
-    state.weather_map =
-        gpu::Texture(ctx, uint32_t(png.width), uint32_t(png.height), 1, VK_FORMAT_R8G8B8A8_UNORM);
-    state.set.bind_storage_image(gpu::kWeatherOut, state.weather_map);
-    state.set.bind_sampled_image(gpu::kWeatherMap, state.weather_map);
-  }
+  resize_weather_map(uint32_t(png.width), uint32_t(png.height));
   gpu::Buffer staging(ctx, VkDeviceSize(png.pixels.size()) * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   auto* bytes = static_cast<unsigned char*>(staging.data());
   for (size_t i = 0; i < png.pixels.size(); ++i)
@@ -90,13 +94,7 @@ void Renderer::Impl::update_textures(const Scene& scene) {
   }
   const bool weather_stale = weather_built != key;
   if (!noise_stale && !weather_stale) return;
-  if (weather_stale && (state.weather_map.width() != kWeatherMapSize ||
-                        state.weather_map.height() != kWeatherMapSize)) {
-    state.weather_map =
-        gpu::Texture(ctx, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM);
-    state.set.bind_storage_image(gpu::kWeatherOut, state.weather_map);
-    state.set.bind_sampled_image(gpu::kWeatherMap, state.weather_map);
-  }
+  if (weather_stale) resize_weather_map(kWeatherMapSize, kWeatherMapSize);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     state.timer.reset(cmd);
     if (noise_stale) {
