@@ -14,7 +14,7 @@ namespace nephele::cli {
 struct BenchOptions {
   SceneFlags scene;
   std::string out_dir = "bench-out";  // CSV, JSON and plot go here
-  int frames = 3;                     // timed frames per configuration (after one warm-up)
+  int frames = 3;                     // timed frames per configuration (one warm-up per mode)
   bool quick = false;                 // fewer points, small resolutions (for tests)
   std::string device;
   bool verbose = false;
