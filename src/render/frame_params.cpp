@@ -34,44 +34,48 @@ CameraBasis camera_basis(const glm::vec3& view_dir) {
 
 namespace {
 
-// Mean sky radiance over all directions at `pos` per unit solar illuminance: the light an
-// isotropic scatterer receives from the sky (Fibonacci sphere, 64 directions).
-glm::vec3 mean_sky_radiance(const glsl::Atmosphere& atmosphere, const glm::vec3& pos,
-                            const glm::vec3& sun) {
-  constexpr int kDirections = 64;
+constexpr int kSkyDirections = 64;
+
+// Mean, over kSkyDirections directions dir_of(i, golden angle), of the sky radiance seen from
+// `pos` per unit solar illuminance (a ground hit counts with its sun-lit part).
+template <typename DirOf>
+glm::vec3 mean_sky(const glsl::Atmosphere& atmosphere, const glm::vec3& pos, const glm::vec3& sun,
+                   DirOf dir_of) {
   const float golden = glsl::PI * (3.0f - std::sqrt(5.0f));
   glm::vec3 sum(0.0f);
-  for (int i = 0; i < kDirections; ++i) {
-    float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(kDirections);
-    float r = std::sqrt(1.0f - z * z);
-    glm::vec3 dir(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
-    const glsl::SkySample sky =
-        glsl::sky_single_scattering(atmosphere, pos, dir, sun, 8, 4, 0.1f, glm::vec3(0.0f));
+  for (int i = 0; i < kSkyDirections; ++i) {
+    const glsl::SkySample sky = glsl::sky_single_scattering(atmosphere, pos, dir_of(i, golden),
+                                                            sun, 8, 4, 0.1f, glm::vec3(0.0f));
     sum += sky.radiance + sky.ground_sun;
   }
-  return sum / float(kDirections);
+  return sum / float(kSkyDirections);
+}
+
+// Mean sky radiance over all directions at `pos` per unit solar illuminance: the light an
+// isotropic scatterer receives from the sky (Fibonacci sphere).
+glm::vec3 mean_sky_radiance(const glsl::Atmosphere& atmosphere, const glm::vec3& pos,
+                            const glm::vec3& sun) {
+  return mean_sky(atmosphere, pos, sun, [](int i, float golden) {
+    float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(kSkyDirections);
+    float r = std::sqrt(1.0f - z * z);
+    return glm::vec3(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
+  });
 }
 
 // Sky irradiance on a horizontal surface at `pos` divided by pi, per unit solar illuminance:
-// the cosine-weighted mean sky radiance over the upper hemisphere (64 directions).
+// the cosine-weighted mean sky radiance over the upper hemisphere.
 glm::vec3 sky_irradiance_over_pi(const glsl::Atmosphere& atmosphere, const glm::vec3& pos,
                                  const glm::vec3& sun) {
-  constexpr int kDirections = 64;
-  const float golden = glsl::PI * (3.0f - std::sqrt(5.0f));
   const glm::vec3 up = glm::normalize(pos);
   const glm::vec3 east = glm::normalize(glm::cross(glm::vec3(0, 1, 0), up));
   const glm::vec3 north = glm::cross(up, east);
-  glm::vec3 sum(0.0f);
-  for (int i = 0; i < kDirections; ++i) {
-    // Cosine-weighted: sin^2(elevation from zenith) uniform in [0, 1].
-    float s2 = (float(i) + 0.5f) / float(kDirections);
+  return mean_sky(atmosphere, pos, sun, [&](int i, float golden) {
+    // Cosine-weighted: sin^2 of the angle from the zenith uniform in [0, 1].
+    float s2 = (float(i) + 0.5f) / float(kSkyDirections);
     float sin_t = std::sqrt(s2), cos_t = std::sqrt(1.0f - s2);
-    glm::vec3 dir = sin_t * (std::cos(golden * float(i)) * east + std::sin(golden * float(i)) * north) +
-                    cos_t * up;
-    sum += glsl::sky_single_scattering(atmosphere, pos, dir, sun, 8, 4, 0.1f, glm::vec3(0.0f))
-               .radiance;
-  }
-  return sum / float(kDirections);
+    return sin_t * (std::cos(golden * float(i)) * east + std::sin(golden * float(i)) * north) +
+           cos_t * up;
+  });
 }
 
 }  // namespace
