@@ -17,79 +17,15 @@
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
-#include "common/clouds_inc.glsl"
 
 layout(constant_id = 0) const int MARCH_MODE = 0;
 layout(local_size_x = 8, local_size_y = 8) in;
 
-const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
+#include "cloud_field_inc.glsl"
 
-float altitude_fraction(vec3 pos) {
-  return cloud_height_fraction(length(pos), frame.radii_m.z, frame.radii_m.w);
-}
-
-// Cloud density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z.
-float cloud_density(vec3 pos, bool with_detail) {
-  float h = altitude_fraction(pos);
-  if (h <= 0.0f || h >= 1.0f) return 0.0f;
-  vec2 ground_xy = pos.xy - frame.wind_offset_m.xy;  // clouds drift with the wind
-  vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + 0.5f, 0.0f);
-  float coverage = cloud_local_coverage(weather.r, weather.g, frame.cloud_shape.x);
-  if (coverage <= 0.0f) return 0.0f;
-  float shape_gradient = cloud_shape_gradient(h, weather.b);
-  if (shape_gradient <= 0.0f) return 0.0f;
-  float density_gradient =
-      cloud_density_gradient(h) * weather.a * 2.0f * frame.cloud_shape.y;
-
-  float altitude_m = length(pos) - frame.radii_m.x;
-  vec3 uvw = vec3(ground_xy, altitude_m) * frame.cloud_noise.x;
-  vec4 base = textureLod(base_noise, uvw, 0.0f);
-  if (MARCH_MODE == 1) {
-    // Seed: low-frequency noise 85% plus detail noise 15%, then coverage and height shape.
-    float detail = textureLod(detail_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.y, 0.0f).r;
-    float noise = base.r * 0.85f + detail * 0.15f;
-    return cloud_apply_coverage(noise * shape_gradient, coverage) * density_gradient;
-  }
-  // Schneider: Worley fBm (GBA) carves the Perlin-Worley (R), coverage cuts, detail erodes.
-  float worley = base.g * 0.625f + base.b * 0.25f + base.a * 0.125f;
-  float shape = saturate(remap(base.r, worley - 1.0f, 1.0f, 0.0f, 1.0f));
-  shape = cloud_apply_coverage(shape * shape_gradient, coverage);
-  if (shape <= 0.0f) return 0.0f;
-  if (with_detail) {
-    vec3 d = textureLod(detail_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.y, 0.0f).rgb;
-    shape = cloud_erode(shape, d.r * 0.625f + d.g * 0.25f + d.b * 0.125f, h,
-                        frame.cloud_noise.w);
-  }
-  return shape * density_gradient;
-}
-
-// Optical depth towards the sun from pos (without the view-independent extinction scale).
-float light_optical_depth(vec3 pos, vec3 sun) {
-  float thickness = frame.radii_m.w - frame.radii_m.z;
-  float depth = 0.0f;
-  if (MARCH_MODE == 1) {
-    // Listing B.2: three steps of 1% of the layer thickness, the fourth six times longer.
-    float step_m = thickness * 0.01f;
-    for (int i = 0; i < 4; ++i) {
-      float s = i == 3 ? step_m * 6.0f : step_m;
-      pos += sun * s;
-      depth += cloud_density(pos, true) * s;
-    }
-    return depth;
-  }
-  // Steps growing linearly up to the top of the layer along the sun (at most two layer
-  // thicknesses, for a low sun), so a sample near the base sees the dense tops above it.
-  int n = frame.steps.y;
-  float to_top = ray_sphere(pos, sun, frame.radii_m.w).y;
-  float unit = min(to_top, 2.0f * thickness) / float(n * (n + 1) / 2);
-  float t = 0.0f;
-  for (int i = 1; i <= n; ++i) {
-    float s = unit * float(i);
-    depth += cloud_density(pos + sun * (t + 0.5f * s), i <= 2) * s;
-    t += s;
-  }
-  return depth;
-}
+const float FAR_M = 1.0e7f;
+const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
+const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance  // distance written for rays that meet neither cloud nor ground
 
 // Transmittance of the air over `dist_m` from the eye to a cloud sample at altitude
 // `sample_alt_m`, with the extinction taken at the mean altitude (a simple aerial perspective;
@@ -101,8 +37,9 @@ vec3 air_transmittance(float eye_alt_m, float sample_alt_m, float dist_m) {
 }
 
 // Cloud shadow on the ground: transmittance from the ground point this ray hits towards the
-// sun through the cloud layer (16 samples of the full density: coarser sampling turns thin
-// wisps into deep shadow), 1 when the ray misses the ground.
+// sun through the cloud layer, 1 when the ray misses the ground. From the light volume where
+// it reaches, else 16 samples of the full density (coarser sampling turns thin wisps into deep
+// shadow).
 float ground_shadow(vec3 eye, vec3 dir, vec3 sun) {
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   if (ground.x <= 0.0f) return 1.0f;
@@ -110,11 +47,19 @@ float ground_shadow(vec3 eye, vec3 dir, vec3 sun) {
   vec2 inner = ray_sphere(p, sun, frame.radii_m.z);
   vec2 outer = ray_sphere(p, sun, frame.radii_m.w);
   if (inner.y <= 0.0f || outer.y <= inner.y) return 1.0f;
-  const int n = 16;
-  float ds = (outer.y - inner.y) / float(n);
-  float depth = 0.0f;
-  for (int i = 0; i < n; ++i) depth += cloud_density(p + sun * (inner.y + (float(i) + 0.5f) * ds), true);
-  return exp(-depth * ds * frame.cloud_shape.z * frame.cloud_light.y);
+  vec3 base = p + sun * inner.y;  // where the sunlight leaves the cloud layer
+  float depth;
+  if (MARCH_MODE == 0 && light_volume_covers(base)) {
+    float voxel_m;
+    depth = light_volume_lookup(base, voxel_m);
+  } else {
+    const int n = 16;
+    float ds = (outer.y - inner.y) / float(n);
+    depth = 0.0f;
+    for (int i = 0; i < n; ++i) depth += cloud_density(base + sun * ((float(i) + 0.5f) * ds), true);
+    depth *= ds;
+  }
+  return exp(-depth * frame.cloud_shape.z * frame.cloud_light.y);
 }
 
 // Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):
@@ -157,12 +102,24 @@ vec2 shell_segment(vec3 eye, vec3 dir) {
   return vec2(t_enter, t_exit);
 }
 
+// Writes the two vec4 of the marched sample number `index` (see bindings_inc.glsl).
+void write_sample(int index, vec3 scattered, float transmittance, float haze, float shadow,
+                  float distance_m) {
+  march_out[2 * index] = vec4(scattered, transmittance);
+  march_out[2 * index + 1] = vec4(haze, shadow, distance_m, 0.0f);
+}
+
+// One thread per stride x stride block of the cloud buffer: it marches the block's pixel
+// frame.march_offset.xy (every pixel when the stride is 1).
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  int width = frame.size.x;
-  int height = frame.size.y;
-  if (pixel.x >= width || pixel.y >= height) return;
-  int index = pixel.y * width + pixel.x;
+  int stride = frame.cloud_grid.z;
+  int blocks_x = (frame.cloud_grid.x + stride - 1) / stride;
+  ivec2 block = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = block * stride + frame.march_offset.xy;
+  int width = frame.cloud_grid.x;
+  int height = frame.cloud_grid.y;
+  if (block.x >= blocks_x || pixel.x >= width || pixel.y >= height) return;
+  int index = block.y * blocks_x + block.x;
 
   vec3 eye = frame.camera_pos_m.xyz;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
@@ -173,8 +130,8 @@ void main() {
   vec2 segment = shell_segment(eye, dir);
   float shadow = ground_shadow(eye, dir, sun);
   if (segment.y <= segment.x) {
-    cloud_out[2 * index] = vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    cloud_out[2 * index + 1] = vec4(0.0f, shadow, 0.0f, 0.0f);
+    vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
+    write_sample(index, vec3(0.0f), 1.0f, 0.0f, shadow, ground.x > 0.0f ? ground.x : FAR_M);
     return;
   }
   float eye_alt_m = length(eye) - frame.radii_m.x;
@@ -194,6 +151,7 @@ void main() {
 
   vec3 scattered = vec3(0.0f);
   vec3 transmittance = vec3(1.0f);
+  float weighted_t = 0.0f;  // sum of t x opacity gained there: the cloud's mean distance
 
   if (MARCH_MODE == 1) {
     // Seed listing B.3: fixed steps from the entry point, stop on leaving the layer.
@@ -216,6 +174,7 @@ void main() {
         vec3 air = air_transmittance(eye_alt_m, length(pos) - frame.radii_m.x, t);
         scattered += transmittance * air * luminance * (1.0f - step_t);
         haze += transmittance.g * (1.0f - air.g) * (1.0f - step_t.g);
+        weighted_t += t * transmittance.g * (1.0f - step_t.g);
         transmittance *= step_t;
         if (length(transmittance) <= 0.01f) {
           transmittance = vec3(0.0f);
@@ -224,42 +183,45 @@ void main() {
       }
     }
   } else {
-    // Coarse steps of at least thickness / primary_steps, growing with distance (1% of t) so
-    // far rays stay affordable, jittered per pixel so the step pattern becomes fine noise. On
-    // the first hit the march steps back one coarse step and goes on in fine steps of about
-    // half a mean free path, so lighting is sampled where the cloud's surface really is
-    // (a coarse sample lands up to a step deep, where the sun is already attenuated); after
-    // four empty fine samples past that hit it returns to coarse steps.
-    float base_step = thickness / float(frame.steps.x);
-    float jitter = interleaved_gradient_noise(float(pixel.x), float(pixel.y));
-    float t = segment.x + max(base_step, 0.01f * segment.x) * jitter;
-    int max_steps = 4 * frame.steps.x;
+    // Adaptive steps (seed 002): empty space is crossed in coarse steps that test only the
+    // base shape; on a hit the march steps back one coarse step and goes on in fine steps
+    // testing the full density, shortened to half a mean free path in dense cloud, so lighting
+    // is sampled where the cloud's surface really is; after six empty fine samples past the
+    // hit it returns to coarse steps. Both step sizes grow with distance so far rays stay
+    // affordable; the start is jittered per pixel and frame so the step pattern becomes fine
+    // noise that the temporal resolve averages away.
+    float fine_base = thickness / float(frame.steps.x);
+    // A new jitter pattern per frame index (Jimenez 2014: offset the pixel by 5.588238 per frame).
+    float shift = 5.588238f * float(frame.march_offset.z);
+    float jitter = interleaved_gradient_noise(float(pixel.x) + shift, float(pixel.y) + shift);
+    float t = segment.x + COARSE_STEPS * max(fine_base, FINE_PER_M * segment.x) * jitter;
     bool fine = false;
     int misses = 0;
     float fine_until = 0.0f;  // stay fine at least past the coarse sample that hit
-    float fine_step = base_step;
-    for (int i = 0; i < max_steps && t < segment.y; ++i) {
-      float coarse_step = max(base_step, 0.01f * t);
+    for (int i = 0; i < 2 * frame.steps.x && t < segment.y; ++i) {
+      float fine_step = max(fine_base, FINE_PER_M * t);
+      float coarse_step = COARSE_STEPS * fine_step;
       vec3 pos = eye + dir * t;
-      float density = cloud_density(pos, true);
-      if (density <= 0.0f) {
-        if (fine && ++misses >= 4 && t > fine_until) fine = false;
-        t += fine ? fine_step : coarse_step;
-        continue;
-      }
-      float sigma_t = density * sigma_scale * view_atten;
       if (!fine) {
-        fine = true;
-        fine_until = t;
-        if (i > 0) {  // step back to where the previous (empty) coarse sample was
-          t = max(t - coarse_step, segment.x);
-          fine_step = clamp(0.5f / sigma_t, 2.0f, coarse_step);
+        if (cloud_density(pos, false) <= 0.0f) {
+          t += coarse_step;
           continue;
         }
+        fine = true;
+        misses = 0;
+        fine_until = t;
+        t = max(t - coarse_step, segment.x);
+        continue;
+      }
+      float density = cloud_density(pos, true);
+      if (density <= 0.0f) {
+        if (++misses >= 6 && t > fine_until) fine = false;
+        t += fine_step;
+        continue;
       }
       misses = 0;
-      float step_m = clamp(0.5f / sigma_t, 2.0f, coarse_step);
-      fine_step = step_m;
+      float sigma_t = density * sigma_scale * view_atten;
+      float step_m = clamp(0.5f / sigma_t, 2.0f, fine_step);
       float tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten;
       float energy = multiple_scattering(tau_light, mu, powder);
       float h = altitude_fraction(pos);
@@ -269,6 +231,7 @@ void main() {
       // Energy-conserving integration over the step (Hillaire 2016).
       scattered += transmittance * air * luminance * (1.0f - step_t);
       haze += transmittance.x * (1.0f - air.g) * (1.0f - step_t);
+      weighted_t += t * transmittance.x * (1.0f - step_t);
       transmittance *= step_t;
       if (transmittance.x < 0.01f) {
         transmittance = vec3(0.0f);
@@ -278,6 +241,11 @@ void main() {
     }
   }
   float t_mean = (transmittance.r + transmittance.g + transmittance.b) / 3.0f;
-  cloud_out[2 * index] = vec4(scattered, t_mean);
-  cloud_out[2 * index + 1] = vec4(haze, shadow, 0.0f, 0.0f);
+  float opacity = 1.0f - (MARCH_MODE == 1 ? transmittance.g : transmittance.x);
+  // Where the pixel's content is, for reprojection: the cloud's opacity-weighted distance,
+  // else the ground, else the middle of the cloud shell along the ray.
+  vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
+  float empty_m = ground.x > 0.0f ? ground.x : 0.5f * (segment.x + segment.y);
+  float distance_m = opacity > 1e-3f ? weighted_t / opacity : empty_m;
+  write_sample(index, scattered, t_mean, haze, shadow, distance_m);
 }

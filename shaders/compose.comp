@@ -40,6 +40,22 @@ float sun_disk(vec3 dir, vec3 sun, float cos_radius) {
   return (1.0f - u * (1.0f - m)) / ((1.0f - u / 3.0f) * solid_angle);
 }
 
+// The resolved cloud buffer at image pixel (x, y): bilinear when the clouds are rendered at a
+// lower resolution than the image (both grids span the same field of view).
+void cloud_at(int x, int y, out vec4 a, out vec4 b) {
+  ivec2 grid = frame.cloud_grid.xy;
+  vec2 g = (vec2(x, y) + 0.5f) * vec2(grid) / vec2(frame.size.xy) - 0.5f;
+  g = clamp(g, vec2(0.0f), vec2(grid - 1));
+  ivec2 i0 = ivec2(floor(g));
+  ivec2 i1 = min(i0 + 1, grid - 1);
+  vec2 f = g - vec2(i0);
+  int i00 = 2 * (i0.y * grid.x + i0.x), i10 = 2 * (i0.y * grid.x + i1.x);
+  int i01 = 2 * (i1.y * grid.x + i0.x), i11 = 2 * (i1.y * grid.x + i1.x);
+  a = mix(mix(cloud_out[i00], cloud_out[i10], f.x), mix(cloud_out[i01], cloud_out[i11], f.x), f.y);
+  b = mix(mix(cloud_out[i00 + 1], cloud_out[i10 + 1], f.x),
+          mix(cloud_out[i01 + 1], cloud_out[i11 + 1], f.x), f.y);
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   int width = frame.size.x;
@@ -55,9 +71,10 @@ void main() {
   vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
   SkySample sky = sky_single_scattering(frame_atmosphere(), eye, dir, sun, frame.steps.z,
                                         frame.steps.w, GROUND_ALBEDO, ground_sky);
-  vec4 cloud = cloud_out[2 * index];
-  float haze = cloud_out[2 * index + 1].x;
-  float ground_shadow = cloud_out[2 * index + 1].y;  // cloud transmittance towards the sun
+  vec4 cloud, cloud_b;
+  cloud_at(pixel.x, pixel.y, cloud, cloud_b);
+  float haze = cloud_b.x;
+  float ground_shadow = cloud_b.y;  // cloud transmittance towards the sun
   vec3 background = sky.radiance + sky.ground_sun * ground_shadow +
                     sky.transmittance * sun_disk(dir, sun, frame.sun_dir.w);
   // The air in front of a cloud scatters as the sky does along this direction.

@@ -13,6 +13,7 @@
 
 #include "nephele/error.h"
 #include "nephele/renderer.h"
+#include "bench_realtime.h"
 #include "plot.h"
 #include "render_command.h"
 
@@ -29,11 +30,13 @@ struct Sample {
   double fps() const { return 1000.0 / gpu_ms; }
 };
 
-// Mean GPU time of `frames` frames (the device's timestamps; wall time alongside).
+// Mean GPU time of `frames` animation frames after one warm-up (the device's timestamps;
+// wall time alongside): the default mode marches 1 / march_stride^2 of its pixels per frame.
 Sample measure(Renderer& renderer, Scene scene, const std::string& sweep, int frames) {
   double gpu = 0.0, wall = 0.0;
+  renderer.render_next(scene, false);
   for (int i = 0; i < frames; ++i) {
-    const FrameStats stats = renderer.render(scene).stats;
+    const FrameStats stats = renderer.render_next(scene, false).stats;
     gpu += stats.frame_ms;
     wall += stats.wall_ms;
   }
@@ -102,24 +105,34 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cmd.add_flag("--quick", options.quick, "a few small configurations only");
+  cmd.add_flag("--realtime-only", options.realtime_only,
+               "only the real-time figures (still and flying camera, error, speed-up)");
+  cmd.add_option("--json", options.json,
+                 "write the real-time figures (static_fps, moving_fps, speedup_vs_baseline, "
+                 "static_error, moving_error, device) to this file");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
 }
 
-int run_bench(const BenchOptions& options) {
-  const Scene base = resolve_scene(options.scene);
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(options.out_dir, ec);
-  const std::string csv = (fs::path(options.out_dir) / "bench.csv").string();
-  const std::string json = (fs::path(options.out_dir) / "bench.json").string();
-  const std::string png = (fs::path(options.out_dir) / "bench.png").string();
-  for (const std::string& p : {csv, json}) check_writable_file(p, "--out-dir");
-  check_output_path(png, "--out-dir");
+namespace {
 
-  Renderer renderer({options.device, options.validation, options.verbose});
-  std::printf("nephele bench on %s, scene %dx%d, %d frame(s) per point\n",
-              renderer.device_name().c_str(), base.output.width, base.output.height,
-              options.frames);
+void print_realtime(const nlohmann::json& r) {
+  std::printf(
+      "real time %dx%d on %s\n"
+      "  still camera:  %7.1f ms  %6.1f fps  error %.2f%%\n"
+      "  flying camera: %7.1f ms  %6.1f fps  error %.2f%% (%g m/s, %g deg/s)\n"
+      "  seed's algorithm: %.1f ms (%.2f fps); speed-up %.1fx\n",
+      r["width"].get<int>(), r["height"].get<int>(), r["device"].get<std::string>().c_str(),
+      r["static_ms"].get<double>(), r["static_fps"].get<double>(),
+      100.0 * r["static_error"].get<double>(), r["moving_ms"].get<double>(),
+      r["moving_fps"].get<double>(), 100.0 * r["moving_error"].get<double>(),
+      r["flight"]["speed_mps"].get<double>(), r["flight"]["turn_deg_s"].get<double>(),
+      r["baseline_ms"].get<double>(), r["baseline_fps"].get<double>(),
+      r["speedup_vs_baseline"].get<double>());
+  std::fflush(stdout);
+}
+
+// The seed's study: both modes over density, coverage and resolution.
+std::vector<Sample> run_sweeps(Renderer& renderer, const Scene& base, const BenchOptions& options) {
   std::printf("%-10s %-8s %7s %8s %11s %10s %8s\n", "sweep", "mode", "density", "coverage",
               "resolution", "gpu ms", "fps");
   std::vector<Sample> samples;
@@ -130,11 +143,9 @@ int run_bench(const BenchOptions& options) {
                 to_string(s.mode), s.density, s.coverage, s.width, s.height, s.gpu_ms, s.fps());
     std::fflush(stdout);
   };
-
   for (MarchMode mode : {MarchMode::Default, MarchMode::Baseline}) {
     Scene scene = base;
     scene.quality.mode = mode;
-    renderer.render(scene);  // warm-up: builds the noise and weather textures
     for (float d : sweep_values(options.quick)) {
       Scene s = scene;
       s.clouds.density = d;
@@ -152,34 +163,47 @@ int run_bench(const BenchOptions& options) {
       record(s, "resolution");
     }
   }
+  return samples;
+}
 
-  // Headline: the scene as given, both modes, and their ratio.
-  nlohmann::json summary;
-  summary["device"] = renderer.device_name();
-  summary["width"] = base.output.width;
-  summary["height"] = base.output.height;
-  summary["frames_per_point"] = options.frames;
-  for (MarchMode mode : {MarchMode::Default, MarchMode::Baseline}) {
-    Scene s = base;
-    s.quality.mode = mode;
-    const Sample m = measure(renderer, s, "scene", options.frames);
-    summary[std::string(to_string(mode)) + "_ms"] = m.gpu_ms;
-    summary[std::string(to_string(mode)) + "_fps"] = m.fps();
+}  // namespace
+
+int run_bench(const BenchOptions& options) {
+  const Scene base = resolve_scene(options.scene);
+  namespace fs = std::filesystem;
+  const std::string csv = (fs::path(options.out_dir) / "bench.csv").string();
+  const std::string json = (fs::path(options.out_dir) / "bench.json").string();
+  const std::string png = (fs::path(options.out_dir) / "bench.png").string();
+  if (!options.realtime_only) {
+    std::error_code ec;
+    fs::create_directories(options.out_dir, ec);
+    for (const std::string& p : {csv, json}) check_writable_file(p, "--out-dir");
+    check_output_path(png, "--out-dir");
   }
-  summary["speedup_vs_baseline"] =
-      summary["baseline_ms"].get<double>() / summary["default_ms"].get<double>();
+  if (!options.json.empty()) check_writable_file(options.json, "--json");
 
+  const RendererOptions renderer_options{options.device, options.validation, options.verbose};
+  Renderer renderer(renderer_options);
+  std::printf("nephele bench on %s, scene %dx%d\n", renderer.device_name().c_str(),
+              base.output.width, base.output.height);
+  renderer.render(base);  // builds the noise and weather textures
+
+  RealtimeSettings settings;
+  if (options.quick) settings.static_frames = settings.moving_frames = 16;
+  const nlohmann::json realtime = measure_realtime(renderer, renderer_options, base, settings);
+  print_realtime(realtime);
+  if (!options.json.empty()) write_text_file(options.json, realtime.dump(2) + "\n");
+  if (options.realtime_only) return 0;
+
+  const std::vector<Sample> samples = run_sweeps(renderer, base, options);
+  nlohmann::json summary = realtime;
+  summary["frames_per_point"] = options.frames;
   write_text_file(csv, to_csv(samples));
   write_text_file(json, summary.dump(2) + "\n");
   write_plot_grid_png({panel(samples, "density", "FPS vs cloud density", "density"),
                        panel(samples, "coverage", "FPS vs coverage", "coverage"),
                        panel(samples, "resolution", "FPS vs resolution", "megapixels")},
                       3, png);
-  std::printf("scene %dx%d: default %.1f ms (%.2f fps), baseline %.1f ms (%.2f fps), "
-              "speed-up %.2fx\n",
-              base.output.width, base.output.height, summary["default_ms"].get<double>(),
-              summary["default_fps"].get<double>(), summary["baseline_ms"].get<double>(),
-              summary["baseline_fps"].get<double>(), summary["speedup_vs_baseline"].get<double>());
   std::printf("%s\n%s\n%s\n", csv.c_str(), json.c_str(), png.c_str());
   return 0;
 }

@@ -16,6 +16,8 @@ struct BenchOptions {
   std::string out_dir = "bench-out";  // CSV, JSON and plot go here
   int frames = 3;                     // timed frames per configuration (one warm-up per mode)
   bool quick = false;                 // fewer points, small resolutions (for tests)
+  bool realtime_only = false;         // skip the seed's sweeps
+  std::string json;                   // also write the real-time figures here
   std::string device;
   bool verbose = false;
   bool validation = false;

@@ -45,3 +45,12 @@ CompareResult compare_images(const Image& actual, const Image& reference,
 CompareTolerance load_tolerance_json(const std::string& path);
 
 }  // namespace nephele
+
+namespace nephele {
+
+// Mean absolute difference of relative luminance, divided by the reference's mean luminance:
+// 0.01 = images differ by 1% of the reference's brightness on average. Same sizes required
+// (throws InputError otherwise); a zero-luminance reference gives the mean absolute difference.
+double luminance_error(const Image& image, const Image& reference);
+
+}  // namespace nephele

@@ -45,9 +45,20 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Validates the scene (throws InputError), then renders one frame.
-  // Noise and weather textures are cached and rebuilt only when their parameters change.
+  // Validates the scene (throws InputError), then renders a still image: every cloud pixel is
+  // marched. Noise and weather textures are cached and rebuilt only when their parameters
+  // change. The frame also starts the history that render_next() continues from.
   Frame render(const Scene& scene);
+
+  // Renders the next frame of an animation (the scene's camera, time and sun may change from
+  // call to call): marches one cloud pixel of every quality.march_stride^2 block and
+  // reprojects the others from the previous frame, following the camera's and the wind's
+  // motion; where that fails (screen edges, disocclusion) the marched samples are
+  // interpolated. The history restarts when anything else in the scene changes, the sun
+  // moves by more than 0.5 deg, the camera jumps by more than 1 km or crosses the cloud
+  // layer's bottom or top. With read_back false the images stay on the device (Frame's
+  // images are empty; timings are filled): what a viewer or a benchmark needs.
+  Frame render_next(const Scene& scene, bool read_back = true);
 
   const std::string& device_name() const;
   // Number of validation-layer messages (warnings and errors) seen so far.

@@ -72,6 +72,16 @@ struct QualityParams {
   MarchMode mode = MarchMode::Default;
   int primary_steps = 96;  // [1, 1024] steps through the cloud layer
   int light_steps = 6;     // [1, 64] steps of the light march towards the sun
+  // Temporal reprojection (default mode): each frame of an animation marches one pixel of
+  // every march_stride x march_stride block of the cloud buffer and reprojects the rest from
+  // the previous frame. 1, 2 or 4; 1 = every pixel every frame. A still image marches all.
+  int march_stride = 4;
+  // The cloud buffer has 1 / cloud_downsample of the image's pixels per axis, 1 to 4.
+  int cloud_downsample = 2;
+  // Half extent (km) of the light volume: the optical depth towards the sun precomputed on a
+  // grid around the camera (fine near it, coarse far away) and looked up by cloud samples
+  // after a short light march. 0 = march every light ray with light_steps steps. [0, 1000].
+  int light_volume_km = 150;
 };
 
 struct OutputParams {

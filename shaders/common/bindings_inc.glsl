@@ -12,9 +12,16 @@ layout(set = 0, binding = 3, rgba8) uniform writeonly image2D weather_out;
 layout(set = 0, binding = 4) uniform sampler3D base_noise;
 layout(set = 0, binding = 5) uniform sampler3D detail_noise;
 layout(set = 0, binding = 6) uniform sampler2D weather_map;
-// Two per pixel (clouds.comp): (rgb in-scattered cloud radiance, a cloud transmittance),
-// (x haze weight, yzw unused).
-layout(std430, set = 0, binding = 7) buffer CloudBuffer { vec4 cloud_out[]; };
+// Cloud samples: two vec4 per cloud pixel (see clouds.comp): (rgb in-scattered cloud radiance,
+// a cloud transmittance), (x haze weight, y ground shadow, z cloud distance (m), w unused).
+// march_out: the pixels marched this frame, one per stride x stride block (clouds.comp);
+// history: the previous frame's full cloud buffer; cloud_out: this frame's (resolve.comp).
+layout(std430, set = 0, binding = 7) buffer MarchBuffer { vec4 march_out[]; };
+layout(std430, set = 0, binding = 11) readonly buffer HistoryBuffer { vec4 history[]; };
+layout(std430, set = 0, binding = 12) buffer CloudBuffer { vec4 cloud_out[]; };
+// Optical depth towards the sun (density field x metres) on the light volume's grid
+// (common/light_volume_inc.glsl), x fastest: LIGHT_VOLUME_XY^2 x LIGHT_VOLUME_Z floats.
+layout(std430, set = 0, binding = 13) buffer LightVolume { float light_volume[]; };
 // Per pixel: linear HDR radiance of the final image.
 layout(std430, set = 0, binding = 8) buffer ColorBuffer { vec4 color_out[]; };
 

@@ -41,6 +41,17 @@ vec3 camera_ray(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float asp
   return normalize(forward + sx * right + sy * up);
 }
 
+// Inverse of camera_ray: the continuous pixel coordinates (pixel centres at integers) where the
+// unit direction `dir` meets the image; (-1e9, -1e9) for directions behind the camera.
+vec2 camera_pixel(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float aspect, vec3 dir,
+                  float width, float height) {
+  float z = dot(dir, forward);
+  if (z <= 1e-6f) return vec2(-1e9f, -1e9f);
+  float sx = dot(dir, right) / (z * tan_half_fov * aspect);
+  float sy = dot(dir, up) / (z * tan_half_fov);
+  return vec2((sx + 1.0f) * 0.5f * width - 0.5f, (1.0f - sy) * 0.5f * height - 0.5f);
+}
+
 // Interleaved gradient noise (Jimenez 2014): a per-pixel value in [0, 1) for ray jitter.
 float interleaved_gradient_noise(float x, float y) {
   return fract(52.9829189f * fract(0.06711056f * x + 0.00583715f * y));

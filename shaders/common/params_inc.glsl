@@ -12,6 +12,9 @@ using glm::mat4;
 using glm::vec4;
 #endif
 
+const int LIGHT_VOLUME_XY = 160;  // light volume voxels per horizontal axis
+const int LIGHT_VOLUME_Z = 32;    // light volume voxels across the cloud layer
+
 struct FrameParams {
   vec4 camera_pos_m;        // xyz camera position (m, planet frame); w tan(vertical fov / 2)
   vec4 camera_forward;      // xyz unit view direction; w aspect (width / height)
@@ -30,9 +33,18 @@ struct FrameParams {
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
   vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w unused
   vec4 cloud_noise;         // x 1/base period, y 1/detail period, z 1/weather period (1/m), w erosion
-  vec4 wind_offset_m;       // xy wind displacement (m) = wind * time; zw unused
+  vec4 wind_offset_m;       // xy wind displacement (m) = wind * time; zw the previous frame's
+  vec4 prev_camera_pos_m;   // the previous frame's camera, as camera_pos_m ... camera_up
+  vec4 prev_camera_forward;
+  vec4 prev_camera_right;
+  vec4 prev_camera_up;
+  vec4 light_volume;        // xy centre in cloud space (m), z half extent (m), w 1 when in use
   ivec4 size;               // x width, y height, z frame index, w noise seed
   ivec4 steps;              // x primary steps, y light steps, z sky view samples, w sky light samples
+  ivec4 cloud_grid;         // x, y cloud buffer size (pixels); z march stride s (one pixel of
+                            // each s x s block is marched per frame); w 1 if the history is valid
+  ivec4 march_offset;       // xy the pixel of each block marched this frame; z jitter index;
+                            // w image pixels per cloud pixel (per axis)
 };
 
 #ifdef __cplusplus

@@ -11,16 +11,23 @@ extern const size_t kFileCount;
 namespace nephele::gpu {
 
 DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
+  // Indexed by Binding.
   const VkDescriptorType types[] = {
       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
       VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,          VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
+  static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];
-  for (uint32_t i = 0; i < kCount; ++i)
+  uint32_t count_of[VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT + 1] = {};
+  for (uint32_t i = 0; i < kCount; ++i) {
     bindings[i] = {i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    ++count_of[types[i]];
+  }
   VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layout_info.bindingCount = kCount;
   layout_info.pBindings = bindings;
@@ -31,14 +38,13 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
   pipeline_info.pSetLayouts = &layout_;
   NEPHELE_VK(vkCreatePipelineLayout(device_, &pipeline_info, nullptr, &pipeline_layout_));
 
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3},
-                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (uint32_t t = 0; t <= VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT; ++t)
+    if (count_of[t] > 0) sizes.push_back({VkDescriptorType(t), count_of[t]});
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 4;
-  pool_info.pPoolSizes = sizes;
+  pool_info.poolSizeCount = uint32_t(sizes.size());
+  pool_info.pPoolSizes = sizes.data();
   NEPHELE_VK(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_));
   VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   alloc.descriptorPool = pool_;

@@ -21,8 +21,14 @@ enum Binding : uint32_t {
   kBaseNoise = 4,
   kDetailNoise = 5,
   kWeatherMap = 6,
-  kCloudBuffer = 7,
+  kMarchBuffer = 7,
   kColorBuffer = 8,
+  kSkyViewOut = 9,
+  kSkyView = 10,
+  kHistory = 11,
+  kResolvedClouds = 12,
+  kLightVolume = 13,
+  kBindingCount
 };
 
 class DescriptorSet {

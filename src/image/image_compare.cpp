@@ -143,3 +143,22 @@ CompareTolerance load_tolerance_json(const std::string& path) {
 }
 
 }  // namespace nephele
+
+namespace nephele {
+
+double luminance_error(const Image& image, const Image& reference) {
+  if (image.width != reference.width || image.height != reference.height)
+    throw InputError("luminance_error: image " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + " and reference " +
+                     std::to_string(reference.width) + "x" + std::to_string(reference.height) +
+                     " differ in size");
+  double diff = 0.0, sum = 0.0;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const double l_ref = luminance(reference.pixels[i]);
+    diff += std::abs(luminance(image.pixels[i]) - l_ref);
+    sum += l_ref;
+  }
+  return sum > 0.0 ? diff / sum : diff / double(std::max<size_t>(image.pixels.size(), 1));
+}
+
+}  // namespace nephele

@@ -80,6 +80,23 @@ glm::vec3 sky_irradiance_over_pi(const glsl::Atmosphere& atmosphere, const glm::
 
 }  // namespace
 
+void set_previous_frame(gpu::FrameParams& f, const Scene& scene, const Scene& previous) {
+  const CameraBasis basis = camera_basis(previous.camera.view_dir);
+  // ENU and planet axes coincide, so the ENU difference is the planet-frame difference,
+  // without the rounding of positions 6.4e6 m from the planet's centre.
+  const glm::vec3 eye_offset = previous.camera.position_m - scene.camera.position_m;
+  f.prev_camera_pos_m =
+      glm::vec4(eye_offset, std::tan(glm::radians(previous.camera.fov_deg) * 0.5f));
+  f.prev_camera_forward =
+      glm::vec4(basis.forward, float(previous.output.width) / float(previous.output.height));
+  f.prev_camera_right = glm::vec4(basis.right, 0.0f);
+  f.prev_camera_up = glm::vec4(basis.up, 0.0f);
+  const glm::vec2 wind_delta =
+      scene.clouds.wind_mps * scene.time_s - previous.clouds.wind_mps * previous.time_s;
+  f.wind_offset_m.z = wind_delta.x;
+  f.wind_offset_m.w = wind_delta.y;
+}
+
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   const CloudParams& c = scene.clouds;
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
@@ -122,6 +139,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
                             1.0f / c.weather_period_m, c.detail_erosion);
   f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);
+  set_previous_frame(f, scene, scene);
   f.size = glm::ivec4(scene.output.width, scene.output.height, frame_index,
                       int(scene.noise_seed & 0x7fffffff));
   f.steps = glm::ivec4(scene.quality.primary_steps, scene.quality.light_steps,

@@ -22,4 +22,7 @@ CameraBasis camera_basis(const glm::vec3& view_dir);
 
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index);
 
+// Fills the previous frame's camera and the wind's displacement since then (for reprojection).
+void set_previous_frame(gpu::FrameParams& params, const Scene& scene, const Scene& previous);
+
 }  // namespace nephele

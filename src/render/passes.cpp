@@ -12,13 +12,18 @@ GpuState::GpuState(gpu::Context& c)
       weather_kernel(c, set, "weather.comp.spv"),
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
+      resolve_kernel(c, set, "resolve.comp.spv"),
+      light_volume_kernel(c, set, "light_volume.comp.spv"),
       compose_kernel(c, set, "compose.comp.spv"),
       timer(c, 8),
       frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
       base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
                    VK_FORMAT_R8G8B8A8_UNORM),
-      weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM) {
+      weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM),
+      light_volume(c, sizeof(float) * gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_Z,
+                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
+  set.bind_buffer(gpu::kLightVolume, light_volume, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   set.bind_storage_image(gpu::kBaseNoiseOut, base_noise);
   set.bind_storage_image(gpu::kDetailNoiseOut, detail_noise);
@@ -26,18 +31,37 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_sampled_image(gpu::kBaseNoise, base_noise);
   set.bind_sampled_image(gpu::kDetailNoise, detail_noise);
   set.bind_sampled_image(gpu::kWeatherMap, weather_map);
-  resize(1, 1);
+  // lavapipe reads every descriptor of the layout when the set is bound: none may be left
+  // unwritten. TEMPORARY until the sky-view LUT owns these bindings.
+  set.bind_storage_image(gpu::kSkyViewOut, weather_map);
+  set.bind_sampled_image(gpu::kSkyView, weather_map);
+  resize(1, 1, 1, 1);
 }
 
-void GpuState::resize(int w, int h) {
-  if (w == width && h == height) return;
-  const VkDeviceSize bytes = VkDeviceSize(w) * VkDeviceSize(h) * 4 * sizeof(float);
-  cloud_buffer = gpu::Buffer(ctx, 2 * bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  color_buffer = gpu::Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  set.bind_buffer(gpu::kCloudBuffer, cloud_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
+  if (w == width && h == height && cloud_w == cloud_width && cloud_h == cloud_height) return;
+  constexpr VkDeviceSize kVec4 = 4 * sizeof(float);
+  const VkDeviceSize cloud_pixels = VkDeviceSize(cloud_w) * VkDeviceSize(cloud_h);
+  // Room for a still image's march of every pixel.
+  march_buffer = gpu::Buffer(ctx, 2 * kVec4 * cloud_pixels, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  for (gpu::Buffer& b : cloud_buffers)
+    b = gpu::Buffer(ctx, 2 * kVec4 * cloud_pixels, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  color_buffer = gpu::Buffer(ctx, kVec4 * VkDeviceSize(w) * VkDeviceSize(h),
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  set.bind_buffer(gpu::kMarchBuffer, march_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   set.bind_buffer(gpu::kColorBuffer, color_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  current = 1;
+  swap_history();
   width = w;
   height = h;
+  cloud_width = cloud_w;
+  cloud_height = cloud_h;
+}
+
+void GpuState::swap_history() {
+  current = 1 - current;
+  set.bind_buffer(gpu::kResolvedClouds, cloud_buffers[current], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  set.bind_buffer(gpu::kHistory, cloud_buffers[1 - current], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 }
 
 void pass_noise_base(VkCommandBuffer cmd, GpuState& s) {
@@ -58,8 +82,19 @@ void pass_weather(VkCommandBuffer cmd, GpuState& s) {
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
   const gpu::Kernel& kernel =
       mode == MarchMode::Baseline ? s.clouds_baseline_kernel : s.clouds_default_kernel;
-  gpu::dispatch(cmd, kernel, s.set, s.timer, "clouds", uint32_t(s.width), uint32_t(s.height), 1,
-                8, 8, 1);
+  const auto blocks = [&](int n) { return uint32_t((n + s.stride - 1) / s.stride); };
+  gpu::dispatch(cmd, kernel, s.set, s.timer, "clouds", blocks(s.cloud_width),
+                blocks(s.cloud_height), 1, 8, 8, 1);
+}
+
+void pass_resolve(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.resolve_kernel, s.set, s.timer, "resolve", uint32_t(s.cloud_width),
+                uint32_t(s.cloud_height), 1, 8, 8, 1);
+}
+
+void pass_light_volume(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.light_volume_kernel, s.set, s.timer, "light_volume", gpu::LIGHT_VOLUME_XY,
+                gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z, 4, 4, 4);
 }
 
 void pass_compose(VkCommandBuffer cmd, GpuState& s) {

@@ -17,23 +17,32 @@ constexpr uint32_t kWeatherMapSize = 512;   // procedural weather map 512^2
 // Everything the passes read and write.
 struct GpuState {
   explicit GpuState(gpu::Context& ctx);
-  void resize(int width, int height);  // (re)allocates the per-pixel buffers
+  // (Re)allocates the per-pixel buffers: the image, the cloud buffer and the marched samples.
+  void resize(int width, int height, int cloud_width, int cloud_height);
+  // The cloud buffer just written becomes the history of the next frame.
+  void swap_history();
 
   gpu::Context& ctx;
   gpu::DescriptorSet set;
   gpu::Kernel noise_base_kernel, noise_detail_kernel, weather_kernel;
-  gpu::Kernel clouds_default_kernel, clouds_baseline_kernel, compose_kernel;
+  gpu::Kernel clouds_default_kernel, clouds_baseline_kernel, resolve_kernel, compose_kernel;
+  gpu::Kernel light_volume_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
   gpu::Texture base_noise, detail_noise, weather_map;
-  gpu::Buffer cloud_buffer, color_buffer;
-  int width = 0, height = 0;
+  gpu::Buffer march_buffer, color_buffer, light_volume;
+  gpu::Buffer cloud_buffers[2];  // this frame's cloud buffer and the previous one (history)
+  int current = 0;               // index of this frame's cloud buffer
+  int width = 0, height = 0, cloud_width = 0, cloud_height = 0;
+  int stride = 1;  // this frame's march stride
 };
 
 void pass_noise_base(VkCommandBuffer cmd, GpuState& s);
 void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
 void pass_weather(VkCommandBuffer cmd, GpuState& s);
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
+void pass_resolve(VkCommandBuffer cmd, GpuState& s);
+void pass_light_volume(VkCommandBuffer cmd, GpuState& s);
 void pass_compose(VkCommandBuffer cmd, GpuState& s);
 
 }  // namespace nephele

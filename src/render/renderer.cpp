@@ -22,6 +22,21 @@ struct Renderer::Impl {
   bool verbose = false;
   std::optional<uint32_t> noise_seed_built;  // noise textures are valid for this seed
   std::optional<std::string> weather_built;  // key of the weather map in the texture
+  std::optional<Scene> previous;             // the scene of the last frame rendered
+  std::string previous_key;                  // its history_key()
+  long long frame_counter = 0;               // frames since the history (re)started
+  // The light volume in the buffer: what it was built for.
+  struct LightVolumeKey {
+    std::string clouds;    // history_key() of the scene
+    glm::vec3 sun{0.0f};
+    glm::vec2 centre_m{0.0f};  // in cloud space
+  };
+  std::optional<LightVolumeKey> light_volume_built;
+
+  // Sets params.light_volume; true when the volume must be rebuilt this frame.
+  bool plan_light_volume(const Scene& scene, const std::string& key, gpu::FrameParams& params);
+
+  Frame render_frame(const Scene& scene, bool still, bool read_back);
 
   void update_textures(const Scene& scene);
   void upload_weather_png(const std::string& path);
@@ -41,6 +56,61 @@ Image read_buffer(const gpu::Buffer& buffer, int width, int height, int stride =
   const auto* src = static_cast<const glm::vec4*>(buffer.data());
   for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = src[i * size_t(stride)];
   return image;
+}
+
+// Bilinear resampling to width x height, both grids spanning the same field of view (as
+// compose.comp reads the cloud buffer).
+Image resample(const Image& src, int width, int height) {
+  if (src.width == width && src.height == height) return src;
+  Image out(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float gx = glm::clamp((x + 0.5f) * src.width / width - 0.5f, 0.0f, src.width - 1.0f);
+      const float gy =
+          glm::clamp((y + 0.5f) * src.height / height - 0.5f, 0.0f, src.height - 1.0f);
+      const int x0 = int(gx), y0 = int(gy);
+      const int x1 = std::min(x0 + 1, src.width - 1), y1 = std::min(y0 + 1, src.height - 1);
+      const float fx = gx - x0, fy = gy - y0;
+      out.at(x, y) = glm::mix(glm::mix(src.at(x0, y0), src.at(x1, y0), fx),
+                              glm::mix(src.at(x0, y1), src.at(x1, y1), fx), fy);
+    }
+  return out;
+}
+
+// Pixel of each stride x stride block marched in frame k of a cycle: the order of the
+// Bayer matrix, so consecutive frames fill the block evenly.
+glm::ivec2 march_offset(int stride, long long k) {
+  static const int kBayer4[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
+  static const int kBayer2[4] = {0, 2, 3, 1};
+  const int n = stride * stride;
+  const int rank = int(k % n);
+  for (int i = 0; i < n; ++i)
+    if ((stride == 4 ? kBayer4[i] : stride == 2 ? kBayer2[i] : 0) == rank)
+      return {i % stride, i / stride};
+  return {0, 0};
+}
+
+// Everything but the camera, the time and the sun: when it changes, the history is stale.
+std::string history_key(Scene scene) {
+  scene.camera = CameraParams{};
+  scene.sun = SunParams{};
+  scene.time_s = 0.0f;
+  scene.output.exposure = 1.0f;
+  return scene_to_toml(scene);
+}
+
+// The camera's side of the cloud layer: -1 below, 0 inside, 1 above.
+int layer_side(const Scene& scene) {
+  const float z = scene.camera.position_m.z;
+  return z < scene.clouds.bottom_altitude_m ? -1 : z > scene.clouds.top_altitude_m ? 1 : 0;
+}
+
+bool history_usable(const Scene& scene, const Scene& previous) {
+  const float cos_sun = glm::dot(glm::normalize(scene.sun.direction),
+                                 glm::normalize(previous.sun.direction));
+  return cos_sun > std::cos(glm::radians(0.5f)) && scene.sun.illuminance == previous.sun.illuminance &&
+         glm::distance(scene.camera.position_m, previous.camera.position_m) < 1000.0f &&
+         layer_side(scene) == layer_side(previous);
 }
 
 // Share of above-horizon pixels (view ray rising above the camera's local horizontal) whose
@@ -111,6 +181,26 @@ void Renderer::Impl::update_textures(const Scene& scene) {
   weather_built = key;
 }
 
+bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& key,
+                                       gpu::FrameParams& params) {
+  const float half_m = float(scene.quality.light_volume_km) * 1000.0f;
+  if (half_m <= 0.0f || scene.quality.mode == MarchMode::Baseline) {
+    params.light_volume = glm::vec4(0.0f);
+    return false;
+  }
+  const glm::vec3 sun = glm::normalize(scene.sun.direction);
+  const glm::vec2 camera_cloud_m = glm::vec2(scene.camera.position_m) - glm::vec2(params.wind_offset_m);
+  const LightVolumeKey* built = light_volume_built ? &*light_volume_built : nullptr;
+  // Rebuilt when the clouds or the sun (by 0.25 deg) change, or when the camera has moved
+  // 1/20 of the half extent from the centre in cloud space (where the voxels are finest).
+  const bool stale = !built || built->clouds != key ||
+                     glm::dot(built->sun, sun) < std::cos(glm::radians(0.25f)) ||
+                     glm::distance(built->centre_m, camera_cloud_m) > 0.05f * half_m;
+  if (stale) light_volume_built = LightVolumeKey{key, sun, camera_cloud_m};
+  params.light_volume = glm::vec4(light_volume_built->centre_m, half_m, 1.0f);
+  return stale;
+}
+
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {
   impl_->verbose = options.verbose;
 }
@@ -121,39 +211,73 @@ const std::string& Renderer::device_name() const { return impl_->ctx.device_name
 
 int Renderer::validation_messages() const { return impl_->ctx.validation_messages(); }
 
-Frame Renderer::render(const Scene& scene) {
+Frame Renderer::render(const Scene& scene) { return impl_->render_frame(scene, true, true); }
+
+Frame Renderer::render_next(const Scene& scene, bool read_back) {
+  return impl_->render_frame(scene, false, read_back);
+}
+
+Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_back) {
   validate_scene(scene);
   const auto start = std::chrono::steady_clock::now();
-  GpuState& s = impl_->state;
-  s.resize(scene.output.width, scene.output.height);
-  const gpu::FrameParams params = make_frame_params(scene, 0);
-  std::memcpy(s.frame_params.data(), &params, sizeof(params));
-  impl_->update_textures(scene);
+  // The seed's algorithm (baseline) is run as written: every pixel, every frame.
+  const bool baseline = scene.quality.mode == MarchMode::Baseline;
+  const int downsample = baseline ? 1 : scene.quality.cloud_downsample;
+  const int stride = still || baseline ? 1 : scene.quality.march_stride;
+  const int cloud_w = (scene.output.width + downsample - 1) / downsample;
+  const int cloud_h = (scene.output.height + downsample - 1) / downsample;
+  const std::string key = history_key(scene);
+  const bool resized = state.width != scene.output.width || state.height != scene.output.height ||
+                       state.cloud_width != cloud_w || state.cloud_height != cloud_h;
+  const bool history = !still && stride > 1 && !resized && previous && key == previous_key &&
+                       history_usable(scene, *previous);
+  if (!history) frame_counter = 0;
 
-  impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+  GpuState& s = state;
+  s.resize(scene.output.width, scene.output.height, cloud_w, cloud_h);
+  s.stride = stride;
+  gpu::FrameParams params = make_frame_params(scene, int(frame_counter));
+  if (history) set_previous_frame(params, scene, *previous);
+  const glm::ivec2 offset = march_offset(stride, frame_counter);
+  params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
+  params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
+  const bool build_light_volume = plan_light_volume(scene, key, params);
+  std::memcpy(s.frame_params.data(), &params, sizeof(params));  // the noise passes read it too
+  update_textures(scene);
+  s.swap_history();
+
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     s.timer.reset(cmd);
+    if (build_light_volume) pass_light_volume(cmd, s);
     pass_clouds(cmd, s, scene.quality.mode);
+    pass_resolve(cmd, s);
     pass_compose(cmd, s);
   });
+  previous = scene;
+  previous_key = key;
+  ++frame_counter;
 
   Frame frame;
-  frame.color = read_buffer(s.color_buffer, s.width, s.height);
-  frame.clouds = read_buffer(s.cloud_buffer, s.width, s.height, 2);
   FrameStats& stats = frame.stats;
-  stats.device = impl_->ctx.device_name();
+  stats.device = ctx.device_name();
   stats.width = s.width;
   stats.height = s.height;
   for (const auto& [name, ms] : s.timer.results()) {
     stats.passes.push_back({name, ms});
     stats.frame_ms += ms;
   }
-  double sum = 0.0;
-  for (const glm::vec4& p : frame.color.pixels) sum += luminance(p);
-  stats.mean_luminance = sum / double(frame.color.pixels.size());
-  stats.cloud_cover_fraction = cloud_cover_fraction(scene, frame.clouds);
+  if (read_back) {
+    frame.color = read_buffer(s.color_buffer, s.width, s.height);
+    frame.clouds = resample(read_buffer(s.cloud_buffers[s.current], cloud_w, cloud_h, 2),
+                            s.width, s.height);
+    double sum = 0.0;
+    for (const glm::vec4& p : frame.color.pixels) sum += luminance(p);
+    stats.mean_luminance = sum / double(frame.color.pixels.size());
+    stats.cloud_cover_fraction = cloud_cover_fraction(scene, frame.clouds);
+  }
   stats.wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (impl_->verbose)
+  if (verbose)
     for (const PassTiming& p : stats.passes)
       std::fprintf(stderr, "nephele: pass %-12s %8.2f ms\n", p.name.c_str(), p.ms);
   return frame;

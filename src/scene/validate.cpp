@@ -188,6 +188,10 @@ void check_quality(const Checker& check, const QualityParams& quality) {
                "must be default or baseline");
   check.in_range("quality.primary_steps", quality.primary_steps, 1, 1024);
   check.in_range("quality.light_steps", quality.light_steps, 1, 64);
+  if (quality.march_stride != 1 && quality.march_stride != 2 && quality.march_stride != 4)
+    check.fail("quality.march_stride", std::to_string(quality.march_stride), "must be 1, 2 or 4");
+  check.in_range("quality.cloud_downsample", quality.cloud_downsample, 1, 4);
+  check.in_range("quality.light_volume_km", quality.light_volume_km, 0, 1000);
 }
 
 void check_output(const Checker& check, const OutputParams& output) {

@@ -1,0 +1,31 @@
+// `nephele bench`, real-time part: frame rate of the temporal renderer with a still and a
+// flying camera, its speed-up over the seed's algorithm, and its error against a
+// full-resolution, non-reprojected, high-step-count reference of the same views.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "nephele/renderer.h"
+
+namespace nephele::cli {
+
+struct RealtimeSettings {
+  int static_frames = 48;    // timed frames with a still camera (after two march cycles)
+  int moving_frames = 48;    // timed frames of the flight
+  int error_frames = 3;      // flight frames compared with a reference
+  float speed_mps = 100.0f;  // flight speed along the view's heading
+  float turn_deg_s = 20.0f;  // yaw rate
+  float frame_dt_s = 0.05f;  // animation time per frame (the moving target: 20 frames/s)
+};
+
+// The scene a reference for `scene` is rendered from: every pixel, full resolution,
+// 4x the primary steps and 2x the light steps.
+Scene reference_scene(const Scene& scene);
+
+// Runs the measurements on `renderer` (a second renderer draws the references) and returns
+// static_fps, moving_fps, static_error, moving_error, speedup_vs_baseline, the underlying
+// milliseconds and the device.
+nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& options,
+                                const Scene& scene, const RealtimeSettings& settings);
+
+}  // namespace nephele::cli

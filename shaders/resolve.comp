@@ -1,0 +1,138 @@
+#version 450
+// Pass: resolve (temporal reprojection, seed 002 section 4). Builds this frame's cloud buffer
+// from the pixels marched this frame (one per stride x stride block, march_out) and the
+// previous frame's buffer (history): every other pixel is found in the previous frame by
+// following its ray to the cloud's distance, moving that point back by the wind's
+// displacement since then, and projecting it with the previous camera. Where the point falls
+// outside the previous image, or no history exists, the marched samples around the pixel are
+// interpolated (the low-resolution fallback). While the image moves, reprojected values are
+// clamped to the range of the marched samples around them so stale content cannot smear.
+// A marched pixel averages its new sample with its reprojected history when both see the same
+// surface, so a still view keeps converging over the jittered frames.
+#extension GL_GOOGLE_include_directive : require
+#include "common/bindings_inc.glsl"
+#include "common/math_inc.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+// The two vec4 of one cloud pixel (bindings_inc.glsl); b.w = 1 for a value from a march of
+// this pixel (or reprojected from one), 0 for an interpolated one.
+struct CloudSample {
+  vec4 a;
+  vec4 b;
+};
+
+CloudSample mix_samples(CloudSample x, CloudSample y, float w) {
+  CloudSample r;
+  r.a = mix(x.a, y.a, w);
+  r.b = mix(x.b, y.b, w);
+  return r;
+}
+
+int stride() { return frame.cloud_grid.z; }
+int blocks_x() { return (frame.cloud_grid.x + stride() - 1) / stride(); }
+
+CloudSample marched(ivec2 block) {
+  int i = block.y * blocks_x() + block.x;
+  CloudSample s;
+  s.a = march_out[2 * i];
+  s.b = vec4(march_out[2 * i + 1].xyz, 1.0f);
+  return s;
+}
+
+// The marched samples around pixel p, interpolated bilinearly, and their range (lo, hi of a).
+CloudSample interpolated(ivec2 p, out vec4 lo, out vec4 hi) {
+  ivec2 offset = frame.march_offset.xy;
+  // Blocks whose marched pixel lies inside the buffer.
+  ivec2 last = (frame.cloud_grid.xy - 1 - offset) / stride();
+  vec2 g = clamp(vec2(p - offset) / float(stride()), vec2(0.0f), vec2(last));
+  ivec2 i0 = ivec2(floor(g));
+  ivec2 i1 = min(i0 + 1, last);
+  vec2 f = g - vec2(i0);
+  CloudSample s00 = marched(i0);
+  CloudSample s10 = marched(ivec2(i1.x, i0.y));
+  CloudSample s01 = marched(ivec2(i0.x, i1.y));
+  CloudSample s11 = marched(i1);
+  lo = min(min(s00.a, s10.a), min(s01.a, s11.a));
+  hi = max(max(s00.a, s10.a), max(s01.a, s11.a));
+  CloudSample r = mix_samples(mix_samples(s00, s10, f.x), mix_samples(s01, s11, f.x), f.y);
+  r.b.w = 0.0f;
+  return r;
+}
+
+CloudSample history_at(ivec2 p) {
+  int i = p.y * frame.cloud_grid.x + p.x;
+  CloudSample s;
+  s.a = history[2 * i];
+  s.b = history[2 * i + 1];
+  return s;
+}
+
+// The history bilinearly filtered at continuous pixel position q (centres at integers).
+CloudSample history_bilinear(vec2 q) {
+  ivec2 last = frame.cloud_grid.xy - 1;
+  vec2 g = clamp(q, vec2(0.0f), vec2(last));
+  ivec2 i0 = ivec2(floor(g));
+  ivec2 i1 = min(i0 + 1, last);
+  vec2 f = g - vec2(i0);
+  return mix_samples(mix_samples(history_at(i0), history_at(ivec2(i1.x, i0.y)), f.x),
+                     mix_samples(history_at(ivec2(i0.x, i1.y)), history_at(i1), f.x), f.y);
+}
+
+// Where the content at distance_m along `dir` was in the previous frame's image.
+vec2 previous_pixel(vec3 dir, float distance_m) {
+  // Relative to the previous eye: the point, moved back by the wind since the last frame.
+  vec3 p = dir * distance_m - frame.prev_camera_pos_m.xyz -
+           vec3(frame.wind_offset_m.z, frame.wind_offset_m.w, 0.0f);
+  return camera_pixel(frame.prev_camera_forward.xyz, frame.prev_camera_right.xyz,
+                      frame.prev_camera_up.xyz, frame.prev_camera_pos_m.w,
+                      frame.prev_camera_forward.w, normalize(p), float(frame.cloud_grid.x),
+                      float(frame.cloud_grid.y));
+}
+
+bool inside_image(vec2 q) {
+  return all(greaterThanEqual(q, vec2(-0.5f))) &&
+         all(lessThanEqual(q, vec2(frame.cloud_grid.xy) - 0.5f));
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= frame.cloud_grid.x || p.y >= frame.cloud_grid.y) return;
+  ivec2 offset = frame.march_offset.xy;
+  bool is_marched = (p.x % stride()) == offset.x && (p.y % stride()) == offset.y;
+
+  vec4 lo, hi;
+  CloudSample fallback = interpolated(p, lo, hi);
+  CloudSample result = is_marched ? marched(p / stride()) : fallback;
+
+  if (frame.cloud_grid.w == 1) {
+    vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
+                          frame.camera_pos_m.w, frame.camera_forward.w, float(p.x), float(p.y),
+                          float(frame.cloud_grid.x), float(frame.cloud_grid.y));
+    // Two fixed-point steps: distance from this frame's samples, then from the history there.
+    vec2 q = previous_pixel(dir, result.b.z);
+    if (inside_image(q)) q = previous_pixel(dir, history_bilinear(q).b.z);
+    if (inside_image(q)) {
+      CloudSample h = history_bilinear(q);
+      float moved_px = length(q - vec2(p));
+      if (is_marched) {
+        // Average with the history only where it is a real sample of the same surface.
+        float d = result.b.z;
+        bool same = abs(h.b.z - d) < 0.1f * d && moved_px < 1.0f;
+        result = mix_samples(result, h, same ? 0.5f * h.b.w : 0.0f);
+        result.b.w = 1.0f;
+      } else {
+        if (moved_px > 0.5f) {
+          // Clamp to the neighbourhood's range, widened a little so detail between the
+          // marched samples survives.
+          vec4 margin = 0.1f * (hi - lo) + vec4(vec3(0.02f * max(hi.r, max(hi.g, hi.b))), 0.02f);
+          h.a = clamp(h.a, lo - margin, hi + margin);
+        }
+        result = h;
+      }
+    }
+  }
+  int i = p.y * frame.cloud_grid.x + p.x;
+  cloud_out[2 * i] = result.a;
+  cloud_out[2 * i + 1] = result.b;
+}
