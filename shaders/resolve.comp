@@ -53,8 +53,16 @@ CloudSample interpolated(ivec2 p, out vec4 lo, out vec4 hi) {
   CloudSample s10 = marched(ivec2(i1.x, i0.y));
   CloudSample s01 = marched(ivec2(i0.x, i1.y));
   CloudSample s11 = marched(i1);
-  lo = min(min(s00.a, s10.a), min(s01.a, s11.a));
-  hi = max(max(s00.a, s10.a), max(s01.a, s11.a));
+  // The range over the 4 x 4 marched samples around p (a 16 x 16 pixel neighbourhood at stride 4):
+  // wide enough that detail between samples survives, tight enough to catch stale content.
+  lo = vec4(1e30f);
+  hi = vec4(-1e30f);
+  for (int y = -1; y <= 2; ++y)
+    for (int x = -1; x <= 2; ++x) {
+      vec4 a = marched(clamp(i0 + ivec2(x, y), ivec2(0), last)).a;
+      lo = min(lo, a);
+      hi = max(hi, a);
+    }
   CloudSample r = mix_samples(mix_samples(s00, s10, f.x), mix_samples(s01, s11, f.x), f.y);
   r.b.w = 0.0f;
   return r;
@@ -66,6 +74,33 @@ CloudSample history_at(ivec2 p) {
   s.a = history[2 * i];
   s.b = history[2 * i + 1];
   return s;
+}
+
+// Catmull-Rom weights for the four texels around a sample at fraction f.
+vec4 catmull_rom_weights(float f) {
+  float f2 = f * f, f3 = f2 * f;
+  return vec4(-0.5f * f3 + f2 - 0.5f * f, 1.5f * f3 - 2.5f * f2 + 1.0f,
+              -1.5f * f3 + 2.0f * f2 + 0.5f * f, 0.5f * f3 - 0.5f * f2);
+}
+
+// The history's radiance and transmittance at q, filtered with Catmull-Rom (4 x 4 texels): a
+// pixel is resampled up to stride^2 times before it is marched again, and bilinear filtering
+// would blur it a little more each time.
+vec4 history_sharp(vec2 q) {
+  ivec2 last = frame.cloud_grid.xy - 1;
+  vec2 g = clamp(q, vec2(0.0f), vec2(last));
+  ivec2 i0 = ivec2(floor(g));
+  vec2 f = g - vec2(i0);
+  vec4 wx = catmull_rom_weights(f.x), wy = catmull_rom_weights(f.y);
+  vec4 sum = vec4(0.0f);
+  for (int y = 0; y < 4; ++y) {
+    vec4 row = vec4(0.0f);
+    for (int x = 0; x < 4; ++x)
+      row += wx[x] * history[2 * (clamp(i0.y + y - 1, 0, last.y) * frame.cloud_grid.x +
+                                  clamp(i0.x + x - 1, 0, last.x))];
+    sum += wy[y] * row;
+  }
+  return sum;
 }
 
 // The history bilinearly filtered at continuous pixel position q (centres at integers).
@@ -95,6 +130,15 @@ bool inside_image(vec2 q) {
          all(lessThanEqual(q, vec2(frame.cloud_grid.xy) - 0.5f));
 }
 
+bool ray_meets_no_cloud(ivec2 p) {
+  vec3 eye = frame.camera_pos_m.xyz;
+  if (length(eye) >= frame.radii_m.z) return false;
+  vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
+                        frame.camera_pos_m.w, frame.camera_forward.w, float(p.x), float(p.y),
+                        float(frame.cloud_grid.x), float(frame.cloud_grid.y));
+  return ray_sphere(eye, dir, frame.radii_m.x).x > 0.0f;
+}
+
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (p.x >= frame.cloud_grid.x || p.y >= frame.cloud_grid.y) return;
@@ -122,16 +166,18 @@ void main() {
         result = mix_samples(result, h, same ? 0.5f * h.b.w : 0.0f);
         result.b.w = 1.0f;
       } else {
-        if (moved_px > 0.5f) {
-          // Clamp to the neighbourhood's range, widened a little so detail between the
-          // marched samples survives.
-          vec4 margin = 0.1f * (hi - lo) + vec4(vec3(0.02f * max(hi.r, max(hi.g, hi.b))), 0.02f);
-          h.a = clamp(h.a, lo - margin, hi + margin);
-        }
+        h.a = history_sharp(q);
+        // While the image moves, keep the history within the range of this frame's samples
+        // around it (Catmull-Rom may also overshoot a little).
+        if (moved_px > 0.5f) h.a = clamp(h.a, lo, hi);
+        h.a = max(h.a, vec4(0.0f));
         result = h;
       }
     }
   }
+  // Rays that cannot meet a cloud (from below the layer into the ground) hold none, exactly,
+  // whatever the filters brought in from the horizon's other side.
+  if (ray_meets_no_cloud(p)) result.a = vec4(0.0f, 0.0f, 0.0f, 1.0f);
   int i = p.y * frame.cloud_grid.x + p.x;
   cloud_out[2 * i] = result.a;
   cloud_out[2 * i + 1] = result.b;

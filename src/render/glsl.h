@@ -18,6 +18,7 @@ namespace {
 #include "common/noise_inc.glsl"
 #include "common/atmosphere_inc.glsl"
 #include "common/clouds_inc.glsl"
+#include "common/light_volume_inc.glsl"
 }  // namespace
 }  // namespace nephele::glsl
 #pragma GCC diagnostic pop

@@ -150,8 +150,24 @@ TEST_F(CliTest, BenchQuickWritesCsvJsonAndPlot) {
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_EQ(rows, 2 * (3 + 3 + 2));  // two modes x (density, coverage, resolution sweeps)
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("bench/bench.json")));
-  EXPECT_GT(j["default_fps"].get<double>(), 0.0);
-  EXPECT_GT(j["baseline_fps"].get<double>(), 0.0);
-  EXPECT_TRUE(j.contains("speedup_vs_baseline"));
+  for (const char* key : {"static_fps", "moving_fps", "baseline_fps", "speedup_vs_baseline"})
+    EXPECT_GT(j[key].get<double>(), 0.0) << key;
+  // Errors against the high-step reference: small but not exactly zero.
+  for (const char* key : {"static_error", "moving_error"}) {
+    EXPECT_GT(j[key].get<double>(), 0.0) << key;
+    EXPECT_LT(j[key].get<double>(), 0.5) << key;
+  }
+  EXPECT_FALSE(j["device"].get<std::string>().empty());
   EXPECT_GT(fs::file_size(path("bench/bench.png")), 1000u);
+}
+
+TEST_F(CliTest, BenchRealtimeOnlyWritesTheJsonFile) {
+  const CliRun r = run_cli("bench --quick --realtime-only --width 48 --height 32 --json " +
+                           path("realtime.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("realtime.json")));
+  for (const char* key : {"static_fps", "moving_fps", "speedup_vs_baseline", "static_error",
+                          "moving_error", "device"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_NE(r.output.find("still camera"), std::string::npos) << r.output;
 }

@@ -87,6 +87,9 @@ TEST(SceneFlags, RegistersExactlyTheSceneSpellings) {
                            "--seed",
                            "--steps",
                            "--light-steps",
+                           "--march-stride",
+                           "--cloud-downsample",
+                           "--light-volume-km",
                            "--mode",
                            "--weather-map",
                            "--exposure"})
@@ -139,6 +142,9 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--seed", "4294967295"}, [](const Scene& s) { return s.noise_seed == 4294967295u; }},
       {{"--steps", "128"}, [](const Scene& s) { return s.quality.primary_steps == 128; }},
       {{"--light-steps", "10"}, [](const Scene& s) { return s.quality.light_steps == 10; }},
+      {{"--march-stride", "2"}, [](const Scene& s) { return s.quality.march_stride == 2; }},
+      {{"--cloud-downsample", "1"}, [](const Scene& s) { return s.quality.cloud_downsample == 1; }},
+      {{"--light-volume-km", "0"}, [](const Scene& s) { return s.quality.light_volume_km == 0; }},
       {{"--mode", "baseline"},
        [](const Scene& s) { return s.quality.mode == MarchMode::Baseline; }},
       {{"--exposure", "0.25"}, [](const Scene& s) { return s.output.exposure == 0.25f; }},
@@ -185,6 +191,7 @@ TEST(SceneFlags, ValidationErrorsNameTheFlag) {
   EXPECT_EQ(resolve_error({"--width", "0"}), "--width 0: must be in [1, 16384]");
   EXPECT_EQ(resolve_error({"--steps", "2000"}), "--steps 2000: must be in [1, 1024]");
   EXPECT_EQ(resolve_error({"--light-steps", "65"}), "--light-steps 65: must be in [1, 64]");
+  EXPECT_EQ(resolve_error({"--march-stride", "3"}), "--march-stride 3: must be 1, 2 or 4");
   EXPECT_EQ(resolve_error({"--fov-deg", "180"}), "--fov-deg 180: must be in (0, 180)");
   EXPECT_EQ(resolve_error({"--g-backward", "0.5"}), "--g-backward 0.5: must be in (-1, 0]");
   EXPECT_EQ(resolve_error({"--exposure", "nan"}), "--exposure nan: must be a finite number > 0");

@@ -1,0 +1,158 @@
+// Temporal reprojection (Renderer::render_next) and the light volume, on the device with the
+// validation layer on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/trigonometric.hpp>
+
+#include "nephele/image_compare.h"
+#include "nephele/renderer.h"
+#include "nephele/scene_io.h"
+#include "render_fixture.h"
+
+using nephele::Frame;
+using nephele::luminance_error;
+using nephele::Scene;
+
+namespace {
+
+// A view from the ground into scattered cumulus, wind on.
+Scene view() {
+  Scene s = nephele::load_preset("default");
+  s.output.width = 160;
+  s.output.height = 100;
+  s.camera.view_dir = {0.0f, 1.0f, 0.35f};
+  return s;
+}
+
+// The view turned about the vertical by `deg` degrees.
+Scene turned(Scene s, float deg) {
+  const float a = glm::radians(deg);
+  const glm::vec3 v = s.camera.view_dir;
+  s.camera.view_dir = {v.x * std::cos(a) - v.y * std::sin(a), v.x * std::sin(a) + v.y * std::cos(a),
+                       v.z};
+  return s;
+}
+
+class TemporalTest : public RenderTest {};
+
+}  // namespace
+
+// With nothing moving, a march cycle reprojects every pixel onto itself: the frames stay the
+// still image (they differ only by averaging in newly jittered samples).
+TEST_F(TemporalTest, StillViewStaysTheStillImage) {
+  Scene s = view();
+  s.clouds.wind_mps = {0.0f, 0.0f};
+  const Frame still = render(s);
+  Frame frame;
+  for (int i = 0; i < 32; ++i) frame = shared_renderer().render_next(s);
+  EXPECT_LT(luminance_error(frame.color, still.color), 0.01);
+}
+
+// Drifting clouds: after a few seconds of frames the image follows the wind and matches a
+// still image of the same moment; without following the wind it would not.
+TEST_F(TemporalTest, ReprojectionFollowsTheWind) {
+  Scene s = view();
+  s.clouds.wind_mps = {0.0f, -60.0f};  // towards the camera, fast, to make the drift visible
+  const Frame start = render(s);
+  Frame frame;
+  for (int i = 0; i < 48; ++i) {
+    s.time_s += 0.1f;
+    frame = shared_renderer().render_next(s);
+  }
+  const Frame still = render(s);
+  const double drifted = luminance_error(start.color, still.color);
+  const double error = luminance_error(frame.color, still.color);
+  EXPECT_GT(drifted, 0.03) << "the clouds should have moved visibly";
+  EXPECT_LT(error, 0.4 * drifted);
+  EXPECT_LT(error, 0.05);
+}
+
+// Turning the camera: content enters at one edge; the history is found where it moved to and
+// the new edge is filled from this frame's samples, so the image matches a still image of the
+// final view, edges included (no streaks of clamped history).
+TEST_F(TemporalTest, TurningCameraMatchesTheStillImageEdgesIncluded) {
+  Scene s = view();
+  s.clouds.wind_mps = {0.0f, 0.0f};
+  s.quality.cloud_downsample = 1;  // enough marched samples at this small size
+  render(s);
+  Frame frame;
+  for (int i = 1; i <= 24; ++i) frame = shared_renderer().render_next(turned(s, 1.0f * i));
+  const Frame still = render(turned(s, 24.0f));
+  // Not reprojecting (history taken at the same pixel) is off by more than 20%.
+  EXPECT_LT(luminance_error(frame.color, still.color), 0.06);
+  // The 8 columns at each side on their own.
+  for (int side : {0, 1}) {
+    nephele::Image a(8, s.output.height), b(8, s.output.height);
+    for (int y = 0; y < s.output.height; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const int sx = side ? s.output.width - 8 + x : x;
+        a.at(x, y) = frame.color.at(sx, y);
+        b.at(x, y) = still.color.at(sx, y);
+      }
+    EXPECT_LT(luminance_error(a, b), 0.2) << (side ? "right" : "left") << " edge";
+  }
+}
+
+// A change of the clouds restarts the history: overcast, then clear, shows no stale cloud.
+TEST_F(TemporalTest, ChangedCloudsRestartTheHistory) {
+  Scene s = view();
+  s.clouds.coverage = 1.0f;
+  render(s);
+  shared_renderer().render_next(s);
+  s.clouds.coverage = 0.0f;
+  const Frame frame = shared_renderer().render_next(s);
+  float opacity = 0.0f;
+  for (const glm::vec4& p : frame.clouds.pixels) opacity = std::max(opacity, 1.0f - p.a);
+  EXPECT_LT(opacity, 1e-3f);
+}
+
+// Stride 1 marches every pixel every frame: an animation frame is the still image.
+TEST_F(TemporalTest, StrideOneFramesAreStillImages) {
+  Scene s = view();
+  s.quality.march_stride = 1;
+  const Frame still = render(s);
+  const Frame frame = shared_renderer().render_next(s);
+  EXPECT_LT(luminance_error(frame.color, still.color), 1e-6);
+}
+
+// Without read-back the frame keeps only its statistics.
+TEST_F(TemporalTest, FramesWithoutReadBackCarryTimings) {
+  Scene s = view();
+  render(s);
+  const Frame frame = shared_renderer().render_next(s, false);
+  EXPECT_TRUE(frame.color.pixels.empty());
+  EXPECT_GT(frame.stats.frame_ms, 0.0);
+  EXPECT_FALSE(frame.stats.passes.empty());
+}
+
+// The light volume against marching every light ray with many steps: the same clouds.
+TEST_F(TemporalTest, LightVolumeMatchesAFullLightMarch) {
+  Scene s = view();
+  s.quality.cloud_downsample = 1;
+  Scene marched = s;
+  marched.quality.light_volume_km = 0;
+  marched.quality.light_steps = 48;
+  const Frame a = render(s);
+  const Frame b = render(marched);
+  EXPECT_LT(luminance_error(a.color, b.color), 0.03);
+  // A short march of every light ray (6 steps, no volume) is further off.
+  Scene short_march = marched;
+  short_march.quality.light_steps = 2;
+  EXPECT_GT(luminance_error(render(short_march).color, b.color), luminance_error(a.color, b.color));
+}
+
+// Moving the sun rebuilds the light volume: a frame after the move equals a fresh renderer's
+// image of the new sun.
+TEST_F(TemporalTest, SunMoveRebuildsTheLightVolume) {
+  Scene s = view();
+  render(s);
+  s.sun.direction = {0.6f, 0.3f, 0.4f};
+  const Frame moved = render(s);
+  nephele::RendererOptions options;
+  options.validation = true;
+  nephele::Renderer fresh(options);
+  const Frame reference = fresh.render(s);
+  EXPECT_LT(luminance_error(moved.color, reference.color), 1e-5);
+  EXPECT_EQ(fresh.validation_messages(), 0);
+}
