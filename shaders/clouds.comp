@@ -66,15 +66,24 @@ float ground_shadow(vec3 eye, vec3 dir, vec3 sun) {
 // octave i scatters with contribution a^i, extinction b^i and eccentricity c^i. b < 1 lets
 // light reach deep into the cloud as repeated forward scattering does, so thick clouds keep
 // their brightness instead of turning grey. a = 0.6, b = 0.4, c = 0.5, four octaves.
-float multiple_scattering(float tau_light, float mu, float powder) {
-  float energy = 0.0f;
-  float a = 1.0f, b = 1.0f, c = 1.0f;
+// The octaves' phase functions depend only on the view ray: evaluated once per ray.
+vec4 octave_phases(float mu) {
+  vec4 phases;
+  float c = 1.0f;
   for (int i = 0; i < 4; ++i) {
-    float phase = dual_lobe_hg(frame.cloud_phase.x * c, frame.cloud_phase.y * c, frame.cloud_phase.z, mu);
-    energy += a * cloud_beer_powder(b * tau_light, mu, powder) * phase;
+    phases[i] = dual_lobe_hg(frame.cloud_phase.x * c, frame.cloud_phase.y * c, frame.cloud_phase.z, mu);
+    c *= 0.5f;
+  }
+  return phases;
+}
+
+float multiple_scattering(float tau_light, float mu, float powder, vec4 phases) {
+  float energy = 0.0f;
+  float a = 1.0f, b = 1.0f;
+  for (int i = 0; i < 4; ++i) {
+    energy += a * cloud_beer_powder(b * tau_light, mu, powder) * phases[i];
     a *= 0.6f;
     b *= 0.4f;
-    c *= 0.5f;
   }
   return energy;
 }
@@ -148,6 +157,7 @@ void main() {
   float g_b = frame.cloud_phase.y;
   float lobe = frame.cloud_phase.z;
   float thickness = frame.radii_m.w - frame.radii_m.z;
+  vec4 phases = octave_phases(mu);
 
   vec3 scattered = vec3(0.0f);
   vec3 transmittance = vec3(1.0f);
@@ -223,7 +233,7 @@ void main() {
       float sigma_t = density * sigma_scale * view_atten;
       float step_m = clamp(0.5f / sigma_t, 2.0f, fine_step);
       float tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten;
-      float energy = multiple_scattering(tau_light, mu, powder);
+      float energy = multiple_scattering(tau_light, mu, powder, phases);
       float h = altitude_fraction(pos);
       vec3 luminance = albedo * (sun_light * energy + ambient * mix(0.5f, 1.0f, h));
       float step_t = exp(-sigma_t * step_m);

@@ -40,32 +40,39 @@ CloudSample marched(ivec2 block) {
   return s;
 }
 
-// The marched samples around pixel p, interpolated bilinearly, and their range (lo, hi of a).
-CloudSample interpolated(ivec2 p, out vec4 lo, out vec4 hi) {
-  ivec2 offset = frame.march_offset.xy;
-  // Blocks whose marched pixel lies inside the buffer.
-  ivec2 last = (frame.cloud_grid.xy - 1 - offset) / stride();
-  vec2 g = clamp(vec2(p - offset) / float(stride()), vec2(0.0f), vec2(last));
+// Blocks whose marched pixel lies inside the buffer: 0 ... last.
+ivec2 last_block() { return (frame.cloud_grid.xy - 1 - frame.march_offset.xy) / stride(); }
+
+// Continuous block coordinates of pixel p (marched pixels at integers).
+vec2 block_coord(ivec2 p) {
+  return clamp(vec2(p - frame.march_offset.xy) / float(stride()), vec2(0.0f), vec2(last_block()));
+}
+
+// The marched samples around pixel p, interpolated bilinearly (the low-resolution fallback).
+CloudSample interpolated(ivec2 p) {
+  vec2 g = block_coord(p);
   ivec2 i0 = ivec2(floor(g));
-  ivec2 i1 = min(i0 + 1, last);
+  ivec2 i1 = min(i0 + 1, last_block());
   vec2 f = g - vec2(i0);
-  CloudSample s00 = marched(i0);
-  CloudSample s10 = marched(ivec2(i1.x, i0.y));
-  CloudSample s01 = marched(ivec2(i0.x, i1.y));
-  CloudSample s11 = marched(i1);
-  // The range over the 4 x 4 marched samples around p (a 16 x 16 pixel neighbourhood at stride 4):
-  // wide enough that detail between samples survives, tight enough to catch stale content.
+  CloudSample r = mix_samples(mix_samples(marched(i0), marched(ivec2(i1.x, i0.y)), f.x),
+                              mix_samples(marched(ivec2(i0.x, i1.y)), marched(i1), f.x), f.y);
+  r.b.w = 0.0f;
+  return r;
+}
+
+// The range (lo, hi) of the radiance and transmittance over the 4 x 4 marched samples around
+// p (a 16 x 16 pixel neighbourhood at stride 4): wide enough that detail between samples
+// survives, tight enough to catch stale content.
+void marched_range(ivec2 p, out vec4 lo, out vec4 hi) {
+  ivec2 i0 = ivec2(floor(block_coord(p)));
   lo = vec4(1e30f);
   hi = vec4(-1e30f);
   for (int y = -1; y <= 2; ++y)
     for (int x = -1; x <= 2; ++x) {
-      vec4 a = marched(clamp(i0 + ivec2(x, y), ivec2(0), last)).a;
+      vec4 a = marched(clamp(i0 + ivec2(x, y), ivec2(0), last_block())).a;
       lo = min(lo, a);
       hi = max(hi, a);
     }
-  CloudSample r = mix_samples(mix_samples(s00, s10, f.x), mix_samples(s01, s11, f.x), f.y);
-  r.b.w = 0.0f;
-  return r;
 }
 
 CloudSample history_at(ivec2 p) {
@@ -145,9 +152,7 @@ void main() {
   ivec2 offset = frame.march_offset.xy;
   bool is_marched = (p.x % stride()) == offset.x && (p.y % stride()) == offset.y;
 
-  vec4 lo, hi;
-  CloudSample fallback = interpolated(p, lo, hi);
-  CloudSample result = is_marched ? marched(p / stride()) : fallback;
+  CloudSample result = is_marched ? marched(p / stride()) : interpolated(p);
 
   if (frame.cloud_grid.w == 1) {
     vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
@@ -166,11 +171,17 @@ void main() {
         result = mix_samples(result, h, same ? 0.5f * h.b.w : 0.0f);
         result.b.w = 1.0f;
       } else {
-        h.a = history_sharp(q);
-        // While the image moves, keep the history within the range of this frame's samples
-        // around it (Catmull-Rom may also overshoot a little).
-        if (moved_px > 0.5f) h.a = clamp(h.a, lo, hi);
-        h.a = max(h.a, vec4(0.0f));
+        if (moved_px < 0.02f) {
+          h = history_at(ivec2(round(q)));  // (nearly) still: the pixel itself, unfiltered
+        } else {
+          h.a = max(history_sharp(q), vec4(0.0f));  // Catmull-Rom may overshoot a little
+        }
+        if (moved_px > 0.5f) {
+          // While the image moves, keep the history within the range of this frame's samples.
+          vec4 lo, hi;
+          marched_range(p, lo, hi);
+          h.a = clamp(h.a, lo, hi);
+        }
         result = h;
       }
     }
