@@ -87,14 +87,20 @@ bool light_volume_covers(vec3 pos) {
   return frame.light_volume.w > 0.5f && max(abs(offset.x), abs(offset.y)) < frame.light_volume.z;
 }
 
-// The light volume's optical depth at pos (trilinear), and the size of its voxels there.
-float light_volume_lookup(vec3 pos, out float voxel_m) {
+// The size of the light volume's voxels at pos (the largest of their three sides).
+float light_volume_voxel_at(vec3 pos) {
+  vec2 offset = pos.xy - frame.wind_offset_m.xy - frame.light_volume.xy;
+  float half_m = frame.light_volume.z;
+  return max(max(light_volume_voxel_m(offset.x, half_m, LIGHT_VOLUME_XY),
+                 light_volume_voxel_m(offset.y, half_m, LIGHT_VOLUME_XY)),
+             (frame.radii_m.w - frame.radii_m.z) / float(LIGHT_VOLUME_Z));
+}
+
+// The light volume's optical depth at pos (trilinear).
+float light_volume_lookup(vec3 pos) {
   vec2 offset = pos.xy - frame.wind_offset_m.xy - frame.light_volume.xy;
   float half_m = frame.light_volume.z;
   float h = altitude_fraction(pos);
-  voxel_m = max(max(light_volume_voxel_m(offset.x, half_m, LIGHT_VOLUME_XY),
-                    light_volume_voxel_m(offset.y, half_m, LIGHT_VOLUME_XY)),
-                (frame.radii_m.w - frame.radii_m.z) / float(LIGHT_VOLUME_Z));
   vec3 coord = vec3(light_volume_coord(offset.x, half_m), light_volume_coord(offset.y, half_m), h);
   vec3 g = clamp(coord * vec3(LIGHT_VOLUME_XY, LIGHT_VOLUME_XY, LIGHT_VOLUME_Z) - 0.5f,
                  vec3(0.0f), vec3(LIGHT_VOLUME_XY - 1, LIGHT_VOLUME_XY - 1, LIGHT_VOLUME_Z - 1));
@@ -125,11 +131,9 @@ float light_optical_depth(vec3 pos, vec3 sun) {
   if (light_volume_covers(pos)) {
     // March the first two voxels (where the volume is too coarse for the light's fast change
     // at a cloud's surface), look the rest up where that march ends.
-    float voxel_m;
-    light_volume_lookup(pos, voxel_m);
-    float near_m = min(2.0f * voxel_m, length_m);
+    float near_m = min(2.0f * light_volume_voxel_at(pos), length_m);
     float depth = march_light(pos, sun, 0.0f, near_m, frame.steps.y);
-    if (near_m < length_m) depth += light_volume_lookup(pos + sun * near_m, voxel_m);
+    if (near_m < length_m) depth += light_volume_lookup(pos + sun * near_m);
     return depth;
   }
   return march_light(pos, sun, 0.0f, length_m, frame.steps.y);

@@ -50,8 +50,7 @@ float ground_shadow(vec3 eye, vec3 dir, vec3 sun) {
   vec3 base = p + sun * inner.y;  // where the sunlight leaves the cloud layer
   float depth;
   if (MARCH_MODE == 0 && light_volume_covers(base)) {
-    float voxel_m;
-    depth = light_volume_lookup(base, voxel_m);
+    depth = light_volume_lookup(base);
   } else {
     const int n = 16;
     float ds = (outer.y - inner.y) / float(n);

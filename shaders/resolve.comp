@@ -15,8 +15,10 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// The two vec4 of one cloud pixel (bindings_inc.glsl); b.w = 1 for a value from a march of
-// this pixel (or reprojected from one), 0 for an interpolated one.
+const float MAX_SAMPLES = 8.0f;  // marched samples averaged per pixel in a still view
+
+// The two vec4 of one cloud pixel (bindings_inc.glsl); b.w = the number of marched samples
+// averaged in it (reprojected along with it), 0 for an interpolated value.
 struct CloudSample {
   vec4 a;
   vec4 b;
@@ -167,9 +169,12 @@ void main() {
       if (is_marched) {
         // Average with the history only where it is a real sample of the same surface.
         float d = result.b.z;
+        // The running mean of up to MAX_SAMPLES samples (b.w counts them), so a still view
+        // converges while a moving one, or new content, starts afresh.
         bool same = abs(h.b.z - d) < 0.1f * d && moved_px < 1.0f;
-        result = mix_samples(result, h, same ? 0.5f * h.b.w : 0.0f);
-        result.b.w = 1.0f;
+        float n = same ? min(floor(h.b.w + 0.5f), MAX_SAMPLES - 1.0f) : 0.0f;
+        result = mix_samples(result, h, n / (n + 1.0f));
+        result.b.w = n + 1.0f;
       } else {
         if (moved_px < 0.02f) {
           h = history_at(ivec2(round(q)));  // (nearly) still: the pixel itself, unfiltered
