@@ -134,7 +134,7 @@ int run_bench(const BenchOptions& options) {
   for (MarchMode mode : {MarchMode::Default, MarchMode::Baseline}) {
     Scene scene = base;
     scene.quality.mode = mode;
-    renderer.render(scene);  // warm-up: builds the noise and weather textures
+    renderer.render(scene);  // warm-up: builds the noise and weather textures, the sky LUT
     for (float d : sweep_values(options.quick)) {
       Scene s = scene;
       s.clouds.density = d;

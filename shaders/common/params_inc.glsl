@@ -33,6 +33,11 @@ struct FrameParams {
   vec4 wind_offset_m;       // xy wind displacement (m) = wind * time; zw unused
   ivec4 size;               // x width, y height, z frame index, w noise seed
   ivec4 steps;              // x primary steps, y light steps, z sky view samples, w sky light samples
+  vec4 sun_transmittance;   // rgb transmittance from the camera towards the sun's centre (0 when
+                            // the planet hides it): the sun disk's colour; w unused
+  vec4 sky_view_up;         // sky-view LUT frame (common/sky_view_inc.glsl): xyz local zenith at
+                            // the camera, w elevation of the planet's horizon (rad, <= 0)
+  vec4 sky_view_forward;    // xyz horizontal unit vector towards the sun's azimuth; w unused
 };
 
 #ifdef __cplusplus

@@ -23,6 +23,8 @@ enum Binding : uint32_t {
   kWeatherMap = 6,
   kCloudBuffer = 7,
   kColorBuffer = 8,
+  kSkyViewOut = 9,
+  kSkyView = 10,
 };
 
 class DescriptorSet {

@@ -6,6 +6,6 @@
 #include "common/params_inc.glsl"
 
 namespace nephele::gpu {
-static_assert(sizeof(FrameParams) == 19 * 16, "FrameParams must be 19 vec4s (std140 layout)");
+static_assert(sizeof(FrameParams) == 22 * 16, "FrameParams must be 22 vec4s (std140 layout)");
 static_assert(alignof(FrameParams) <= 16);
 }  // namespace nephele::gpu

@@ -10,6 +10,7 @@ GpuState::GpuState(gpu::Context& c)
       noise_base_kernel(c, set, "noise_base.comp.spv"),
       noise_detail_kernel(c, set, "noise_detail.comp.spv"),
       weather_kernel(c, set, "weather.comp.spv"),
+      sky_view_kernel(c, set, "sky_view.comp.spv"),
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
       compose_kernel(c, set, "compose.comp.spv"),
@@ -18,7 +19,10 @@ GpuState::GpuState(gpu::Context& c)
       base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
                    VK_FORMAT_R8G8B8A8_UNORM),
-      weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM) {
+      weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM),
+      // Half floats hold radiance to 0.05%; clamp-to-edge: the table does not wrap.
+      sky_view(c, kSkyViewWidth, 2 * kSkyViewHeight, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+               VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   set.bind_storage_image(gpu::kBaseNoiseOut, base_noise);
   set.bind_storage_image(gpu::kDetailNoiseOut, detail_noise);
@@ -26,6 +30,8 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_sampled_image(gpu::kBaseNoise, base_noise);
   set.bind_sampled_image(gpu::kDetailNoise, detail_noise);
   set.bind_sampled_image(gpu::kWeatherMap, weather_map);
+  set.bind_storage_image(gpu::kSkyViewOut, sky_view);
+  set.bind_sampled_image(gpu::kSkyView, sky_view);
   resize(1, 1);
 }
 
@@ -53,6 +59,11 @@ void pass_noise_detail(VkCommandBuffer cmd, GpuState& s) {
 void pass_weather(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.weather_kernel, s.set, s.timer, "weather", kWeatherMapSize,
                 kWeatherMapSize, 1, 8, 8, 1);
+}
+
+void pass_sky_view(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.sky_view_kernel, s.set, s.timer, "sky_view", kSkyViewWidth, kSkyViewHeight,
+                1, 8, 8, 1);
 }
 
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {

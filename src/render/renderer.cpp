@@ -22,6 +22,7 @@ struct Renderer::Impl {
   bool verbose = false;
   std::optional<uint32_t> noise_seed_built;  // noise textures are valid for this seed
   std::optional<std::string> weather_built;  // key of the weather map in the texture
+  std::optional<SkyViewKey> sky_view_built;  // inputs of the sky-view LUT in the texture
 
   void update_textures(const Scene& scene);
   void upload_weather_png(const std::string& path);
@@ -130,11 +131,18 @@ Frame Renderer::render(const Scene& scene) {
   std::memcpy(s.frame_params.data(), &params, sizeof(params));
   impl_->update_textures(scene);
 
+  // The sky-view LUT depends on the sun, the camera's position and the atmosphere only: a
+  // camera turning or clouds changing reuse it.
+  const SkyViewKey sky_key = sky_view_key(params);
+  const bool sky_stale = impl_->sky_view_built != sky_key;
+  impl_->sky_view_built.reset();  // until the command buffer below has completed
   impl_->ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     s.timer.reset(cmd);
+    if (sky_stale) pass_sky_view(cmd, s);
     pass_clouds(cmd, s, scene.quality.mode);
     pass_compose(cmd, s);
   });
+  impl_->sky_view_built = sky_key;
 
   Frame frame;
   frame.color = read_buffer(s.color_buffer, s.width, s.height);
@@ -155,7 +163,10 @@ Frame Renderer::render(const Scene& scene) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (impl_->verbose)
     for (const PassTiming& p : stats.passes)
-      std::fprintf(stderr, "nephele: pass %-12s %8.2f ms\n", p.name.c_str(), p.ms);
+      std::fprintf(stderr, "nephele: pass %-12s %8.2f ms%s\n", p.name.c_str(), p.ms,
+                   p.name == "sky_view"
+                       ? " (cached until the sun, the camera position or the atmosphere change)"
+                       : "");
   return frame;
 }
 
