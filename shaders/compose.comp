@@ -1,30 +1,14 @@
 #version 450
-// Pass 4: compose. Sky (single scattering, seed 000 section 1.5) behind and between the
-// clouds, the sun disk with limb darkening drawn separately so clouds occlude it, and the
-// clouds over both: color = background * T_cloud + cloud in-scattering (seed listing B.3),
-// plus the haze in front of distant clouds.
+// Pass 4: compose. Sky (single scattering, seed 000 section 1.5, from the sky-view LUT of
+// sky_view.comp) behind and between the clouds, the sun disk with limb darkening drawn
+// separately so clouds occlude it, and the clouds over both: color = background * T_cloud +
+// cloud in-scattering (seed listing B.3), plus the haze in front of distant clouds.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
-#include "common/phase_inc.glsl"
-#include "common/atmosphere_inc.glsl"
+#include "common/sky_view_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-
-const float GROUND_ALBEDO = 0.1f;
-
-Atmosphere frame_atmosphere() {
-  Atmosphere a;
-  a.planet_radius_m = frame.radii_m.x;
-  a.top_radius_m = frame.radii_m.y;
-  a.rayleigh_sigma_s = frame.rayleigh.rgb;
-  a.rayleigh_height_m = frame.rayleigh.w;
-  a.mie_sigma_s = frame.mie.x;
-  a.mie_sigma_t = frame.mie.y;
-  a.mie_height_m = frame.mie.z;
-  a.mie_g = frame.mie.w;
-  return a;
-}
 
 // Solar disk radiance per unit illuminance, with limb darkening I(m)/I(1) = 1 - u (1 - m),
 // m = cos of the angle at the sun's surface, u = 0.6 (a visible-band average); normalised so
@@ -63,21 +47,27 @@ void main() {
   if (pixel.x >= width || pixel.y >= height) return;
   int index = pixel.y * width + pixel.x;
 
-  vec3 eye = frame.camera_pos_m.xyz;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
                         float(pixel.y), float(width), float(height));
   vec3 sun = frame.sun_dir.xyz;
-  vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
-  SkySample sky = sky_single_scattering(frame_atmosphere(), eye, dir, sun, frame.steps.z,
-                                        frame.steps.w, GROUND_ALBEDO, ground_sky);
+  vec2 uv = sky_view_uv(sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward), dir);
+  bool above_horizon = uv.y >= 0.5f;
+  float rows = float(textureSize(sky_view_lut, 0).y / 2);
+  vec3 sky = textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 0.0f), 0.0f).rgb;
+  vec3 ground_sun = above_horizon
+                        ? vec3(0.0f)
+                        : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f).rgb;
   vec4 cloud, cloud_b;
   cloud_at(pixel.x, pixel.y, cloud, cloud_b);
   float haze = cloud_b.x;
   float ground_shadow = cloud_b.y;  // cloud transmittance towards the sun
-  vec3 background = sky.radiance + sky.ground_sun * ground_shadow +
-                    sky.transmittance * sun_disk(dir, sun, frame.sun_dir.w);
+  // The planet hides the part of the sun's disk below the horizon.
+  vec3 sun_light = above_horizon
+                       ? frame.sun_transmittance.rgb * sun_disk(dir, sun, frame.sun_dir.w)
+                       : vec3(0.0f);
+  vec3 background = sky + ground_sun * ground_shadow + sun_light;
   // The air in front of a cloud scatters as the sky does along this direction.
-  vec3 color = (background * cloud.a + sky.radiance * haze) * frame.sun_illuminance.rgb + cloud.rgb;
+  vec3 color = (background * cloud.a + sky * haze) * frame.sun_illuminance.rgb + cloud.rgb;
   color_out[index] = vec4(color, 1.0f);
 }

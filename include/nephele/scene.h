@@ -36,7 +36,7 @@ struct AtmosphereParams {
   float mie_extinction_per_m = 4.44e-6f;           // sigma_t at sea level (absorption included)
   float mie_scale_height_m = 1200.0f;
   float mie_g = 0.8f;                               // Cornette-Shanks asymmetry, [0, 1)
-  int view_samples = 16;                            // samples along the view ray
+  int view_samples = 16;                            // samples along each sky-view LUT ray
   int light_samples = 8;                            // samples towards the sun
 };
 

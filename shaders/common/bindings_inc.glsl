@@ -24,5 +24,10 @@ layout(std430, set = 0, binding = 12) buffer CloudBuffer { vec4 cloud_out[]; };
 layout(std430, set = 0, binding = 13) buffer LightVolume { float light_volume[]; };
 // Per pixel: linear HDR radiance of the final image.
 layout(std430, set = 0, binding = 8) buffer ColorBuffer { vec4 color_out[]; };
+// Sky-view LUT (common/sky_view_inc.glsl): sky_view.comp writes it, compose.comp samples it.
+// Two stacked tables: rows [0, H) in-scattered radiance, rows [H, 2H) the ground's sun-lit
+// radiance, both per unit solar illuminance.
+layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D sky_view_out;
+layout(set = 0, binding = 10) uniform sampler2D sky_view_lut;
 
 #endif

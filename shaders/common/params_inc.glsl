@@ -41,6 +41,11 @@ struct FrameParams {
   vec4 light_volume;        // xy centre in cloud space (m), z half extent (m), w 1 when in use
   ivec4 size;               // x width, y height, z frame index, w noise seed
   ivec4 steps;              // x primary steps, y light steps, z sky view samples, w sky light samples
+  vec4 sun_transmittance;   // rgb transmittance from the camera towards the sun's centre (0 when
+                            // the planet hides it): the sun disk's colour; w unused
+  vec4 sky_view_up;         // sky-view LUT frame (common/sky_view_inc.glsl): xyz local zenith at
+                            // the camera, w elevation of the planet's horizon (rad, <= 0)
+  vec4 sky_view_forward;    // xyz horizontal unit vector towards the sun's azimuth; w unused
   ivec4 cloud_grid;         // x, y cloud buffer size (pixels); z march stride s (one pixel of
                             // each s x s block is marched per frame); w 1 if the history is valid
   ivec4 march_offset;       // xy the pixel of each block marched this frame; z jitter index;

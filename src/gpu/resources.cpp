@@ -44,8 +44,18 @@ void Buffer::reset() {
   device_ = VK_NULL_HANDLE;
 }
 
-Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format)
+Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
+                 VkSamplerAddressMode address)
     : device_(ctx.device()), width_(width), height_(height), depth_(depth) {
+  // Every texture is written by a compute pass and then sampled with linear filtering.
+  VkFormatProperties props;
+  vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &props);
+  const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT |
+                                      VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                      VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  if ((props.optimalTilingFeatures & needed) != needed)
+    throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
+                       " cannot be a filtered storage image on " + ctx.device_name());
   const bool is_3d = depth > 1;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = is_3d ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
@@ -75,13 +85,11 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
   view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &view_));
 
-  // Noise and weather tile seamlessly: trilinear filtering with repeat addressing.
   VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sampler.magFilter = VK_FILTER_LINEAR;
   sampler.minFilter = VK_FILTER_LINEAR;
   sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  sampler.addressModeU = sampler.addressModeV = sampler.addressModeW =
-      VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = address;
   sampler.maxLod = 0.0f;
   NEPHELE_VK(vkCreateSampler(device_, &sampler, nullptr, &sampler_));
 

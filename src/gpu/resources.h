@@ -36,8 +36,11 @@ class Buffer {
 class Texture {
  public:
   Texture() = default;
-  // depth == 1 makes a 2D image. Sampled with trilinear filtering and repeat addressing.
-  Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format);
+  // depth == 1 makes a 2D image. Sampled with trilinear filtering and `address` on every axis
+  // (repeat for tiling noise and weather, clamp-to-edge for look-up tables). Throws if the
+  // device cannot use `format` as a storage image and sample it with linear filtering.
+  Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
+          VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT);
   ~Texture() { reset(); }
   Texture(Texture&& other) noexcept { *this = std::move(other); }
   Texture& operator=(Texture&& other) noexcept;

@@ -114,6 +114,15 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   f.sun_dir = glm::vec4(sun, std::cos(glm::radians(scene.sun.disk_angular_radius_deg)));
   const glm::vec3 illuminance(scene.sun.illuminance);
   f.sun_illuminance = glm::vec4(illuminance, 0.0f);
+  // The sun disk's colour. Compose hides the disk's pixels below the horizon; a disk whose
+  // centre has set is not drawn at all (its last sliver is lost).
+  const glm::vec3 eye(f.camera_pos_m);
+  f.sun_transmittance =
+      glm::vec4(glsl::atmosphere_transmittance_to_top(atmosphere, eye, sun, 256), 0.0f);
+  // The sky-view LUT's frame, shared by its pass and compose.
+  const glsl::SkyViewFrame sky_view = glsl::sky_view_frame(eye, sun, planet_m);
+  f.sky_view_up = glm::vec4(sky_view.up, sky_view.horizon_elevation_rad);
+  f.sky_view_forward = glm::vec4(sky_view.forward, 0.0f);
 
   // Sunlight and sky light at the middle of the cloud layer above the camera: reddened by the
   // atmosphere when the sun is low.
@@ -145,6 +154,17 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   f.steps = glm::ivec4(scene.quality.primary_steps, scene.quality.light_steps,
                        scene.atmosphere.view_samples, scene.atmosphere.light_samples);
   return f;
+}
+
+SkyViewKey sky_view_key(const gpu::FrameParams& f) {
+  return {.camera_pos_m = glm::vec3(f.camera_pos_m),
+          .sun_dir = glm::vec3(f.sun_dir),
+          .sun_illuminance = glm::vec3(f.sun_illuminance),
+          .ground_sky_light = glm::vec3(f.ground_sky_light),
+          .rayleigh = f.rayleigh,
+          .mie = f.mie,
+          .radii_m = glm::vec2(f.radii_m),
+          .samples = glm::ivec2(f.steps.z, f.steps.w)};
 }
 
 }  // namespace nephele

@@ -25,4 +25,17 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index);
 // Fills the previous frame's camera and the wind's displacement since then (for reprojection).
 void set_previous_frame(gpu::FrameParams& params, const Scene& scene, const Scene& previous);
 
+// What the sky-view LUT depends on: the FrameParams fields sky_view.comp reads (its frame,
+// sky_view_up and sky_view_forward, follows from the camera position and the sun). The camera
+// position gives the LUT's up vector and altitude. The renderer recomputes the LUT only when
+// the key changes.
+struct SkyViewKey {
+  glm::vec3 camera_pos_m, sun_dir, sun_illuminance, ground_sky_light;
+  glm::vec4 rayleigh, mie;
+  glm::vec2 radii_m;   // planet, atmosphere top
+  glm::ivec2 samples;  // view, light
+  bool operator==(const SkyViewKey&) const = default;
+};
+SkyViewKey sky_view_key(const gpu::FrameParams& f);
+
 }  // namespace nephele

@@ -17,6 +17,7 @@ namespace {
 #include "common/phase_inc.glsl"
 #include "common/noise_inc.glsl"
 #include "common/atmosphere_inc.glsl"
+#include "common/sky_view_inc.glsl"
 #include "common/clouds_inc.glsl"
 #include "common/light_volume_inc.glsl"
 }  // namespace

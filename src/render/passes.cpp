@@ -10,6 +10,7 @@ GpuState::GpuState(gpu::Context& c)
       noise_base_kernel(c, set, "noise_base.comp.spv"),
       noise_detail_kernel(c, set, "noise_detail.comp.spv"),
       weather_kernel(c, set, "weather.comp.spv"),
+      sky_view_kernel(c, set, "sky_view.comp.spv"),
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
       resolve_kernel(c, set, "resolve.comp.spv"),
@@ -21,6 +22,9 @@ GpuState::GpuState(gpu::Context& c)
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
                    VK_FORMAT_R8G8B8A8_UNORM),
       weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM),
+      // Half floats hold radiance to 0.05%; clamp-to-edge: the table does not wrap.
+      sky_view(c, kSkyViewWidth, 2 * kSkyViewHeight, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+               VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       light_volume(c, sizeof(float) * gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_Z,
                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
   set.bind_buffer(gpu::kLightVolume, light_volume, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -31,10 +35,8 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_sampled_image(gpu::kBaseNoise, base_noise);
   set.bind_sampled_image(gpu::kDetailNoise, detail_noise);
   set.bind_sampled_image(gpu::kWeatherMap, weather_map);
-  // lavapipe reads every descriptor of the layout when the set is bound: none may be left
-  // unwritten. TEMPORARY until the sky-view LUT owns these bindings.
-  set.bind_storage_image(gpu::kSkyViewOut, weather_map);
-  set.bind_sampled_image(gpu::kSkyView, weather_map);
+  set.bind_storage_image(gpu::kSkyViewOut, sky_view);
+  set.bind_sampled_image(gpu::kSkyView, sky_view);
   resize(1, 1, 1, 1);
 }
 
@@ -77,6 +79,11 @@ void pass_noise_detail(VkCommandBuffer cmd, GpuState& s) {
 void pass_weather(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.weather_kernel, s.set, s.timer, "weather", kWeatherMapSize,
                 kWeatherMapSize, 1, 8, 8, 1);
+}
+
+void pass_sky_view(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.sky_view_kernel, s.set, s.timer, "sky_view", kSkyViewWidth, kSkyViewHeight,
+                1, 8, 8, 1);
 }
 
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {

@@ -13,6 +13,10 @@ namespace nephele {
 constexpr uint32_t kBaseNoiseSize = 128;    // seed 000, 2.2.2: base shape noise 128^3
 constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
 constexpr uint32_t kWeatherMapSize = 512;   // procedural weather map 512^2
+// Sky-view LUT (Hillaire 2020, 5.3): azimuth x elevation texels per table; the image stacks two
+// tables (radiance, sun-lit ground), so it is kSkyViewWidth x 2 kSkyViewHeight.
+constexpr uint32_t kSkyViewWidth = 192;
+constexpr uint32_t kSkyViewHeight = 108;
 
 // Everything the passes read and write.
 struct GpuState {
@@ -25,11 +29,11 @@ struct GpuState {
   gpu::Context& ctx;
   gpu::DescriptorSet set;
   gpu::Kernel noise_base_kernel, noise_detail_kernel, weather_kernel;
-  gpu::Kernel clouds_default_kernel, clouds_baseline_kernel, resolve_kernel, compose_kernel;
-  gpu::Kernel light_volume_kernel;
+  gpu::Kernel sky_view_kernel, clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
+  gpu::Kernel compose_kernel, light_volume_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
-  gpu::Texture base_noise, detail_noise, weather_map;
+  gpu::Texture base_noise, detail_noise, weather_map, sky_view;
   gpu::Buffer march_buffer, color_buffer, light_volume;
   gpu::Buffer cloud_buffers[2];  // this frame's cloud buffer and the previous one (history)
   int current = 0;               // index of this frame's cloud buffer
@@ -40,6 +44,8 @@ struct GpuState {
 void pass_noise_base(VkCommandBuffer cmd, GpuState& s);
 void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
 void pass_weather(VkCommandBuffer cmd, GpuState& s);
+// Only when its inputs change (the renderer caches it by sky_view_key).
+void pass_sky_view(VkCommandBuffer cmd, GpuState& s);
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s);

@@ -36,6 +36,8 @@ struct Renderer::Impl {
   // Sets params.light_volume; true when the volume must be rebuilt this frame.
   bool plan_light_volume(const Scene& scene, const std::string& key, gpu::FrameParams& params);
 
+  std::optional<SkyViewKey> sky_view_built;  // inputs of the sky-view LUT in the texture
+
   Frame render_frame(const Scene& scene, bool still, bool read_back);
 
   void update_textures(const Scene& scene);
@@ -246,8 +248,14 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   update_textures(scene);
   s.swap_history();
 
+  // The sky-view LUT depends on the sun, the camera's position and the atmosphere only: a
+  // camera turning or clouds changing reuse it.
+  const SkyViewKey sky_key = sky_view_key(params);
+  const bool sky_stale = sky_view_built != sky_key;
+  sky_view_built.reset();  // until the command buffer below has completed
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     s.timer.reset(cmd);
+    if (sky_stale) pass_sky_view(cmd, s);
     if (build_light_volume) pass_light_volume(cmd, s);
     pass_clouds(cmd, s, scene.quality.mode);
     pass_resolve(cmd, s);
@@ -256,6 +264,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   previous = scene;
   previous_key = key;
   ++frame_counter;
+  sky_view_built = sky_key;
 
   Frame frame;
   FrameStats& stats = frame.stats;
@@ -279,7 +288,10 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (verbose)
     for (const PassTiming& p : stats.passes)
-      std::fprintf(stderr, "nephele: pass %-12s %8.2f ms\n", p.name.c_str(), p.ms);
+      std::fprintf(stderr, "nephele: pass %-12s %8.2f ms%s\n", p.name.c_str(), p.ms,
+                   p.name == "sky_view"
+                       ? " (cached until the sun, the camera position or the atmosphere change)"
+                       : "");
   return frame;
 }
 

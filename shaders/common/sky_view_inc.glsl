@@ -1,0 +1,113 @@
+// Sky-view look-up table (Hillaire 2020, "A Scalable and Production Ready Sky and Atmosphere
+// Rendering Technique", section 5.3): the sky seen from the camera as a latitude/longitude table
+// in a local frame at the camera, filled by sky_view.comp and sampled bilinearly by compose.comp.
+// u: azimuth relative to the sun's azimuth. Single scattering around a spherical planet is
+// mirror-symmetric about the sun's vertical plane, so u covers |azimuth| in [0, pi] only
+// (u = 0 towards the sun, u = 1 away from it): twice the resolution for the same texels.
+// v: elevation l relative to the planet's horizon seen from the camera,
+// v = 0.5 + 0.5 sign(l) sqrt(|l| / range), range the angle from the horizon to the zenith
+// (above) or to the nadir (below), as in Hillaire's code: texels crowd at the horizon, where
+// the sky changes fastest, and the horizon is exactly the row boundary v = 0.5.
+// Pure functions, also compiled as C++ (src/render/glsl.h).
+#ifndef NEPHELE_SKY_VIEW_INC
+#define NEPHELE_SKY_VIEW_INC
+
+struct SkyViewFrame {
+  vec3 up;                      // local zenith at the camera
+  vec3 forward;                 // horizontal, towards the sun's azimuth (u = 0)
+  vec3 side;                    // up x forward
+  float horizon_elevation_rad;  // elevation of the planet's horizon seen from the camera, <= 0
+};
+
+// The frame at `eye` (planet frame, m) for the sun in unit direction `sun`.
+SkyViewFrame sky_view_frame(vec3 eye, vec3 sun, float planet_radius_m) {
+  SkyViewFrame f;
+  f.up = normalize(eye);
+  vec3 horizontal = sun - dot(sun, f.up) * f.up;
+  if (dot(horizontal, horizontal) < 1e-12f) {
+    // Sun at the zenith or nadir: the sky is symmetric about the up axis, any azimuth will do.
+    vec3 axis = abs(f.up.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+    horizontal = axis - dot(axis, f.up) * f.up;
+  }
+  f.forward = normalize(horizontal);
+  f.side = cross(f.up, f.forward);
+  // The horizon dips acos(R / r) below the horizontal; asin(sqrt(r^2 - R^2) / r) is the same
+  // angle and stays accurate in float for r close to R.
+  float r = length(eye);
+  float height_m = max(r - planet_radius_m, 0.0f);
+  f.horizon_elevation_rad = -asin(min(sqrt(height_m * (r + planet_radius_m)) / r, 1.0f));
+  return f;
+}
+
+// The frame as FrameParams carries it: computed once a frame on the CPU (with the function
+// above compiled as C++), so every pass and pixel uses the same one.
+SkyViewFrame sky_view_frame_from(vec4 up_and_horizon_elevation, vec4 forward) {
+  SkyViewFrame f;
+  f.up = vec3(up_and_horizon_elevation);
+  f.forward = vec3(forward);
+  f.side = cross(f.up, f.forward);
+  f.horizon_elevation_rad = up_and_horizon_elevation.w;
+  return f;
+}
+
+// Angles (rad) from the horizon up to the zenith and down to the nadir.
+float sky_view_range_above(SkyViewFrame f) { return 0.5f * PI - f.horizon_elevation_rad; }
+float sky_view_range_below(SkyViewFrame f) {
+  return max(0.5f * PI + f.horizon_elevation_rad, 1e-6f);
+}
+
+// LUT coordinates in [0, 1]^2 of unit direction `dir`; v < 0.5 exactly when `dir` is below
+// the horizon.
+vec2 sky_view_uv(SkyViewFrame f, vec3 dir) {
+  float x = dot(dir, f.forward);
+  float y = abs(dot(dir, f.side));
+  float z = dot(dir, f.up);
+  float horizontal = sqrt(x * x + y * y);
+  // acos and asin rather than two atan: about 1 ms less of compose at 900x600 on lavapipe. They
+  // lose accuracy only next to the sun's vertical plane and the zenith (a few 1e-4 rad, a
+  // thirtieth of a texel), none at the horizon.
+  float u = horizontal > 1e-7f ? acos(clamp(x / horizontal, -1.0f, 1.0f)) / PI : 0.0f;
+  float l = asin(clamp(z, -1.0f, 1.0f)) - f.horizon_elevation_rad;
+  float v = l >= 0.0f ? 0.5f + 0.5f * sqrt(l / sky_view_range_above(f))
+                      : 0.5f - 0.5f * sqrt(-l / sky_view_range_below(f));
+  return vec2(u, v);
+}
+
+// Unit direction of LUT coordinates `uv` (the inverse of sky_view_uv for y >= 0).
+vec3 sky_view_dir(SkyViewFrame f, vec2 uv) {
+  float s = 2.0f * uv.y - 1.0f;
+  float l = s >= 0.0f ? sky_view_range_above(f) * s * s : -sky_view_range_below(f) * s * s;
+  float elevation = f.horizon_elevation_rad + l;
+  float azimuth = PI * uv.x;
+  return cos(elevation) * (cos(azimuth) * f.forward + sin(azimuth) * f.side) +
+         sin(elevation) * f.up;
+}
+
+// The direction whose sky the LUT texel at `uv` holds, for the camera at `eye`: the texel
+// centre's, moved away from the horizon while ray_sphere, which decides whether a ray ends on
+// the ground, puts it on the other side of the planet's edge than the mapping does. (Close to
+// the ground the rows next to the horizon pass the edge by less than a metre, within float
+// rounding of planet-scale positions.)
+vec3 sky_view_texel_dir(SkyViewFrame f, vec2 uv, vec3 eye, float planet_radius_m) {
+  bool below = uv.y < 0.5f;
+  vec3 dir = sky_view_dir(f, uv);
+  for (int i = 0; i < 8 && (ray_sphere(eye, dir, planet_radius_m).x > 0.0f) != below; ++i) {
+    uv.y = 0.5f + 1.41421356f * (uv.y - 0.5f);  // twice the angle from the horizon
+    dir = sky_view_dir(f, uv);
+  }
+  return dir;
+}
+
+// Texture coordinates in the LUT image, which stacks two tables of `rows` rows each (table 0:
+// rows [0, rows), table 1: rows [rows, 2 rows)), for LUT coordinates `uv`. v stays half a
+// texel away from the horizon on uv's side of it and from the table's ends, so the bilinear
+// filter never blends ground into sky nor one table into the other; u is clamped to the edge by
+// the sampler (by the mirror symmetry the table is flat across u = 0 and u = 1).
+vec2 sky_view_texcoord(vec2 uv, float rows, float table) {
+  float half_texel = 0.5f / rows;
+  float v = uv.y < 0.5f ? clamp(uv.y, half_texel, 0.5f - half_texel)
+                        : clamp(uv.y, 0.5f + half_texel, 1.0f - half_texel);
+  return vec2(uv.x, 0.5f * (table + v));
+}
+
+#endif
