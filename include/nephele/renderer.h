@@ -46,7 +46,7 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // Validates the scene (throws InputError), then renders a still image: every cloud pixel is
-  // marched. Noise and weather textures are cached and rebuilt only when their parameters
+  // marched, at full resolution. Noise and weather textures are cached and rebuilt only when their parameters
   // change. The frame also starts the history that render_next() continues from.
   Frame render(const Scene& scene);
 

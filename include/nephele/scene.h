@@ -76,7 +76,8 @@ struct QualityParams {
   // every march_stride x march_stride block of the cloud buffer and reprojects the rest from
   // the previous frame. 1, 2 or 4; 1 = every pixel every frame. A still image marches all.
   int march_stride = 4;
-  // The cloud buffer has 1 / cloud_downsample of the image's pixels per axis, 1 to 4.
+  // Animation frames' cloud buffer has 1 / cloud_downsample of the image's pixels per axis,
+  // 1 to 4 (still images: full resolution).
   int cloud_downsample = 2;
   // Half extent (km) of the light volume: the optical depth towards the sun precomputed on a
   // grid around the camera (fine near it, coarse far away) and looked up by cloud samples

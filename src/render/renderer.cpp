@@ -222,9 +222,10 @@ Frame Renderer::render_next(const Scene& scene, bool read_back) {
 Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_back) {
   validate_scene(scene);
   const auto start = std::chrono::steady_clock::now();
-  // The seed's algorithm (baseline) is run as written: every pixel, every frame.
+  // The seed's algorithm (baseline) is run as written: every pixel, every frame. A still image
+  // marches every pixel at full resolution.
   const bool baseline = scene.quality.mode == MarchMode::Baseline;
-  const int downsample = baseline ? 1 : scene.quality.cloud_downsample;
+  const int downsample = baseline || still ? 1 : scene.quality.cloud_downsample;
   const int stride = still || baseline ? 1 : scene.quality.march_stride;
   const int cloud_w = (scene.output.width + downsample - 1) / downsample;
   const int cloud_h = (scene.output.height + downsample - 1) / downsample;

@@ -16,12 +16,14 @@ using nephele::Scene;
 
 namespace {
 
-// A view from the ground into scattered cumulus, wind on.
+// A view from the ground into scattered cumulus, wind on; clouds at full resolution, as still
+// images have them.
 Scene view() {
   Scene s = nephele::load_preset("default");
   s.output.width = 160;
   s.output.height = 100;
   s.camera.view_dir = {0.0f, 1.0f, 0.35f};
+  s.quality.cloud_downsample = 1;
   return s;
 }
 
@@ -74,7 +76,6 @@ TEST_F(TemporalTest, ReprojectionFollowsTheWind) {
 TEST_F(TemporalTest, TurningCameraMatchesTheStillImageEdgesIncluded) {
   Scene s = view();
   s.clouds.wind_mps = {0.0f, 0.0f};
-  s.quality.cloud_downsample = 1;  // enough marched samples at this small size
   render(s);
   Frame frame;
   for (int i = 1; i <= 24; ++i) frame = shared_renderer().render_next(turned(s, 1.0f * i));
@@ -92,6 +93,20 @@ TEST_F(TemporalTest, TurningCameraMatchesTheStillImageEdgesIncluded) {
       }
     EXPECT_LT(luminance_error(a, b), 0.2) << (side ? "right" : "left") << " edge";
   }
+}
+
+// Animation frames with clouds at half resolution per axis, upsampled in compose, stay close to
+// the full-resolution still image.
+TEST_F(TemporalTest, HalfResolutionCloudsStayClose) {
+  Scene s = view();
+  s.output.width = 480;
+  s.output.height = 300;
+  s.clouds.wind_mps = {0.0f, 0.0f};
+  s.quality.cloud_downsample = 2;
+  const Frame still = render(s);
+  Frame frame;
+  for (int i = 0; i < 32; ++i) frame = shared_renderer().render_next(s);
+  EXPECT_LT(luminance_error(frame.color, still.color), 0.03);
 }
 
 // A change of the clouds restarts the history: overcast, then clear, shows no stale cloud.
