@@ -207,7 +207,7 @@ void main() {
     bool fine = false;
     int misses = 0;
     float fine_until = 0.0f;  // stay fine at least past the coarse sample that hit
-    for (int i = 0; i < 2 * frame.steps.x && t < segment.y; ++i) {
+    for (int i = 0; i < 4 * frame.steps.x && t < segment.y; ++i) {
       float fine_step = max(fine_base, FINE_PER_M * t);
       float coarse_step = COARSE_STEPS * fine_step;
       vec3 pos = eye + dir * t;
