@@ -129,9 +129,9 @@ float light_optical_depth(vec3 pos, vec3 sun) {
   }
   float length_m = light_ray_length(pos, sun);
   if (light_volume_covers(pos)) {
-    // March the first two voxels (where the volume is too coarse for the light's fast change
+    // March the first voxel (where the volume is too coarse for the light's fast change
     // at a cloud's surface), look the rest up where that march ends.
-    float near_m = min(2.0f * light_volume_voxel_at(pos), length_m);
+    float near_m = min(light_volume_voxel_at(pos), length_m);
     float depth = march_light(pos, sun, 0.0f, near_m, frame.steps.y);
     if (near_m < length_m) depth += light_volume_lookup(pos + sun * near_m);
     return depth;

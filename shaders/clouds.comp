@@ -23,9 +23,10 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"
 
-const float FAR_M = 1.0e7f;
+const float FAR_M = 1.0e7f;  // distance written for rays that meet neither cloud nor ground
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
-const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance  // distance written for rays that meet neither cloud nor ground
+const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance
+const float TAU_STEP_96 = 0.5f;     // optical depth per step in dense cloud at 96 primary steps
 
 // Transmittance of the air over `dist_m` from the eye to a cloud sample at altitude
 // `sample_alt_m`, with the extinction taken at the mean altitude (a simple aerial perspective;
@@ -230,7 +231,8 @@ void main() {
       }
       misses = 0;
       float sigma_t = density * sigma_scale * view_atten;
-      float step_m = clamp(0.5f / sigma_t, 2.0f, fine_step);
+      // At most TAU_STEP_96 * 96 / primary_steps of optical depth per step (0.5 at 96 steps).
+      float step_m = clamp(TAU_STEP_96 * 96.0f / (float(frame.steps.x) * sigma_t), 1.0f, fine_step);
       float tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten;
       float energy = multiple_scattering(tau_light, mu, powder, phases);
       float h = altitude_fraction(pos);
