@@ -41,8 +41,8 @@ vec3 air_transmittance(float eye_alt_m, float sample_alt_m, float dist_m) {
 // sun through the cloud layer, 1 when the ray misses the ground. From the light volume where
 // it reaches, else 16 samples of the full density (coarser sampling turns thin wisps into deep
 // shadow).
-float ground_shadow(vec3 eye, vec3 dir, vec3 sun) {
-  vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
+// `ground` is ray_sphere(eye, dir, planet radius).
+float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   if (ground.x <= 0.0f) return 1.0f;
   vec3 p = normalize(eye + dir * ground.x) * (frame.radii_m.x + 1.0f);
   vec2 inner = ray_sphere(p, sun, frame.radii_m.z);
@@ -89,11 +89,11 @@ float multiple_scattering(float tau_light, float mu, float powder, vec4 phases) 
 }
 
 // The part of the view ray inside the cloud shell: (t_enter, t_exit), empty if exit <= enter.
-vec2 shell_segment(vec3 eye, vec3 dir) {
+// `ground` is ray_sphere(eye, dir, planet radius).
+vec2 shell_segment(vec3 eye, vec3 dir, vec2 ground) {
   float r = length(eye);
   vec2 inner = ray_sphere(eye, dir, frame.radii_m.z);
   vec2 outer = ray_sphere(eye, dir, frame.radii_m.w);
-  vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   if (outer.y <= 0.0f) return vec2(0.0f);  // the shell is behind
   float t_enter;
   float t_exit;
@@ -136,10 +136,10 @@ void main() {
                         float(pixel.y), float(width), float(height));
   vec3 sun = frame.sun_dir.xyz;
   float mu = dot(dir, sun);
-  vec2 segment = shell_segment(eye, dir);
-  float shadow = ground_shadow(eye, dir, sun);
+  vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
+  vec2 segment = shell_segment(eye, dir, ground);
+  float shadow = ground_shadow(eye, dir, sun, ground);
   if (segment.y <= segment.x) {
-    vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
     write_sample(index, vec3(0.0f), 1.0f, 0.0f, shadow, ground.x > 0.0f ? ground.x : FAR_M);
     return;
   }
@@ -255,7 +255,6 @@ void main() {
   float opacity = 1.0f - (MARCH_MODE == 1 ? transmittance.g : transmittance.x);
   // Where the pixel's content is, for reprojection: the cloud's opacity-weighted distance,
   // else the ground, else the middle of the cloud shell along the ray.
-  vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   float empty_m = ground.x > 0.0f ? ground.x : 0.5f * (segment.x + segment.y);
   float distance_m = opacity > 1e-3f ? weighted_t / opacity : empty_m;
   write_sample(index, scattered, t_mean, haze, shadow, distance_m);

@@ -36,6 +36,13 @@ Scene turned(Scene s, float deg) {
   return s;
 }
 
+// The last of `n` animation frames of an unchanging scene (after a still image of it).
+Frame still_frames(const Scene& s, int n) {
+  Frame frame;
+  for (int i = 0; i < n; ++i) frame = shared_renderer().render_next(s);
+  return frame;
+}
+
 class TemporalTest : public RenderTest {};
 
 }  // namespace
@@ -46,8 +53,7 @@ TEST_F(TemporalTest, StillViewStaysTheStillImage) {
   Scene s = view();
   s.clouds.wind_mps = {0.0f, 0.0f};
   const Frame still = render(s);
-  Frame frame;
-  for (int i = 0; i < 32; ++i) frame = shared_renderer().render_next(s);
+  const Frame frame = still_frames(s, 32);
   EXPECT_LT(luminance_error(frame.color, still.color), 0.01);
 }
 
@@ -104,8 +110,7 @@ TEST_F(TemporalTest, HalfResolutionCloudsStayClose) {
   s.clouds.wind_mps = {0.0f, 0.0f};
   s.quality.cloud_downsample = 2;
   const Frame still = render(s);
-  Frame frame;
-  for (int i = 0; i < 32; ++i) frame = shared_renderer().render_next(s);
+  const Frame frame = still_frames(s, 32);
   EXPECT_LT(luminance_error(frame.color, still.color), 0.03);
 }
 
