@@ -49,16 +49,13 @@ float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   vec2 outer = ray_sphere(p, sun, frame.radii_m.w);
   if (inner.y <= 0.0f || outer.y <= inner.y) return 1.0f;
   vec3 base = p + sun * inner.y;  // where the sunlight leaves the cloud layer
-  float depth;
-  if (MARCH_MODE == 0 && light_volume_covers(base)) {
-    depth = light_volume_lookup(base);
-  } else {
-    const int n = 16;
-    float ds = (outer.y - inner.y) / float(n);
-    depth = 0.0f;
-    for (int i = 0; i < n; ++i) depth += cloud_density(base + sun * ((float(i) + 0.5f) * ds), true);
-    depth *= ds;
-  }
+  bool covered = MARCH_MODE == 0 && light_volume_covers(base);
+  float depth = covered ? light_volume_lookup(base) : 0.0f;
+  // A loop with a per-lane trip count, not a branch: a CPU device executes both sides of a
+  // branch, but ends a loop once no lane has iterations left.
+  int n = covered ? 0 : 16;
+  float ds = (outer.y - inner.y) / 16.0f;
+  for (int i = 0; i < n; ++i) depth += cloud_density(base + sun * ((float(i) + 0.5f) * ds), true) * ds;
   return exp(-depth * frame.cloud_shape.z * frame.cloud_light.y);
 }
 
@@ -111,11 +108,11 @@ vec2 shell_segment(vec3 eye, vec3 dir, vec2 ground) {
   return vec2(t_enter, t_exit);
 }
 
-// Writes the two vec4 of the marched sample number `index` (see bindings_inc.glsl).
-void write_sample(int index, vec3 scattered, float transmittance, float haze, float shadow,
+// Writes the marched sample of `block` (see bindings_inc.glsl).
+void write_sample(ivec2 block, vec3 scattered, float transmittance, float haze, float shadow,
                   float distance_m) {
-  march_out[2 * index] = vec4(scattered, transmittance);
-  march_out[2 * index + 1] = vec4(haze, shadow, distance_m, 0.0f);
+  imageStore(march_a_out, block, vec4(scattered, transmittance));
+  imageStore(march_b_out, block, vec4(haze, shadow, distance_m * 1e-3f, 1.0f));
 }
 
 // One thread per stride x stride block of the cloud buffer: it marches the block's pixel
@@ -128,7 +125,6 @@ void main() {
   int width = frame.cloud_grid.x;
   int height = frame.cloud_grid.y;
   if (block.x >= blocks_x || pixel.x >= width || pixel.y >= height) return;
-  int index = block.y * blocks_x + block.x;
 
   vec3 eye = frame.camera_pos_m.xyz;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
@@ -140,7 +136,7 @@ void main() {
   vec2 segment = shell_segment(eye, dir, ground);
   float shadow = ground_shadow(eye, dir, sun, ground);
   if (segment.y <= segment.x) {
-    write_sample(index, vec3(0.0f), 1.0f, 0.0f, shadow, ground.x > 0.0f ? ground.x : FAR_M);
+    write_sample(block, vec3(0.0f), 1.0f, 0.0f, shadow, ground.x > 0.0f ? ground.x : FAR_M);
     return;
   }
   float eye_alt_m = length(eye) - frame.radii_m.x;
@@ -173,7 +169,7 @@ void main() {
       vec3 pos = eye + dir * t;
       float density = cloud_density(pos, true);
       if (density > 0.01f) {
-        vec3 tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten *
+        vec3 tau_light = seed_light_optical_depth(pos, sun) * sigma_scale * light_atten *
                          SEED_EXTINCTION_MULT;
         vec3 beer = exp(-tau_light) * phase;
         vec3 powder_term = 1.0f - exp(-2.0f * tau_light);
@@ -200,6 +196,12 @@ void main() {
     // hit it returns to coarse steps. Both step sizes grow with distance so far rays stay
     // affordable; the start is jittered per pixel and frame so the step pattern becomes fine
     // noise that the temporal resolve averages away.
+    //
+    // Each iteration evaluates the density field once: at the next point of the view ray, or
+    // at the next point of the light march of the sample being lit (light_k > 0). A SIMD
+    // device that executes every branch for all its lanes (lavapipe) then pays one density
+    // per iteration instead of a primary and a whole light march, and the lanes of a batch
+    // stay busy whether their rays cross empty sky or cloud.
     float fine_base = thickness / float(frame.steps.x);
     // A new jitter pattern per frame index (Jimenez 2014: offset the pixel by 5.588238 per frame).
     float shift = 5.588238f * float(frame.march_offset.z);
@@ -208,12 +210,51 @@ void main() {
     bool fine = false;
     int misses = 0;
     float fine_until = 0.0f;  // stay fine at least past the coarse sample that hit
-    for (int i = 0; i < 4 * frame.steps.x && t < segment.y; ++i) {
+    int primary = 0;          // view-ray iterations so far
+    int light_n = frame.steps.y;
+    int light_k = 0;          // 0: next view-ray point; k > 0: light march step k of the sample
+    vec3 lit_pos = eye;       // the sample being lit, its sigma_t, step and the light march
+    float lit_sigma_t = 0.0f, lit_step_m = 0.0f, lit_unit_m = 0.0f, lit_near_m = 0.0f;
+    float lit_depth = 0.0f;   // optical depth gathered so far (density field x m)
+    bool lit_volume = false;  // look the rest up in the light volume
+    int budget = 4 * frame.steps.x * (light_n + 1);
+    for (int i = 0; i < budget && t < segment.y && transmittance.x >= 0.01f; ++i) {
+      bool lighting = light_k > 0;
+      // Light march steps grow linearly: step k is k units long and starts k (k - 1) / 2 units in.
+      float seg_m = lit_unit_m * float(light_k);
+      float mid_m = lit_unit_m * 0.5f * float(light_k * (light_k - 1)) + 0.5f * seg_m;
+      vec3 pos = lighting ? lit_pos + sun * mid_m : eye + dir * t;
+      vec2 field = cloud_density_pair(pos);
       float fine_step = max(fine_base, FINE_PER_M * t);
       float coarse_step = COARSE_STEPS * fine_step;
-      vec3 pos = eye + dir * t;
+
+      if (lighting) {
+        lit_depth += field.y * seg_m;
+        if (light_k < light_n) {
+          ++light_k;
+          continue;
+        }
+        // The light march is done: shade the sample and step on along the view ray.
+        light_k = 0;
+        float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
+        float tau_light = depth * sigma_scale * light_atten;
+        float energy = multiple_scattering(tau_light, mu, powder, phases);
+        float h = altitude_fraction(lit_pos);
+        vec3 luminance = albedo * (sun_light * energy + ambient * mix(0.5f, 1.0f, h));
+        float step_t = exp(-lit_sigma_t * lit_step_m);
+        vec3 air = air_transmittance(eye_alt_m, length(lit_pos) - frame.radii_m.x, t);
+        // Energy-conserving integration over the step (Hillaire 2016).
+        scattered += transmittance * air * luminance * (1.0f - step_t);
+        haze += transmittance.x * (1.0f - air.g) * (1.0f - step_t);
+        weighted_t += t * transmittance.x * (1.0f - step_t);
+        transmittance *= step_t;
+        t += lit_step_m;
+        continue;
+      }
+
+      if (++primary > 4 * frame.steps.x) break;
       if (!fine) {
-        if (cloud_density(pos, false) <= 0.0f) {
+        if (field.x <= 0.0f) {
           t += coarse_step;
           continue;
         }
@@ -223,33 +264,29 @@ void main() {
         t = max(t - coarse_step, segment.x);
         continue;
       }
-      float density = cloud_density(pos, true);
-      if (density <= 0.0f) {
+      if (field.y <= 0.0f) {
         if (++misses >= 6 && t > fine_until) fine = false;
         t += fine_step;
         continue;
       }
       misses = 0;
-      float sigma_t = density * sigma_scale * view_atten;
+      // Light this sample in the next light_n iterations: march the first voxel of the light
+      // volume towards the sun (where it is too coarse for the light's fast change at a cloud's
+      // surface) and look the rest up where that march ends; without the volume, march all.
+      float sigma_t = field.y * sigma_scale * view_atten;
       // At most TAU_STEP_96 * 96 / primary_steps of optical depth per step (0.5 at 96 steps).
-      float step_m = clamp(TAU_STEP_96 * 96.0f / (float(frame.steps.x) * sigma_t), 1.0f, fine_step);
-      float tau_light = light_optical_depth(pos, sun) * sigma_scale * light_atten;
-      float energy = multiple_scattering(tau_light, mu, powder, phases);
-      float h = altitude_fraction(pos);
-      vec3 luminance = albedo * (sun_light * energy + ambient * mix(0.5f, 1.0f, h));
-      float step_t = exp(-sigma_t * step_m);
-      vec3 air = air_transmittance(eye_alt_m, length(pos) - frame.radii_m.x, t);
-      // Energy-conserving integration over the step (Hillaire 2016).
-      scattered += transmittance * air * luminance * (1.0f - step_t);
-      haze += transmittance.x * (1.0f - air.g) * (1.0f - step_t);
-      weighted_t += t * transmittance.x * (1.0f - step_t);
-      transmittance *= step_t;
-      if (transmittance.x < 0.01f) {
-        transmittance = vec3(0.0f);
-        break;
-      }
-      t += step_m;
+      lit_step_m = clamp(TAU_STEP_96 * 96.0f / (float(frame.steps.x) * sigma_t), 1.0f, fine_step);
+      lit_sigma_t = sigma_t;
+      lit_pos = pos;
+      float length_m = light_ray_length(pos, sun);
+      lit_volume = light_volume_covers(pos);
+      lit_near_m = lit_volume ? min(light_volume_voxel_at(pos), length_m) : length_m;
+      lit_volume = lit_volume && lit_near_m < length_m;
+      lit_unit_m = lit_near_m / float(light_n * (light_n + 1) / 2);
+      lit_depth = 0.0f;
+      light_k = 1;
     }
+    if (transmittance.x < 0.01f) transmittance = vec3(0.0f);
   }
   float t_mean = (transmittance.r + transmittance.g + transmittance.b) / 3.0f;
   float opacity = 1.0f - (MARCH_MODE == 1 ? transmittance.g : transmittance.x);
@@ -257,5 +294,5 @@ void main() {
   // else the ground, else the middle of the cloud shell along the ray.
   float empty_m = ground.x > 0.0f ? ground.x : 0.5f * (segment.x + segment.y);
   float distance_m = opacity > 1e-3f ? weighted_t / opacity : empty_m;
-  write_sample(index, scattered, t_mean, haze, shadow, distance_m);
+  write_sample(block, scattered, t_mean, haze, shadow, distance_m);
 }

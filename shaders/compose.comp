@@ -24,20 +24,12 @@ float sun_disk(vec3 dir, vec3 sun, float cos_radius) {
   return (1.0f - u * (1.0f - m)) / ((1.0f - u / 3.0f) * solid_angle);
 }
 
-// The resolved cloud buffer at image pixel (x, y): bilinear when the clouds are rendered at a
-// lower resolution than the image (both grids span the same field of view).
+// The resolved cloud buffer at image pixel (x, y), filtered bilinearly when the clouds are
+// rendered at a lower resolution than the image (both grids span the same field of view).
 void cloud_at(int x, int y, out vec4 a, out vec4 b) {
-  ivec2 grid = frame.cloud_grid.xy;
-  vec2 g = (vec2(x, y) + 0.5f) * vec2(grid) / vec2(frame.size.xy) - 0.5f;
-  g = clamp(g, vec2(0.0f), vec2(grid - 1));
-  ivec2 i0 = ivec2(floor(g));
-  ivec2 i1 = min(i0 + 1, grid - 1);
-  vec2 f = g - vec2(i0);
-  int i00 = 2 * (i0.y * grid.x + i0.x), i10 = 2 * (i0.y * grid.x + i1.x);
-  int i01 = 2 * (i1.y * grid.x + i0.x), i11 = 2 * (i1.y * grid.x + i1.x);
-  a = mix(mix(cloud_out[i00], cloud_out[i10], f.x), mix(cloud_out[i01], cloud_out[i11], f.x), f.y);
-  b = mix(mix(cloud_out[i00 + 1], cloud_out[i10 + 1], f.x),
-          mix(cloud_out[i01 + 1], cloud_out[i11 + 1], f.x), f.y);
+  vec2 uv = (vec2(x, y) + 0.5f) / vec2(frame.size.xy);
+  a = textureLod(clouds_a, uv, 0.0f);
+  b = textureLod(clouds_b, uv, 0.0f);
 }
 
 void main() {
@@ -45,7 +37,6 @@ void main() {
   int width = frame.size.x;
   int height = frame.size.y;
   if (pixel.x >= width || pixel.y >= height) return;
-  int index = pixel.y * width + pixel.x;
 
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
@@ -69,5 +60,5 @@ void main() {
   vec3 background = sky + ground_sun * ground_shadow + sun_light;
   // The air in front of a cloud scatters as the sky does along this direction.
   vec3 color = (background * cloud.a + sky * haze) * frame.sun_illuminance.rgb + cloud.rgb;
-  color_out[index] = vec4(color, 1.0f);
+  imageStore(color_out, pixel, vec4(color, 1.0f));
 }

@@ -24,6 +24,6 @@ void main() {
   float r = mix(frame.radii_m.z, frame.radii_m.w, h);
   vec3 pos = vec3(xy, sqrt(max(r * r - dot(xy, xy), 0.0f)));
   vec3 sun = frame.sun_dir.xyz;
-  light_volume[(v.z * LIGHT_VOLUME_XY + v.y) * LIGHT_VOLUME_XY + v.x] =
-      march_light(pos, sun, 0.0f, light_ray_length(pos, sun), VOLUME_LIGHT_STEPS);
+  float depth = march_light(pos, sun, 0.0f, light_ray_length(pos, sun), VOLUME_LIGHT_STEPS);
+  imageStore(light_volume_out, v, vec4(depth));
 }

@@ -12,22 +12,33 @@ layout(set = 0, binding = 3, rgba8) uniform writeonly image2D weather_out;
 layout(set = 0, binding = 4) uniform sampler3D base_noise;
 layout(set = 0, binding = 5) uniform sampler3D detail_noise;
 layout(set = 0, binding = 6) uniform sampler2D weather_map;
-// Cloud samples: two vec4 per cloud pixel (see clouds.comp): (rgb in-scattered cloud radiance,
-// a cloud transmittance), (x haze weight, y ground shadow, z cloud distance (m), w unused).
-// march_out: the pixels marched this frame, one per stride x stride block (clouds.comp);
-// history: the previous frame's full cloud buffer; cloud_out: this frame's (resolve.comp).
-layout(std430, set = 0, binding = 7) buffer MarchBuffer { vec4 march_out[]; };
-layout(std430, set = 0, binding = 11) readonly buffer HistoryBuffer { vec4 history[]; };
-layout(std430, set = 0, binding = 12) buffer CloudBuffer { vec4 cloud_out[]; };
-// Optical depth towards the sun (density field x metres) on the light volume's grid
-// (common/light_volume_inc.glsl), x fastest: LIGHT_VOLUME_XY^2 x LIGHT_VOLUME_Z floats.
-layout(std430, set = 0, binding = 13) buffer LightVolume { float light_volume[]; };
-// Per pixel: linear HDR radiance of the final image.
-layout(std430, set = 0, binding = 8) buffer ColorBuffer { vec4 color_out[]; };
 // Sky-view LUT (common/sky_view_inc.glsl): sky_view.comp writes it, compose.comp samples it.
 // Two stacked tables: rows [0, H) in-scattered radiance, rows [H, 2H) the ground's sun-lit
 // radiance, both per unit solar illuminance.
-layout(set = 0, binding = 9, rgba16f) uniform writeonly image2D sky_view_out;
-layout(set = 0, binding = 10) uniform sampler2D sky_view_lut;
+layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D sky_view_out;
+layout(set = 0, binding = 8) uniform sampler2D sky_view_lut;
+// Optical depth towards the sun (density field x metres) on the light volume's grid
+// (common/light_volume_inc.glsl): LIGHT_VOLUME_XY^2 x LIGHT_VOLUME_Z texels, written by
+// light_volume.comp, sampled with trilinear filtering.
+layout(set = 0, binding = 9, r32f) uniform writeonly image3D light_volume_out;
+layout(set = 0, binding = 10) uniform sampler3D light_volume;
+// Cloud samples: two images per cloud buffer, A = (rgb in-scattered cloud radiance, a cloud
+// transmittance), B = (x haze weight, y ground shadow, z cloud distance (km), w samples
+// averaged). march: the pixels marched this frame, one texel per stride x stride block
+// (clouds.comp); clouds: this frame's full cloud buffer (resolve.comp), history: the previous
+// frame's. Images, not storage buffers: a CPU device (lavapipe) reads and writes images with
+// vector gathers, buffers one lane at a time.
+layout(set = 0, binding = 11, rgba16f) uniform writeonly image2D march_a_out;
+layout(set = 0, binding = 12, rgba16f) uniform writeonly image2D march_b_out;
+layout(set = 0, binding = 13) uniform sampler2D march_a;
+layout(set = 0, binding = 14) uniform sampler2D march_b;
+layout(set = 0, binding = 15, rgba16f) uniform writeonly image2D clouds_a_out;
+layout(set = 0, binding = 16, rgba16f) uniform writeonly image2D clouds_b_out;
+layout(set = 0, binding = 17) uniform sampler2D clouds_a;
+layout(set = 0, binding = 18) uniform sampler2D clouds_b;
+layout(set = 0, binding = 19) uniform sampler2D history_a;
+layout(set = 0, binding = 20) uniform sampler2D history_b;
+// Per pixel: linear HDR radiance of the final image.
+layout(set = 0, binding = 21, rgba32f) uniform writeonly image2D color_out;
 
 #endif

@@ -175,6 +175,13 @@ void Texture::record_download(VkCommandBuffer cmd, const Buffer& staging) const 
   compute_barrier(cmd);
 }
 
+void Texture::record_clear(VkCommandBuffer cmd) const {
+  const VkClearColorValue zero{};
+  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+  compute_barrier(cmd);
+}
+
 void compute_barrier(VkCommandBuffer cmd) {
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;

@@ -56,6 +56,8 @@ class Texture {
   void record_upload(VkCommandBuffer cmd, const Buffer& staging) const;
   // Copies the image into `staging` (recorded into `cmd`).
   void record_download(VkCommandBuffer cmd, const Buffer& staging) const;
+  // Sets every texel to zero (recorded into `cmd`).
+  void record_clear(VkCommandBuffer cmd) const;
 
  private:
   void reset();

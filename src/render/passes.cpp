@@ -25,9 +25,10 @@ GpuState::GpuState(gpu::Context& c)
       // Half floats hold radiance to 0.05%; clamp-to-edge: the table does not wrap.
       sky_view(c, kSkyViewWidth, 2 * kSkyViewHeight, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
                VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
-      light_volume(c, sizeof(float) * gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_Z,
-                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) {
-  set.bind_buffer(gpu::kLightVolume, light_volume, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+      light_volume(c, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
+                   VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+  set.bind_storage_image(gpu::kLightVolumeOut, light_volume);
+  set.bind_sampled_image(gpu::kLightVolume, light_volume);
   set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   set.bind_storage_image(gpu::kBaseNoiseOut, base_noise);
   set.bind_storage_image(gpu::kDetailNoiseOut, detail_noise);
@@ -42,16 +43,30 @@ GpuState::GpuState(gpu::Context& c)
 
 void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   if (w == width && h == height && cloud_w == cloud_width && cloud_h == cloud_height) return;
-  constexpr VkDeviceSize kVec4 = 4 * sizeof(float);
-  const VkDeviceSize cloud_pixels = VkDeviceSize(cloud_w) * VkDeviceSize(cloud_h);
+  const auto cloud_image = [&] {
+    return gpu::Texture(ctx, uint32_t(cloud_w), uint32_t(cloud_h), 1,
+                        VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  };
   // Room for a still image's march of every pixel.
-  march_buffer = gpu::Buffer(ctx, 2 * kVec4 * cloud_pixels, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  for (gpu::Buffer& b : cloud_buffers)
-    b = gpu::Buffer(ctx, 2 * kVec4 * cloud_pixels, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  color_buffer = gpu::Buffer(ctx, kVec4 * VkDeviceSize(w) * VkDeviceSize(h),
-                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  set.bind_buffer(gpu::kMarchBuffer, march_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-  set.bind_buffer(gpu::kColorBuffer, color_buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  march_a = cloud_image();
+  march_b = cloud_image();
+  for (int i = 0; i < 2; ++i) {
+    clouds_a[i] = cloud_image();
+    clouds_b[i] = cloud_image();
+  }
+  color = gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                       VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  set.bind_storage_image(gpu::kMarchAOut, march_a);
+  set.bind_storage_image(gpu::kMarchBOut, march_b);
+  set.bind_sampled_image(gpu::kMarchA, march_a);
+  set.bind_sampled_image(gpu::kMarchB, march_b);
+  set.bind_storage_image(gpu::kColorOut, color);
+  // Defined contents: filters read neighbours of the texels a frame writes.
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    for (const gpu::Texture* t : {&march_a, &march_b, &clouds_a[0], &clouds_a[1], &clouds_b[0],
+                                  &clouds_b[1], &color})
+      t->record_clear(cmd);
+  });
   current = 1;
   swap_history();
   width = w;
@@ -62,8 +77,12 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
 
 void GpuState::swap_history() {
   current = 1 - current;
-  set.bind_buffer(gpu::kResolvedClouds, cloud_buffers[current], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-  set.bind_buffer(gpu::kHistory, cloud_buffers[1 - current], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  set.bind_storage_image(gpu::kCloudsAOut, clouds_a[current]);
+  set.bind_storage_image(gpu::kCloudsBOut, clouds_b[current]);
+  set.bind_sampled_image(gpu::kCloudsA, clouds_a[current]);
+  set.bind_sampled_image(gpu::kCloudsB, clouds_b[current]);
+  set.bind_sampled_image(gpu::kHistoryA, clouds_a[1 - current]);
+  set.bind_sampled_image(gpu::kHistoryB, clouds_b[1 - current]);
 }
 
 void pass_noise_base(VkCommandBuffer cmd, GpuState& s) {

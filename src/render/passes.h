@@ -33,10 +33,13 @@ struct GpuState {
   gpu::Kernel compose_kernel, light_volume_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
-  gpu::Texture base_noise, detail_noise, weather_map, sky_view;
-  gpu::Buffer march_buffer, color_buffer, light_volume;
-  gpu::Buffer cloud_buffers[2];  // this frame's cloud buffer and the previous one (history)
-  int current = 0;               // index of this frame's cloud buffer
+  gpu::Texture base_noise, detail_noise, weather_map, sky_view, light_volume;
+  // Per-pixel images (bindings_inc.glsl): the marched samples (A, B), the cloud buffer of this
+  // frame and of the previous one (history), and the final image.
+  gpu::Texture march_a, march_b;
+  gpu::Texture clouds_a[2], clouds_b[2];
+  gpu::Texture color;
+  int current = 0;  // index of this frame's cloud buffer
   int width = 0, height = 0, cloud_width = 0, cloud_height = 0;
   int stride = 1;  // this frame's march stride
 };

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <optional>
 
+#include <glm/gtc/packing.hpp>
+
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
 #include "render/frame_params.h"
@@ -52,11 +54,19 @@ std::string weather_key(const Scene& scene) {
                                           : "file:" + scene.clouds.weather_map;
 }
 
-// Reads one vec4 per pixel from a buffer holding `stride` vec4s per pixel.
-Image read_buffer(const gpu::Buffer& buffer, int width, int height, int stride = 1) {
-  Image image(width, height);
-  const auto* src = static_cast<const glm::vec4*>(buffer.data());
-  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = src[i * size_t(stride)];
+// Reads an RGBA image of 32-bit (or, with `half`, 16-bit) float texels back to the host.
+Image download(gpu::Context& ctx, const gpu::Texture& texture, bool half) {
+  Image image(int(texture.width()), int(texture.height()));
+  const size_t n = image.pixels.size();
+  gpu::Buffer staging(ctx, VkDeviceSize(n * (half ? 8 : 16)), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) { texture.record_download(cmd, staging); });
+  if (!half) {
+    std::memcpy(image.pixels.data(), staging.data(), n * 16);
+    return image;
+  }
+  const auto* src = static_cast<const uint32_t*>(staging.data());
+  for (size_t i = 0; i < n; ++i)
+    image.pixels[i] = glm::vec4(glm::unpackHalf2x16(src[2 * i]), glm::unpackHalf2x16(src[2 * i + 1]));
   return image;
 }
 
@@ -277,9 +287,8 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
     stats.frame_ms += ms;
   }
   if (read_back) {
-    frame.color = read_buffer(s.color_buffer, s.width, s.height);
-    frame.clouds = resample(read_buffer(s.cloud_buffers[s.current], cloud_w, cloud_h, 2),
-                            s.width, s.height);
+    frame.color = download(ctx, s.color, false);
+    frame.clouds = resample(download(ctx, s.clouds_a[s.current], true), s.width, s.height);
     double sum = 0.0;
     for (const glm::vec4& p : frame.color.pixels) sum += luminance(p);
     stats.mean_luminance = sum / double(frame.color.pixels.size());
