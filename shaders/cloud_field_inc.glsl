@@ -22,10 +22,11 @@ float altitude_fraction(vec3 pos) {
 // (y) the full field. Every texture is read whatever the early outs: a CPU device (lavapipe)
 // executes both sides of a branch, so the reads cost the same either way.
 vec2 cloud_density_pair(vec3 pos) {
-  float h = altitude_fraction(pos);
+  float radius_m = length(pos);
+  float h = cloud_height_fraction(radius_m, frame.radii_m.z, frame.radii_m.w);
   vec2 ground_xy = pos.xy - frame.wind_offset_m.xy;  // clouds drift with the wind
   vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + 0.5f, 0.0f);
-  float altitude_m = length(pos) - frame.radii_m.x;
+  float altitude_m = radius_m - frame.radii_m.x;
   vec4 base = textureLod(base_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.x, 0.0f);
   vec3 d = textureLod(detail_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.y, 0.0f).rgb;
   if (h <= 0.0f || h >= 1.0f) return vec2(0.0f);

@@ -47,21 +47,6 @@ CloudSample interpolated(ivec2 p) {
   return r;
 }
 
-// The range (lo, hi) of the radiance and transmittance over the 4 x 4 marched samples around
-// p (a 16 x 16 pixel neighbourhood at stride 4): wide enough that detail between samples
-// survives, tight enough to catch stale content.
-void marched_range(ivec2 p, out vec4 lo, out vec4 hi) {
-  ivec2 i0 = ivec2(floor(block_coord(p)));
-  lo = vec4(1e30f);
-  hi = vec4(-1e30f);
-  for (int y = -1; y <= 2; ++y)
-    for (int x = -1; x <= 2; ++x) {
-      vec4 a = texelFetch(march_a, clamp(i0 + ivec2(x, y), ivec2(0), last_block()), 0);
-      lo = min(lo, a);
-      hi = max(hi, a);
-    }
-}
-
 vec2 history_uv(vec2 q) { return (q + 0.5f) / vec2(frame.cloud_grid.xy); }
 
 // The history's radiance and transmittance at continuous pixel position q, filtered with
@@ -144,9 +129,11 @@ void main() {
       } else {
         if (moved_px > 0.5f) {
           // While the image moves, keep the history within the range of this frame's samples.
-          vec4 lo, hi;
-          marched_range(p, lo, hi);
-          h.a = clamp(h.a, lo, hi);
+          // The range of the 4 x 4 marched samples around p (march_range.comp): a 16 x 16
+          // pixel neighbourhood at stride 4, wide enough that detail between samples
+          // survives, tight enough to catch stale content.
+          ivec2 i0 = ivec2(floor(block_coord(p)));
+          h.a = clamp(h.a, imageLoad(range_lo, i0), imageLoad(range_hi, i0));
         }
         result = h;
       }

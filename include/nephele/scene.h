@@ -70,7 +70,7 @@ enum class MarchMode {
 
 struct QualityParams {
   MarchMode mode = MarchMode::Default;
-  int primary_steps = 96;  // [1, 1024] steps through the cloud layer
+  int primary_steps = 64;  // [1, 1024] steps through the cloud layer
   int light_steps = 6;     // [1, 64] steps of the light march towards the sun
   // Temporal reprojection (default mode): each frame of an animation marches one pixel of
   // every march_stride x march_stride block of the cloud buffer and reprojects the rest from

@@ -40,5 +40,9 @@ layout(set = 0, binding = 19) uniform sampler2D history_a;
 layout(set = 0, binding = 20) uniform sampler2D history_b;
 // Per pixel: linear HDR radiance of the final image.
 layout(set = 0, binding = 21, rgba32f) uniform writeonly image2D color_out;
+// Per block: the range (lo, hi) of march_a over the 4 x 4 marched samples from one block up
+// and left to two down and right (march_range.comp; read by resolve.comp).
+layout(set = 0, binding = 22, rgba16f) uniform image2D range_lo;
+layout(set = 0, binding = 23, rgba16f) uniform image2D range_hi;
 
 #endif

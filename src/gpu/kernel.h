@@ -36,6 +36,8 @@ enum Binding : uint32_t {
   kHistoryA = 19,
   kHistoryB = 20,
   kColorOut = 21,
+  kRangeLo = 22,
+  kRangeHi = 23,
   kBindingCount
 };
 

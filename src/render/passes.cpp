@@ -15,6 +15,7 @@ GpuState::GpuState(gpu::Context& c)
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
       resolve_kernel(c, set, "resolve.comp.spv"),
       light_volume_kernel(c, set, "light_volume.comp.spv"),
+      march_range_kernel(c, set, "march_range.comp.spv"),
       compose_kernel(c, set, "compose.comp.spv"),
       timer(c, 8),
       frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
@@ -50,6 +51,8 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   // Room for a still image's march of every pixel.
   march_a = cloud_image();
   march_b = cloud_image();
+  range_lo = cloud_image();
+  range_hi = cloud_image();
   for (int i = 0; i < 2; ++i) {
     clouds_a[i] = cloud_image();
     clouds_b[i] = cloud_image();
@@ -60,10 +63,12 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   set.bind_storage_image(gpu::kMarchBOut, march_b);
   set.bind_sampled_image(gpu::kMarchA, march_a);
   set.bind_sampled_image(gpu::kMarchB, march_b);
+  set.bind_storage_image(gpu::kRangeLo, range_lo);
+  set.bind_storage_image(gpu::kRangeHi, range_hi);
   set.bind_storage_image(gpu::kColorOut, color);
   // Defined contents: filters read neighbours of the texels a frame writes.
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    for (const gpu::Texture* t : {&march_a, &march_b, &clouds_a[0], &clouds_a[1], &clouds_b[0],
+    for (const gpu::Texture* t : {&march_a, &march_b, &range_lo, &range_hi, &clouds_a[0], &clouds_a[1], &clouds_b[0],
                                   &clouds_b[1], &color})
       t->record_clear(cmd);
   });
@@ -110,6 +115,12 @@ void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
       mode == MarchMode::Baseline ? s.clouds_baseline_kernel : s.clouds_default_kernel;
   const auto blocks = [&](int n) { return uint32_t((n + s.stride - 1) / s.stride); };
   gpu::dispatch(cmd, kernel, s.set, s.timer, "clouds", blocks(s.cloud_width),
+                blocks(s.cloud_height), 1, 8, 8, 1);
+}
+
+void pass_march_range(VkCommandBuffer cmd, GpuState& s) {
+  const auto blocks = [&](int n) { return uint32_t((n + s.stride - 1) / s.stride); };
+  gpu::dispatch(cmd, s.march_range_kernel, s.set, s.timer, "march_range", blocks(s.cloud_width),
                 blocks(s.cloud_height), 1, 8, 8, 1);
 }
 

@@ -30,13 +30,13 @@ struct GpuState {
   gpu::DescriptorSet set;
   gpu::Kernel noise_base_kernel, noise_detail_kernel, weather_kernel;
   gpu::Kernel sky_view_kernel, clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
-  gpu::Kernel compose_kernel, light_volume_kernel;
+  gpu::Kernel compose_kernel, light_volume_kernel, march_range_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
   gpu::Texture base_noise, detail_noise, weather_map, sky_view, light_volume;
   // Per-pixel images (bindings_inc.glsl): the marched samples (A, B), the cloud buffer of this
   // frame and of the previous one (history), and the final image.
-  gpu::Texture march_a, march_b;
+  gpu::Texture march_a, march_b, range_lo, range_hi;
   gpu::Texture clouds_a[2], clouds_b[2];
   gpu::Texture color;
   int current = 0;  // index of this frame's cloud buffer
@@ -50,6 +50,7 @@ void pass_weather(VkCommandBuffer cmd, GpuState& s);
 // Only when its inputs change (the renderer caches it by sky_view_key).
 void pass_sky_view(VkCommandBuffer cmd, GpuState& s);
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
+void pass_march_range(VkCommandBuffer cmd, GpuState& s);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s);
 void pass_compose(VkCommandBuffer cmd, GpuState& s);

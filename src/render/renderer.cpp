@@ -269,6 +269,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
     if (sky_stale) pass_sky_view(cmd, s);
     if (build_light_volume) pass_light_volume(cmd, s);
     pass_clouds(cmd, s, scene.quality.mode);
+    pass_march_range(cmd, s);
     pass_resolve(cmd, s);
     pass_compose(cmd, s);
   });
