@@ -115,9 +115,20 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
 
 namespace {
 
+std::string pass_list(const nlohmann::json& passes) {
+  std::string s;
+  for (const auto& [name, ms] : passes.items()) {
+    char item[64];
+    std::snprintf(item, sizeof item, "%s%s %.1f", s.empty() ? "" : ", ", name.c_str(),
+                  ms.get<double>());
+    s += item;
+  }
+  return s;
+}
+
 void print_realtime(const nlohmann::json& r) {
   std::printf(
-      "real time %dx%d on %s\n"
+      "real time %dx%d on %s (median frame times)\n"
       "  still camera:  %7.1f ms  %6.1f fps  error %.2f%%\n"
       "  flying camera: %7.1f ms  %6.1f fps  error %.2f%% (%g m/s, %g deg/s)\n"
       "  seed's algorithm: %.1f ms (%.2f fps); speed-up %.1fx\n",
@@ -128,6 +139,8 @@ void print_realtime(const nlohmann::json& r) {
       r["flight"]["speed_mps"].get<double>(), r["flight"]["turn_deg_s"].get<double>(),
       r["baseline_ms"].get<double>(), r["baseline_fps"].get<double>(),
       r["speedup_vs_baseline"].get<double>());
+  std::printf("  passes, still (ms):  %s\n  passes, flying (ms): %s\n",
+              pass_list(r["static_passes_ms"]).c_str(), pass_list(r["moving_passes_ms"]).c_str());
   std::fflush(stdout);
 }
 

@@ -28,12 +28,12 @@ layout(set = 0, binding = 10) uniform sampler3D light_volume;
 // (clouds.comp); clouds: this frame's full cloud buffer (resolve.comp), history: the previous
 // frame's. Images, not storage buffers: a CPU device (lavapipe) reads and writes images with
 // vector gathers, buffers one lane at a time.
-layout(set = 0, binding = 11, rgba16f) uniform writeonly image2D march_a_out;
-layout(set = 0, binding = 12, rgba16f) uniform writeonly image2D march_b_out;
+layout(set = 0, binding = 11, rgba32f) uniform writeonly image2D march_a_out;
+layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D march_b_out;
 layout(set = 0, binding = 13) uniform sampler2D march_a;
 layout(set = 0, binding = 14) uniform sampler2D march_b;
-layout(set = 0, binding = 15, rgba16f) uniform writeonly image2D clouds_a_out;
-layout(set = 0, binding = 16, rgba16f) uniform writeonly image2D clouds_b_out;
+layout(set = 0, binding = 15, rgba32f) uniform writeonly image2D clouds_a_out;
+layout(set = 0, binding = 16, rgba32f) uniform writeonly image2D clouds_b_out;
 layout(set = 0, binding = 17) uniform sampler2D clouds_a;
 layout(set = 0, binding = 18) uniform sampler2D clouds_b;
 layout(set = 0, binding = 19) uniform sampler2D history_a;
@@ -42,7 +42,7 @@ layout(set = 0, binding = 20) uniform sampler2D history_b;
 layout(set = 0, binding = 21, rgba32f) uniform writeonly image2D color_out;
 // Per block: the range (lo, hi) of march_a over the 4 x 4 marched samples from one block up
 // and left to two down and right (march_range.comp; read by resolve.comp).
-layout(set = 0, binding = 22, rgba16f) uniform image2D range_lo;
-layout(set = 0, binding = 23, rgba16f) uniform image2D range_hi;
+layout(set = 0, binding = 22, rgba32f) uniform image2D range_lo;
+layout(set = 0, binding = 23, rgba32f) uniform image2D range_hi;
 
 #endif

@@ -46,7 +46,7 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   if (w == width && h == height && cloud_w == cloud_width && cloud_h == cloud_height) return;
   const auto cloud_image = [&] {
     return gpu::Texture(ctx, uint32_t(cloud_w), uint32_t(cloud_h), 1,
-                        VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+                        VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   };
   // Room for a still image's march of every pixel.
   march_a = cloud_image();

@@ -289,7 +289,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   }
   if (read_back) {
     frame.color = download(ctx, s.color, false);
-    frame.clouds = resample(download(ctx, s.clouds_a[s.current], true), s.width, s.height);
+    frame.clouds = resample(download(ctx, s.clouds_a[s.current], false), s.width, s.height);
     double sum = 0.0;
     for (const glm::vec4& p : frame.color.pixels) sum += luminance(p);
     stats.mean_luminance = sum / double(frame.color.pixels.size());
