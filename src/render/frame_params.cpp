@@ -156,6 +156,23 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   return f;
 }
 
+bool sky_view_reusable(const SkyViewKey& built, const SkyViewKey& now) {
+  // The sky light on the ground below the camera changes with it too, by far less.
+  SkyViewKey moved = now;
+  moved.camera_pos_m = built.camera_pos_m;
+  moved.ground_sky_light = built.ground_sky_light;
+  if (!(moved == built)) return false;
+  const glm::vec3 light_change = glm::abs(now.ground_sky_light - built.ground_sky_light);
+  if (glm::any(glm::greaterThan(light_change, 1e-3f * glm::abs(built.ground_sky_light))))
+    return false;
+  // In double: positions are 6.4e6 m from the planet's centre.
+  const glm::dvec3 from(built.camera_pos_m), to(now.camera_pos_m);
+  const double altitude_m = std::max(glm::length(from) - double(built.radii_m.x), 0.0);
+  const double climb_m = std::abs(glm::length(to) - glm::length(from));
+  return glm::distance(from, to) <= kSkyViewReuseM &&
+         climb_m <= std::min(0.01 * altitude_m, double(kSkyViewReuseM));
+}
+
 SkyViewKey sky_view_key(const gpu::FrameParams& f) {
   return {.camera_pos_m = glm::vec3(f.camera_pos_m),
           .sun_dir = glm::vec3(f.sun_dir),

@@ -38,7 +38,12 @@ struct Renderer::Impl {
   // Sets params.light_volume; true when the volume must be rebuilt this frame.
   bool plan_light_volume(const Scene& scene, const std::string& key, gpu::FrameParams& params);
 
-  std::optional<SkyViewKey> sky_view_built;  // inputs of the sky-view LUT in the texture
+  // Inputs of the sky-view LUT in the texture and the LUT frame it was built in.
+  struct SkyViewBuilt {
+    SkyViewKey key;
+    glm::vec4 up, forward;
+  };
+  std::optional<SkyViewBuilt> sky_view_built;
 
   Frame render_frame(const Scene& scene, bool still, bool read_back);
 
@@ -255,15 +260,20 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
   const bool build_light_volume = plan_light_volume(scene, key, params);
+  // The sky-view LUT depends on the sun, the camera's position and the atmosphere only: a
+  // camera turning or clouds changing reuse it, and so does a camera that moved a little
+  // (sky_view_reusable), sampled in the frame the LUT was built in.
+  const SkyViewKey sky_key = sky_view_key(params);
+  const bool sky_stale = !sky_view_built || !sky_view_reusable(sky_view_built->key, sky_key);
+  if (!sky_stale) {
+    params.sky_view_up = sky_view_built->up;
+    params.sky_view_forward = sky_view_built->forward;
+  }
   std::memcpy(s.frame_params.data(), &params, sizeof(params));  // the noise passes read it too
   update_textures(scene);
   s.swap_history();
 
-  // The sky-view LUT depends on the sun, the camera's position and the atmosphere only: a
-  // camera turning or clouds changing reuse it.
-  const SkyViewKey sky_key = sky_view_key(params);
-  const bool sky_stale = sky_view_built != sky_key;
-  sky_view_built.reset();  // until the command buffer below has completed
+  if (sky_stale) sky_view_built.reset();  // until the command buffer below has completed
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     s.timer.reset(cmd);
     if (sky_stale) pass_sky_view(cmd, s);
@@ -276,7 +286,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   previous = scene;
   previous_key = key;
   ++frame_counter;
-  sky_view_built = sky_key;
+  if (sky_stale) sky_view_built = SkyViewBuilt{sky_key, params.sky_view_up, params.sky_view_forward};
 
   Frame frame;
   FrameStats& stats = frame.stats;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "nephele/image_compare.h"
 #include "nephele/scene_io.h"
 #include "render/frame_params.h"
 #include "render_fixture.h"
@@ -162,6 +163,30 @@ TEST_F(SkyViewTest, LutIsRecomputedOnlyWhenItsInputsChange) {
   hazier.atmosphere.mie_scattering_per_m *= 2.0f;
   hazier.atmosphere.mie_extinction_per_m *= 2.0f;
   EXPECT_TRUE(has_pass(render(hazier), "sky_view"));
+}
+
+// A camera flying along reuses the LUT until it has moved kSkyViewReuseM (or 1% of its
+// altitude up or down), and the sky it then shows matches a LUT built where it is.
+TEST_F(SkyViewTest, LutIsReusedWhileTheCameraMovesALittle) {
+  Scene a = cloudless("default");
+  a.output.width = 48;
+  a.output.height = 32;
+  a.camera.position_m = {0.0f, 0.0f, 300.0f};
+  if (render(a).stats.passes.empty()) GTEST_SKIP() << "the device has no timestamps";
+  Scene flown = a;
+  flown.camera.position_m.y += 0.8f * nephele::kSkyViewReuseM;
+  const nephele::Frame reused = render(flown);
+  EXPECT_FALSE(has_pass(reused, "sky_view"));
+  Scene far = a;
+  far.camera.position_m.y += 1.2f * nephele::kSkyViewReuseM;
+  EXPECT_TRUE(has_pass(render(far), "sky_view"));
+  Scene climbed = a;
+  climbed.camera.position_m.z += 4.0f;  // more than 1% of 300 m
+  EXPECT_TRUE(has_pass(render(climbed), "sky_view"));
+  // A fresh LUT at the flown position: the reused one differs by far less than a texel.
+  nephele::Renderer fresh;
+  const nephele::Frame exact = fresh.render(flown);
+  EXPECT_LT(nephele::luminance_error(reused.color, exact.color), 1e-3);
 }
 
 // The sun's centre 0.1 degrees above the horizon, its disk 0.27 degrees in radius: the part of
