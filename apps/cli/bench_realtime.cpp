@@ -39,9 +39,12 @@ struct Timing {
                            : std::accumulate(wall_ms.begin(), wall_ms.end(), 0.0) / wall_ms.size();
   }
   double median_gpu() const { return median(gpu_ms); }
+  // Each pass's device time per frame: the median over the frames where it ran, times the
+  // share of frames where it ran (passes such as the sky-view LUT run only now and then).
   nlohmann::json passes() const {
     nlohmann::json j = nlohmann::json::object();
-    for (const auto& [name, ms] : pass_ms) j[name] = median(ms);
+    for (const auto& [name, ms] : pass_ms)
+      j[name] = median(ms) * double(ms.size()) / double(wall_ms.size());
     return j;
   }
 };
@@ -80,53 +83,67 @@ Scene reference_scene(const Scene& scene) {
 
 nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& options,
                                 const Scene& base, const RealtimeSettings& f) {
+  // Three renderers, one history each: the still camera (`renderer`), the flight and the
+  // seed's algorithm. Their timed frames are interleaved, so a slow spell of a shared machine
+  // falls on all three alike and the ratios between them hold.
+  Renderer flight(options);
+  Renderer seed_renderer(options);
   Renderer reference(options);
   const int cycle = base.quality.march_stride * base.quality.march_stride;
   nlohmann::json out;
 
-  // Still camera, clouds drifting with the wind: converge for two march cycles, then time.
+  // Still camera, clouds drifting with the wind: two march cycles to converge first.
   Scene scene = base;
   scene.quality.mode = MarchMode::Default;
   renderer.render(scene);
-  Timing still;
-  for (int i = 0; i < 2 * cycle + f.static_frames; ++i) {
+  for (int i = 0; i < 2 * cycle; ++i) {
     scene.time_s += f.frame_dt_s;
-    const FrameStats stats = renderer.render_next(scene, false).stats;
-    if (i >= 2 * cycle) still.add(stats);
+    renderer.render_next(scene, false);
   }
+  // The flight: a cycle to fill the history.
+  const Scene start = base;
+  flight.render(start);
+  int flight_frame = 0;
+  for (; flight_frame < cycle; ++flight_frame)
+    flight.render_next(flight_at(start, f, float(flight_frame + 1) * f.frame_dt_s), false);
+  // The seed's algorithm on the still view (every pixel, every frame).
+  Scene baseline = base;
+  baseline.quality.mode = MarchMode::Baseline;
+  seed_renderer.render_next(baseline, false);  // warm-up
+
+  Timing still, moving, seed;
+  const int frames = std::max(f.static_frames, f.moving_frames);
+  const int seed_every = std::max(1, frames / 3);
+  for (int i = 0; i < frames; ++i) {
+    if (i < f.static_frames) {
+      scene.time_s += f.frame_dt_s;
+      still.add(renderer.render_next(scene, false).stats);
+    }
+    if (i < f.moving_frames) {
+      ++flight_frame;
+      moving.add(flight.render_next(flight_at(start, f, float(flight_frame) * f.frame_dt_s), false)
+                     .stats);
+    }
+    if (i % seed_every == seed_every / 2) seed.add(seed_renderer.render_next(baseline, false).stats);
+  }
+
+  // Errors, untimed: the still view once more, then flight frames spread over a few cycles.
   scene.time_s += f.frame_dt_s;
   const double static_error =
       error_against_reference(reference, scene, renderer.render_next(scene).color);
-
-  // The flight: a cycle to fill the history, then timed frames; some frames are read back
-  // (untimed) and compared with their references.
-  const Scene start = base;
-  renderer.render(start);
-  Timing moving;
   double moving_error = 0.0;
-  int compared = 0;
-  const int total = cycle + f.moving_frames;
-  const int every = std::max(1, f.moving_frames / std::max(f.error_frames, 1));
-  for (int i = 1; i <= total; ++i) {
-    const Scene s = flight_at(start, f, float(i) * f.frame_dt_s);
-    const bool compare = i > cycle && (i - cycle) % every == 0 && compared < f.error_frames;
-    const Frame frame = renderer.render_next(s, compare);
-    if (compare) {
+  for (int k = 0; k < f.error_frames; ++k) {
+    for (int i = 0; i < cycle; ++i) {
+      ++flight_frame;
+      const Scene s = flight_at(start, f, float(flight_frame) * f.frame_dt_s);
+      const bool compare = i == cycle - 1;
+      const Frame frame = flight.render_next(s, compare);
+      if (!compare) continue;
       const double e = error_against_reference(reference, s, frame.color);
-      std::printf("  flight frame %d: error %.4f\n", i, e);
+      std::printf("  flight frame %d: error %.4f\n", flight_frame, e);
       moving_error = std::max(moving_error, e);
-      ++compared;
-    } else if (i > cycle) {
-      moving.add(frame.stats);
     }
   }
-
-  // The seed's algorithm on the same still view (every pixel, every frame).
-  Scene baseline = base;
-  baseline.quality.mode = MarchMode::Baseline;
-  renderer.render_next(baseline, false);  // warm-up
-  Timing seed;
-  for (int i = 0; i < 3; ++i) seed.add(renderer.render_next(baseline, false).stats);
 
   out["device"] = renderer.device_name();
   out["width"] = base.output.width;
