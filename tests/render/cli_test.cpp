@@ -170,4 +170,10 @@ TEST_F(CliTest, BenchRealtimeOnlyWritesTheJsonFile) {
                           "moving_error", "device"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_NE(r.output.find("still camera"), std::string::npos) << r.output;
+  // Per-pass device time per frame: every pass of an animation frame is reported.
+  for (const char* key : {"static_passes_ms", "moving_passes_ms"})
+    for (const char* pass : {"clouds", "march_range", "resolve", "compose"}) {
+      ASSERT_TRUE(j[key].contains(pass)) << key << " " << pass;
+      EXPECT_GT(j[key][pass].get<double>(), 0.0) << key << " " << pass;
+    }
 }
