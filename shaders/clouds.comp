@@ -2,14 +2,15 @@
 // Pass 3: clouds. Per pixel, march the view ray through the cloud shell between two spheres
 // (seed 000, 2.2) compositing front to back (formulas 1.5, 1.6) with Beer-Lambert attenuation,
 // a light march towards the sun, dual-lobe Henyey-Greenstein phase, the powder term and ambient
-// light (1.4, listings B.1-B.3). Writes two vec4 per pixel: (rgb in-scattered radiance
-// attenuated by the air between the eye and each sample, a = cloud transmittance) and
-// (x = haze weight: the share of the cloud's light replaced by the air's in-scattering, yzw 0).
+// light (1.4, listings B.1-B.3). Writes one texel per marched pixel to march_a (rgb in-scattered
+// radiance attenuated by the air between the eye and each sample, a = cloud transmittance) and
+// march_b (x haze weight: the share of the cloud's light replaced by the air's in-scattering,
+// y ground shadow, z cloud distance (km), w 1 sample).
 //
 // MARCH_MODE (specialization constant) selects the variant:
-//   0 default:  distance-adaptive steps with per-pixel jitter, detail noise only where the
-//               base shape is non-zero, longer light march, multiple-scattering octaves,
-//               early exit at T < 0.01.
+//   0 default:  distance-adaptive coarse and fine steps with per-pixel jitter, a light march
+//               over the first light-volume voxel and the rest looked up, multiple-scattering
+//               octaves, early exit at T < 0.01.
 //   1 baseline: the seed's algorithm as written: fixed step (layer thickness / 64), at most 128
 //               steps, 4-sample light march (3 short steps and one 6x), colour extinction
 //               (0.8, 0.8, 1.0), no jitter, no skipping.

@@ -87,6 +87,11 @@ void DescriptorSet::bind_storage_image(Binding binding, const Texture& texture) 
   write_image(device_, set_, binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, texture);
 }
 
+void DescriptorSet::bind_image(Binding written, Binding read, const Texture& texture) {
+  bind_storage_image(written, texture);
+  bind_sampled_image(read, texture);
+}
+
 void DescriptorSet::bind_sampled_image(Binding binding, const Texture& texture) {
   write_image(device_, set_, binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, texture);
 }

@@ -53,6 +53,8 @@ class DescriptorSet {
   void bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type);
   void bind_storage_image(Binding binding, const Texture& texture);
   void bind_sampled_image(Binding binding, const Texture& texture);
+  // The texture as a storage image at `written` (where a pass writes it) and sampled at `read`.
+  void bind_image(Binding written, Binding read, const Texture& texture);
 
  private:
   VkDevice device_;

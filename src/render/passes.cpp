@@ -14,9 +14,9 @@ GpuState::GpuState(gpu::Context& c)
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
       resolve_kernel(c, set, "resolve.comp.spv"),
+      compose_kernel(c, set, "compose.comp.spv"),
       light_volume_kernel(c, set, "light_volume.comp.spv"),
       march_range_kernel(c, set, "march_range.comp.spv"),
-      compose_kernel(c, set, "compose.comp.spv"),
       timer(c, 8),
       frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
       base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
@@ -28,17 +28,12 @@ GpuState::GpuState(gpu::Context& c)
                VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       light_volume(c, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
                    VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
-  set.bind_storage_image(gpu::kLightVolumeOut, light_volume);
-  set.bind_sampled_image(gpu::kLightVolume, light_volume);
+  set.bind_image(gpu::kLightVolumeOut, gpu::kLightVolume, light_volume);
   set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-  set.bind_storage_image(gpu::kBaseNoiseOut, base_noise);
-  set.bind_storage_image(gpu::kDetailNoiseOut, detail_noise);
-  set.bind_storage_image(gpu::kWeatherOut, weather_map);
-  set.bind_sampled_image(gpu::kBaseNoise, base_noise);
-  set.bind_sampled_image(gpu::kDetailNoise, detail_noise);
-  set.bind_sampled_image(gpu::kWeatherMap, weather_map);
-  set.bind_storage_image(gpu::kSkyViewOut, sky_view);
-  set.bind_sampled_image(gpu::kSkyView, sky_view);
+  set.bind_image(gpu::kBaseNoiseOut, gpu::kBaseNoise, base_noise);
+  set.bind_image(gpu::kDetailNoiseOut, gpu::kDetailNoise, detail_noise);
+  set.bind_image(gpu::kWeatherOut, gpu::kWeatherMap, weather_map);
+  set.bind_image(gpu::kSkyViewOut, gpu::kSkyView, sky_view);
   resize(1, 1, 1, 1);
 }
 
@@ -59,10 +54,8 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   }
   color = gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-  set.bind_storage_image(gpu::kMarchAOut, march_a);
-  set.bind_storage_image(gpu::kMarchBOut, march_b);
-  set.bind_sampled_image(gpu::kMarchA, march_a);
-  set.bind_sampled_image(gpu::kMarchB, march_b);
+  set.bind_image(gpu::kMarchAOut, gpu::kMarchA, march_a);
+  set.bind_image(gpu::kMarchBOut, gpu::kMarchB, march_b);
   set.bind_storage_image(gpu::kRangeLo, range_lo);
   set.bind_storage_image(gpu::kRangeHi, range_hi);
   set.bind_storage_image(gpu::kColorOut, color);
@@ -82,10 +75,8 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
 
 void GpuState::swap_history() {
   current = 1 - current;
-  set.bind_storage_image(gpu::kCloudsAOut, clouds_a[current]);
-  set.bind_storage_image(gpu::kCloudsBOut, clouds_b[current]);
-  set.bind_sampled_image(gpu::kCloudsA, clouds_a[current]);
-  set.bind_sampled_image(gpu::kCloudsB, clouds_b[current]);
+  set.bind_image(gpu::kCloudsAOut, gpu::kCloudsA, clouds_a[current]);
+  set.bind_image(gpu::kCloudsBOut, gpu::kCloudsB, clouds_b[current]);
   set.bind_sampled_image(gpu::kHistoryA, clouds_a[1 - current]);
   set.bind_sampled_image(gpu::kHistoryB, clouds_b[1 - current]);
 }

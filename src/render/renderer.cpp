@@ -156,8 +156,7 @@ double cloud_cover_fraction(const Scene& scene, const Image& clouds) {
 void Renderer::Impl::resize_weather_map(uint32_t width, uint32_t height) {
   if (state.weather_map.width() == width && state.weather_map.height() == height) return;
   state.weather_map = gpu::Texture(ctx, width, height, 1, VK_FORMAT_R8G8B8A8_UNORM);
-  state.set.bind_storage_image(gpu::kWeatherOut, state.weather_map);
-  state.set.bind_sampled_image(gpu::kWeatherMap, state.weather_map);
+  state.set.bind_image(gpu::kWeatherOut, gpu::kWeatherMap, state.weather_map);
 }
 
 void Renderer::Impl::upload_weather_png(const std::string& path) {

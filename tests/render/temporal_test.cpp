@@ -43,6 +43,25 @@ Frame still_frames(const Scene& s, int n) {
   return frame;
 }
 
+// Clouds drifting in `wind_mps` for `frames` animation frames `dt_s` apart (after a still image
+// of the start), compared with a still image of the end: how far the clouds drifted (the start
+// against the end) and how far the last frame is from the end.
+struct Drift {
+  double drifted = 0.0, error = 0.0;
+};
+Drift follow_wind(glm::vec2 wind_mps, int frames, float dt_s) {
+  Scene s = view();
+  s.clouds.wind_mps = wind_mps;
+  const Frame start = render(s);
+  Frame frame;
+  for (int i = 0; i < frames; ++i) {
+    s.time_s += dt_s;
+    frame = shared_renderer().render_next(s);
+  }
+  const Frame still = render(s);
+  return {luminance_error(start.color, still.color), luminance_error(frame.color, still.color)};
+}
+
 class TemporalTest : public RenderTest {};
 
 }  // namespace
@@ -60,40 +79,22 @@ TEST_F(TemporalTest, StillViewStaysTheStillImage) {
 // Drifting clouds: after a few seconds of frames the image follows the wind and matches a
 // still image of the same moment; without following the wind it would not.
 TEST_F(TemporalTest, ReprojectionFollowsTheWind) {
-  Scene s = view();
-  s.clouds.wind_mps = {0.0f, -60.0f};  // towards the camera, fast, to make the drift visible
-  const Frame start = render(s);
-  Frame frame;
-  for (int i = 0; i < 48; ++i) {
-    s.time_s += 0.1f;
-    frame = shared_renderer().render_next(s);
-  }
-  const Frame still = render(s);
-  const double drifted = luminance_error(start.color, still.color);
-  const double error = luminance_error(frame.color, still.color);
-  EXPECT_GT(drifted, 0.03) << "the clouds should have moved visibly";
-  EXPECT_LT(error, 0.4 * drifted);
-  EXPECT_LT(error, 0.05);
+  // Towards the camera, fast, to make the drift visible.
+  const Drift d = follow_wind({0.0f, -60.0f}, 48, 0.1f);
+  EXPECT_GT(d.drifted, 0.03) << "the clouds should have moved visibly";
+  EXPECT_LT(d.error, 0.4 * d.drifted);
+  EXPECT_LT(d.error, 0.05);
 }
 
 // A light wind moves the clouds by a small fraction of a pixel per frame: the history must
 // follow such slow drift too, not stay where the clouds were (a pixel snapped to its texel
 // when it had moved by less than 0.02 of a pixel did).
 TEST_F(TemporalTest, ReprojectionFollowsSlowDrift) {
-  Scene s = view();
-  s.clouds.wind_mps = {0.0f, -12.0f};  // about 0.01 pixel per frame at 0.05 s a frame
-  const Frame start = render(s);
-  Frame frame;
-  for (int i = 0; i < 160; ++i) {
-    s.time_s += 0.05f;
-    frame = shared_renderer().render_next(s);
-  }
-  const Frame still = render(s);
-  const double drifted = luminance_error(start.color, still.color);
-  const double error = luminance_error(frame.color, still.color);
-  EXPECT_GT(drifted, 0.01) << "the clouds should have moved visibly";
+  // About 0.01 pixel per frame at 0.05 s a frame.
+  const Drift d = follow_wind({0.0f, -12.0f}, 160, 0.05f);
+  EXPECT_GT(d.drifted, 0.01) << "the clouds should have moved visibly";
   // Measured: 0.2 x the drift; 0.45 x with the snapping.
-  EXPECT_LT(error, 0.3 * drifted);
+  EXPECT_LT(d.error, 0.3 * d.drifted);
 }
 
 // Turning the camera: content enters at one edge; the history is found where it moved to and
