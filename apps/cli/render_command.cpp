@@ -70,6 +70,14 @@ std::string stats_to_json(const FrameStats& stats) {
   j["wall_ms"] = stats.wall_ms;
   j["mean_luminance"] = stats.mean_luminance;
   j["cloud_cover_fraction"] = stats.cloud_cover_fraction;
+  // Topocentric, geometric (no refraction), azimuth from north through east.
+  j["sun_elevation_deg"] = stats.sun.elevation_deg;
+  j["sun_azimuth_deg"] = stats.sun.azimuth_deg;
+  if (stats.ephemeris) {  // the moon needs a date
+    j["moon_elevation_deg"] = stats.ephemeris->moon.elevation_deg;
+    j["moon_azimuth_deg"] = stats.ephemeris->moon.azimuth_deg;
+    j["moon_illuminated_fraction"] = stats.ephemeris->moon_illuminated_fraction;
+  }
   nlohmann::json passes = nlohmann::json::object();
   for (const PassTiming& p : stats.passes) passes[p.name] = p.ms;
   j["passes_ms"] = passes;

@@ -20,7 +20,8 @@ namespace {
 // Where a flag's value goes in the Scene; monostate for the flags resolve_scene handles itself.
 using Target = std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&),
                             uint32_t& (*)(Scene&), glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
-                            std::string& (*)(Scene&), MarchMode& (*)(Scene&)>;
+                            std::string& (*)(Scene&), MarchMode& (*)(Scene&),
+                            bool& (*)(Scene&)>;
 
 struct FlagSpec {
   const char* flag;
@@ -106,7 +107,14 @@ const std::vector<FlagSpec>& flag_specs() {
        "wind velocity (m/s): east, north"},
       {"--weather-map", &F::weather_map, "clouds.weather_map", TO(clouds.weather_map), "FILE",
        "weather map PNG (RGBA) instead of the procedural one"},
-      {"--time-s", &F::time_s, "time_s", TO(time_s), "T", "animation time (s)"},
+      {"--time", &F::time, "time", TO(time), "ISO8601",
+       "date and time, e.g. 2026-06-21T18:30:00Z: places the sun (unless a --sun-* flag is "
+       "given), the moon and the stars"},
+      {"--lat-deg", &F::lat_deg, "location.lat_deg", TO(location.lat_deg), "DEG",
+       "latitude of the scene, [-90, 90], north positive"},
+      {"--lon-deg", &F::lon_deg, "location.lon_deg", TO(location.lon_deg), "DEG",
+       "longitude of the scene, [-180, 360], east positive"},
+      {"--time-s", &F::time_s, "time_s", TO(time_s), "T", "animation time (s) after --time"},
       {"--seed", &F::seed, "noise_seed", TO(noise_seed), "N", "noise seed, [0, 4294967295]"},
       {"--steps", &F::steps, "quality.primary_steps", TO(quality.primary_steps), "N",
        "march steps through the cloud layer, [1, 1024]"},
@@ -197,6 +205,10 @@ void parse_into(const std::string& flag, const std::string& text, glm::vec3& out
 }
 void parse_into(const std::string&, const std::string& text, std::string& out) {
   out = text;
+}
+void parse_into(const std::string& flag, const std::string& text, bool& out) {
+  if (text != "true" && text != "false") fail(flag, text, "expected true or false");
+  out = text == "true";
 }
 void parse_into(const std::string& flag, const std::string& text, MarchMode& out) {
   std::optional<MarchMode> mode = parse_march_mode(text);
@@ -294,6 +306,11 @@ Scene resolve_scene(const SceneFlags& flags) {
         spec.target);
   }
   apply_sun_angles(flags, scene);
+  // A sun flag places the sun; otherwise a --time does.
+  if (flags.sun_dir || flags.sun_elevation_deg || flags.sun_azimuth_deg)
+    scene.sun.from_time = false;
+  else if (flags.time)
+    scene.sun.from_time = true;
   if (flags.camera_pos && !(scene.camera.position_m.z >= 0.0f))
     fail("--camera-pos", *flags.camera_pos,
          "the up component must be >= 0 (the camera is below the ground)");

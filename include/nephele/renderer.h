@@ -2,11 +2,13 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "nephele/image.h"
 #include "nephele/scene.h"
+#include "nephele/sky.h"
 
 namespace nephele {
 
@@ -30,6 +32,8 @@ struct FrameStats {
   double mean_luminance = 0.0;   // mean relative luminance of the linear HDR image
   double cloud_cover_fraction = 0.0;  // share of above-horizon pixels with cloud T < 0.5
   std::vector<PassTiming> passes;
+  SkyPosition sun;                     // the sun the frame was lit by (distance 0 without a time)
+  std::optional<Ephemeris> ephemeris;  // sun, moon and sidereal time when the scene has a time
 };
 
 struct Frame {

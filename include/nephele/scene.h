@@ -24,6 +24,9 @@ struct SunParams {
   glm::vec3 direction{0.0f, 0.7f, 0.35f};  // ENU, towards the sun
   float illuminance = 20.0f;               // radiance scale of sunlight at the top of the atmosphere
   float disk_angular_radius_deg = 0.2666f;  // apparent radius of the sun disk
+  // Place the sun by the ephemeris for Scene::time and Scene::location instead of direction.
+  // Set by a scene file or flags that give a time without a sun direction.
+  bool from_time = false;
 };
 
 // Planet and single-scattering sky (seed 000, formulas 1.11-1.13; Nishita-style integration).
@@ -91,6 +94,13 @@ struct OutputParams {
   float exposure = 0.5f;  // linear scale before tone mapping, > 0
 };
 
+// Where the scene is on the earth: the ENU origin (on the ground below the start position).
+struct LocationParams {
+  float lat_deg = 0.0f;     // latitude, [-90, 90], north positive (float: ~1 m)
+  float lon_deg = 0.0f;     // longitude, [-180, 360], east positive
+  float altitude_m = 0.0f;  // the ground's height above sea level
+};
+
 struct Scene {
   CameraParams camera;
   SunParams sun;
@@ -98,6 +108,10 @@ struct Scene {
   CloudParams clouds;
   QualityParams quality;
   OutputParams output;
+  LocationParams location;
+  // Date and time (ISO 8601, UTC or with an offset: "2026-06-21T18:30:00Z"); empty = none (no
+  // moon, and the sun from sun.direction). The sky's clock is time + time_s.
+  std::string time;
   float time_s = 0.0f;       // animation time (s): moves clouds with the wind
   uint32_t noise_seed = 1;   // seeds the noise textures and the procedural weather map
 };

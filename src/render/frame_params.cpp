@@ -1,4 +1,5 @@
 #include "render/frame_params.h"
+#include "nephele/sky.h"
 
 #include <cmath>
 
@@ -102,7 +103,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
   const float planet_m = atmosphere.planet_radius_m;
   const CameraBasis basis = camera_basis(scene.camera.view_dir);
-  const glm::vec3 sun = glm::normalize(scene.sun.direction);
+  const glm::vec3 sun = scene_sun_direction(scene);
   const float aspect = float(scene.output.width) / float(scene.output.height);
   const float tan_half_fov = std::tan(glm::radians(scene.camera.fov_deg) * 0.5f);
 

@@ -1,5 +1,6 @@
 // The renderer: orders the passes of a frame, caches what does not change, reads back.
 #include "nephele/renderer.h"
+#include "nephele/sky.h"
 
 #include <chrono>
 #include <cstdio>
@@ -123,8 +124,7 @@ int layer_side(const Scene& scene) {
 }
 
 bool history_usable(const Scene& scene, const Scene& previous) {
-  const float cos_sun = glm::dot(glm::normalize(scene.sun.direction),
-                                 glm::normalize(previous.sun.direction));
+  const float cos_sun = glm::dot(scene_sun_direction(scene), scene_sun_direction(previous));
   return cos_sun > std::cos(glm::radians(0.5f)) && scene.sun.illuminance == previous.sun.illuminance &&
          glm::distance(scene.camera.position_m, previous.camera.position_m) < 1000.0f &&
          layer_side(scene) == layer_side(previous);
@@ -204,7 +204,7 @@ bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& ke
     params.light_volume = glm::vec4(0.0f);
     return false;
   }
-  const glm::vec3 sun = glm::normalize(scene.sun.direction);
+  const glm::vec3 sun = scene_sun_direction(scene);
   const glm::vec2 camera_cloud_m = glm::vec2(scene.camera.position_m) - glm::vec2(params.wind_offset_m);
   const LightVolumeKey* built = light_volume_built ? &*light_volume_built : nullptr;
   // Rebuilt when the clouds or the sun (by 0.25 deg) change, or when the camera has moved
@@ -292,6 +292,13 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   stats.device = ctx.device_name();
   stats.width = s.width;
   stats.height = s.height;
+  stats.ephemeris = scene_ephemeris(scene);
+  if (stats.ephemeris && scene.sun.from_time) {
+    stats.sun = stats.ephemeris->sun;
+  } else {
+    const SunAngles angles = sun_angles_from_direction(scene.sun.direction);
+    stats.sun = {angles.elevation_deg, angles.azimuth_deg, 0.0, glm::normalize(scene.sun.direction)};
+  }
   for (const auto& [name, ms] : s.timer.results()) {
     stats.passes.push_back({name, ms});
     stats.frame_ms += ms;

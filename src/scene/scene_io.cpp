@@ -125,6 +125,7 @@ class SceneReader {
       if (!table) fail_value(node, name, "expected a table [" + name + "]");
       read_table(*section, *table, scene);
     }
+    apply_sun_source(root, scene);
     return scene;
   }
 
@@ -209,9 +210,20 @@ class SceneReader {
     read_vector(node, key, 3, &out.x);
   }
   void read_value(const toml::node& node, const std::string& key, std::string& out) const {
+    if (key == "time" && node.is_date_time()) {  // time = 2026-06-21T18:30:00Z, unquoted
+      std::ostringstream text;
+      text << *node.as_date_time();
+      out = text.str();
+      return;
+    }
     const auto* s = node.as_string();
     if (!s) fail_value(node, key, "expected a string");
     out = s->get();
+  }
+  void read_value(const toml::node& node, const std::string& key, bool& out) const {
+    const auto* b = node.as_boolean();
+    if (!b) fail_value(node, key, "expected true or false");
+    out = b->get();
   }
   void read_value(const toml::node& node, const std::string& key, MarchMode& out) const {
     const auto* s = node.as_string();
@@ -228,6 +240,18 @@ class SceneReader {
                           [](const toml::node& item) { return item.is_number(); });
     if (!ok) fail_value(node, key, "expected an array of " + std::to_string(size) + " numbers");
     for (size_t i = 0; i < size; ++i) out[i] = static_cast<float>(read_number((*array)[i], key));
+  }
+
+  // A file that gives a time and no sun direction places the sun by the ephemeris; one that
+  // gives a sun direction uses it (also over a time); sun.from_time, when given, decides.
+  static void apply_sun_source(const toml::table& root, Scene& scene) {
+    const toml::table* sun = root["sun"].as_table();
+    if (sun && sun->contains("from_time")) return;
+    if (sun && (sun->contains("direction") || sun->contains("elevation_deg") ||
+                sun->contains("azimuth_deg")))
+      scene.sun.from_time = false;
+    else if (root.contains("time"))
+      scene.sun.from_time = true;
   }
 
   // camera.altitude_m is another way to write position_m's up component.

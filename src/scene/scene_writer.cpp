@@ -21,6 +21,9 @@ std::string toml_value(uint32_t value) {
 std::string toml_value(const std::string& value) {
   return scene_detail::toml_quote(value);
 }
+std::string toml_value(bool value) {
+  return value ? "true" : "false";
+}
 std::string toml_value(MarchMode mode) {
   return scene_detail::toml_quote(to_string(mode));
 }

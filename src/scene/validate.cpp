@@ -5,6 +5,7 @@
 
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
+#include "nephele/sky.h"
 #include "scene/scene_fields.h"
 
 namespace nephele {
@@ -81,6 +82,8 @@ class Checker {
       fail(key, is_flag(key) ? path : scene_detail::toml_quote(path), "cannot read the file");
   }
 
+  bool is_flag(const std::string& key) const { return display(key).flag; }
+
   [[noreturn]] void fail(const std::string& key, const std::string& value,
                          const std::string& what) const {
     Display shown = display(key);
@@ -98,8 +101,6 @@ class Checker {
     if (name.empty()) return {key, false};
     return {name, name.starts_with("--")};
   }
-
-  bool is_flag(const std::string& key) const { return display(key).flag; }
 
   // "(0, 1, 0.25)" for a scene key, "0,1,0.25" for a flag (as it would be typed).
   template <typename Vector>
@@ -200,6 +201,18 @@ void check_output(const Checker& check, const OutputParams& output) {
   check.positive("output.exposure", output.exposure);
 }
 
+// The date, the place, and the sun placed by them.
+void check_time(const Checker& check, const Scene& scene) {
+  if (!scene.time.empty() && !julian_day_from_iso8601(scene.time))
+    check.fail("time", check.is_flag("time") ? scene.time : scene_detail::toml_quote(scene.time),
+               "must be an ISO 8601 date and time with a zone, like 2026-06-21T18:30:00Z");
+  if (scene.sun.from_time && scene.time.empty())
+    check.fail("sun.from_time", "true", "needs a time (time = \"2026-06-21T18:30:00Z\")");
+  check.in_range("location.lat_deg", scene.location.lat_deg, -90.0f, 90.0f);
+  check.in_range("location.lon_deg", scene.location.lon_deg, -180.0f, 360.0f);
+  check.in_range("location.altitude_m", scene.location.altitude_m, -500.0f, 9000.0f);
+}
+
 }  // namespace
 
 void validate_scene(const Scene& scene, const ParamNamer& display_name) {
@@ -212,6 +225,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_quality(check, scene.quality);
   check_output(check, scene.output);
   check.finite("time_s", scene.time_s);
+  check_time(check, scene);
 }
 
 }  // namespace nephele

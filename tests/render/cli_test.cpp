@@ -77,6 +77,29 @@ TEST_F(CliTest, RendersPngAndStatsJson) {
   EXPECT_GT(j["mean_luminance"].get<double>(), 0.0);
 }
 
+TEST_F(CliTest, StatsJsonGivesTheSunAndMoonOfTheDateAndPlace) {
+  // Sydney, 2012-11-08T02:11:58Z: a row of the astropy reference (tests/data).
+  const std::string out = path("sydney.png"), stats = path("sydney.json");
+  const CliRun r = run_cli("render --width 32 --height 20 --time 2012-11-08T02:11:58Z "
+                           "--lat-deg -46.51470 --lon-deg 109.40411 --camera-altitude-m 1500 "
+                           "--validation -o " + out + " --stats-json " + stats);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+  // The camera's 1500 m is the observer's altitude; the reference row is at 1500 m too.
+  EXPECT_NEAR(j["sun_elevation_deg"].get<double>(), 49.23465, 0.05);
+  EXPECT_NEAR(j["sun_azimuth_deg"].get<double>(), 54.16545, 0.05);
+  EXPECT_NEAR(j["moon_elevation_deg"].get<double>(), 24.42117, 0.1);
+  EXPECT_NEAR(j["moon_azimuth_deg"].get<double>(), 313.83770, 0.1);
+  EXPECT_NEAR(j["moon_illuminated_fraction"].get<double>(), 0.39796, 0.01);
+  // Without a time: the sun of the scene, and no moon.
+  ASSERT_EQ(run_cli("render --width 32 --height 20 --sun-elevation-deg 20 --sun-azimuth-deg 100 "
+                    "-o " + out + " --stats-json " + stats).status, 0);
+  const nlohmann::json k = nlohmann::json::parse(std::ifstream(stats));
+  EXPECT_NEAR(k["sun_elevation_deg"].get<double>(), 20.0, 1e-3);
+  EXPECT_NEAR(k["sun_azimuth_deg"].get<double>(), 100.0, 1e-3);
+  EXPECT_FALSE(k.contains("moon_elevation_deg"));
+}
+
 TEST_F(CliTest, RendersExrFromASceneFile) {
   const std::string scene = write_scene("preset = \"default\"\n[clouds]\ncoverage = 0.6\n");
   const std::string out = path("sky.exr");

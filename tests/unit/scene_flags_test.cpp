@@ -83,6 +83,9 @@ TEST(SceneFlags, RegistersExactlyTheSceneSpellings) {
                            "--powder",
                            "--ambient",
                            "--wind-mps",
+                           "--time",
+                           "--lat-deg",
+                           "--lon-deg",
                            "--time-s",
                            "--seed",
                            "--steps",
@@ -139,6 +142,10 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--wind-mps", "-3,4"},
        [](const Scene& s) { return s.clouds.wind_mps == glm::vec2(-3.0f, 4.0f); }},
       {{"--time-s", "60"}, [](const Scene& s) { return s.time_s == 60.0f; }},
+      {{"--time", "2026-06-21T18:30:00Z"},
+       [](const Scene& s) { return s.time == "2026-06-21T18:30:00Z" && s.sun.from_time; }},
+      {{"--lat-deg", "-33.5"}, [](const Scene& s) { return s.location.lat_deg == -33.5f; }},
+      {{"--lon-deg", "151.25"}, [](const Scene& s) { return s.location.lon_deg == 151.25f; }},
       {{"--seed", "4294967295"}, [](const Scene& s) { return s.noise_seed == 4294967295u; }},
       {{"--steps", "128"}, [](const Scene& s) { return s.quality.primary_steps == 128; }},
       {{"--light-steps", "10"}, [](const Scene& s) { return s.quality.light_steps == 10; }},
@@ -182,7 +189,19 @@ TEST(SceneFlags, SunAnglesReplaceTheDirection) {
   EXPECT_NEAR(changed.azimuth_deg, preset.azimuth_deg, 1e-4);
 }
 
+TEST(SceneFlags, SunFlagsOverrideTheTime) {
+  Scene s = resolve({"--time", "2026-06-21T18:30:00Z", "--sun-elevation-deg", "30"});
+  EXPECT_FALSE(s.sun.from_time);
+  EXPECT_NEAR(sun_angles_from_direction(s.sun.direction).elevation_deg, 30.0, 1e-4);
+  s = resolve({"--time", "2026-06-21T18:30:00Z", "--sun-dir", "0,1,1"});
+  EXPECT_FALSE(s.sun.from_time);
+}
+
 TEST(SceneFlags, ValidationErrorsNameTheFlag) {
+  EXPECT_EQ(resolve_error({"--time", "tomorrow"}),
+            "--time tomorrow: must be an ISO 8601 date and time with a zone, like "
+            "2026-06-21T18:30:00Z");
+  EXPECT_EQ(resolve_error({"--lat-deg", "-91"}), "--lat-deg -91: must be in [-90, 90]");
   EXPECT_EQ(resolve_error({"--coverage", "1.5"}), "--coverage 1.5: must be in [0, 1]");
   EXPECT_EQ(resolve_error({"--view-dir", "0,0,0"}),
             "--view-dir 0,0,0: must be a finite, non-zero vector");

@@ -14,6 +14,8 @@
 #include <limits>
 
 #include "nephele/error.h"
+#include "nephele/sky.h"
+#include <glm/geometric.hpp>
 
 namespace nephele {
 namespace {
@@ -51,6 +53,11 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.sun.direction, b.sun.direction);
   EXPECT_EQ(a.sun.illuminance, b.sun.illuminance);
   EXPECT_EQ(a.sun.disk_angular_radius_deg, b.sun.disk_angular_radius_deg);
+  EXPECT_EQ(a.sun.from_time, b.sun.from_time);
+  EXPECT_EQ(a.time, b.time);
+  EXPECT_EQ(a.location.lat_deg, b.location.lat_deg);
+  EXPECT_EQ(a.location.lon_deg, b.location.lon_deg);
+  EXPECT_EQ(a.location.altitude_m, b.location.altitude_m);
   const AtmosphereParams &aa = a.atmosphere, &ba = b.atmosphere;
   EXPECT_EQ(aa.planet_radius_km, ba.planet_radius_km);
   EXPECT_EQ(aa.atmosphere_height_km, ba.atmosphere_height_km);
@@ -102,7 +109,9 @@ void expect_near(const glm::vec3& actual, const glm::vec3& expected) {
 Scene unusual_scene() {
   Scene s;
   s.camera = {{-12.5f, 3e4f, 123.456f}, {0.1f, -0.2f, 0.3f}, 33.3f};
-  s.sun = {{-0.3f, 0.4f, 1e-7f}, 7.25f, 0.55f};
+  s.sun = {{-0.3f, 0.4f, 1e-7f}, 7.25f, 0.55f, true};
+  s.time = "1999-12-31T23:59:59.5-03:30";
+  s.location = {-33.8688f, 151.2093f, 58.0f};
   s.atmosphere = {
       6371.5f, 80.0f, {1e-6f, 2.5e-5f, 3.3333e-5f}, 7994.0f, 2.1e-5f, 2.3e-5f, 1234.5f, 0.76f,
       32,      12};
@@ -288,8 +297,8 @@ TEST(SceneToml, UnknownKeyListsAllowedKeys) {
 
 TEST(SceneToml, UnknownTopLevelKeyAndTable) {
   std::string message = parse_error("tme_s = 1\n");
-  EXPECT_NE(message.find("unknown key 'tme_s' (allowed at the top level: time_s, noise_seed, "
-                         "preset, [camera]"),
+  EXPECT_NE(message.find("unknown key 'tme_s' (allowed at the top level: time, time_s, noise_seed, "
+                         "preset, [location], [camera]"),
             std::string::npos)
       << message;
   message = parse_error("[cloud]\ncoverage = 0.5\n");
@@ -556,6 +565,14 @@ const BadValue kBadValues[] = {
     {"output.exposure = 0", [](Scene& s) { s.output.exposure = 0.0f; }},
     {"output.exposure = nan", [](Scene& s) { s.output.exposure = kNaN; }},
     {"time_s = inf", [](Scene& s) { s.time_s = kInf; }},
+    {"time = \"2026-06-21 18:30\": must be an ISO 8601 date and time with a zone, like "
+     "2026-06-21T18:30:00Z",
+     [](Scene& s) { s.time = "2026-06-21 18:30"; }},
+    {"sun.from_time = true: needs a time", [](Scene& s) { s.sun.from_time = true; }},
+    {"location.lat_deg = 91: must be in [-90, 90]", [](Scene& s) { s.location.lat_deg = 91.0f; }},
+    {"location.lon_deg = -181: must be in [-180, 360]",
+     [](Scene& s) { s.location.lon_deg = -181.0f; }},
+    {"location.altitude_m = nan", [](Scene& s) { s.location.altitude_m = kNaN; }},
 };
 
 // Test names from the expected message: "clouds.coverage = 1.5" -> "3_clouds_coverage_1_5".
@@ -639,6 +656,42 @@ TEST(SceneValidateExact, NamerCanShowFlags) {
             "my.toml: output.width = 0: must be in [1, 16384]");
 }
 
+// ---------------------------------------------------------------- date, time and place
+
+TEST(SceneTime, ATimeWithoutASunDirectionPlacesTheSun) {
+  Scene s = parse_scene_toml(
+      "time = \"2026-06-21T18:30:00Z\"\nlocation = { lat_deg = 48.85, lon_deg = 2.35 }\n",
+      "scene.toml");
+  EXPECT_TRUE(s.sun.from_time);
+  EXPECT_EQ(s.location.lat_deg, 48.85f);
+  // Paris, 20:30 local summer time: low in the west-north-west (astropy: 11.6 deg, 292.5 deg).
+  const glm::vec3 sun = scene_sun_direction(s);
+  const SunAngles a = sun_angles_from_direction(sun);
+  EXPECT_NEAR(a.elevation_deg, 11.6, 0.1);
+  EXPECT_NEAR(a.azimuth_deg, 292.5, 0.1);
+  // Animation time moves the clock: an hour later the sun is below 3 deg.
+  s.time_s = 3600.0f;
+  EXPECT_LT(sun_angles_from_direction(scene_sun_direction(s)).elevation_deg, 3.0);
+}
+
+TEST(SceneTime, AnExplicitSunDirectionOverridesTheTime) {
+  Scene s = parse_scene_toml(
+      "time = \"2026-06-21T18:30:00Z\"\n[sun]\nelevation_deg = 40\nazimuth_deg = 100\n",
+      "scene.toml");
+  EXPECT_FALSE(s.sun.from_time);
+  EXPECT_NEAR(sun_angles_from_direction(scene_sun_direction(s)).elevation_deg, 40.0, 1e-4);
+  // A later file that gives only a time starts following it again.
+  s = parse_scene_toml("preset = \"default\"\ntime = 2026-06-21T18:30:00Z\n", "scene.toml");
+  EXPECT_TRUE(s.sun.from_time);
+  EXPECT_EQ(s.time, "2026-06-21T18:30:00Z");  // a TOML date-time, unquoted, reads as the text
+}
+
+TEST(SceneTime, WithoutATimeThereIsNoEphemeris) {
+  Scene s;
+  EXPECT_FALSE(scene_ephemeris(s).has_value());
+  EXPECT_EQ(scene_sun_direction(s), glm::normalize(s.sun.direction));
+}
+
 // ---------------------------------------------------------------- round trip
 
 TEST(SceneRoundTrip, DefaultsAndPresets) {
@@ -689,10 +742,10 @@ TEST(SceneRoundTrip, AwkwardFloatsSurvive) {
 TEST(SceneRoundTrip, OutputIsCommentedAndHasAllTables) {
   std::string toml = scene_to_toml(Scene{});
   for (const char* table :
-       {"[camera]", "[sun]", "[atmosphere]", "[clouds]", "[quality]", "[output]"})
+       {"[location]", "[camera]", "[sun]", "[atmosphere]", "[clouds]", "[quality]", "[output]"})
     EXPECT_NE(toml.find(table), std::string::npos) << table;
   EXPECT_NE(toml.find("mode = \"default\""), std::string::npos) << toml;
-  EXPECT_NE(toml.find("# towards the sun, ENU; elevation"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("# towards the sun, ENU (when from_time is false); elevation"), std::string::npos) << toml;
 }
 
 }  // namespace
