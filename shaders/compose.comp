@@ -1,7 +1,7 @@
 #version 450
 // Pass 4: compose. Sky (single scattering, seed 000 section 1.5, from the sky-view LUT of
-// sky_view.comp) behind and between the clouds, the sun disk with limb darkening drawn
-// separately so clouds occlude it, and the clouds over both: color = background * T_cloud +
+// sky_view.comp) behind and between the clouds, the sun disk with limb darkening and the moon
+// disk with its phase drawn separately so clouds occlude them, and the clouds over both: color = background * T_cloud +
 // cloud in-scattering (seed listing B.3), plus the haze in front of distant clouds.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
@@ -22,6 +22,22 @@ float sun_disk(vec3 dir, vec3 sun, float cos_radius) {
   const float u = 0.6f;
   float solid_angle = 2.0f * PI * (1.0f - cos_radius);
   return (1.0f - u * (1.0f - m)) / ((1.0f - u / 3.0f) * solid_angle);
+}
+
+// Moon disk radiance as a share of the full moon's (params_inc.glsl). Its regolith scatters
+// by the Lommel-Seeliger law, L ~ mu0 / (mu0 + mu) (mu0, mu: cosines of the sun's and the
+// viewer's angle from the surface normal), which makes the full moon evenly bright to the limb;
+// the night side glows with earthshine.
+float moon_disk(vec3 dir) {
+  vec3 m = frame.moon_dir.xyz;
+  float cos_angle = dot(dir, m);
+  if (cos_angle < frame.moon_dir.w) return 0.0f;
+  float sin_radius = sqrt(max(1.0f - frame.moon_dir.w * frame.moon_dir.w, 1e-12f));
+  vec3 q = (dir - m * cos_angle) / sin_radius;  // position on the disk, |q| <= 1
+  float mu = sqrt(saturate(1.0f - dot(q, q)));
+  vec3 normal = q - m * mu;  // the surface normal facing the viewer
+  float mu0 = max(dot(normal, frame.moon_sun_dir.xyz), 0.0f);
+  return 2.0f * mu0 / max(mu0 + mu, 1e-6f) + frame.moon_sun_dir.w;
 }
 
 // The resolved cloud buffer at image pixel (x, y), filtered bilinearly when the clouds are
@@ -57,7 +73,8 @@ void main() {
   vec3 sun_light = above_horizon
                        ? frame.sun_transmittance.rgb * sun_disk(dir, sun, frame.sun_dir.w)
                        : vec3(0.0f);
-  vec3 background = sky + ground_sun * ground_shadow + sun_light;
+  vec3 moon_light = above_horizon ? frame.moon_radiance.rgb * moon_disk(dir) : vec3(0.0f);
+  vec3 background = sky + ground_sun * ground_shadow + sun_light + moon_light;
   // The air in front of a cloud scatters as the sky does along this direction.
   vec3 color = (background * cloud.a + sky * haze) * frame.sun_illuminance.rgb + cloud.rgb;
   imageStore(color_out, pixel, vec4(color, 1.0f));

@@ -20,8 +20,11 @@ struct FrameParams {
   vec4 camera_forward;      // xyz unit view direction; w aspect (width / height)
   vec4 camera_right;        // xyz unit right vector
   vec4 camera_up;           // xyz unit up vector (image up)
-  vec4 sun_dir;             // xyz unit vector towards the sun; w cos(sun angular radius)
-  vec4 sun_illuminance;     // rgb solar illuminance at the top of the atmosphere; w unused
+  vec4 sun_dir;             // xyz unit vector towards the key light: the sun, or the moon when
+                            // the moon lights the sky more (render/key_light.h); w cos(sun
+                            // angular radius)
+  vec4 sun_illuminance;     // rgb the key light's illuminance at the top of the atmosphere;
+                            // w 1 when the key light is the moon
   vec4 sun_at_clouds;       // rgb sunlight reaching the middle of the cloud layer; w unused
   vec4 ambient_at_clouds;   // rgb mean sky radiance over all directions at the clouds
   vec4 ground_sky_light;    // rgb sky irradiance on the ground / pi (radiance of a white
@@ -50,6 +53,13 @@ struct FrameParams {
                             // each s x s block is marched per frame); w 1 if the history is valid
   ivec4 march_offset;       // xy the pixel of each block marched this frame; z jitter index;
                             // w image pixels per cloud pixel (per axis)
+  vec4 moon_dir;            // xyz unit vector towards the moon; w cos(moon angular radius),
+                            // 2 when the scene has no moon (no date)
+  vec4 moon_sun_dir;        // xyz unit vector from the moon towards the sun (its phase); w the
+                            // earthshine's radiance on the moon's night side, as a share of the
+                            // full moon's
+  vec4 moon_radiance;       // rgb the full moon's disk radiance reaching the camera, in units
+                            // of sun_illuminance (transmittance included); w unused
 };
 
 #ifdef __cplusplus

@@ -1,7 +1,9 @@
 #include "render/frame_params.h"
 #include "nephele/sky.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace nephele {
 
@@ -79,7 +81,84 @@ glm::vec3 sky_irradiance_over_pi(const glsl::Atmosphere& atmosphere, const glm::
   });
 }
 
+constexpr double kMoonRadiusKm = 1737.4;
+constexpr double kMoonMeanDistanceKm = 384400.0;
+constexpr double kFullMoonRatio = 2.44e-6;
+// Earthshine on the moon's night side, as a share of the full moon's radiance, when the earth
+// seen from the moon is full (new moon): the ashen light is a few 1e-4 of the bright limb.
+constexpr double kEarthshine = 2.0e-4;
+
+// Phase angle (rad) from the illuminated fraction k = (1 + cos i) / 2.
+double phase_angle_rad(double k) { return std::acos(std::clamp(2.0 * k - 1.0, -1.0, 1.0)); }
+
+// The disk-integrated brightness of a Lommel-Seeliger sphere at phase angle i, 1 at full
+// (the law compose.comp shades the disk with): 1 - sin(i/2) tan(i/2) ln(cot(i/4)).
+double lommel_seeliger_phase(double i) {
+  if (i < 1e-4) return 1.0;
+  if (i > glsl::PI - 1e-4) return 0.0;
+  return std::max(1.0 - std::sin(i / 2) * std::tan(i / 2) * std::log(1.0 / std::tan(i / 4)), 1e-6);
+}
+
+// Zenith sky luminance above the ground point below the camera, lit by a unit light from `dir`.
+float zenith_sky_luminance(const Scene& scene, const glm::vec3& dir) {
+  const glsl::Atmosphere atmosphere = make_atmosphere(scene);
+  const glm::vec3 ground(scene.camera.position_m.x, scene.camera.position_m.y,
+                         atmosphere.planet_radius_m + 1.0f);
+  const glsl::SkySample sky = glsl::sky_single_scattering(atmosphere, ground, glm::vec3(0, 0, 1),
+                                                          dir, 16, 8, 0.1f, glm::vec3(0.0f));
+  return glm::dot(sky.radiance, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+}
+
 }  // namespace
+
+double moon_illuminance_ratio(double k, double distance_km) {
+  const double i_deg = phase_angle_rad(k) * 180.0 / glsl::PI;
+  const double dm = 0.026 * i_deg + 4e-9 * std::pow(i_deg, 4.0);
+  const double d = kMoonMeanDistanceKm / distance_km;
+  return kFullMoonRatio * std::pow(10.0, -0.4 * dm) * d * d;
+}
+
+// The moon disk's parameters (params_inc.glsl): where it is, which side the sun lights, how
+// bright its full disk would be at the camera in units of the key light's illuminance.
+static void set_moon(gpu::FrameParams& f, const Scene& scene, const glsl::Atmosphere& atmosphere,
+                     const KeyLight& key) {
+  f.moon_dir = glm::vec4(0.0f, 0.0f, 1.0f, 2.0f);  // no moon
+  const std::optional<Ephemeris> e = scene_ephemeris(scene);
+  if (!e) return;
+  const double radius_rad = std::asin(kMoonRadiusKm / e->moon.distance_km);
+  f.moon_dir = glm::vec4(e->moon.direction, float(std::cos(radius_rad)));
+  // Geocentric enough: the sun seen from the moon, from the two positions (km).
+  const glm::dvec3 sun_km = glm::dvec3(e->sun.direction) * e->sun.distance_km;
+  const glm::dvec3 moon_km = glm::dvec3(e->moon.direction) * e->moon.distance_km;
+  const double k = e->moon_illuminated_fraction;
+  f.moon_sun_dir = glm::vec4(glm::vec3(glm::normalize(sun_km - moon_km)), float(kEarthshine * (1.0 - k)));
+  // Full-disk radiance: the full moon's illuminance over the disk's solid angle, scaled by the
+  // empirical phase law over the Lommel-Seeliger law that compose.comp shades the disk with.
+  const double solid_angle = 2.0 * glsl::PI * (1.0 - std::cos(radius_rad));
+  const double full_disk = kFullMoonRatio *
+                           std::pow(kMoonMeanDistanceKm / e->moon.distance_km, 2.0) / solid_angle;
+  const double phase = moon_illuminance_ratio(k, e->moon.distance_km) /
+                       moon_illuminance_ratio(1.0, e->moon.distance_km) /
+                       lommel_seeliger_phase(phase_angle_rad(k));
+  const glm::vec3 eye = planet_from_enu(scene, scene.camera.position_m);
+  const glm::vec3 t = glsl::atmosphere_transmittance_to_top(atmosphere, eye, e->moon.direction, 256);
+  f.moon_radiance = glm::vec4(t * float(full_disk * std::min(phase, 50.0) * scene.sun.illuminance /
+                                        std::max(key.illuminance, 1e-30f)),
+                              0.0f);
+}
+
+KeyLight key_light(const Scene& scene) {
+  const glm::vec3 sun = scene_sun_direction(scene);
+  const KeyLight by_sun{sun, scene.sun.illuminance, false};
+  const std::optional<Ephemeris> e = scene_ephemeris(scene);
+  if (!e || e->moon.elevation_deg <= 0.0 || sun.z > 0.0f) return by_sun;
+  const float moon_share =
+      float(moon_illuminance_ratio(e->moon_illuminated_fraction, e->moon.distance_km));
+  const glm::vec3 moon = e->moon.direction;
+  if (zenith_sky_luminance(scene, sun) >= moon_share * zenith_sky_luminance(scene, moon))
+    return by_sun;
+  return {moon, scene.sun.illuminance * moon_share, true};
+}
 
 void set_previous_frame(gpu::FrameParams& f, const Scene& scene, const Scene& previous) {
   const CameraBasis basis = camera_basis(previous.camera.view_dir);
@@ -103,7 +182,8 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
   const float planet_m = atmosphere.planet_radius_m;
   const CameraBasis basis = camera_basis(scene.camera.view_dir);
-  const glm::vec3 sun = scene_sun_direction(scene);
+  const KeyLight key = key_light(scene);
+  const glm::vec3 sun = key.direction;  // the key light's: the sun's, or at night the moon's
   const float aspect = float(scene.output.width) / float(scene.output.height);
   const float tan_half_fov = std::tan(glm::radians(scene.camera.fov_deg) * 0.5f);
 
@@ -113,13 +193,15 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   f.camera_right = glm::vec4(basis.right, 0.0f);
   f.camera_up = glm::vec4(basis.up, 0.0f);
   f.sun_dir = glm::vec4(sun, std::cos(glm::radians(scene.sun.disk_angular_radius_deg)));
-  const glm::vec3 illuminance(scene.sun.illuminance);
-  f.sun_illuminance = glm::vec4(illuminance, 0.0f);
+  const glm::vec3 illuminance(key.illuminance);
+  f.sun_illuminance = glm::vec4(illuminance, key.moon ? 1.0f : 0.0f);
   // The sun disk's colour. Compose hides the disk's pixels below the horizon; a disk whose
-  // centre has set is not drawn at all (its last sliver is lost).
+  // centre has set is not drawn at all (its last sliver is lost). None while the moon leads.
   const glm::vec3 eye(f.camera_pos_m);
-  f.sun_transmittance =
-      glm::vec4(glsl::atmosphere_transmittance_to_top(atmosphere, eye, sun, 256), 0.0f);
+  f.sun_transmittance = glm::vec4(
+      key.moon ? glm::vec3(0.0f) : glsl::atmosphere_transmittance_to_top(atmosphere, eye, sun, 256),
+      0.0f);
+  set_moon(f, scene, atmosphere, key);
   // The sky-view LUT's frame, shared by its pass and compose.
   const glsl::SkyViewFrame sky_view = glsl::sky_view_frame(eye, sun, planet_m);
   f.sky_view_up = glm::vec4(sky_view.up, sky_view.horizon_elevation_rad);

@@ -20,6 +20,21 @@ struct CameraBasis {
 };
 CameraBasis camera_basis(const glm::vec3& view_dir);
 
+// The light that the sky, the clouds and the ground are lit by: the sun, or at night the moon
+// when it lights the zenith sky more than the sun below the horizon does (compared with the
+// same single-scattering model, so the hand-over happens where both are equally bright).
+struct KeyLight {
+  glm::vec3 direction;  // ENU unit vector towards it
+  float illuminance;    // at the top of the atmosphere, in the units of sun.illuminance
+  bool moon = false;
+};
+KeyLight key_light(const Scene& scene);
+
+// The moon's illuminance at the top of the atmosphere as a share of the sun's: the full moon's
+// 2.44e-6 (magnitude -12.73 against -26.74) at 384,400 km, dimmed with the phase angle by the
+// empirical law m(i) = 0.026 |i| + 4e-9 i^4 (i in degrees; Allen's Astrophysical Quantities).
+double moon_illuminance_ratio(double illuminated_fraction, double distance_km);
+
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index);
 
 // Fills the previous frame's camera and the wind's displacement since then (for reprojection).

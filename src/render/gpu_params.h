@@ -6,6 +6,6 @@
 #include "common/params_inc.glsl"
 
 namespace nephele::gpu {
-static_assert(sizeof(FrameParams) == 29 * 16, "FrameParams must be 29 vec4s (std140 layout)");
+static_assert(sizeof(FrameParams) == 32 * 16, "FrameParams must be 32 vec4s (std140 layout)");
 static_assert(alignof(FrameParams) <= 16);
 }  // namespace nephele::gpu

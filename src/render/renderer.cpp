@@ -124,7 +124,7 @@ int layer_side(const Scene& scene) {
 }
 
 bool history_usable(const Scene& scene, const Scene& previous) {
-  const float cos_sun = glm::dot(scene_sun_direction(scene), scene_sun_direction(previous));
+  const float cos_sun = glm::dot(key_light(scene).direction, key_light(previous).direction);
   return cos_sun > std::cos(glm::radians(0.5f)) && scene.sun.illuminance == previous.sun.illuminance &&
          glm::distance(scene.camera.position_m, previous.camera.position_m) < 1000.0f &&
          layer_side(scene) == layer_side(previous);
@@ -204,7 +204,7 @@ bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& ke
     params.light_volume = glm::vec4(0.0f);
     return false;
   }
-  const glm::vec3 sun = scene_sun_direction(scene);
+  const glm::vec3 sun = key_light(scene).direction;
   const glm::vec2 camera_cloud_m = glm::vec2(scene.camera.position_m) - glm::vec2(params.wind_offset_m);
   const LightVolumeKey* built = light_volume_built ? &*light_volume_built : nullptr;
   // Rebuilt when the clouds or the sun (by 0.25 deg) change, or when the camera has moved

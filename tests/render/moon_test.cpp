@@ -1,0 +1,101 @@
+// The moon: its disk shows the phase of the date, lit on the side facing the sun, and it
+// takes over lighting the sky and the clouds at night.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+
+#include "nephele/image_compare.h"
+#include "nephele/scene_io.h"
+#include "nephele/sky.h"
+#include "render/frame_params.h"
+#include "render/render_fixture.h"
+
+namespace nephele {
+namespace {
+
+// A narrow view centred on the moon at `time` in Paris, no clouds.
+Scene moon_view(const std::string& time) {
+  Scene s = load_preset("default");
+  s.time = time;
+  s.sun.from_time = true;
+  s.location = {48.85f, 2.35f, 35.0f};
+  s.clouds.coverage = 0.0f;
+  s.output.width = 160;
+  s.output.height = 160;
+  s.camera.fov_deg = 1.2f;
+  s.camera.view_dir = scene_ephemeris(s)->moon.direction;
+  return s;
+}
+
+struct DiskShape {
+  double lit_share;  // lit pixels over the disk's area
+  glm::vec2 lit_offset_px;  // centroid of the lit pixels from the image centre (x right, y down)
+};
+
+DiskShape measure_disk(const Scene& s, const Image& image) {
+  const Ephemeris e = *scene_ephemeris(s);
+  const double radius_rad = std::asin(1737.4 / e.moon.distance_km);
+  const double radius_px = std::tan(radius_rad) / std::tan(glm::radians(s.camera.fov_deg) / 2.0) *
+                           (s.output.height / 2.0);
+  double max_lum = 0.0;
+  for (const glm::vec4& p : image.pixels) max_lum = std::max(max_lum, double(luminance(p)));
+  int lit = 0;
+  glm::dvec2 sum(0.0);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (luminance(image.at(x, y)) > 0.05 * max_lum) {
+        ++lit;
+        sum += glm::dvec2(x + 0.5 - image.width / 2.0, y + 0.5 - image.height / 2.0);
+      }
+  return {lit / (M_PI * radius_px * radius_px), lit ? glm::vec2(sum / double(lit)) : glm::vec2(0)};
+}
+
+class MoonTest : public RenderTest {};
+
+TEST_F(MoonTest, DiskShowsThePhaseLitTowardsTheSun) {
+  // Waxing gibbous (0.78) in the evening and a waning crescent before dawn.
+  for (const char* time : {"2026-06-24T21:30:00Z", "2026-07-11T02:30:00Z"}) {
+    SCOPED_TRACE(time);
+    const Scene s = moon_view(time);
+    const Ephemeris e = *scene_ephemeris(s);
+    ASSERT_GT(e.moon.elevation_deg, 5.0);
+    const DiskShape disk = measure_disk(s, render(s).color);
+    // The lit area is the illuminated fraction (the brightness falls towards the terminator,
+    // so a threshold at 5% of the peak trims a little of it).
+    std::printf("lit share %.3f, illuminated fraction %.3f\n", disk.lit_share, e.moon_illuminated_fraction);
+    EXPECT_NEAR(disk.lit_share, e.moon_illuminated_fraction, 0.06)
+        << "illuminated fraction " << e.moon_illuminated_fraction;
+    // The lit side faces the sun: the direction from the moon to the sun, on the image.
+    const CameraBasis b = camera_basis(s.camera.view_dir);
+    const gpu::FrameParams f = make_frame_params(s, 0);
+    const glm::vec3 to_sun(f.moon_sun_dir);
+    const glm::vec2 expected = glm::normalize(glm::vec2(glm::dot(to_sun, b.right), -glm::dot(to_sun, b.up)));
+    const float cos_angle = glm::dot(glm::normalize(disk.lit_offset_px), expected);
+    EXPECT_GT(cos_angle, std::cos(glm::radians(15.0f)));
+  }
+}
+
+TEST(MoonLight, FullAndQuarterMoonIlluminance) {
+  // Full moon -12.73 mag against the sun's -26.74; a quarter moon about a tenth of the full.
+  EXPECT_NEAR(moon_illuminance_ratio(1.0, 384400.0), 2.44e-6, 1e-9);
+  EXPECT_NEAR(moon_illuminance_ratio(0.5, 384400.0) / moon_illuminance_ratio(1.0, 384400.0), 0.091,
+              0.005);
+  // Nearer is brighter, as the inverse square of the distance.
+  EXPECT_NEAR(moon_illuminance_ratio(1.0, 356500.0) / moon_illuminance_ratio(1.0, 384400.0),
+              std::pow(384400.0 / 356500.0, 2.0), 1e-9);
+}
+
+TEST(MoonLight, TheMoonTakesOverAtNightAndNotByDay) {
+  Scene s = moon_view("2026-06-24T21:30:00Z");  // sun -11 deg, moon 18.5 deg up
+  EXPECT_TRUE(key_light(s).moon);
+  EXPECT_LT(key_light(s).illuminance, s.sun.illuminance * 3e-6f);
+  s.time = "2026-06-24T15:30:00Z";  // afternoon: the sun
+  EXPECT_FALSE(key_light(s).moon);
+  EXPECT_EQ(key_light(s).illuminance, s.sun.illuminance);
+  s.time = "2026-06-24T20:00:00Z";  // sun -1 deg: twilight outshines the moon
+  EXPECT_FALSE(key_light(s).moon);
+}
+
+}  // namespace
+}  // namespace nephele
