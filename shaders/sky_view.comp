@@ -11,23 +11,11 @@
 #include "common/phase_inc.glsl"
 #include "common/atmosphere_inc.glsl"
 #include "common/sky_view_inc.glsl"
+#include "frame_atmosphere_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 const float GROUND_ALBEDO = 0.1f;
-
-Atmosphere frame_atmosphere() {
-  Atmosphere a;
-  a.planet_radius_m = frame.radii_m.x;
-  a.top_radius_m = frame.radii_m.y;
-  a.rayleigh_sigma_s = frame.rayleigh.rgb;
-  a.rayleigh_height_m = frame.rayleigh.w;
-  a.mie_sigma_s = frame.mie.x;
-  a.mie_sigma_t = frame.mie.y;
-  a.mie_height_m = frame.mie.z;
-  a.mie_g = frame.mie.w;
-  return a;
-}
 
 void main() {
   ivec2 size = imageSize(sky_view_out);

@@ -44,5 +44,8 @@ layout(set = 0, binding = 21, rgba32f) uniform writeonly image2D color_out;
 // and left to two down and right (march_range.comp; read by resolve.comp).
 layout(set = 0, binding = 22, rgba32f) uniform image2D range_lo;
 layout(set = 0, binding = 23, rgba32f) uniform image2D range_hi;
+// The star catalogue (StarGpu), and the final image again, read and written by stars.comp.
+layout(std430, set = 0, binding = 24) readonly buffer StarBlock { StarGpu star_list[]; };
+layout(set = 0, binding = 25, rgba32f) uniform image2D color_rw;
 
 #endif

@@ -60,6 +60,18 @@ struct FrameParams {
                             // full moon's
   vec4 moon_radiance;       // rgb the full moon's disk radiance reaching the camera, in units
                             // of sun_illuminance (transmittance included); w unused
+  vec4 star_east;           // rows of the rotation from J2000 equatorial unit vectors to the
+  vec4 star_north;          // camera's east-north-up (precession, sidereal time, latitude);
+  vec4 star_up;             // w unused
+  vec4 stars;               // x the sun's illuminance (stars' irradiance is relative to it),
+                            // y number of stars, z solid angle of a pixel (sr), w unused
+};
+
+// One star of the catalogue (data/stars.csv), as stars.comp reads it.
+struct StarGpu {
+  vec4 dir_j2000;           // xyz unit vector, J2000 equatorial; w V magnitude
+  vec4 irradiance;          // rgb irradiance at the top of the atmosphere per unit solar
+                            // illuminance; w B-V
 };
 
 #ifdef __cplusplus

@@ -18,7 +18,8 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
   const VkDescriptorType types[] = {
       kUbo,     kStorage, kStorage, kStorage, kSampled, kSampled, kSampled, kStorage,
       kSampled, kStorage, kSampled, kStorage, kStorage, kSampled, kSampled, kStorage,
-      kStorage, kSampled, kSampled, kSampled, kSampled, kStorage, kStorage, kStorage};
+      kStorage, kSampled, kSampled, kSampled, kSampled, kStorage, kStorage, kStorage,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
   static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];

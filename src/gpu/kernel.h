@@ -38,6 +38,8 @@ enum Binding : uint32_t {
   kColorOut = 21,
   kRangeLo = 22,
   kRangeHi = 23,
+  kStars = 24,
+  kColor = 25,
   kBindingCount
 };
 

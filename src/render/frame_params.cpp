@@ -1,5 +1,6 @@
 #include "render/frame_params.h"
 #include "nephele/sky.h"
+#include "sky/stars.h"
 
 #include <algorithm>
 #include <cmath>
@@ -147,6 +148,19 @@ static void set_moon(gpu::FrameParams& f, const Scene& scene, const glsl::Atmosp
                               0.0f);
 }
 
+// The star field's rotation into this sky and the scale of its pixels; no stars without a date.
+static void set_stars(gpu::FrameParams& f, const Scene& scene, float tan_half_fov) {
+  const std::optional<Ephemeris> e = scene_ephemeris(scene);
+  if (!e) return;  // f.stars.y = 0: none drawn
+  const double jd = *julian_day_from_iso8601(scene.time) + double(scene.time_s) / 86400.0;
+  const glm::mat3 m = enu_from_j2000(jd, scene.location.lat_deg, e->local_sidereal_time_deg);
+  f.star_east = glm::vec4(m[0][0], m[1][0], m[2][0], 0.0f);  // rows of m
+  f.star_north = glm::vec4(m[0][1], m[1][1], m[2][1], 0.0f);
+  f.star_up = glm::vec4(m[0][2], m[1][2], m[2][2], 0.0f);
+  const float pixel_rad = 2.0f * tan_half_fov / float(scene.output.height);
+  f.stars = glm::vec4(scene.sun.illuminance, float(star_catalogue().size()), pixel_rad * pixel_rad, 0.0f);
+}
+
 KeyLight key_light(const Scene& scene) {
   const glm::vec3 sun = scene_sun_direction(scene);
   const KeyLight by_sun{sun, scene.sun.illuminance, false};
@@ -202,6 +216,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
       key.moon ? glm::vec3(0.0f) : glsl::atmosphere_transmittance_to_top(atmosphere, eye, sun, 256),
       0.0f);
   set_moon(f, scene, atmosphere, key);
+  set_stars(f, scene, tan_half_fov);
   // The sky-view LUT's frame, shared by its pass and compose.
   const glsl::SkyViewFrame sky_view = glsl::sky_view_frame(eye, sun, planet_m);
   f.sky_view_up = glm::vec4(sky_view.up, sky_view.horizon_elevation_rad);
@@ -244,7 +259,10 @@ bool sky_view_reusable(const SkyViewKey& built, const SkyViewKey& now) {
   SkyViewKey moved = now;
   moved.camera_pos_m = built.camera_pos_m;
   moved.ground_sky_light = built.ground_sky_light;
+  // A sun moving with the clock (0.004 deg/s) is followed in steps of kSkyViewReuseSunDeg.
+  moved.sun_dir = built.sun_dir;
   if (!(moved == built)) return false;
+  if (glm::dot(now.sun_dir, built.sun_dir) < std::cos(glm::radians(kSkyViewReuseSunDeg))) return false;
   const glm::vec3 light_change = glm::abs(now.ground_sky_light - built.ground_sky_light);
   if (glm::any(glm::greaterThan(light_change, 1e-3f * glm::abs(built.ground_sky_light))))
     return false;

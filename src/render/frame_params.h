@@ -52,10 +52,12 @@ struct SkyViewKey {
   bool operator==(const SkyViewKey&) const = default;
 };
 SkyViewKey sky_view_key(const gpu::FrameParams& f);
-// Whether a LUT built for `built` serves `now`: the same sun, atmosphere and samples, and the
+// Whether a LUT built for `built` serves `now`: the same atmosphere and samples, the sun within
+// kSkyViewReuseSunDeg, and the
 // camera within kSkyViewReuseM of where it was built and within 1% of its altitude (at most
 // kSkyViewReuseM; the horizon's dip changes with altitude, fastest near the ground).
 constexpr float kSkyViewReuseM = 50.0f;
+constexpr float kSkyViewReuseSunDeg = 0.05f;
 bool sky_view_reusable(const SkyViewKey& built, const SkyViewKey& now);
 
 }  // namespace nephele

@@ -1,6 +1,9 @@
 #include "render/passes.h"
 
 #include "render/gpu_params.h"
+#include "sky/stars.h"
+
+#include <algorithm>
 
 namespace nephele {
 
@@ -17,8 +20,11 @@ GpuState::GpuState(gpu::Context& c)
       compose_kernel(c, set, "compose.comp.spv"),
       light_volume_kernel(c, set, "light_volume.comp.spv"),
       march_range_kernel(c, set, "march_range.comp.spv"),
+      stars_kernel(c, set, "stars.comp.spv"),
       timer(c, 8),
       frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
+      stars(c, sizeof(gpu::StarGpu) * std::max<size_t>(star_catalogue().size(), 1),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
       base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
                    VK_FORMAT_R8G8B8A8_UNORM),
@@ -30,6 +36,10 @@ GpuState::GpuState(gpu::Context& c)
                    VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set.bind_image(gpu::kLightVolumeOut, gpu::kLightVolume, light_volume);
   set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  set.bind_buffer(gpu::kStars, stars, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  auto* star_data = static_cast<gpu::StarGpu*>(stars.data());
+  for (const Star& star : star_catalogue())
+    star_data[star_count++] = {glm::vec4(star.dir_j2000, star.vmag), glm::vec4(star.irradiance, star.b_v)};
   set.bind_image(gpu::kBaseNoiseOut, gpu::kBaseNoise, base_noise);
   set.bind_image(gpu::kDetailNoiseOut, gpu::kDetailNoise, detail_noise);
   set.bind_image(gpu::kWeatherOut, gpu::kWeatherMap, weather_map);
@@ -59,6 +69,7 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   set.bind_storage_image(gpu::kRangeLo, range_lo);
   set.bind_storage_image(gpu::kRangeHi, range_hi);
   set.bind_storage_image(gpu::kColorOut, color);
+  set.bind_storage_image(gpu::kColor, color);
   // Defined contents: filters read neighbours of the texels a frame writes.
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     for (const gpu::Texture* t : {&march_a, &march_b, &range_lo, &range_hi, &clouds_a[0], &clouds_a[1], &clouds_b[0],
@@ -123,6 +134,10 @@ void pass_resolve(VkCommandBuffer cmd, GpuState& s) {
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.light_volume_kernel, s.set, s.timer, "light_volume", gpu::LIGHT_VOLUME_XY,
                 gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z, 4, 4, 4);
+}
+
+void pass_stars(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.stars_kernel, s.set, s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1, 1);
 }
 
 void pass_compose(VkCommandBuffer cmd, GpuState& s) {

@@ -30,9 +30,11 @@ struct GpuState {
   gpu::DescriptorSet set;
   gpu::Kernel noise_base_kernel, noise_detail_kernel, weather_kernel;
   gpu::Kernel sky_view_kernel, clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
-  gpu::Kernel compose_kernel, light_volume_kernel, march_range_kernel;
+  gpu::Kernel compose_kernel, light_volume_kernel, march_range_kernel, stars_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
+  gpu::Buffer stars;  // the star catalogue (StarGpu), written once
+  int star_count = 0;
   gpu::Texture base_noise, detail_noise, weather_map, sky_view, light_volume;
   // Per-pixel images (bindings_inc.glsl): the marched samples (A, B), the cloud buffer of this
   // frame and of the previous one (history), and the final image.
@@ -54,5 +56,6 @@ void pass_march_range(VkCommandBuffer cmd, GpuState& s);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s);
 void pass_compose(VkCommandBuffer cmd, GpuState& s);
+void pass_stars(VkCommandBuffer cmd, GpuState& s);
 
 }  // namespace nephele

@@ -281,6 +281,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
     pass_march_range(cmd, s);
     pass_resolve(cmd, s);
     pass_compose(cmd, s);
+    pass_stars(cmd, s);
   });
   previous = scene;
   previous_key = key;

@@ -189,6 +189,23 @@ TEST_F(SkyViewTest, LutIsReusedWhileTheCameraMovesALittle) {
   EXPECT_LT(nephele::luminance_error(reused.color, exact.color), 1e-3);
 }
 
+// A sun moving with the clock (a date and an animation time) rebuilds the LUT only every
+// kSkyViewReuseSunDeg, not every frame.
+TEST_F(SkyViewTest, LutFollowsTheClockInSteps) {
+  Scene a = cloudless("default");
+  a.output.width = 48;
+  a.output.height = 32;
+  a.time = "2026-06-21T08:00:00Z";
+  a.sun.from_time = true;
+  a.location = {45.0f, 6.0f, 0.0f};
+  if (render(a).stats.passes.empty()) GTEST_SKIP() << "the device has no timestamps";
+  Scene later = a;
+  later.time_s = 5.0f;  // the sun moves about 0.02 deg
+  EXPECT_FALSE(has_pass(render(later), "sky_view"));
+  later.time_s = 30.0f;  // about 0.12 deg
+  EXPECT_TRUE(has_pass(render(later), "sky_view"));
+}
+
 // The sun's centre 0.1 degrees above the horizon, its disk 0.27 degrees in radius: the part of
 // the disk above the horizon shines, the planet hides the rest.
 TEST_F(SkyViewTest, TheGroundHidesTheSunDiskBelowTheHorizon) {

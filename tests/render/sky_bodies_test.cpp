@@ -1,8 +1,12 @@
-// The moon: its disk shows the phase of the date, lit on the side facing the sun, and it
-// takes over lighting the sky and the clouds at night.
+// The moon and the stars: the moon disk shows the phase of the date, lit on the side facing
+// the sun, and takes over lighting the sky and the clouds at night; stars stand where they are.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <libnova/precession.h>
+#include <libnova/transform.h>
+#include <vector>
 #include <glm/geometric.hpp>
 
 #include "nephele/image_compare.h"
@@ -74,6 +78,33 @@ TEST_F(MoonTest, DiskShowsThePhaseLitTowardsTheSun) {
     const float cos_angle = glm::dot(glm::normalize(disk.lit_offset_px), expected);
     EXPECT_GT(cos_angle, std::cos(glm::radians(15.0f)));
   }
+}
+
+TEST_F(MoonTest, StarsAreWhereTheyAreInTheSky) {
+  // Vega (HR 7001) over Paris on a moonless night, placed independently: its J2000 position
+  // precessed and turned into altitude and azimuth by libnova.
+  Scene s = moon_view("2026-07-14T22:30:00Z");
+  const double jd = *julian_day_from_iso8601(s.time);
+  ln_equ_posn j2000{279.2340, 38.7836}, date;
+  ln_get_equ_prec(&j2000, jd, &date);
+  ln_lnlat_posn observer{2.35, 48.85};
+  ln_hrz_posn hrz;
+  ln_get_hrz_from_equ(&date, &observer, jd, &hrz);
+  s.camera.view_dir = sun_direction_from_angles(hrz.alt, hrz.az + 180.0);
+  s.camera.fov_deg = 1.0f;
+  s.output.width = s.output.height = 64;
+  const Image image = render(s).color;
+  int best = 0;
+  for (int i = 1; i < int(image.pixels.size()); ++i)
+    if (luminance(image.pixels[i]) > luminance(image.pixels[best])) best = i;
+  // The image centre lies between pixels 31 and 32: within 1.5 px = 0.023 deg.
+  EXPECT_NEAR(best % 64 + 0.5, 32.0, 1.5);
+  EXPECT_NEAR(best / 64 + 0.5, 32.0, 1.5);
+  // A star, not the sky: far brighter than the median pixel.
+  std::vector<float> l;
+  for (const glm::vec4& p : image.pixels) l.push_back(luminance(p));
+  std::nth_element(l.begin(), l.begin() + l.size() / 2, l.end());
+  EXPECT_GT(luminance(image.pixels[best]), 100.0f * l[l.size() / 2]);
 }
 
 TEST(MoonLight, FullAndQuarterMoonIlluminance) {

@@ -1,0 +1,23 @@
+// The frame's atmosphere (FrameParams) as common/atmosphere_inc.glsl's struct. GLSL only.
+#ifndef NEPHELE_FRAME_ATMOSPHERE_INC
+#define NEPHELE_FRAME_ATMOSPHERE_INC
+
+#extension GL_GOOGLE_include_directive : require
+#include "common/phase_inc.glsl"
+#include "common/atmosphere_inc.glsl"
+#include "common/bindings_inc.glsl"
+
+Atmosphere frame_atmosphere() {
+  Atmosphere a;
+  a.planet_radius_m = frame.radii_m.x;
+  a.top_radius_m = frame.radii_m.y;
+  a.rayleigh_sigma_s = frame.rayleigh.rgb;
+  a.rayleigh_height_m = frame.rayleigh.w;
+  a.mie_sigma_s = frame.mie.x;
+  a.mie_sigma_t = frame.mie.y;
+  a.mie_height_m = frame.mie.z;
+  a.mie_g = frame.mie.w;
+  return a;
+}
+
+#endif
