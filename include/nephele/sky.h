@@ -36,10 +36,8 @@ struct Ephemeris {
 // precessed to the date (libnova returns J2000 coordinates).
 Ephemeris compute_ephemeris(double jd_ut, double lat_deg, double lon_deg, double altitude_m);
 
-// The same for the scene's `time` text; nullopt when it is not a date and time.
-
 // The scene's ephemeris at its time (`time` + `time_s`) and place (location, observer at
-// location.altitude_m + the camera's height); nullopt when the scene has no `time`.
+// location.altitude_m + the camera's height); nullopt when the scene has no valid `time`.
 std::optional<Ephemeris> scene_ephemeris(const Scene& scene);
 
 // The unit direction (ENU) towards the sun that the scene is rendered with: the ephemeris's

@@ -68,8 +68,13 @@ std::optional<double> julian_day_from_iso8601(std::string_view text) {
   if (i < s.size() && s[i] == ':') {
     size_t start = ++i;
     while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.')) ++i;
-    if (i - start < 2 || !std::isdigit(static_cast<unsigned char>(s[start + 1]))) return std::nullopt;
-    seconds = std::stod(s.substr(start, i - start));
+    const std::string digits = s.substr(start, i - start);  // "SS" or "SS.fff"
+    if (digits.size() < 2 || !std::isdigit(static_cast<unsigned char>(digits[0])) ||
+        !std::isdigit(static_cast<unsigned char>(digits[1])) ||
+        (digits.size() > 2 && (digits[2] != '.' || digits.size() == 3 ||
+                               digits.find('.', 3) != std::string::npos)))
+      return std::nullopt;
+    seconds = std::stod(digits);
   }
   double offset_h = 0.0;
   if (i < s.size() && s[i] == 'Z') {
