@@ -32,7 +32,7 @@ struct FrameStats {
   double mean_luminance = 0.0;   // mean relative luminance of the linear HDR image
   double cloud_cover_fraction = 0.0;  // share of above-horizon pixels with cloud T < 0.5
   std::vector<PassTiming> passes;
-  SkyPosition sun;                     // the sun the frame was lit by (distance 0 without a time)
+  SkyPosition sun;                     // the frame's sun (distance 0 without a time)
   std::optional<Ephemeris> ephemeris;  // sun, moon and sidereal time when the scene has a time
 };
 

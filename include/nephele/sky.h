@@ -25,6 +25,7 @@ struct SkyPosition {
 };
 
 struct Ephemeris {
+  double jd_ut = 0.0;  // the instant (Julian day, UT)
   SkyPosition sun;
   SkyPosition moon;
   double moon_illuminated_fraction = 0.0;  // (1 + cos phase angle) / 2
@@ -43,5 +44,7 @@ std::optional<Ephemeris> scene_ephemeris(const Scene& scene);
 // The unit direction (ENU) towards the sun that the scene is rendered with: the ephemeris's
 // when sun.from_time is set, else sun.direction.
 glm::vec3 scene_sun_direction(const Scene& scene);
+// The same with the scene's ephemeris already computed (scene_ephemeris(scene)).
+glm::vec3 scene_sun_direction(const Scene& scene, const std::optional<Ephemeris>& ephemeris);
 
 }  // namespace nephele

@@ -122,9 +122,9 @@ double moon_illuminance_ratio(double k, double distance_km) {
 // The moon disk's parameters (params_inc.glsl): where it is, which side the sun lights, how
 // bright its full disk would be at the camera in units of the key light's illuminance.
 static void set_moon(gpu::FrameParams& f, const Scene& scene, const glsl::Atmosphere& atmosphere,
-                     const KeyLight& key) {
+                     const SkyLights& lights) {
   f.moon_dir = glm::vec4(0.0f, 0.0f, 1.0f, 2.0f);  // no moon
-  const std::optional<Ephemeris> e = scene_ephemeris(scene);
+  const std::optional<Ephemeris>& e = lights.ephemeris;
   if (!e) return;
   const double radius_rad = std::asin(kMoonRadiusKm / e->moon.distance_km);
   f.moon_dir = glm::vec4(e->moon.direction, float(std::cos(radius_rad)));
@@ -144,16 +144,15 @@ static void set_moon(gpu::FrameParams& f, const Scene& scene, const glsl::Atmosp
   const glm::vec3 eye = planet_from_enu(scene, scene.camera.position_m);
   const glm::vec3 t = glsl::atmosphere_transmittance_to_top(atmosphere, eye, e->moon.direction, 256);
   f.moon_radiance = glm::vec4(t * float(full_disk * std::min(phase, 50.0) * scene.sun.illuminance /
-                                        std::max(key.illuminance, 1e-30f)),
+                                        std::max(lights.key.illuminance, 1e-30f)),
                               0.0f);
 }
 
 // The star field's rotation into this sky and the scale of its pixels; no stars without a date.
-static void set_stars(gpu::FrameParams& f, const Scene& scene, float tan_half_fov) {
-  const std::optional<Ephemeris> e = scene_ephemeris(scene);
+static void set_stars(gpu::FrameParams& f, const Scene& scene, const std::optional<Ephemeris>& e,
+                      float tan_half_fov) {
   if (!e) return;  // f.stars.y = 0: none drawn
-  const double jd = *julian_day_from_iso8601(scene.time) + double(scene.time_s) / 86400.0;
-  const glm::mat3 m = enu_from_j2000(jd, scene.location.lat_deg, e->local_sidereal_time_deg);
+  const glm::mat3 m = enu_from_j2000(e->jd_ut, scene.location.lat_deg, e->local_sidereal_time_deg);
   f.star_east = glm::vec4(m[0][0], m[1][0], m[2][0], 0.0f);  // rows of m
   f.star_north = glm::vec4(m[0][1], m[1][1], m[2][1], 0.0f);
   f.star_up = glm::vec4(m[0][2], m[1][2], m[2][2], 0.0f);
@@ -161,17 +160,18 @@ static void set_stars(gpu::FrameParams& f, const Scene& scene, float tan_half_fo
   f.stars = glm::vec4(scene.sun.illuminance, float(star_catalogue().size()), pixel_rad * pixel_rad, 0.0f);
 }
 
-KeyLight key_light(const Scene& scene) {
-  const glm::vec3 sun = scene_sun_direction(scene);
-  const KeyLight by_sun{sun, scene.sun.illuminance, false};
-  const std::optional<Ephemeris> e = scene_ephemeris(scene);
-  if (!e || e->moon.elevation_deg <= 0.0 || sun.z > 0.0f) return by_sun;
+SkyLights sky_lights(const Scene& scene) {
+  SkyLights lights{scene_ephemeris(scene), {}};
+  const std::optional<Ephemeris>& e = lights.ephemeris;
+  const glm::vec3 sun = scene_sun_direction(scene, e);
+  lights.key = {sun, scene.sun.illuminance, false};
+  if (!e || e->moon.elevation_deg <= 0.0 || sun.z > 0.0f) return lights;
   const float moon_share =
       float(moon_illuminance_ratio(e->moon_illuminated_fraction, e->moon.distance_km));
   const glm::vec3 moon = e->moon.direction;
-  if (zenith_sky_luminance(scene, sun) >= moon_share * zenith_sky_luminance(scene, moon))
-    return by_sun;
-  return {moon, scene.sun.illuminance * moon_share, true};
+  if (zenith_sky_luminance(scene, sun) < moon_share * zenith_sky_luminance(scene, moon))
+    lights.key = {moon, scene.sun.illuminance * moon_share, true};
+  return lights;
 }
 
 void set_previous_frame(gpu::FrameParams& f, const Scene& scene, const Scene& previous) {
@@ -191,12 +191,12 @@ void set_previous_frame(gpu::FrameParams& f, const Scene& scene, const Scene& pr
   f.wind_offset_m.w = wind_delta.y;
 }
 
-gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
+gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights) {
   const CloudParams& c = scene.clouds;
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
   const float planet_m = atmosphere.planet_radius_m;
   const CameraBasis basis = camera_basis(scene.camera.view_dir);
-  const KeyLight key = key_light(scene);
+  const KeyLight& key = lights.key;
   const glm::vec3 sun = key.direction;  // the key light's: the sun's, or at night the moon's
   const float aspect = float(scene.output.width) / float(scene.output.height);
   const float tan_half_fov = std::tan(glm::radians(scene.camera.fov_deg) * 0.5f);
@@ -215,8 +215,8 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   f.sun_transmittance = glm::vec4(
       key.moon ? glm::vec3(0.0f) : glsl::atmosphere_transmittance_to_top(atmosphere, eye, sun, 256),
       0.0f);
-  set_moon(f, scene, atmosphere, key);
-  set_stars(f, scene, tan_half_fov);
+  set_moon(f, scene, atmosphere, lights);
+  set_stars(f, scene, lights.ephemeris, tan_half_fov);
   // The sky-view LUT's frame, shared by its pass and compose.
   const glsl::SkyViewFrame sky_view = glsl::sky_view_frame(eye, sun, planet_m);
   f.sky_view_up = glm::vec4(sky_view.up, sky_view.horizon_elevation_rad);

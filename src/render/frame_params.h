@@ -2,7 +2,10 @@
 // lighting computed on the CPU with the shaders' own functions (render/glsl.h).
 #pragma once
 
+#include <optional>
+
 #include "nephele/scene.h"
+#include "nephele/sky.h"
 #include "render/glsl.h"
 #include "render/gpu_params.h"
 
@@ -28,14 +31,25 @@ struct KeyLight {
   float illuminance;    // at the top of the atmosphere, in the units of sun.illuminance
   bool moon = false;
 };
-KeyLight key_light(const Scene& scene);
+
+// The sky's lights of one frame: the ephemeris (computed once: libnova's lunar series costs
+// about 2 ms) and the key light chosen from it.
+struct SkyLights {
+  std::optional<Ephemeris> ephemeris;  // when the scene has a time
+  KeyLight key;
+};
+SkyLights sky_lights(const Scene& scene);
+inline KeyLight key_light(const Scene& scene) { return sky_lights(scene).key; }
 
 // The moon's illuminance at the top of the atmosphere as a share of the sun's: the full moon's
 // 2.44e-6 (magnitude -12.73 against -26.74) at 384,400 km, dimmed with the phase angle by the
 // empirical law m(i) = 0.026 |i| + 4e-9 i^4 (i in degrees; Allen's Astrophysical Quantities).
 double moon_illuminance_ratio(double illuminated_fraction, double distance_km);
 
-gpu::FrameParams make_frame_params(const Scene& scene, int frame_index);
+gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights);
+inline gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
+  return make_frame_params(scene, frame_index, sky_lights(scene));
+}
 
 // Fills the previous frame's camera and the wind's displacement since then (for reprojection).
 void set_previous_frame(gpu::FrameParams& params, const Scene& scene, const Scene& previous);

@@ -27,6 +27,7 @@ struct Renderer::Impl {
   std::optional<std::string> weather_built;  // key of the weather map in the texture
   std::optional<Scene> previous;             // the scene of the last frame rendered
   std::string previous_key;                  // its history_key()
+  glm::vec3 previous_light_dir{0.0f};        // its key light (sky_lights)
   long long frame_counter = 0;               // frames since the history (re)started
   // The light volume in the buffer: what it was built for.
   struct LightVolumeKey {
@@ -123,8 +124,10 @@ int layer_side(const Scene& scene) {
   return z < scene.clouds.bottom_altitude_m ? -1 : z > scene.clouds.top_altitude_m ? 1 : 0;
 }
 
-bool history_usable(const Scene& scene, const Scene& previous) {
-  const float cos_sun = glm::dot(key_light(scene).direction, key_light(previous).direction);
+// `light_dir` and `previous_light_dir`: the key lights (sky_lights) of the two frames.
+bool history_usable(const Scene& scene, const Scene& previous, const glm::vec3& light_dir,
+                    const glm::vec3& previous_light_dir) {
+  const float cos_sun = glm::dot(light_dir, previous_light_dir);
   return cos_sun > std::cos(glm::radians(0.5f)) && scene.sun.illuminance == previous.sun.illuminance &&
          glm::distance(scene.camera.position_m, previous.camera.position_m) < 1000.0f &&
          layer_side(scene) == layer_side(previous);
@@ -204,7 +207,7 @@ bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& ke
     params.light_volume = glm::vec4(0.0f);
     return false;
   }
-  const glm::vec3 sun = key_light(scene).direction;
+  const glm::vec3 sun(params.sun_dir);  // the key light
   const glm::vec2 camera_cloud_m = glm::vec2(scene.camera.position_m) - glm::vec2(params.wind_offset_m);
   const LightVolumeKey* built = light_volume_built ? &*light_volume_built : nullptr;
   // Rebuilt when the clouds or the sun (by 0.25 deg) change, or when the camera has moved
@@ -244,16 +247,17 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   const int cloud_w = (scene.output.width + downsample - 1) / downsample;
   const int cloud_h = (scene.output.height + downsample - 1) / downsample;
   const std::string key = history_key(scene);
+  const SkyLights lights = sky_lights(scene);  // the ephemeris and key light, once a frame
   const bool resized = state.width != scene.output.width || state.height != scene.output.height ||
                        state.cloud_width != cloud_w || state.cloud_height != cloud_h;
   const bool history = !still && stride > 1 && !resized && previous && key == previous_key &&
-                       history_usable(scene, *previous);
+                       history_usable(scene, *previous, lights.key.direction, previous_light_dir);
   if (!history) frame_counter = 0;
 
   GpuState& s = state;
   s.resize(scene.output.width, scene.output.height, cloud_w, cloud_h);
   s.stride = stride;
-  gpu::FrameParams params = make_frame_params(scene, int(frame_counter));
+  gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights);
   if (history) set_previous_frame(params, scene, *previous);
   const glm::ivec2 offset = march_offset(stride, frame_counter);
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
@@ -285,6 +289,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   });
   previous = scene;
   previous_key = key;
+  previous_light_dir = lights.key.direction;
   ++frame_counter;
   if (sky_stale) sky_view_built = SkyViewBuilt{sky_key, params.sky_view_up, params.sky_view_forward};
 
@@ -293,12 +298,13 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   stats.device = ctx.device_name();
   stats.width = s.width;
   stats.height = s.height;
-  stats.ephemeris = scene_ephemeris(scene);
+  stats.ephemeris = lights.ephemeris;
   if (stats.ephemeris && scene.sun.from_time) {
     stats.sun = stats.ephemeris->sun;
   } else {
-    const SunAngles angles = sun_angles_from_direction(scene.sun.direction);
-    stats.sun = {angles.elevation_deg, angles.azimuth_deg, 0.0, glm::normalize(scene.sun.direction)};
+    const glm::vec3 sun = scene_sun_direction(scene, std::nullopt);
+    const SunAngles angles = sun_angles_from_direction(sun);
+    stats.sun = {angles.elevation_deg, angles.azimuth_deg, 0.0, sun};
   }
   for (const auto& [name, ms] : s.timer.results()) {
     stats.passes.push_back({name, ms});

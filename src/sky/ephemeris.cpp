@@ -98,6 +98,7 @@ std::optional<double> julian_day_from_iso8601(std::string_view text) {
 Ephemeris compute_ephemeris(double jd, double lat_deg, double lon_deg, double altitude_m) {
   ln_lnlat_posn observer{lon_deg, lat_deg};
   Ephemeris e;
+  e.jd_ut = jd;
 
   ln_equ_posn sun_j2000, sun;
   ln_get_solar_equ_coords(jd, &sun_j2000);
@@ -130,10 +131,13 @@ std::optional<Ephemeris> scene_ephemeris(const Scene& scene) {
                            scene.location.altitude_m + scene.camera.position_m.z);
 }
 
+glm::vec3 scene_sun_direction(const Scene& scene, const std::optional<Ephemeris>& ephemeris) {
+  return ephemeris && scene.sun.from_time ? ephemeris->sun.direction
+                                          : glm::normalize(scene.sun.direction);
+}
+
 glm::vec3 scene_sun_direction(const Scene& scene) {
-  if (scene.sun.from_time)
-    if (const std::optional<Ephemeris> e = scene_ephemeris(scene)) return e->sun.direction;
-  return glm::normalize(scene.sun.direction);
+  return scene_sun_direction(scene, scene.sun.from_time ? scene_ephemeris(scene) : std::nullopt);
 }
 
 }  // namespace nephele
