@@ -1,14 +1,24 @@
 #version 450
-// Pass 4: compose. Sky (single scattering, seed 000 section 1.5, from the sky-view LUT of
-// sky_view.comp) behind and between the clouds, the sun disk with limb darkening and the moon
-// disk with its phase drawn separately so clouds occlude them, and the clouds over both: color = background * T_cloud +
-// cloud in-scattering (seed listing B.3), plus the haze in front of distant clouds.
+// Pass 4: compose. Sky (from the sky-view LUT of sky_view.comp) behind and between the clouds,
+// the sun disk with limb darkening and the moon disk with its phase drawn separately so clouds
+// occlude them, and the clouds over both: color = background * T_cloud + cloud in-scattering
+// (seed listing B.3), plus the haze in front of distant clouds, coloured by the
+// aerial-perspective volume at the cloud's distance.
+// REFERENCE (specialization constant) 1: the sky is integrated per pixel by brute force, with no
+// table (sky_hillaire with `exact`): the reference the LUT path is checked against.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
+#include "common/phase_inc.glsl"
+#include "common/atmosphere_inc.glsl"
+#include "common/atmosphere_lut_inc.glsl"
 #include "common/sky_view_inc.glsl"
+#include "frame_atmosphere_inc.glsl"
 
+layout(constant_id = 0) const int REFERENCE = 0;
 layout(local_size_x = 8, local_size_y = 8) in;
+
+const int REFERENCE_SAMPLES = 48;  // view-ray steps of the brute-force sky
 
 // Solar disk radiance per unit illuminance, with limb darkening I(m)/I(1) = 1 - u (1 - m),
 // m = cos of the angle at the sun's surface, u = 0.6 (a visible-band average); normalised so
@@ -60,14 +70,31 @@ void main() {
   vec3 sun = frame.sun_dir.xyz;
   vec2 uv = sky_view_uv(sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward), dir);
   bool above_horizon = uv.y >= 0.5f;
-  float rows = float(textureSize(sky_view_lut, 0).y / 2);
-  vec3 sky = textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 0.0f), 0.0f).rgb;
-  vec3 ground_sun = above_horizon
-                        ? vec3(0.0f)
-                        : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f).rgb;
+  vec3 sky, ground_sun;
+  if (REFERENCE == 1) {
+    vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
+    SkySample s = sky_hillaire(frame_atmosphere(), transmittance_lut, ms_lut, true,
+                               frame.camera_pos_m.xyz, dir, sun, REFERENCE_SAMPLES,
+                               frame.sky_model.y, ground_sky);
+    sky = s.radiance;
+    ground_sun = s.ground_sun;
+  } else {
+    float rows = float(textureSize(sky_view_lut, 0).y / 2);
+    sky = textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 0.0f), 0.0f).rgb;
+    ground_sun = above_horizon
+                     ? vec3(0.0f)
+                     : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f).rgb;
+  }
   vec4 cloud, cloud_b;
   cloud_at(pixel.x, pixel.y, cloud, cloud_b);
   float haze = cloud_b.x;
+  // The haze's colour: the air's in-scattering between the eye and the cloud per unit of its
+  // opacity (clouds.comp weights the haze by the air's opacity in front of each sample).
+  vec4 ap = textureLod(aerial_perspective,
+                       vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)),
+                            aerial_perspective_w(cloud_b.z * 1000.0f)),
+                       0.0f);
+  vec3 haze_color = ap.rgb / max(1.0f - ap.a, 1e-6f);
   float ground_shadow = cloud_b.y;  // cloud transmittance towards the sun
   // The planet hides the part of the sun's disk below the horizon.
   vec3 sun_light = above_horizon
@@ -76,6 +103,6 @@ void main() {
   vec3 moon_light = above_horizon ? frame.moon_radiance.rgb * moon_disk(dir) : vec3(0.0f);
   vec3 background = sky + ground_sun * ground_shadow + sun_light + moon_light;
   // The air in front of a cloud scatters as the sky does along this direction.
-  vec3 color = (background * cloud.a + sky * haze) * frame.sun_illuminance.rgb + cloud.rgb;
+  vec3 color = (background * cloud.a + haze_color * haze) * frame.sun_illuminance.rgb + cloud.rgb;
   imageStore(color_out, pixel, vec4(color, 1.0f));
 }

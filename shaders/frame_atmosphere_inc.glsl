@@ -17,6 +17,9 @@ Atmosphere frame_atmosphere() {
   a.mie_sigma_t = frame.mie.y;
   a.mie_height_m = frame.mie.z;
   a.mie_g = frame.mie.w;
+  a.ozone_sigma_a = frame.ozone.rgb;
+  a.ozone_center_m = frame.ozone.w;
+  a.ozone_half_width_m = frame.sky_model.x;
   return a;
 }
 

@@ -1,7 +1,8 @@
 #version 450
-// Pass 2: the sky-view LUT (Hillaire 2020, section 5.3), recomputed only when the sun, the
-// camera's position or the atmosphere change. The single-scattering sky (seed 000, section
-// 1.5) is integrated once per texel of a small latitude/longitude table around the camera
+// Pass 2c: the sky-view LUT (Hillaire 2020, section 5.3), recomputed only when the sun, the
+// camera's position or the atmosphere change. The sky (common/atmosphere_lut_inc.glsl: single
+// and multiple scattering through the transmittance and multiple-scattering LUTs) is integrated
+// once per texel of a small latitude/longitude table around the camera
 // (common/sky_view_inc.glsl) instead of once per pixel; compose.comp samples it bilinearly.
 // The image stacks two tables: the in-scattered radiance (with the ground's sky-lit part) and
 // the ground's sun-lit radiance, which compose multiplies by the clouds' shadow.
@@ -10,12 +11,11 @@
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
 #include "common/atmosphere_inc.glsl"
+#include "common/atmosphere_lut_inc.glsl"
 #include "common/sky_view_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-
-const float GROUND_ALBEDO = 0.1f;
 
 void main() {
   ivec2 size = imageSize(sky_view_out);
@@ -29,8 +29,8 @@ void main() {
   vec2 uv = (vec2(texel) + 0.5f) / vec2(size.x, rows);
   vec3 dir = sky_view_texel_dir(sky_frame, uv, eye, frame.radii_m.x);
   vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
-  SkySample sky = sky_single_scattering(frame_atmosphere(), eye, dir, sun, frame.steps.z,
-                                        frame.steps.w, GROUND_ALBEDO, ground_sky);
+  SkySample sky = sky_hillaire(frame_atmosphere(), transmittance_lut, ms_lut, false, eye, dir, sun,
+                               frame.steps.z, frame.sky_model.y, ground_sky);
   imageStore(sky_view_out, texel, vec4(sky.radiance, 1.0f));
   imageStore(sky_view_out, ivec2(texel.x, texel.y + rows), vec4(sky.ground_sun, 1.0f));
 }

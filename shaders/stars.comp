@@ -8,6 +8,7 @@
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
+#include "common/atmosphere_lut_inc.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -27,7 +28,7 @@ void main() {
                         float(height));
   ivec2 pixel = ivec2(floor(q + 0.5f));
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(width, height)))) return;
-  vec3 air = atmosphere_transmittance_to_top(frame_atmosphere(), eye, dir, 16);
+  vec3 air = transmittance_to_light(frame_atmosphere(), transmittance_lut, false, eye, dir);
   float cloud = textureLod(clouds_a, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f).a;
   vec3 radiance = star.irradiance.rgb * frame.stars.x / frame.stars.z * air * cloud;
   imageStore(color_rw, pixel, imageLoad(color_rw, pixel) + vec4(radiance, 0.0f));

@@ -21,7 +21,7 @@ namespace {
 using Target = std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&),
                             uint32_t& (*)(Scene&), glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
                             std::string& (*)(Scene&), MarchMode& (*)(Scene&),
-                            bool& (*)(Scene&)>;
+                            bool& (*)(Scene&), SkyModel& (*)(Scene&)>;
 
 struct FlagSpec {
   const char* flag;
@@ -129,6 +129,11 @@ const std::vector<FlagSpec>& flag_specs() {
        "light volume half extent (km), [0, 1000]; 0 = march every light ray"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
+      {"--sky", &F::sky, "atmosphere.model", TO(atmosphere.model), "hillaire|preetham|reference",
+       "sky model: hillaire (default), preetham (seed 002's analytic sky), reference (brute "
+       "force, slow)"},
+      {"--turbidity", &F::turbidity, "atmosphere.turbidity", TO(atmosphere.turbidity), "T",
+       "Preetham sky's turbidity, [1.7, 10]"},
       {"--exposure", &F::exposure, "output.exposure", TO(output.exposure), "X",
        "linear exposure before tone mapping, > 0"},
   };
@@ -214,6 +219,11 @@ void parse_into(const std::string& flag, const std::string& text, MarchMode& out
   std::optional<MarchMode> mode = parse_march_mode(text);
   if (!mode) fail(flag, text, "expected default or baseline");
   out = *mode;
+}
+void parse_into(const std::string& flag, const std::string& text, SkyModel& out) {
+  std::optional<SkyModel> model = parse_sky_model(text);
+  if (!model) fail(flag, text, "expected hillaire, preetham or reference");
+  out = *model;
 }
 
 void check_conflicts(const SceneFlags& flags) {

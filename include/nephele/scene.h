@@ -29,8 +29,19 @@ struct SunParams {
   bool from_time = false;
 };
 
-// Planet and single-scattering sky (seed 000, formulas 1.11-1.13; Nishita-style integration).
+// What fills the sky (atmosphere.model).
+enum class SkyModel {
+  Hillaire,   // Hillaire 2020: transmittance, multiple-scattering, sky-view and
+              // aerial-perspective tables; single and multiple scattering, ozone
+  Preetham,   // Preetham, Shirley and Smits 1999 analytic daylight (seed 002): cheap, turbidity
+              // driven, sun above the horizon only
+  Reference,  // brute force per pixel with no tables: slow, for checking the Hillaire path
+};
+
+// Planet and atmosphere (Hillaire 2020, table 1 for the Earth's defaults): Rayleigh and Mie
+// scattering falling off exponentially with altitude, Mie absorption, an ozone layer.
 struct AtmosphereParams {
+  SkyModel model = SkyModel::Hillaire;
   float planet_radius_km = 6360.0f;
   float atmosphere_height_km = 100.0f;             // top of the atmosphere above ground
   glm::vec3 rayleigh_scattering_per_m{5.802e-6f, 13.558e-6f, 33.1e-6f};  // sigma_s at sea level
@@ -39,8 +50,13 @@ struct AtmosphereParams {
   float mie_extinction_per_m = 4.44e-6f;           // sigma_t at sea level (absorption included)
   float mie_scale_height_m = 1200.0f;
   float mie_g = 0.8f;                               // Cornette-Shanks asymmetry, [0, 1)
-  int view_samples = 16;                            // samples along each sky-view LUT ray
-  int light_samples = 8;                            // samples towards the sun
+  glm::vec3 ozone_absorption_per_m{0.650e-6f, 1.881e-6f, 0.085e-6f};  // sigma_a at the peak
+  float ozone_peak_altitude_m = 25000.0f;           // the layer's density peaks here ...
+  float ozone_half_width_m = 15000.0f;              // ... and falls linearly to 0 this far away
+  float ground_albedo = 0.1f;                       // Lambertian ground, [0, 1]
+  float turbidity = 2.5f;                           // Preetham's haze, [1.7, 10]
+  int view_samples = 32;                            // samples along each sky-view LUT ray
+  bool operator==(const AtmosphereParams&) const = default;
 };
 
 // One volumetric cloud layer between two spheres (seed 000, section 2.2).
@@ -117,5 +133,6 @@ struct Scene {
 };
 
 const char* to_string(MarchMode mode);
+const char* to_string(SkyModel model);
 
 }  // namespace nephele

@@ -1,4 +1,5 @@
-// Single-scattering sky (seed 000, section 1.5, formulas 1.11-1.13), integrated numerically
+// The atmosphere's medium (Rayleigh, Mie with absorption, ozone) and its optical depth, and the
+// single-scattering sky (seed 000, section 1.5, formulas 1.11-1.13), integrated numerically
 // along the view ray as Nishita et al. (1993) do: at each sample x the sun's light, attenuated
 // by exp(-tau(x -> sun)), is scattered towards the eye by Rayleigh and Mie particles whose
 // densities fall off exponentially with height (scale heights H_R, H_M), then attenuated by
@@ -16,13 +17,65 @@ struct Atmosphere {
   float mie_sigma_t;      // 1/m at sea level
   float mie_height_m;
   float mie_g;
+  // Ozone (Hillaire 2020, table 1): absorbs only, in a tent-shaped layer peaking at
+  // ozone_center_m and falling to zero ozone_half_width_m above and below. Zero = no ozone.
+  vec3 ozone_sigma_a;  // 1/m at the peak
+  float ozone_center_m;
+  float ozone_half_width_m;
 };
+
+// Scattering and extinction coefficients (1/m) at one altitude.
+struct AtmosphereMedium {
+  vec3 scattering_r;   // Rayleigh sigma_s
+  float scattering_m;  // Mie sigma_s
+  vec3 extinction;     // Rayleigh + Mie (absorption included) + ozone absorption
+};
+
+AtmosphereMedium atmosphere_medium(Atmosphere a, float altitude_m) {
+  float h = max(altitude_m, 0.0f);
+  float density_r = exp(-h / a.rayleigh_height_m);
+  float density_m = exp(-h / a.mie_height_m);
+  float density_o = a.ozone_half_width_m > 0.0f
+                        ? max(1.0f - abs(h - a.ozone_center_m) / a.ozone_half_width_m, 0.0f)
+                        : 0.0f;
+  AtmosphereMedium m;
+  m.scattering_r = a.rayleigh_sigma_s * density_r;
+  m.scattering_m = a.mie_sigma_s * density_m;
+  m.extinction = m.scattering_r + vec3(a.mie_sigma_t * density_m) + a.ozone_sigma_a * density_o;
+  return m;
+}
 
 // Extinction coefficient (1/m) at altitude h (m) above the ground.
 vec3 atmosphere_sigma_t(Atmosphere a, float altitude_m) {
-  float h = max(altitude_m, 0.0f);
-  return a.rayleigh_sigma_s * exp(-h / a.rayleigh_height_m) +
-         vec3(a.mie_sigma_t * exp(-h / a.mie_height_m));
+  return atmosphere_medium(a, altitude_m).extinction;
+}
+
+// Optical depth from `pos` along unit `dir` over [0, length_m]: `samples` steps with ends at
+// t = length (i / n)^2, denser near `pos` (Hillaire's squared distribution), where a ray
+// leaving the ground sees the densest air.
+vec3 atmosphere_optical_depth(Atmosphere a, vec3 pos, vec3 dir, float length_m, int samples) {
+  vec3 tau = vec3(0.0f);
+  float n = float(samples);
+  for (int i = 0; i < samples; ++i) {
+    float t0 = length_m * (float(i) / n) * (float(i) / n);
+    float t1 = length_m * (float(i + 1) / n) * (float(i + 1) / n);
+    vec3 x = pos + dir * (0.5f * (t0 + t1));
+    tau += atmosphere_sigma_t(a, length(x) - a.planet_radius_m) * (t1 - t0);
+  }
+  return tau;
+}
+
+// Optical depth from `pos` (inside the atmosphere) to the top along unit `dir`, through the
+// planet if the ray meets it. A ray that dips (dir below the local horizontal) is split at its
+// lowest point, so each half starts where its air is densest.
+vec3 atmosphere_optical_depth_to_top(Atmosphere a, vec3 pos, vec3 dir, int samples) {
+  vec2 top = ray_sphere(pos, dir, a.top_radius_m);
+  float length_m = max(top.y, 0.0f);
+  float t_low = clamp(-dot(pos, dir), 0.0f, length_m);
+  int first = t_low > 0.0f ? max(samples / 2, 1) : 0;
+  vec3 tau = atmosphere_optical_depth(a, pos + dir * t_low, -dir, t_low, first);
+  return tau + atmosphere_optical_depth(a, pos + dir * t_low, dir, length_m - t_low,
+                                        max(samples - first, 1));
 }
 
 // Transmittance from `pos` to the top of the atmosphere along unit `dir`; zero when the ray
@@ -30,15 +83,7 @@ vec3 atmosphere_sigma_t(Atmosphere a, float altitude_m) {
 vec3 atmosphere_transmittance_to_top(Atmosphere a, vec3 pos, vec3 dir, int samples) {
   vec2 ground = ray_sphere(pos, dir, a.planet_radius_m);
   if (ground.x > 0.0f) return vec3(0.0f);
-  vec2 top = ray_sphere(pos, dir, a.top_radius_m);
-  float length_m = max(top.y, 0.0f);
-  float dt = length_m / float(samples);
-  vec3 tau = vec3(0.0f);
-  for (int i = 0; i < samples; ++i) {
-    vec3 x = pos + dir * ((float(i) + 0.5f) * dt);
-    tau += atmosphere_sigma_t(a, length(x) - a.planet_radius_m) * dt;
-  }
-  return exp(-tau);
+  return exp(-atmosphere_optical_depth_to_top(a, pos, dir, samples));
 }
 
 struct SkySample {
@@ -74,15 +119,12 @@ SkySample sky_single_scattering(Atmosphere a, vec3 eye, vec3 dir, vec3 sun, int 
   vec3 inscatter = vec3(0.0f);
   for (int i = 0; i < view_samples; ++i) {
     vec3 x = eye + dir * (t_start + (float(i) + 0.5f) * dt);
-    float h = length(x) - a.planet_radius_m;
-    float density_r = exp(-max(h, 0.0f) / a.rayleigh_height_m);
-    float density_m = exp(-max(h, 0.0f) / a.mie_height_m);
-    vec3 sigma_t = a.rayleigh_sigma_s * density_r + vec3(a.mie_sigma_t * density_m);
+    AtmosphereMedium m = atmosphere_medium(a, length(x) - a.planet_radius_m);
+    vec3 sigma_t = m.extinction;
     // Transmittance from the eye to the middle of this segment.
     vec3 t_eye = exp(-(tau_view + sigma_t * (0.5f * dt)));
     vec3 t_sun = atmosphere_transmittance_to_top(a, x, sun, light_samples);
-    vec3 scattering = a.rayleigh_sigma_s * (density_r * phase_r) +
-                      vec3(a.mie_sigma_s * density_m * phase_m);
+    vec3 scattering = m.scattering_r * phase_r + vec3(m.scattering_m * phase_m);
     inscatter += t_eye * t_sun * scattering * dt;
     tau_view += sigma_t * dt;
   }

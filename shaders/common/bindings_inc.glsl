@@ -47,5 +47,14 @@ layout(set = 0, binding = 23, rgba32f) uniform image2D range_hi;
 // The star catalogue (StarGpu), and the final image again, read and written by stars.comp.
 layout(std430, set = 0, binding = 24) readonly buffer StarBlock { StarGpu star_list[]; };
 layout(set = 0, binding = 25, rgba32f) uniform image2D color_rw;
+// Hillaire's atmosphere tables (common/atmosphere_lut_inc.glsl): transmittance (r, mu),
+// multiple scattering Psi_ms (sun zenith, altitude), and the aerial-perspective volume
+// (common/sky_view_inc.glsl: rgb in-scattered radiance per unit illuminance, a transmittance).
+layout(set = 0, binding = 26, rgba32f) uniform writeonly image2D transmittance_lut_out;
+layout(set = 0, binding = 27) uniform sampler2D transmittance_lut;
+layout(set = 0, binding = 28, rgba32f) uniform writeonly image2D ms_lut_out;
+layout(set = 0, binding = 29) uniform sampler2D ms_lut;
+layout(set = 0, binding = 30, rgba32f) uniform writeonly image3D aerial_perspective_out;
+layout(set = 0, binding = 31) uniform sampler3D aerial_perspective;
 
 #endif

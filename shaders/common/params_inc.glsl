@@ -65,7 +65,15 @@ struct FrameParams {
   vec4 star_up;             // w unused
   vec4 stars;               // x the sun's illuminance (stars' irradiance is relative to it),
                             // y number of stars, z solid angle of a pixel (sr), w unused
+  vec4 ozone;               // rgb ozone sigma_a at the layer's peak (1/m); w peak altitude (m)
+  vec4 sky_model;           // x ozone half width (m), y ground albedo, z SKY_MODEL_*, w Preetham
+                            // turbidity
 };
+
+// FrameParams::sky_model.z: what fills the sky.
+const int SKY_MODEL_HILLAIRE = 0;   // Hillaire 2020 LUTs (the default)
+const int SKY_MODEL_PREETHAM = 1;   // Preetham et al. 1999 analytic sky (seed 002)
+const int SKY_MODEL_REFERENCE = 2;  // brute force per pixel, no tables (slow; for checking)
 
 // One star of the catalogue (data/stars.csv), as stars.comp reads it.
 struct StarGpu {

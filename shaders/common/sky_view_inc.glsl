@@ -103,11 +103,38 @@ vec3 sky_view_texel_dir(SkyViewFrame f, vec2 uv, vec3 eye, float planet_radius_m
 // texel away from the horizon on uv's side of it and from the table's ends, so the bilinear
 // filter never blends ground into sky nor one table into the other; u is clamped to the edge by
 // the sampler (by the mirror symmetry the table is flat across u = 0 and u = 1).
-vec2 sky_view_texcoord(vec2 uv, float rows, float table) {
+float sky_view_v_clamped(vec2 uv, float rows) {
   float half_texel = 0.5f / rows;
-  float v = uv.y < 0.5f ? clamp(uv.y, half_texel, 0.5f - half_texel)
-                        : clamp(uv.y, 0.5f + half_texel, 1.0f - half_texel);
-  return vec2(uv.x, 0.5f * (table + v));
+  return uv.y < 0.5f ? clamp(uv.y, half_texel, 0.5f - half_texel)
+                     : clamp(uv.y, 0.5f + half_texel, 1.0f - half_texel);
+}
+
+vec2 sky_view_texcoord(vec2 uv, float rows, float table) {
+  return vec2(uv.x, 0.5f * (table + sky_view_v_clamped(uv, rows)));
+}
+
+// Aerial-perspective volume (Hillaire 2020, section 5.4): the in-scattered radiance and the
+// transmittance between the camera and points along each direction, up to AP_MAX_DISTANCE_M.
+// Hillaire's volume follows the camera frustum; this one uses the sky-view LUT's directions
+// (u, v above) as its first two axes, so it depends on the camera's position and the sun only
+// and is rebuilt with the sky-view LUT, not when the camera turns. Slice k (0-based) ends at
+// AP_MAX_DISTANCE_M ((k + 1) / AP_SLICES)^2: fine slices near the camera.
+const int AP_SIZE_U = 32;
+const int AP_SIZE_V = 64;
+const int AP_SLICES = 32;
+const float AP_MAX_DISTANCE_M = 400000.0f;
+
+float aerial_perspective_slice_end_m(int slice) {
+  float s = float(slice + 1) / float(AP_SLICES);
+  return AP_MAX_DISTANCE_M * s * s;
+}
+
+// Texture coordinate along the slices of the point `distance_m` from the camera: the slice
+// ends are texel centres, distances short of the first one clamp to it.
+float aerial_perspective_w(float distance_m) {
+  float slice = sqrt(max(distance_m, 0.0f) / AP_MAX_DISTANCE_M) * float(AP_SLICES) - 1.0f;
+  return clamp((slice + 0.5f) / float(AP_SLICES), 0.5f / float(AP_SLICES),
+               1.0f - 0.5f / float(AP_SLICES));
 }
 
 #endif

@@ -40,6 +40,12 @@ enum Binding : uint32_t {
   kRangeHi = 23,
   kStars = 24,
   kColor = 25,
+  kTransmittanceLutOut = 26,
+  kTransmittanceLut = 27,
+  kMsLutOut = 28,
+  kMsLut = 29,
+  kAerialPerspectiveOut = 30,
+  kAerialPerspective = 31,
   kBindingCount
 };
 

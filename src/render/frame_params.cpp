@@ -23,7 +23,33 @@ glsl::Atmosphere make_atmosphere(const Scene& scene) {
   a.mie_sigma_t = p.mie_extinction_per_m;
   a.mie_height_m = p.mie_scale_height_m;
   a.mie_g = p.mie_g;
+  a.ozone_sigma_a = p.ozone_absorption_per_m;
+  a.ozone_center_m = p.ozone_peak_altitude_m;
+  a.ozone_half_width_m = p.ozone_half_width_m;
   return a;
+}
+
+AtmosphereTables compute_atmosphere_tables(const Scene& scene) {
+  const glsl::Atmosphere a = make_atmosphere(scene);
+  AtmosphereTables t;
+  const auto texel_uv = [](int i, int j, int w, int h) {
+    return glm::vec2((float(i) + 0.5f) / float(w), (float(j) + 0.5f) / float(h));
+  };
+  constexpr int tw = glsl::TRANSMITTANCE_LUT_W, th = glsl::TRANSMITTANCE_LUT_H;
+  t.transmittance.resize(size_t(tw) * th);
+  for (int j = 0; j < th; ++j)
+    for (int i = 0; i < tw; ++i)
+      t.transmittance[size_t(j) * tw + i] =
+          glm::vec4(glsl::transmittance_lut_texel(a, texel_uv(i, j, tw, th)), 1.0f);
+  constexpr int n = glsl::MS_LUT_SIZE;
+  t.multiple_scattering.resize(size_t(n) * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      t.multiple_scattering[size_t(j) * n + i] = glm::vec4(
+          glsl::ms_lut_texel(a, t.transmittance_lut(), texel_uv(i, j, n, n),
+                             scene.atmosphere.ground_albedo),
+          1.0f);
+  return t;
 }
 
 CameraBasis camera_basis(const glm::vec3& view_dir) {
@@ -40,26 +66,32 @@ namespace {
 
 constexpr int kSkyDirections = 64;
 
+// The sky the CPU sees: Hillaire's model through the tables, as sky_view.comp computes it.
+struct CpuSky {
+  glsl::Atmosphere atmosphere;
+  const AtmosphereTables& tables;
+  float ground_albedo;
+};
+
 // Mean, over kSkyDirections directions dir_of(i, golden angle), of the sky radiance seen from
 // `pos` per unit solar illuminance (a ground hit counts with its sun-lit part).
 template <typename DirOf>
-glm::vec3 mean_sky(const glsl::Atmosphere& atmosphere, const glm::vec3& pos, const glm::vec3& sun,
-                   DirOf dir_of) {
+glm::vec3 mean_sky(const CpuSky& sky, const glm::vec3& pos, const glm::vec3& sun, DirOf dir_of) {
   const float golden = glsl::PI * (3.0f - std::sqrt(5.0f));
   glm::vec3 sum(0.0f);
   for (int i = 0; i < kSkyDirections; ++i) {
-    const glsl::SkySample sky = glsl::sky_single_scattering(atmosphere, pos, dir_of(i, golden),
-                                                            sun, 8, 4, 0.1f, glm::vec3(0.0f));
-    sum += sky.radiance + sky.ground_sun;
+    const glsl::SkySample s =
+        glsl::sky_hillaire(sky.atmosphere, sky.tables.transmittance_lut(), sky.tables.ms_lut(),
+                           false, pos, dir_of(i, golden), sun, 12, sky.ground_albedo, glm::vec3(0.0f));
+    sum += s.radiance + s.ground_sun;
   }
   return sum / float(kSkyDirections);
 }
 
 // Mean sky radiance over all directions at `pos` per unit solar illuminance: the light an
 // isotropic scatterer receives from the sky (Fibonacci sphere).
-glm::vec3 mean_sky_radiance(const glsl::Atmosphere& atmosphere, const glm::vec3& pos,
-                            const glm::vec3& sun) {
-  return mean_sky(atmosphere, pos, sun, [](int i, float golden) {
+glm::vec3 mean_sky_radiance(const CpuSky& sky, const glm::vec3& pos, const glm::vec3& sun) {
+  return mean_sky(sky, pos, sun, [](int i, float golden) {
     float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(kSkyDirections);
     float r = std::sqrt(1.0f - z * z);
     return glm::vec3(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
@@ -68,12 +100,11 @@ glm::vec3 mean_sky_radiance(const glsl::Atmosphere& atmosphere, const glm::vec3&
 
 // Sky irradiance on a horizontal surface at `pos` divided by pi, per unit solar illuminance:
 // the cosine-weighted mean sky radiance over the upper hemisphere.
-glm::vec3 sky_irradiance_over_pi(const glsl::Atmosphere& atmosphere, const glm::vec3& pos,
-                                 const glm::vec3& sun) {
+glm::vec3 sky_irradiance_over_pi(const CpuSky& sky, const glm::vec3& pos, const glm::vec3& sun) {
   const glm::vec3 up = glm::normalize(pos);
   const glm::vec3 east = glm::normalize(glm::cross(glm::vec3(0, 1, 0), up));
   const glm::vec3 north = glm::cross(up, east);
-  return mean_sky(atmosphere, pos, sun, [&](int i, float golden) {
+  return mean_sky(sky, pos, sun, [&](int i, float golden) {
     // Cosine-weighted: sin^2 of the angle from the zenith uniform in [0, 1].
     float s2 = (float(i) + 0.5f) / float(kSkyDirections);
     float sin_t = std::sqrt(s2), cos_t = std::sqrt(1.0f - s2);
@@ -191,7 +222,19 @@ void set_previous_frame(gpu::FrameParams& f, const Scene& scene, const Scene& pr
   f.wind_offset_m.w = wind_delta.y;
 }
 
-gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights) {
+void set_atmosphere(gpu::FrameParams& f, const Scene& scene) {
+  const glsl::Atmosphere a = make_atmosphere(scene);
+  f.radii_m.x = a.planet_radius_m;
+  f.radii_m.y = a.top_radius_m;
+  f.rayleigh = glm::vec4(a.rayleigh_sigma_s, a.rayleigh_height_m);
+  f.mie = glm::vec4(a.mie_sigma_s, a.mie_sigma_t, a.mie_height_m, a.mie_g);
+  f.ozone = glm::vec4(a.ozone_sigma_a, a.ozone_center_m);
+  f.sky_model = glm::vec4(a.ozone_half_width_m, scene.atmosphere.ground_albedo,
+                          float(static_cast<int>(scene.atmosphere.model)), scene.atmosphere.turbidity);
+}
+
+gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
+                                   const AtmosphereTables& tables) {
   const CloudParams& c = scene.clouds;
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
   const float planet_m = atmosphere.planet_radius_m;
@@ -228,17 +271,15 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
                             planet_m + 0.5f * (c.bottom_altitude_m + c.top_altitude_m));
   f.sun_at_clouds = glm::vec4(
       illuminance * glsl::atmosphere_transmittance_to_top(atmosphere, cloud_mid, sun, 32), 0.0f);
-  f.ambient_at_clouds =
-      glm::vec4(illuminance * mean_sky_radiance(atmosphere, cloud_mid, sun), 0.0f);
+  const CpuSky sky{atmosphere, tables, scene.atmosphere.ground_albedo};
+  f.ambient_at_clouds = glm::vec4(illuminance * mean_sky_radiance(sky, cloud_mid, sun), 0.0f);
   const glm::vec3 ground(scene.camera.position_m.x, scene.camera.position_m.y, planet_m + 1.0f);
   f.ground_sky_light =
-      glm::vec4(illuminance * sky_irradiance_over_pi(atmosphere, ground, sun), 0.0f);
+      glm::vec4(illuminance * sky_irradiance_over_pi(sky, ground, sun), 0.0f);
 
-  f.radii_m = glm::vec4(planet_m, atmosphere.top_radius_m, planet_m + c.bottom_altitude_m,
-                        planet_m + c.top_altitude_m);
-  f.rayleigh = glm::vec4(atmosphere.rayleigh_sigma_s, atmosphere.rayleigh_height_m);
-  f.mie = glm::vec4(atmosphere.mie_sigma_s, atmosphere.mie_sigma_t, atmosphere.mie_height_m,
-                    atmosphere.mie_g);
+  set_atmosphere(f, scene);
+  f.radii_m.z = planet_m + c.bottom_altitude_m;
+  f.radii_m.w = planet_m + c.top_altitude_m;
   f.cloud_shape = glm::vec4(c.coverage, c.density, c.extinction_per_m, c.albedo);
   f.cloud_light = glm::vec4(c.attenuation, c.light_attenuation, c.powder_strength,
                             c.ambient_strength);
@@ -250,7 +291,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   f.size = glm::ivec4(scene.output.width, scene.output.height, frame_index,
                       int(scene.noise_seed & 0x7fffffff));
   f.steps = glm::ivec4(scene.quality.primary_steps, scene.quality.light_steps,
-                       scene.atmosphere.view_samples, scene.atmosphere.light_samples);
+                       scene.atmosphere.view_samples, 0);
   return f;
 }
 
@@ -281,6 +322,8 @@ SkyViewKey sky_view_key(const gpu::FrameParams& f) {
           .ground_sky_light = glm::vec3(f.ground_sky_light),
           .rayleigh = f.rayleigh,
           .mie = f.mie,
+          .ozone = f.ozone,
+          .sky_model = f.sky_model,
           .radii_m = glm::vec2(f.radii_m),
           .samples = glm::ivec2(f.steps.z, f.steps.w)};
 }

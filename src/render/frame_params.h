@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "nephele/scene.h"
 #include "nephele/sky.h"
@@ -16,6 +17,22 @@ namespace nephele {
 glm::vec3 planet_from_enu(const Scene& scene, const glm::vec3& enu_m);
 
 glsl::Atmosphere make_atmosphere(const Scene& scene);
+
+// Hillaire's transmittance and multiple-scattering tables on the host, for the per-frame
+// lighting computed on the CPU (ambient light at the clouds, sky light on the ground). The
+// renderer reads them back from the GPU; compute_atmosphere_tables makes them on the CPU with
+// the same functions (for callers without a device, and to test one against the other).
+struct AtmosphereTables {
+  std::vector<glm::vec4> transmittance;        // TRANSMITTANCE_LUT_W x TRANSMITTANCE_LUT_H
+  std::vector<glm::vec4> multiple_scattering;  // MS_LUT_SIZE x MS_LUT_SIZE
+  glsl::sampler2D transmittance_lut() const {
+    return {transmittance.data(), glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H};
+  }
+  glsl::sampler2D ms_lut() const {
+    return {multiple_scattering.data(), glsl::MS_LUT_SIZE, glsl::MS_LUT_SIZE};
+  }
+};
+AtmosphereTables compute_atmosphere_tables(const Scene& scene);
 
 // Camera basis: forward, right, up (unit vectors, up is the image's up).
 struct CameraBasis {
@@ -46,9 +63,14 @@ inline KeyLight key_light(const Scene& scene) { return sky_lights(scene).key; }
 // empirical law m(i) = 0.026 |i| + 4e-9 i^4 (i in degrees; Allen's Astrophysical Quantities).
 double moon_illuminance_ratio(double illuminated_fraction, double distance_km);
 
-gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights);
+// The atmosphere's fields of FrameParams (radii_m.xy, rayleigh, mie, ozone, sky_model): all the
+// table passes read.
+void set_atmosphere(gpu::FrameParams& f, const Scene& scene);
+
+gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
+                                   const AtmosphereTables& tables);
 inline gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
-  return make_frame_params(scene, frame_index, sky_lights(scene));
+  return make_frame_params(scene, frame_index, sky_lights(scene), compute_atmosphere_tables(scene));
 }
 
 // Fills the previous frame's camera and the wind's displacement since then (for reprojection).
@@ -60,7 +82,7 @@ void set_previous_frame(gpu::FrameParams& params, const Scene& scene, const Scen
 // the key changes.
 struct SkyViewKey {
   glm::vec3 camera_pos_m, sun_dir, sun_illuminance, ground_sky_light;
-  glm::vec4 rayleigh, mie;
+  glm::vec4 rayleigh, mie, ozone, sky_model;
   glm::vec2 radii_m;   // planet, atmosphere top
   glm::ivec2 samples;  // view, light
   bool operator==(const SkyViewKey&) const = default;

@@ -12,11 +12,32 @@
 #pragma GCC diagnostic ignored "-Wunused-function"
 namespace nephele::glsl {
 using namespace glm;
+
+// GLSL's sampler2D for the functions that take a table (atmosphere_lut_inc.glsl): RGBA texels,
+// row by row, filtered bilinearly with the edges clamped, as the GPU's samplers are set up.
+struct sampler2D {
+  const vec4* texels = nullptr;
+  int width = 0;
+  int height = 0;
+};
+
+inline vec4 textureLod(const sampler2D& s, vec2 uv, float /*lod*/) {
+  const float x = clamp(uv.x * float(s.width) - 0.5f, 0.0f, float(s.width - 1));
+  const float y = clamp(uv.y * float(s.height) - 0.5f, 0.0f, float(s.height - 1));
+  const int x0 = int(x), y0 = int(y);
+  const int x1 = min(x0 + 1, s.width - 1), y1 = min(y0 + 1, s.height - 1);
+  const float fx = x - float(x0), fy = y - float(y0);
+  const auto at = [&](int i, int j) { return s.texels[size_t(j) * size_t(s.width) + size_t(i)]; };
+  return mix(mix(at(x0, y0), at(x1, y0), fx), mix(at(x0, y1), at(x1, y1), fx), fy);
+}
+
 namespace {
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
 #include "common/noise_inc.glsl"
 #include "common/atmosphere_inc.glsl"
+#include "common/atmosphere_lut_inc.glsl"
+#include "common/preetham_inc.glsl"
 #include "common/sky_view_inc.glsl"
 #include "common/clouds_inc.glsl"
 #include "common/light_volume_inc.glsl"

@@ -1,5 +1,6 @@
 #include "render/passes.h"
 
+#include "render/glsl.h"
 #include "render/gpu_params.h"
 #include "sky/stars.h"
 
@@ -17,11 +18,15 @@ GpuState::GpuState(gpu::Context& c)
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
       resolve_kernel(c, set, "resolve.comp.spv"),
-      compose_kernel(c, set, "compose.comp.spv"),
+      compose_kernel(c, set, "compose.comp.spv", {0}),
+      compose_reference_kernel(c, set, "compose.comp.spv", {1}),
       light_volume_kernel(c, set, "light_volume.comp.spv"),
       march_range_kernel(c, set, "march_range.comp.spv"),
       stars_kernel(c, set, "stars.comp.spv"),
-      timer(c, 8),
+      transmittance_lut_kernel(c, set, "transmittance_lut.comp.spv"),
+      ms_lut_kernel(c, set, "multiscattering_lut.comp.spv"),
+      aerial_perspective_kernel(c, set, "aerial_perspective.comp.spv"),
+      timer(c, 12),
       frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
       stars(c, sizeof(gpu::StarGpu) * std::max<size_t>(star_catalogue().size(), 1),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
@@ -33,7 +38,16 @@ GpuState::GpuState(gpu::Context& c)
       sky_view(c, kSkyViewWidth, 2 * kSkyViewHeight, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
                VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       light_volume(c, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
-                   VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+                   VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+      transmittance_lut(c, glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1,
+                        VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+      ms_lut(c, glsl::MS_LUT_SIZE, glsl::MS_LUT_SIZE, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+             VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+      aerial_perspective(c, glsl::AP_SIZE_U, glsl::AP_SIZE_V, glsl::AP_SLICES,
+                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+  set.bind_image(gpu::kTransmittanceLutOut, gpu::kTransmittanceLut, transmittance_lut);
+  set.bind_image(gpu::kMsLutOut, gpu::kMsLut, ms_lut);
+  set.bind_image(gpu::kAerialPerspectiveOut, gpu::kAerialPerspective, aerial_perspective);
   set.bind_image(gpu::kLightVolumeOut, gpu::kLightVolume, light_volume);
   set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   set.bind_buffer(gpu::kStars, stars, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -107,9 +121,18 @@ void pass_weather(VkCommandBuffer cmd, GpuState& s) {
                 kWeatherMapSize, 1, 8, 8, 1);
 }
 
+void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.transmittance_lut_kernel, s.set, s.timer, "transmittance",
+                glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1, 8, 8, 1);
+  gpu::dispatch(cmd, s.ms_lut_kernel, s.set, s.timer, "multiscatter", glsl::MS_LUT_SIZE,
+                glsl::MS_LUT_SIZE, 1, 8, 8, 1);
+}
+
 void pass_sky_view(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.sky_view_kernel, s.set, s.timer, "sky_view", kSkyViewWidth, kSkyViewHeight,
                 1, 8, 8, 1);
+  gpu::dispatch(cmd, s.aerial_perspective_kernel, s.set, s.timer, "aerial_persp",
+                glsl::AP_SIZE_U, glsl::AP_SIZE_V, 1, 8, 8, 1);
 }
 
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
@@ -140,8 +163,8 @@ void pass_stars(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.stars_kernel, s.set, s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1, 1);
 }
 
-void pass_compose(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.compose_kernel, s.set, s.timer, "compose", uint32_t(s.width),
+void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model) {
+  gpu::dispatch(cmd, model == SkyModel::Reference ? s.compose_reference_kernel : s.compose_kernel, s.set, s.timer, "compose", uint32_t(s.width),
                 uint32_t(s.height), 1, 8, 8, 1);
 }
 

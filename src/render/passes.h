@@ -30,12 +30,15 @@ struct GpuState {
   gpu::DescriptorSet set;
   gpu::Kernel noise_base_kernel, noise_detail_kernel, weather_kernel;
   gpu::Kernel sky_view_kernel, clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
-  gpu::Kernel compose_kernel, light_volume_kernel, march_range_kernel, stars_kernel;
+  gpu::Kernel compose_kernel, compose_reference_kernel, light_volume_kernel, march_range_kernel;
+  gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel, aerial_perspective_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
   int star_count = 0;
   gpu::Texture base_noise, detail_noise, weather_map, sky_view, light_volume;
+  // Hillaire's tables (atmosphere_lut_inc.glsl, sky_view_inc.glsl).
+  gpu::Texture transmittance_lut, ms_lut, aerial_perspective;
   // Per-pixel images (bindings_inc.glsl): the marched samples (A, B), the cloud buffer of this
   // frame and of the previous one (history), and the final image.
   gpu::Texture march_a, march_b, range_lo, range_hi;
@@ -49,13 +52,16 @@ struct GpuState {
 void pass_noise_base(VkCommandBuffer cmd, GpuState& s);
 void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
 void pass_weather(VkCommandBuffer cmd, GpuState& s);
-// Only when its inputs change (the renderer caches it by sky_view_key).
+// Only when the atmosphere changes: the transmittance LUT, then the multiple-scattering LUT.
+void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s);
+// Only when its inputs change (the renderer caches it by sky_view_key): the sky-view LUT and
+// the aerial-perspective volume, which share its frame.
 void pass_sky_view(VkCommandBuffer cmd, GpuState& s);
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
 void pass_march_range(VkCommandBuffer cmd, GpuState& s);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s);
-void pass_compose(VkCommandBuffer cmd, GpuState& s);
+void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model);
 void pass_stars(VkCommandBuffer cmd, GpuState& s);
 
 }  // namespace nephele

@@ -46,6 +46,11 @@ struct Renderer::Impl {
     glm::vec4 up, forward;
   };
   std::optional<SkyViewBuilt> sky_view_built;
+  // Hillaire's transmittance and multiple-scattering tables: what they were built for, and
+  // their copy on the host for the lighting computed on the CPU.
+  std::optional<AtmosphereParams> luts_built;
+  AtmosphereTables tables;
+  void update_atmosphere_luts(const Scene& scene);
 
   Frame render_frame(const Scene& scene, bool still, bool read_back);
 
@@ -200,6 +205,25 @@ void Renderer::Impl::update_textures(const Scene& scene) {
   weather_built = key;
 }
 
+void Renderer::Impl::update_atmosphere_luts(const Scene& scene) {
+  if (luts_built == scene.atmosphere) return;
+  gpu::FrameParams params{};
+  set_atmosphere(params, scene);
+  std::memcpy(state.frame_params.data(), &params, sizeof(params));
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    state.timer.reset(cmd);
+    pass_atmosphere_luts(cmd, state);
+  });
+  if (verbose)
+    for (const auto& [name, ms] : state.timer.results())
+      std::fprintf(stderr, "nephele: pass %-12s %8.2f ms (cached until the atmosphere changes)\n",
+                   name.c_str(), ms);
+  tables.transmittance = download(ctx, state.transmittance_lut, false).pixels;
+  tables.multiple_scattering = download(ctx, state.ms_lut, false).pixels;
+  luts_built = scene.atmosphere;
+  sky_view_built.reset();
+}
+
 bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& key,
                                        gpu::FrameParams& params) {
   const float half_m = float(scene.quality.light_volume_km) * 1000.0f;
@@ -253,11 +277,12 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   const bool history = !still && stride > 1 && !resized && previous && key == previous_key &&
                        history_usable(scene, *previous, lights.key.direction, previous_light_dir);
   if (!history) frame_counter = 0;
+  update_atmosphere_luts(scene);
 
   GpuState& s = state;
   s.resize(scene.output.width, scene.output.height, cloud_w, cloud_h);
   s.stride = stride;
-  gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights);
+  gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights, tables);
   if (history) set_previous_frame(params, scene, *previous);
   const glm::ivec2 offset = march_offset(stride, frame_counter);
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
@@ -284,7 +309,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
     pass_clouds(cmd, s, scene.quality.mode);
     pass_march_range(cmd, s);
     pass_resolve(cmd, s);
-    pass_compose(cmd, s);
+    pass_compose(cmd, s, scene.atmosphere.model);
     pass_stars(cmd, s);
   });
   previous = scene;

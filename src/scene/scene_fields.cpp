@@ -19,6 +19,24 @@ const char* to_string(MarchMode mode) {
   return "unknown";
 }
 
+const char* to_string(SkyModel model) {
+  switch (model) {
+    case SkyModel::Hillaire:
+      return "hillaire";
+    case SkyModel::Preetham:
+      return "preetham";
+    case SkyModel::Reference:
+      return "reference";
+  }
+  return "unknown";
+}
+
+std::optional<SkyModel> parse_sky_model(std::string_view text) {
+  for (SkyModel m : {SkyModel::Hillaire, SkyModel::Preetham, SkyModel::Reference})
+    if (text == to_string(m)) return m;
+  return std::nullopt;
+}
+
 std::optional<MarchMode> parse_march_mode(std::string_view text) {
   if (text == "default") return MarchMode::Default;
   if (text == "baseline") return MarchMode::Baseline;
@@ -68,7 +86,10 @@ const std::vector<Section>& scene_sections() {
         FIELD(sun, disk_angular_radius_deg, "apparent radius of the sun disk")},
        {"elevation_deg", "azimuth_deg"}},
       {"atmosphere",
-       {FIELD(atmosphere, planet_radius_km, ""),
+       {FIELD(atmosphere, model,
+              "hillaire (LUTs, multiple scattering), preetham (analytic, seed 002) or reference "
+              "(brute force, slow)"),
+        FIELD(atmosphere, planet_radius_km, ""),
         FIELD(atmosphere, atmosphere_height_km, "top of the atmosphere above ground"),
         FIELD(atmosphere, rayleigh_scattering_per_m, "sigma_s at sea level, rgb"),
         FIELD(atmosphere, rayleigh_scale_height_m, ""),
@@ -76,7 +97,12 @@ const std::vector<Section>& scene_sections() {
         FIELD(atmosphere, mie_extinction_per_m, "sigma_t at sea level, >= mie_scattering_per_m"),
         FIELD(atmosphere, mie_scale_height_m, ""),
         FIELD(atmosphere, mie_g, "Cornette-Shanks asymmetry, [0, 1)"),
-        FIELD(atmosphere, view_samples, "[1, 256]"), FIELD(atmosphere, light_samples, "[1, 256]")},
+        FIELD(atmosphere, ozone_absorption_per_m, "sigma_a at the ozone layer's peak, rgb"),
+        FIELD(atmosphere, ozone_peak_altitude_m, ""),
+        FIELD(atmosphere, ozone_half_width_m, "density falls linearly to 0 this far from the peak"),
+        FIELD(atmosphere, ground_albedo, "Lambertian ground, [0, 1]"),
+        FIELD(atmosphere, turbidity, "Preetham model's haze, [1.7, 10]"),
+        FIELD(atmosphere, view_samples, "samples along each sky-view LUT ray, [1, 256]")},
        {}},
       {"clouds",
        {FIELD(clouds, bottom_altitude_m, "above ground"),

@@ -17,7 +17,8 @@ namespace nephele::scene_detail {
 // Reference to one field of a Scene; the alternative says the field's type.
 using FieldAccess = std::variant<float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
                                  glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
-                                 std::string& (*)(Scene&), MarchMode& (*)(Scene&), bool& (*)(Scene&)>;
+                                 std::string& (*)(Scene&), MarchMode& (*)(Scene&), bool& (*)(Scene&),
+                                 SkyModel& (*)(Scene&)>;
 
 struct Field {
   std::string_view name;  // key inside its table, e.g. "coverage"

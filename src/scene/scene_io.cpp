@@ -231,6 +231,12 @@ class SceneReader {
     if (!mode) fail_value(node, key, "expected \"default\" or \"baseline\"");
     out = *mode;
   }
+  void read_value(const toml::node& node, const std::string& key, SkyModel& out) const {
+    const auto* s = node.as_string();
+    std::optional<SkyModel> model = s ? parse_sky_model(s->get()) : std::nullopt;
+    if (!model) fail_value(node, key, "expected \"hillaire\", \"preetham\" or \"reference\"");
+    out = *model;
+  }
 
   // `out` points at `size` consecutive floats (glm vectors are laid out so).
   void read_vector(const toml::node& node, const std::string& key, size_t size, float* out) const {

@@ -146,7 +146,15 @@ void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) 
   check.positive("atmosphere.mie_scale_height_m", atmosphere.mie_scale_height_m);
   check.in_range("atmosphere.mie_g", atmosphere.mie_g, 0.0f, 1.0f, false, true);
   check.in_range("atmosphere.view_samples", atmosphere.view_samples, 1, 256);
-  check.in_range("atmosphere.light_samples", atmosphere.light_samples, 1, 256);
+  if (atmosphere.model != SkyModel::Hillaire && atmosphere.model != SkyModel::Preetham &&
+      atmosphere.model != SkyModel::Reference)
+    check.fail("atmosphere.model", std::to_string(static_cast<int>(atmosphere.model)),
+               "must be hillaire, preetham or reference");
+  check.non_negative("atmosphere.ozone_absorption_per_m", atmosphere.ozone_absorption_per_m);
+  check.non_negative("atmosphere.ozone_peak_altitude_m", atmosphere.ozone_peak_altitude_m);
+  check.non_negative("atmosphere.ozone_half_width_m", atmosphere.ozone_half_width_m);
+  check.in_range("atmosphere.ground_albedo", atmosphere.ground_albedo, 0.0f, 1.0f);
+  check.in_range("atmosphere.turbidity", atmosphere.turbidity, 1.7f, 10.0f);
 }
 
 void check_clouds(const Checker& check, const CloudParams& clouds) {

@@ -1,6 +1,7 @@
 // The sky-view LUT (sky_view.comp, sampled by compose.comp) against the brute-force sky it
 // replaced: cloudless frames rendered on the device compared, pixel by pixel, with
-// sky_single_scattering evaluated per pixel on the CPU (the same function compiled as C++).
+// sky_hillaire evaluated per pixel on the CPU (the same function compiled as C++, with tables
+// computed on the CPU).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -45,6 +46,10 @@ SkyError sky_error(const Scene& scene) {
   atmosphere.mie_sigma_t = f.mie.y;
   atmosphere.mie_height_m = f.mie.z;
   atmosphere.mie_g = f.mie.w;
+  atmosphere.ozone_sigma_a = glm::vec3(f.ozone);
+  atmosphere.ozone_center_m = f.ozone.w;
+  atmosphere.ozone_half_width_m = f.sky_model.x;
+  const nephele::AtmosphereTables tables = nephele::compute_atmosphere_tables(scene);
   const nephele::CameraBasis basis = nephele::camera_basis(scene.camera.view_dir);
   const glm::vec3 eye(f.camera_pos_m), sun(f.sun_dir), illuminance(f.sun_illuminance);
   const glm::vec3 ground_sky = glm::vec3(f.ground_sky_light) / illuminance;
@@ -59,10 +64,9 @@ SkyError sky_error(const Scene& scene) {
           basis.forward, basis.right, basis.up, f.camera_pos_m.w, f.camera_forward.w, float(x),
           float(y), float(frame.color.width), float(frame.color.height));
       if (glm::dot(dir, sun) > cos_disk) continue;
-      // Ground albedo 0.1 as in sky_view.comp.
-      const nephele::glsl::SkySample sky = nephele::glsl::sky_single_scattering(
-          atmosphere, eye, dir, sun, scene.atmosphere.view_samples, scene.atmosphere.light_samples,
-          0.1f, ground_sky);
+      const nephele::glsl::SkySample sky = nephele::glsl::sky_hillaire(
+          atmosphere, tables.transmittance_lut(), tables.ms_lut(), false, eye, dir, sun,
+          scene.atmosphere.view_samples, scene.atmosphere.ground_albedo, ground_sky);
       const glm::vec3 expected = (sky.radiance + sky.ground_sun) * illuminance;
       const glm::vec4 got = frame.color.at(x, y);
       double error = 0.0;

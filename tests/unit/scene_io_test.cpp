@@ -68,7 +68,10 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(aa.mie_scale_height_m, ba.mie_scale_height_m);
   EXPECT_EQ(aa.mie_g, ba.mie_g);
   EXPECT_EQ(aa.view_samples, ba.view_samples);
-  EXPECT_EQ(aa.light_samples, ba.light_samples);
+  EXPECT_EQ(aa.ozone_absorption_per_m, ba.ozone_absorption_per_m);
+  EXPECT_EQ(aa.ground_albedo, ba.ground_albedo);
+  EXPECT_EQ(aa.model, ba.model);
+  EXPECT_EQ(aa.turbidity, ba.turbidity);
   const CloudParams &ac = a.clouds, &bc = b.clouds;
   EXPECT_EQ(ac.bottom_altitude_m, bc.bottom_altitude_m);
   EXPECT_EQ(ac.top_altitude_m, bc.top_altitude_m);
@@ -112,9 +115,9 @@ Scene unusual_scene() {
   s.sun = {{-0.3f, 0.4f, 1e-7f}, 7.25f, 0.55f, true};
   s.time = "1999-12-31T23:59:59.5-03:30";
   s.location = {-33.8688f, 151.2093f, 58.0f};
-  s.atmosphere = {
-      6371.5f, 80.0f, {1e-6f, 2.5e-5f, 3.3333e-5f}, 7994.0f, 2.1e-5f, 2.3e-5f, 1234.5f, 0.76f,
-      32,      12};
+  s.atmosphere = {SkyModel::Preetham, 6371.5f, 80.0f, {1e-6f, 2.5e-5f, 3.3333e-5f}, 7994.0f,
+                  2.1e-5f, 2.3e-5f, 1234.5f, 0.76f, {1.5e-6f, 2e-6f, 1e-7f}, 22000.5f, 14000.0f,
+                  0.27f, 3.25f, 12};
   s.clouds = {800.0f,
               5321.25f,
               0.123f,
@@ -513,7 +516,8 @@ const BadValue kBadValues[] = {
     {"atmosphere.mie_g = 1", [](Scene& s) { s.atmosphere.mie_g = 1.0f; }},
     {"atmosphere.mie_g = -0.1", [](Scene& s) { s.atmosphere.mie_g = -0.1f; }},
     {"atmosphere.view_samples = 0", [](Scene& s) { s.atmosphere.view_samples = 0; }},
-    {"atmosphere.light_samples = 257", [](Scene& s) { s.atmosphere.light_samples = 257; }},
+    {"atmosphere.ground_albedo = 1.5", [](Scene& s) { s.atmosphere.ground_albedo = 1.5f; }},
+    {"atmosphere.turbidity = 1", [](Scene& s) { s.atmosphere.turbidity = 1.0f; }},
     {"clouds.top_altitude_m = 4000: must be below the top of the atmosphere",
      [](Scene& s) { s.atmosphere.atmosphere_height_km = 3.0f; }},
     {"clouds.bottom_altitude_m = -1", [](Scene& s) { s.clouds.bottom_altitude_m = -1.0f; }},

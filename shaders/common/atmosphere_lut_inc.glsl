@@ -1,0 +1,222 @@
+// The physically based sky of Hillaire 2020 ("A Scalable and Production Ready Sky and
+// Atmosphere Rendering Technique", EGSR): Rayleigh and Mie scattering (Mie with absorption),
+// ozone absorption, single scattering plus all orders of multiple scattering, from the ground to
+// space, on a spherical planet.
+//   - Transmittance LUT (section 4, Bruneton's parameterisation): transmittance from a point at
+//     radius r to the top of the atmosphere along a direction at cosine mu from the zenith.
+//   - Multiple-scattering LUT (section 5.5.2): Psi_ms(altitude, sun zenith), the radiance that
+//     all orders of scattering >= 2 add per unit scattering coefficient, from the second order
+//     computed with an isotropic phase over 64 directions and the geometric series 1/(1 - f_ms)
+//     of its transfer factor f_ms.
+//   - sky_hillaire(): the radiance along a view ray (section 5.3 and 5.4), integrated with the
+//     energy-conserving step of section 5.6.3, single scattering lit through the transmittance
+//     and multiple scattering from Psi_ms. With `exact` true it uses no table at all: the sun's
+//     transmittance is integrated numerically and Psi_ms evaluated in place. That is the
+//     brute-force reference the tables are checked against.
+// Radiances are per unit solar illuminance at the top of the atmosphere (1/sr).
+// Pure functions; GLSL passes the tables as sampler2D parameters, and src/render/glsl.h gives C++
+// a sampler2D of its own, so the CPU computes the same values from tables read back.
+#ifndef NEPHELE_ATMOSPHERE_LUT_INC
+#define NEPHELE_ATMOSPHERE_LUT_INC
+
+const int TRANSMITTANCE_LUT_W = 256;  // mu
+const int TRANSMITTANCE_LUT_H = 64;   // r
+const int MS_LUT_SIZE = 32;           // sun zenith cosine x altitude
+const int MS_DIRECTIONS_SQRT = 8;     // 64 directions per Psi_ms (Hillaire's count)
+const int MS_SAMPLES = 20;            // samples along each of them
+const int TRANSMITTANCE_SAMPLES = 64;  // samples per transmittance LUT texel
+const int EXACT_SUN_SAMPLES = 16;      // sun transmittance integrated in place (reference)
+
+// Maps [0, 1] onto texel centres of an n-texel axis and back (Bruneton 2017): the ends of the
+// range are sampled exactly rather than half a texel in.
+float unit_to_texcoord(float x, float n) { return 0.5f / n + x * (1.0f - 1.0f / n); }
+float texcoord_to_unit(float u, float n) { return (u - 0.5f / n) / (1.0f - 1.0f / n); }
+
+// Transmittance LUT coordinates of (r, mu), Bruneton 2017 section 4.1: x_r = rho / H with rho the
+// distance to the horizon, x_mu the distance to the top of the atmosphere between its least
+// (straight up) and greatest (towards the horizon) values. Directions below the horizon clamp
+// to the horizon: the caller has found them blocked by the planet.
+vec2 transmittance_lut_uv(Atmosphere a, float r, float mu) {
+  float R = a.planet_radius_m;
+  float top = a.top_radius_m;
+  float H = sqrt((top - R) * (top + R));
+  float h = clamp(r - R, 0.0f, top - R);
+  r = R + h;
+  float rho = sqrt(h * (r + R));
+  float disc = (top - r) * (top + r) + r * r * mu * mu;
+  float d = max(-r * mu + sqrt(max(disc, 0.0f)), 0.0f);
+  float d_min = top - r;
+  float d_max = rho + H;
+  float x_mu = d_max > d_min ? saturate((d - d_min) / (d_max - d_min)) : 0.0f;
+  return vec2(unit_to_texcoord(x_mu, float(TRANSMITTANCE_LUT_W)),
+              unit_to_texcoord(rho / H, float(TRANSMITTANCE_LUT_H)));
+}
+
+// The inverse: (r, mu) of LUT coordinates.
+vec2 transmittance_lut_r_mu(Atmosphere a, vec2 uv) {
+  float R = a.planet_radius_m;
+  float top = a.top_radius_m;
+  float H = sqrt((top - R) * (top + R));
+  float x_mu = saturate(texcoord_to_unit(uv.x, float(TRANSMITTANCE_LUT_W)));
+  float x_r = saturate(texcoord_to_unit(uv.y, float(TRANSMITTANCE_LUT_H)));
+  float rho = H * x_r;
+  float r = sqrt(rho * rho + R * R);
+  float d_min = top - r;
+  float d_max = rho + H;
+  float d = d_min + x_mu * (d_max - d_min);
+  float mu = d <= 0.0f ? 1.0f : ((top - r) * (top + r) - d * d) / (2.0f * r * d);
+  return vec2(r, clamp(mu, -1.0f, 1.0f));
+}
+
+// One transmittance LUT texel: integrated to the top, past the horizon, never into the ground.
+vec3 transmittance_lut_texel(Atmosphere a, vec2 uv) {
+  vec2 r_mu = transmittance_lut_r_mu(a, uv);
+  vec3 pos = vec3(0.0f, 0.0f, r_mu.x);
+  vec3 dir = vec3(sqrt(max(1.0f - r_mu.y * r_mu.y, 0.0f)), 0.0f, r_mu.y);
+  return exp(-atmosphere_optical_depth_to_top(a, pos, dir, TRANSMITTANCE_SAMPLES));
+}
+
+// Transmittance from `pos` to the light along unit `dir`: 0 when the planet is in the way. From
+// space the light enters the atmosphere where the ray does. `exact` integrates it in place.
+vec3 transmittance_to_light(Atmosphere a, sampler2D lut, bool exact, vec3 pos, vec3 dir) {
+  if (ray_sphere(pos, dir, a.planet_radius_m).x > 0.0f) return vec3(0.0f);
+  if (dot(pos, pos) > a.top_radius_m * a.top_radius_m) {
+    vec2 top = ray_sphere(pos, dir, a.top_radius_m);
+    if (top.x <= 0.0f) return vec3(1.0f);
+    pos += dir * top.x;
+  }
+  if (exact) return exp(-atmosphere_optical_depth_to_top(a, pos, dir, EXACT_SUN_SAMPLES));
+  float r = length(pos);
+  return vec3(textureLod(lut, transmittance_lut_uv(a, r, dot(pos, dir) / r), 0.0f));
+}
+
+// Multiple-scattering LUT coordinates: u the cosine of the sun's zenith angle, v the altitude.
+vec2 ms_lut_uv(Atmosphere a, float altitude_m, float cos_sun_zenith) {
+  float n = float(MS_LUT_SIZE);
+  return vec2(unit_to_texcoord(saturate(0.5f + 0.5f * cos_sun_zenith), n),
+              unit_to_texcoord(saturate(altitude_m / (a.top_radius_m - a.planet_radius_m)), n));
+}
+
+// Psi_ms at `pos` for the sun in unit direction `sun` (Hillaire 2020, equations 5-10), with a
+// Lambertian ground of albedo `ground_albedo`: the second order of scattering L_2 and the
+// transfer factor f_ms, both averaged over MS_DIRECTIONS_SQRT^2 stratified directions with an
+// isotropic phase, give Psi_ms = L_2 / (1 - f_ms).
+vec3 ms_psi(Atmosphere a, sampler2D t_lut, bool exact, vec3 pos, vec3 sun, float ground_albedo) {
+  vec3 l2 = vec3(0.0f);
+  vec3 f_ms = vec3(0.0f);
+  const float ISOTROPIC = 1.0f / (4.0f * PI);
+  for (int i = 0; i < MS_DIRECTIONS_SQRT; ++i) {
+    for (int j = 0; j < MS_DIRECTIONS_SQRT; ++j) {
+      float cos_t = 1.0f - 2.0f * (float(i) + 0.5f) / float(MS_DIRECTIONS_SQRT);
+      float sin_t = sqrt(max(1.0f - cos_t * cos_t, 0.0f));
+      float phi = 2.0f * PI * (float(j) + 0.5f) / float(MS_DIRECTIONS_SQRT);
+      // Around the local zenith: any frame will do for a uniform sphere.
+      vec3 up = normalize(pos);
+      vec3 e1 = normalize(abs(up.x) < 0.9f ? cross(up, vec3(1.0f, 0.0f, 0.0f))
+                                          : cross(up, vec3(0.0f, 1.0f, 0.0f)));
+      vec3 e2 = cross(up, e1);
+      vec3 dir = sin_t * (cos(phi) * e1 + sin(phi) * e2) + cos_t * up;
+      vec2 ground = ray_sphere(pos, dir, a.planet_radius_m);
+      vec2 top = ray_sphere(pos, dir, a.top_radius_m);
+      bool hits_ground = ground.x > 0.0f;
+      float t_max = hits_ground ? ground.x : max(top.y, 0.0f);
+      vec3 throughput = vec3(1.0f);
+      float dt = t_max / float(MS_SAMPLES);
+      for (int k = 0; k < MS_SAMPLES; ++k) {
+        vec3 x = pos + dir * ((float(k) + 0.5f) * dt);
+        AtmosphereMedium m = atmosphere_medium(a, length(x) - a.planet_radius_m);
+        vec3 sigma_s = m.scattering_r + vec3(m.scattering_m);
+        vec3 step_t = exp(-m.extinction * dt);
+        // Energy-conserving integration over the step (Hillaire 2015, 2020 section 5.6.3).
+        vec3 weight = throughput * (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
+        vec3 t_sun = transmittance_to_light(a, t_lut, exact, x, sun);
+        l2 += weight * sigma_s * t_sun * ISOTROPIC;
+        f_ms += weight * sigma_s;
+        throughput *= step_t;
+      }
+      if (hits_ground) {
+        vec3 g = pos + dir * ground.x;
+        vec3 n = normalize(g);
+        vec3 t_sun = transmittance_to_light(a, t_lut, exact, n * (a.planet_radius_m + 1.0f), sun);
+        l2 += throughput * t_sun * max(dot(n, sun), 0.0f) * ground_albedo / PI;
+      }
+    }
+  }
+  float count = float(MS_DIRECTIONS_SQRT * MS_DIRECTIONS_SQRT);
+  l2 /= count;
+  f_ms /= count;
+  return l2 / max(vec3(1.0f) - f_ms, vec3(1e-3f));
+}
+
+// One multiple-scattering LUT texel: Psi_ms at the texel's altitude and sun zenith angle.
+vec3 ms_lut_texel(Atmosphere a, sampler2D t_lut, vec2 uv, float ground_albedo) {
+  float n = float(MS_LUT_SIZE);
+  float cos_sun = 2.0f * saturate(texcoord_to_unit(uv.x, n)) - 1.0f;
+  float altitude_m = saturate(texcoord_to_unit(uv.y, n)) * (a.top_radius_m - a.planet_radius_m);
+  vec3 pos = vec3(0.0f, 0.0f, a.planet_radius_m + max(altitude_m, 1.0f));
+  vec3 sun = vec3(sqrt(max(1.0f - cos_sun * cos_sun, 0.0f)), 0.0f, cos_sun);
+  return ms_psi(a, t_lut, false, pos, sun, ground_albedo);
+}
+
+// Psi_ms at `pos`: from the LUT, or (`exact`) evaluated in place.
+vec3 multiple_scattering_at(Atmosphere a, sampler2D t_lut, sampler2D ms_lut, bool exact, vec3 pos,
+                            vec3 sun, float ground_albedo) {
+  if (exact) return ms_psi(a, t_lut, true, pos, sun, ground_albedo);
+  float r = length(pos);
+  vec2 uv = ms_lut_uv(a, r - a.planet_radius_m, dot(pos, sun) / r);
+  return vec3(textureLod(ms_lut, uv, 0.0f));
+}
+
+// The sky along unit `dir` from `eye` (SkySample of atmosphere_inc.glsl): single scattering with
+// Rayleigh and Cornette-Shanks phases, multiple scattering from Psi_ms, `samples` steps spaced
+// t = t_max s^2 (dense near the eye, Hillaire's distribution), and a Lambertian ground of albedo
+// `ground_albedo` lit by the sun (ground_sun, for the caller to shadow) and by sky radiance
+// `sky_ambient` (per unit illuminance). From space the ray starts where it enters the air.
+SkySample sky_hillaire(Atmosphere a, sampler2D t_lut, sampler2D ms_lut, bool exact, vec3 eye,
+                       vec3 dir, vec3 sun, int samples, float ground_albedo, vec3 sky_ambient) {
+  SkySample result;
+  result.radiance = vec3(0.0f);
+  result.ground_sun = vec3(0.0f);
+  result.transmittance = vec3(1.0f);
+  vec2 top = ray_sphere(eye, dir, a.top_radius_m);
+  if (top.y <= 0.0f) return result;  // looking away from the atmosphere, from space
+  float t_start = max(top.x, 0.0f);
+  vec2 ground = ray_sphere(eye, dir, a.planet_radius_m);
+  bool hits_ground = ground.x > 0.0f;
+  float length_m = (hits_ground ? ground.x : top.y) - t_start;
+  vec3 origin = eye + dir * t_start;
+
+  float mu = dot(dir, sun);
+  float phase_r = rayleigh_phase(mu);
+  float phase_m = cornette_shanks_phase(a.mie_g, mu);
+  vec3 throughput = vec3(1.0f);
+  vec3 inscatter = vec3(0.0f);
+  float n = float(samples);
+  for (int i = 0; i < samples; ++i) {
+    float t0 = length_m * (float(i) / n) * (float(i) / n);
+    float t1 = length_m * (float(i + 1) / n) * (float(i + 1) / n);
+    vec3 x = origin + dir * (0.5f * (t0 + t1));
+    AtmosphereMedium m = atmosphere_medium(a, length(x) - a.planet_radius_m);
+    vec3 step_t = exp(-m.extinction * (t1 - t0));
+    vec3 t_sun = transmittance_to_light(a, t_lut, exact, x, sun);
+    vec3 psi = multiple_scattering_at(a, t_lut, ms_lut, exact, x, sun, ground_albedo);
+    vec3 source = (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) * t_sun +
+                  (m.scattering_r + vec3(m.scattering_m)) * psi;
+    inscatter += throughput * source * (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
+    throughput *= step_t;
+  }
+  result.radiance = inscatter;
+  result.transmittance = throughput;
+  if (hits_ground) {
+    // The ground point, lifted 1 m so its own sphere does not shadow it through rounding.
+    vec3 nrm = normalize(eye + dir * ground.x);
+    vec3 p = nrm * (a.planet_radius_m + 1.0f);
+    vec3 t_sun = transmittance_to_light(a, t_lut, exact, p, sun);
+    result.ground_sun = throughput * ground_albedo / PI * t_sun * max(dot(nrm, sun), 0.0f);
+    result.radiance += throughput * ground_albedo * sky_ambient;
+    result.transmittance = vec3(0.0f);
+  }
+  return result;
+}
+
+#endif
