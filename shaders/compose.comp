@@ -4,8 +4,8 @@
 // occlude them, and the clouds over both: color = background * T_cloud + cloud in-scattering
 // (seed listing B.3), plus the haze in front of distant clouds, coloured by the
 // aerial-perspective volume at the cloud's distance.
-// REFERENCE (specialization constant) 1: the sky is integrated per pixel by brute force, with no
-// table (sky_hillaire with `exact`): the reference the LUT path is checked against.
+// REFERENCE (specialization constant) 1: the sky comes per pixel from the brute-force reference
+// (sky_reference.comp), which the LUT path is checked against.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
@@ -17,8 +17,6 @@
 
 layout(constant_id = 0) const int REFERENCE = 0;
 layout(local_size_x = 8, local_size_y = 8) in;
-
-const int REFERENCE_SAMPLES = 48;  // view-ray steps of the brute-force sky
 
 // Solar disk radiance per unit illuminance, with limb darkening I(m)/I(1) = 1 - u (1 - m),
 // m = cos of the angle at the sun's surface, u = 0.6 (a visible-band average); normalised so
@@ -72,12 +70,8 @@ void main() {
   bool above_horizon = uv.y >= 0.5f;
   vec3 sky, ground_sun;
   if (REFERENCE == 1) {
-    vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
-    SkySample s = sky_hillaire(frame_atmosphere(), transmittance_lut, ms_lut, true,
-                               frame.camera_pos_m.xyz, dir, sun, REFERENCE_SAMPLES,
-                               frame.sky_model.y, ground_sky);
-    sky = s.radiance;
-    ground_sun = s.ground_sun;
+    sky = texelFetch(reference_sky, pixel, 0).rgb;
+    ground_sun = texelFetch(reference_sky, ivec2(pixel.x, pixel.y + height), 0).rgb;
   } else {
     float rows = float(textureSize(sky_view_lut, 0).y / 2);
     sky = textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 0.0f), 0.0f).rgb;

@@ -14,8 +14,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-  if (texel.x >= MS_LUT_SIZE || texel.y >= MS_LUT_SIZE) return;
-  vec2 uv = (vec2(texel) + 0.5f) / float(MS_LUT_SIZE);
+  if (texel.x >= MS_LUT_W || texel.y >= MS_LUT_H) return;
+  vec2 uv = (vec2(texel) + 0.5f) / vec2(MS_LUT_W, MS_LUT_H);
   vec3 psi = ms_lut_texel(frame_atmosphere(), transmittance_lut, uv, frame.sky_model.y);
   imageStore(ms_lut_out, texel, vec4(psi, 1.0f));
 }

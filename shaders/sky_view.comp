@@ -4,6 +4,7 @@
 // and multiple scattering through the transmittance and multiple-scattering LUTs) is integrated
 // once per texel of a small latitude/longitude table around the camera
 // (common/sky_view_inc.glsl) instead of once per pixel; compose.comp samples it bilinearly.
+// With atmosphere.model = preetham the sky above the horizon is Preetham's (seed 002) instead.
 // The image stacks two tables: the in-scattered radiance (with the ground's sky-lit part) and
 // the ground's sun-lit radiance, which compose multiplies by the clouds' shadow.
 #extension GL_GOOGLE_include_directive : require
@@ -12,6 +13,7 @@
 #include "common/phase_inc.glsl"
 #include "common/atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"
+#include "common/preetham_inc.glsl"
 #include "common/sky_view_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
 
@@ -31,6 +33,14 @@ void main() {
   vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
   SkySample sky = sky_hillaire(frame_atmosphere(), transmittance_lut, ms_lut, false, eye, dir, sun,
                                frame.steps.z, frame.sky_model.y, ground_sky);
+  if (int(frame.sky_model.z) == SKY_MODEL_PREETHAM && uv.y >= 0.5f) {
+    // Preetham's analytic sky above the horizon (the ground stays the physical model's). The
+    // model knows no sun below the horizon: it is faded by a factor 10 every 3 degrees the sun
+    // sinks, about how fast the twilight sky darkens.
+    float sun_elevation_deg = degrees(asin(clamp(dot(sun, sky_frame.up), -1.0f, 1.0f)));
+    float fade = pow(10.0f, min(sun_elevation_deg, 0.0f) / 3.0f);
+    sky.radiance = preetham_sky_radiance(frame.sky_model.w, dir, sun, sky_frame.up) * fade;
+  }
   imageStore(sky_view_out, texel, vec4(sky.radiance, 1.0f));
   imageStore(sky_view_out, ivec2(texel.x, texel.y + rows), vec4(sky.ground_sun, 1.0f));
 }

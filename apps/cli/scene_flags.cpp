@@ -133,7 +133,7 @@ const std::vector<FlagSpec>& flag_specs() {
        "sky model: hillaire (default), preetham (seed 002's analytic sky), reference (brute "
        "force, slow)"},
       {"--turbidity", &F::turbidity, "atmosphere.turbidity", TO(atmosphere.turbidity), "T",
-       "Preetham sky's turbidity, [1.7, 10]"},
+       "Preetham sky's turbidity, [2, 10]"},
       {"--exposure", &F::exposure, "output.exposure", TO(output.exposure), "X",
        "linear exposure before tone mapping, > 0"},
   };

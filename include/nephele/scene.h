@@ -54,7 +54,7 @@ struct AtmosphereParams {
   float ozone_peak_altitude_m = 25000.0f;           // the layer's density peaks here ...
   float ozone_half_width_m = 15000.0f;              // ... and falls linearly to 0 this far away
   float ground_albedo = 0.1f;                       // Lambertian ground, [0, 1]
-  float turbidity = 2.5f;                           // Preetham's haze, [1.7, 10]
+  float turbidity = 2.5f;                           // Preetham's haze, [2, 10]
   int view_samples = 32;                            // samples along each sky-view LUT ray
   bool operator==(const AtmosphereParams&) const = default;
 };

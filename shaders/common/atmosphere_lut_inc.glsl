@@ -12,7 +12,9 @@
 //     energy-conserving step of section 5.6.3, single scattering lit through the transmittance
 //     and multiple scattering from Psi_ms. With `exact` true it uses no table at all: the sun's
 //     transmittance is integrated numerically and Psi_ms evaluated in place. That is the
-//     brute-force reference the tables are checked against.
+//     brute-force reference the tables are checked against (on the GPU the reference is split
+//     in two passes, sky_reference_psi.comp and sky_reference.comp: lavapipe ends any shader
+//     invocation after 65535 loop iterations in all, and one exact pixel takes about a million).
 // Radiances are per unit solar illuminance at the top of the atmosphere (1/sr).
 // Pure functions; GLSL passes the tables as sampler2D parameters, and src/render/glsl.h gives C++
 // a sampler2D of its own, so the CPU computes the same values from tables read back.
@@ -21,10 +23,12 @@
 
 const int TRANSMITTANCE_LUT_W = 256;  // mu
 const int TRANSMITTANCE_LUT_H = 64;   // r
-const int MS_LUT_SIZE = 32;           // sun zenith cosine x altitude
+const int MS_LUT_W = 64;              // sun zenith cosine (log Psi_ms bends most along it)
+const int MS_LUT_H = 32;              // altitude
 const int MS_DIRECTIONS_SQRT = 8;     // 64 directions per Psi_ms (Hillaire's count)
 const int MS_SAMPLES = 20;            // samples along each of them
 const int TRANSMITTANCE_SAMPLES = 64;  // samples per transmittance LUT texel
+const float MS_LUT_FLOOR = 1e-20f;      // Psi_ms stored as log(Psi_ms + floor)
 const int EXACT_SUN_SAMPLES = 16;      // sun transmittance integrated in place (reference)
 
 // Maps [0, 1] onto texel centres of an n-texel axis and back (Bruneton 2017): the ends of the
@@ -92,9 +96,9 @@ vec3 transmittance_to_light(Atmosphere a, sampler2D lut, bool exact, vec3 pos, v
 
 // Multiple-scattering LUT coordinates: u the cosine of the sun's zenith angle, v the altitude.
 vec2 ms_lut_uv(Atmosphere a, float altitude_m, float cos_sun_zenith) {
-  float n = float(MS_LUT_SIZE);
-  return vec2(unit_to_texcoord(saturate(0.5f + 0.5f * cos_sun_zenith), n),
-              unit_to_texcoord(saturate(altitude_m / (a.top_radius_m - a.planet_radius_m)), n));
+  return vec2(unit_to_texcoord(saturate(0.5f + 0.5f * cos_sun_zenith), float(MS_LUT_W)),
+              unit_to_texcoord(saturate(altitude_m / (a.top_radius_m - a.planet_radius_m)),
+                               float(MS_LUT_H)));
 }
 
 // Psi_ms at `pos` for the sun in unit direction `sun` (Hillaire 2020, equations 5-10), with a
@@ -148,14 +152,17 @@ vec3 ms_psi(Atmosphere a, sampler2D t_lut, bool exact, vec3 pos, vec3 sun, float
   return l2 / max(vec3(1.0f) - f_ms, vec3(1e-3f));
 }
 
-// One multiple-scattering LUT texel: Psi_ms at the texel's altitude and sun zenith angle.
+// One multiple-scattering LUT texel: log Psi_ms at the texel's altitude and sun zenith angle.
+// The log, because Psi_ms falls by orders of magnitude as the sun sets: read linearly, a texel
+// spanning the terminator overestimated the twilight sky by 3x near the ground; interpolated in
+// log it is right within a few %.
 vec3 ms_lut_texel(Atmosphere a, sampler2D t_lut, vec2 uv, float ground_albedo) {
-  float n = float(MS_LUT_SIZE);
-  float cos_sun = 2.0f * saturate(texcoord_to_unit(uv.x, n)) - 1.0f;
-  float altitude_m = saturate(texcoord_to_unit(uv.y, n)) * (a.top_radius_m - a.planet_radius_m);
+  float cos_sun = 2.0f * saturate(texcoord_to_unit(uv.x, float(MS_LUT_W))) - 1.0f;
+  float altitude_m =
+      saturate(texcoord_to_unit(uv.y, float(MS_LUT_H))) * (a.top_radius_m - a.planet_radius_m);
   vec3 pos = vec3(0.0f, 0.0f, a.planet_radius_m + max(altitude_m, 1.0f));
   vec3 sun = vec3(sqrt(max(1.0f - cos_sun * cos_sun, 0.0f)), 0.0f, cos_sun);
-  return ms_psi(a, t_lut, false, pos, sun, ground_albedo);
+  return log(ms_psi(a, t_lut, false, pos, sun, ground_albedo) + vec3(MS_LUT_FLOOR));
 }
 
 // Psi_ms at `pos`: from the LUT, or (`exact`) evaluated in place.
@@ -164,58 +171,86 @@ vec3 multiple_scattering_at(Atmosphere a, sampler2D t_lut, sampler2D ms_lut, boo
   if (exact) return ms_psi(a, t_lut, true, pos, sun, ground_albedo);
   float r = length(pos);
   vec2 uv = ms_lut_uv(a, r - a.planet_radius_m, dot(pos, sun) / r);
-  return vec3(textureLod(ms_lut, uv, 0.0f));
+  vec3 psi = exp(vec3(textureLod(ms_lut, uv, 0.0f)));
+  return max(psi - vec3(MS_LUT_FLOOR), vec3(0.0f));
 }
 
-// The sky along unit `dir` from `eye` (SkySample of atmosphere_inc.glsl): single scattering with
-// Rayleigh and Cornette-Shanks phases, multiple scattering from Psi_ms, `samples` steps spaced
-// t = t_max s^2 (dense near the eye, Hillaire's distribution), and a Lambertian ground of albedo
-// `ground_albedo` lit by the sun (ground_sun, for the caller to shadow) and by sky radiance
-// `sky_ambient` (per unit illuminance). From space the ray starts where it enters the air.
+// A view ray's stretch of air: from the eye (from space: where it enters the atmosphere) to the
+// ground or the top. `length_m` < 0 when it misses the atmosphere.
+struct SkyRay {
+  vec3 origin;
+  float length_m;
+  bool hits_ground;
+};
+
+SkyRay sky_ray(Atmosphere a, vec3 eye, vec3 dir) {
+  SkyRay ray;
+  vec2 top = ray_sphere(eye, dir, a.top_radius_m);
+  float t_start = max(top.x, 0.0f);
+  vec2 ground = ray_sphere(eye, dir, a.planet_radius_m);
+  ray.hits_ground = ground.x > 0.0f;
+  ray.length_m = top.y <= 0.0f ? -1.0f : (ray.hits_ground ? ground.x : top.y) - t_start;
+  ray.origin = eye + dir * t_start;
+  return ray;
+}
+
+// Step i of n along a ray of `length_m`: its ends, spaced t = length (i / n)^2 (dense near the
+// eye, Hillaire's distribution).
+vec2 sky_step(float length_m, int i, int n) {
+  float u0 = float(i) / float(n);
+  float u1 = float(i + 1) / float(n);
+  return vec2(length_m * u0 * u0, length_m * u1 * u1);
+}
+
+// In-scattering per metre at a point: single scattering (Rayleigh and Cornette-Shanks phases,
+// the sun's transmittance `t_sun`) plus multiple scattering (Psi_ms `psi`, isotropic).
+vec3 sky_source(AtmosphereMedium m, float phase_r, float phase_m, vec3 t_sun, vec3 psi) {
+  return (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) * t_sun +
+         (m.scattering_r + vec3(m.scattering_m)) * psi;
+}
+
+// The ground seen at the end of a ray with transmittance `throughput` (sets ground_sun and adds
+// the sky-lit part to radiance; see sky_hillaire).
+SkySample sky_add_ground(Atmosphere a, sampler2D t_lut, bool exact, SkySample result, vec3 ground_m,
+                         vec3 sun, float ground_albedo, vec3 sky_ambient) {
+  // The ground point, lifted 1 m so its own sphere does not shadow it through rounding.
+  vec3 nrm = normalize(ground_m);
+  vec3 t_sun = transmittance_to_light(a, t_lut, exact, nrm * (a.planet_radius_m + 1.0f), sun);
+  result.ground_sun = result.transmittance * ground_albedo / PI * t_sun * max(dot(nrm, sun), 0.0f);
+  result.radiance += result.transmittance * ground_albedo * sky_ambient;
+  result.transmittance = vec3(0.0f);
+  return result;
+}
+
+// The sky along unit `dir` from `eye` (SkySample of atmosphere_inc.glsl): single and multiple
+// scattering over `samples` steps (sky_step), integrated with the energy-conserving step, and a
+// Lambertian ground of albedo `ground_albedo` lit by the sun (ground_sun, for the caller to
+// shadow) and by sky radiance `sky_ambient` (per unit illuminance).
 SkySample sky_hillaire(Atmosphere a, sampler2D t_lut, sampler2D ms_lut, bool exact, vec3 eye,
                        vec3 dir, vec3 sun, int samples, float ground_albedo, vec3 sky_ambient) {
   SkySample result;
   result.radiance = vec3(0.0f);
   result.ground_sun = vec3(0.0f);
   result.transmittance = vec3(1.0f);
-  vec2 top = ray_sphere(eye, dir, a.top_radius_m);
-  if (top.y <= 0.0f) return result;  // looking away from the atmosphere, from space
-  float t_start = max(top.x, 0.0f);
-  vec2 ground = ray_sphere(eye, dir, a.planet_radius_m);
-  bool hits_ground = ground.x > 0.0f;
-  float length_m = (hits_ground ? ground.x : top.y) - t_start;
-  vec3 origin = eye + dir * t_start;
-
+  SkyRay ray = sky_ray(a, eye, dir);
+  if (ray.length_m < 0.0f) return result;  // looking away from the atmosphere, from space
   float mu = dot(dir, sun);
   float phase_r = rayleigh_phase(mu);
   float phase_m = cornette_shanks_phase(a.mie_g, mu);
-  vec3 throughput = vec3(1.0f);
-  vec3 inscatter = vec3(0.0f);
-  float n = float(samples);
   for (int i = 0; i < samples; ++i) {
-    float t0 = length_m * (float(i) / n) * (float(i) / n);
-    float t1 = length_m * (float(i + 1) / n) * (float(i + 1) / n);
-    vec3 x = origin + dir * (0.5f * (t0 + t1));
+    vec2 t = sky_step(ray.length_m, i, samples);
+    vec3 x = ray.origin + dir * (0.5f * (t.x + t.y));
     AtmosphereMedium m = atmosphere_medium(a, length(x) - a.planet_radius_m);
-    vec3 step_t = exp(-m.extinction * (t1 - t0));
+    vec3 step_t = exp(-m.extinction * (t.y - t.x));
     vec3 t_sun = transmittance_to_light(a, t_lut, exact, x, sun);
     vec3 psi = multiple_scattering_at(a, t_lut, ms_lut, exact, x, sun, ground_albedo);
-    vec3 source = (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) * t_sun +
-                  (m.scattering_r + vec3(m.scattering_m)) * psi;
-    inscatter += throughput * source * (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
-    throughput *= step_t;
+    result.radiance += result.transmittance * sky_source(m, phase_r, phase_m, t_sun, psi) *
+                       (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
+    result.transmittance *= step_t;
   }
-  result.radiance = inscatter;
-  result.transmittance = throughput;
-  if (hits_ground) {
-    // The ground point, lifted 1 m so its own sphere does not shadow it through rounding.
-    vec3 nrm = normalize(eye + dir * ground.x);
-    vec3 p = nrm * (a.planet_radius_m + 1.0f);
-    vec3 t_sun = transmittance_to_light(a, t_lut, exact, p, sun);
-    result.ground_sun = throughput * ground_albedo / PI * t_sun * max(dot(nrm, sun), 0.0f);
-    result.radiance += throughput * ground_albedo * sky_ambient;
-    result.transmittance = vec3(0.0f);
-  }
+  if (ray.hits_ground)
+    result = sky_add_ground(a, t_lut, exact, result, ray.origin + dir * ray.length_m, sun,
+                            ground_albedo, sky_ambient);
   return result;
 }
 

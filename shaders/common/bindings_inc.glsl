@@ -56,5 +56,12 @@ layout(set = 0, binding = 28, rgba32f) uniform writeonly image2D ms_lut_out;
 layout(set = 0, binding = 29) uniform sampler2D ms_lut;
 layout(set = 0, binding = 30, rgba32f) uniform writeonly image3D aerial_perspective_out;
 layout(set = 0, binding = 31) uniform sampler3D aerial_perspective;
+// The brute-force reference sky (atmosphere.model = reference): Psi_ms at every step of every
+// view ray of one tile (REFERENCE_TILE^2 x REFERENCE_SAMPLES), and per pixel the sky it
+// integrates to (width x 2 height: rows [0, H) radiance, [H, 2H) the ground's sun-lit radiance).
+layout(set = 0, binding = 32, rgba32f) uniform writeonly image3D reference_psi_out;
+layout(set = 0, binding = 33) uniform sampler3D reference_psi;
+layout(set = 0, binding = 34, rgba32f) uniform writeonly image2D reference_sky_out;
+layout(set = 0, binding = 35) uniform sampler2D reference_sky;
 
 #endif

@@ -68,12 +68,17 @@ struct FrameParams {
   vec4 ozone;               // rgb ozone sigma_a at the layer's peak (1/m); w peak altitude (m)
   vec4 sky_model;           // x ozone half width (m), y ground albedo, z SKY_MODEL_*, w Preetham
                             // turbidity
+  ivec4 reference_tile;     // the reference sky's tile: xy its first pixel, z its size (pixels)
 };
 
 // FrameParams::sky_model.z: what fills the sky.
 const int SKY_MODEL_HILLAIRE = 0;   // Hillaire 2020 LUTs (the default)
 const int SKY_MODEL_PREETHAM = 1;   // Preetham et al. 1999 analytic sky (seed 002)
 const int SKY_MODEL_REFERENCE = 2;  // brute force per pixel, no tables (slow; for checking)
+// The reference sky is computed in square tiles of REFERENCE_TILE pixels, REFERENCE_SAMPLES
+// steps along each view ray (sky_reference_psi.comp, sky_reference.comp).
+const int REFERENCE_TILE = 32;
+const int REFERENCE_SAMPLES = 48;
 
 // One star of the catalogue (data/stars.csv), as stars.comp reads it.
 struct StarGpu {

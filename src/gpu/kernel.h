@@ -46,6 +46,10 @@ enum Binding : uint32_t {
   kMsLut = 29,
   kAerialPerspectiveOut = 30,
   kAerialPerspective = 31,
+  kReferencePsiOut = 32,
+  kReferencePsi = 33,
+  kReferenceSkyOut = 34,
+  kReferenceSky = 35,
   kBindingCount
 };
 

@@ -41,12 +41,12 @@ AtmosphereTables compute_atmosphere_tables(const Scene& scene) {
     for (int i = 0; i < tw; ++i)
       t.transmittance[size_t(j) * tw + i] =
           glm::vec4(glsl::transmittance_lut_texel(a, texel_uv(i, j, tw, th)), 1.0f);
-  constexpr int n = glsl::MS_LUT_SIZE;
-  t.multiple_scattering.resize(size_t(n) * n);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      t.multiple_scattering[size_t(j) * n + i] = glm::vec4(
-          glsl::ms_lut_texel(a, t.transmittance_lut(), texel_uv(i, j, n, n),
+  constexpr int mw = glsl::MS_LUT_W, mh = glsl::MS_LUT_H;
+  t.multiple_scattering.resize(size_t(mw) * mh);
+  for (int j = 0; j < mh; ++j)
+    for (int i = 0; i < mw; ++i)
+      t.multiple_scattering[size_t(j) * mw + i] = glm::vec4(
+          glsl::ms_lut_texel(a, t.transmittance_lut(), texel_uv(i, j, mw, mh),
                              scene.atmosphere.ground_albedo),
           1.0f);
   return t;

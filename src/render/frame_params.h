@@ -24,12 +24,12 @@ glsl::Atmosphere make_atmosphere(const Scene& scene);
 // the same functions (for callers without a device, and to test one against the other).
 struct AtmosphereTables {
   std::vector<glm::vec4> transmittance;        // TRANSMITTANCE_LUT_W x TRANSMITTANCE_LUT_H
-  std::vector<glm::vec4> multiple_scattering;  // MS_LUT_SIZE x MS_LUT_SIZE
+  std::vector<glm::vec4> multiple_scattering;  // MS_LUT_W x MS_LUT_H (log Psi_ms)
   glsl::sampler2D transmittance_lut() const {
     return {transmittance.data(), glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H};
   }
   glsl::sampler2D ms_lut() const {
-    return {multiple_scattering.data(), glsl::MS_LUT_SIZE, glsl::MS_LUT_SIZE};
+    return {multiple_scattering.data(), glsl::MS_LUT_W, glsl::MS_LUT_H};
   }
 };
 AtmosphereTables compute_atmosphere_tables(const Scene& scene);

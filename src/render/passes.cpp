@@ -26,6 +26,8 @@ GpuState::GpuState(gpu::Context& c)
       transmittance_lut_kernel(c, set, "transmittance_lut.comp.spv"),
       ms_lut_kernel(c, set, "multiscattering_lut.comp.spv"),
       aerial_perspective_kernel(c, set, "aerial_perspective.comp.spv"),
+      reference_psi_kernel(c, set, "sky_reference_psi.comp.spv"),
+      reference_sky_kernel(c, set, "sky_reference.comp.spv"),
       timer(c, 12),
       frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
       stars(c, sizeof(gpu::StarGpu) * std::max<size_t>(star_catalogue().size(), 1),
@@ -41,10 +43,14 @@ GpuState::GpuState(gpu::Context& c)
                    VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       transmittance_lut(c, glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1,
                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
-      ms_lut(c, glsl::MS_LUT_SIZE, glsl::MS_LUT_SIZE, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+      ms_lut(c, glsl::MS_LUT_W, glsl::MS_LUT_H, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
              VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       aerial_perspective(c, glsl::AP_SIZE_U, glsl::AP_SIZE_V, glsl::AP_SLICES,
-                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+      reference_psi(c, gpu::REFERENCE_TILE, gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES,
+                    VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+  set.bind_image(gpu::kReferencePsiOut, gpu::kReferencePsi, reference_psi);
+  resize_reference_sky(1, 1);
   set.bind_image(gpu::kTransmittanceLutOut, gpu::kTransmittanceLut, transmittance_lut);
   set.bind_image(gpu::kMsLutOut, gpu::kMsLut, ms_lut);
   set.bind_image(gpu::kAerialPerspectiveOut, gpu::kAerialPerspective, aerial_perspective);
@@ -98,6 +104,13 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   cloud_height = cloud_h;
 }
 
+void GpuState::resize_reference_sky(int w, int h) {
+  if (reference_sky.width() == uint32_t(w) && reference_sky.height() == uint32_t(2 * h)) return;
+  reference_sky = gpu::Texture(ctx, uint32_t(w), uint32_t(2 * h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                               VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  set.bind_image(gpu::kReferenceSkyOut, gpu::kReferenceSky, reference_sky);
+}
+
 void GpuState::swap_history() {
   current = 1 - current;
   set.bind_image(gpu::kCloudsAOut, gpu::kCloudsA, clouds_a[current]);
@@ -124,8 +137,8 @@ void pass_weather(VkCommandBuffer cmd, GpuState& s) {
 void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.transmittance_lut_kernel, s.set, s.timer, "transmittance",
                 glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1, 8, 8, 1);
-  gpu::dispatch(cmd, s.ms_lut_kernel, s.set, s.timer, "multiscatter", glsl::MS_LUT_SIZE,
-                glsl::MS_LUT_SIZE, 1, 8, 8, 1);
+  gpu::dispatch(cmd, s.ms_lut_kernel, s.set, s.timer, "multiscatter", glsl::MS_LUT_W,
+                glsl::MS_LUT_H, 1, 8, 8, 1);
 }
 
 void pass_sky_view(VkCommandBuffer cmd, GpuState& s) {
@@ -157,6 +170,13 @@ void pass_resolve(VkCommandBuffer cmd, GpuState& s) {
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.light_volume_kernel, s.set, s.timer, "light_volume", gpu::LIGHT_VOLUME_XY,
                 gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z, 4, 4, 4);
+}
+
+void pass_reference_sky(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.reference_psi_kernel, s.set, s.timer, "reference_psi", gpu::REFERENCE_TILE,
+                gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES, 4, 4, 4);
+  gpu::dispatch(cmd, s.reference_sky_kernel, s.set, s.timer, "reference_sky", gpu::REFERENCE_TILE,
+                gpu::REFERENCE_TILE, 1, 8, 8, 1);
 }
 
 void pass_stars(VkCommandBuffer cmd, GpuState& s) {

@@ -32,6 +32,7 @@ struct GpuState {
   gpu::Kernel sky_view_kernel, clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
   gpu::Kernel compose_kernel, compose_reference_kernel, light_volume_kernel, march_range_kernel;
   gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel, aerial_perspective_kernel;
+  gpu::Kernel reference_psi_kernel, reference_sky_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
@@ -39,6 +40,10 @@ struct GpuState {
   gpu::Texture base_noise, detail_noise, weather_map, sky_view, light_volume;
   // Hillaire's tables (atmosphere_lut_inc.glsl, sky_view_inc.glsl).
   gpu::Texture transmittance_lut, ms_lut, aerial_perspective;
+  // The reference sky (bindings_inc.glsl): one tile's Psi_ms, and the sky per pixel (resized to
+  // the image only when the reference is rendered).
+  gpu::Texture reference_psi, reference_sky;
+  void resize_reference_sky(int width, int height);
   // Per-pixel images (bindings_inc.glsl): the marched samples (A, B), the cloud buffer of this
   // frame and of the previous one (history), and the final image.
   gpu::Texture march_a, march_b, range_lo, range_hi;
@@ -62,6 +67,8 @@ void pass_march_range(VkCommandBuffer cmd, GpuState& s);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s);
 void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model);
+// One tile (FrameParams::reference_tile) of the brute-force reference sky.
+void pass_reference_sky(VkCommandBuffer cmd, GpuState& s);
 void pass_stars(VkCommandBuffer cmd, GpuState& s);
 
 }  // namespace nephele

@@ -51,6 +51,8 @@ struct Renderer::Impl {
   std::optional<AtmosphereParams> luts_built;
   AtmosphereTables tables;
   void update_atmosphere_luts(const Scene& scene);
+  // The brute-force reference sky, tile by tile (one submission each), into state.reference_sky.
+  void render_reference_sky(gpu::FrameParams params);
 
   Frame render_frame(const Scene& scene, bool still, bool read_back);
 
@@ -224,6 +226,22 @@ void Renderer::Impl::update_atmosphere_luts(const Scene& scene) {
   sky_view_built.reset();
 }
 
+void Renderer::Impl::render_reference_sky(gpu::FrameParams params) {
+  state.resize_reference_sky(state.width, state.height);
+  double ms = 0.0;
+  for (int y = 0; y < state.height; y += gpu::REFERENCE_TILE)
+    for (int x = 0; x < state.width; x += gpu::REFERENCE_TILE) {
+      params.reference_tile = glm::ivec4(x, y, gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES);
+      std::memcpy(state.frame_params.data(), &params, sizeof(params));
+      ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+        state.timer.reset(cmd);
+        pass_reference_sky(cmd, state);
+      });
+      for (const auto& [name, pass_ms] : state.timer.results()) ms += pass_ms;
+    }
+  if (verbose) std::fprintf(stderr, "nephele: pass %-12s %8.2f ms\n", "reference", ms);
+}
+
 bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& key,
                                        gpu::FrameParams& params) {
   const float half_m = float(scene.quality.light_volume_km) * 1000.0f;
@@ -297,6 +315,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
     params.sky_view_up = sky_view_built->up;
     params.sky_view_forward = sky_view_built->forward;
   }
+  if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   std::memcpy(s.frame_params.data(), &params, sizeof(params));  // the noise passes read it too
   update_textures(scene);
   s.swap_history();

@@ -101,7 +101,7 @@ const std::vector<Section>& scene_sections() {
         FIELD(atmosphere, ozone_peak_altitude_m, ""),
         FIELD(atmosphere, ozone_half_width_m, "density falls linearly to 0 this far from the peak"),
         FIELD(atmosphere, ground_albedo, "Lambertian ground, [0, 1]"),
-        FIELD(atmosphere, turbidity, "Preetham model's haze, [1.7, 10]"),
+        FIELD(atmosphere, turbidity, "Preetham model's haze, [2, 10]"),
         FIELD(atmosphere, view_samples, "samples along each sky-view LUT ray, [1, 256]")},
        {}},
       {"clouds",

@@ -154,7 +154,7 @@ void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) 
   check.non_negative("atmosphere.ozone_peak_altitude_m", atmosphere.ozone_peak_altitude_m);
   check.non_negative("atmosphere.ozone_half_width_m", atmosphere.ozone_half_width_m);
   check.in_range("atmosphere.ground_albedo", atmosphere.ground_albedo, 0.0f, 1.0f);
-  check.in_range("atmosphere.turbidity", atmosphere.turbidity, 1.7f, 10.0f);
+  check.in_range("atmosphere.turbidity", atmosphere.turbidity, 2.0f, 10.0f);
 }
 
 void check_clouds(const Checker& check, const CloudParams& clouds) {

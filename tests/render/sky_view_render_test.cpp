@@ -10,6 +10,7 @@
 #include "nephele/image_compare.h"
 #include "nephele/scene_io.h"
 #include "render/frame_params.h"
+#include "frame_atmosphere.h"
 #include "render_fixture.h"
 
 using nephele::Scene;
@@ -36,19 +37,7 @@ Scene cloudless(const std::string& preset) {
 SkyError sky_error(const Scene& scene) {
   const nephele::Frame frame = render(scene);
   const nephele::gpu::FrameParams f = nephele::make_frame_params(scene, 0);
-  // As sky_view.comp reads it (glsl types have internal linkage: no make_atmosphere here).
-  nephele::glsl::Atmosphere atmosphere;
-  atmosphere.planet_radius_m = f.radii_m.x;
-  atmosphere.top_radius_m = f.radii_m.y;
-  atmosphere.rayleigh_sigma_s = glm::vec3(f.rayleigh);
-  atmosphere.rayleigh_height_m = f.rayleigh.w;
-  atmosphere.mie_sigma_s = f.mie.x;
-  atmosphere.mie_sigma_t = f.mie.y;
-  atmosphere.mie_height_m = f.mie.z;
-  atmosphere.mie_g = f.mie.w;
-  atmosphere.ozone_sigma_a = glm::vec3(f.ozone);
-  atmosphere.ozone_center_m = f.ozone.w;
-  atmosphere.ozone_half_width_m = f.sky_model.x;
+  const nephele::glsl::Atmosphere atmosphere = frame_atmosphere(f);
   const nephele::AtmosphereTables tables = nephele::compute_atmosphere_tables(scene);
   const nephele::CameraBasis basis = nephele::camera_basis(scene.camera.view_dir);
   const glm::vec3 eye(f.camera_pos_m), sun(f.sun_dir), illuminance(f.sun_illuminance);
