@@ -48,6 +48,17 @@ float moon_disk(vec3 dir) {
   return 2.0f * mu0 / max(mu0 + mu, 1e-6f) + frame.moon_sun_dir.w;
 }
 
+// Linear fog ramps of the time-of-day keyframes: 1 at and below `start_deg`, 0 at and above
+// `end_deg`; and by distance, 0 up to fog near, 1 from fog far on.
+float fog_ramp(float elevation_deg, float start_deg, float end_deg) {
+  return saturate((end_deg - elevation_deg) / max(end_deg - start_deg, 1e-3f));
+}
+float distance_fog(float distance_m) {
+  float near_m = frame.conditions_disk_fog.w;
+  float far_m = frame.conditions_fog.w;
+  return saturate((distance_m - near_m) / max(far_m - near_m, 1e-3f));
+}
+
 // The resolved cloud buffer at image pixel (x, y), filtered bilinearly when the clouds are
 // rendered at a lower resolution than the image (both grids span the same field of view).
 void cloud_at(int x, int y, out vec4 a, out vec4 b) {
@@ -79,6 +90,20 @@ void main() {
                      ? vec3(0.0f)
                      : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f).rgb;
   }
+  int conditions = int(frame.conditions_sky.w);
+  SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward);
+  float elevation_deg = degrees(asin(clamp(dot(dir, sky_frame.up), -1.0f, 1.0f)));
+  if (conditions == 1) {  // artist: the keyframes' sky, and the ground lit by their lights
+    float albedo = frame.sky_model.y;
+    sky = above_horizon ? frame.conditions_sky.rgb
+                        : albedo * frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
+    ground_sun = above_horizon ? vec3(0.0f)
+                               : albedo / PI * max(dot(sky_frame.up, sun), 0.0f) *
+                                     frame.conditions_light.rgb;
+  }
+  if (conditions != 0 && above_horizon)
+    sky = mix(sky, frame.conditions_sky_fog.rgb,
+              fog_ramp(elevation_deg, frame.conditions_fog_deg.x, frame.conditions_fog_deg.y));
   vec4 cloud, cloud_b;
   cloud_at(pixel.x, pixel.y, cloud, cloud_b);
   float haze = cloud_b.x;
@@ -95,8 +120,21 @@ void main() {
                        ? frame.sun_transmittance.rgb * sun_disk(dir, sun, frame.sun_dir.w)
                        : vec3(0.0f);
   vec3 moon_light = above_horizon ? frame.moon_radiance.rgb * moon_disk(dir) : vec3(0.0f);
-  vec3 background = sky + ground_sun * ground_shadow + sun_light + moon_light;
+  vec3 discs = sun_light + moon_light;
+  if (conditions != 0 && max(discs.r, max(discs.g, discs.b)) > 0.0f)  // dissolve into the sky
+    discs = mix(discs, frame.conditions_disk_fog.rgb,
+                fog_ramp(elevation_deg, frame.conditions_fog_deg.z, frame.conditions_fog_deg.w));
+  vec3 background = sky + ground_sun * ground_shadow + discs;
+  if (conditions == 1) haze = 0.0f;  // the keyframes' fog stands for the aerial perspective
+  vec3 illuminance = frame.sun_illuminance.rgb;
   // The air in front of a cloud scatters as the sky does along this direction.
-  vec3 color = (background * cloud.a + haze_color * haze) * frame.sun_illuminance.rgb + cloud.rgb;
+  vec3 cloud_light = haze_color * haze * illuminance + cloud.rgb;
+  if (conditions != 0) {  // the keyframes' fog on the ground and the clouds, by distance
+    vec3 fog = frame.conditions_fog.rgb * illuminance;
+    vec2 ground = ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x);
+    if (ground.x > 0.0f) background = mix(background, frame.conditions_fog.rgb, distance_fog(ground.x));
+    cloud_light = mix(cloud_light, fog * (1.0f - cloud.a), distance_fog(cloud_b.z * 1000.0f));
+  }
+  vec3 color = background * cloud.a * illuminance + cloud_light;
   imageStore(color_out, pixel, vec4(color, 1.0f));
 }

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +29,10 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
   cmd.add_option("--output,-o", options.output, "image to write: .png (tone-mapped) or .exr (HDR)")
       ->capture_default_str();
   cmd.add_option("--stats-json", options.stats_json, "write frame statistics as JSON");
+  cmd.add_option("--frames", options.frames,
+                 "render a sequence of N frames, numbered name_0000.png ... (default 1)");
+  cmd.add_option("--step", options.step_s,
+                 "seconds of scene time between frames of a sequence (the clock and the wind)");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
 }
 
@@ -84,27 +89,48 @@ std::string stats_to_json(const FrameStats& stats) {
   return j.dump(2) + "\n";
 }
 
+std::string frame_path(const std::string& path, int index, int frames) {
+  if (frames <= 1) return path;
+  const fs::path p(path);
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, "_%04d", index);
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
 int run_render(const RenderOptions& options) {
   // Everything the user typed is checked before any work, so a bad flag writes nothing.
   const Scene scene = resolve_scene(options.scene);
+  if (options.frames < 1 || options.frames > 100000)
+    throw InputError("--frames " + std::to_string(options.frames) + ": must be in [1, 100000]");
+  if (!std::isfinite(options.step_s))
+    throw InputError("--step " + std::to_string(options.step_s) + ": must be a finite number of seconds");
   check_output_path(options.output, "--output");
   if (!options.stats_json.empty()) check_writable_file(options.stats_json, "--stats-json");
   if (options.verbose) std::cerr << "# resolved scene\n" << scene_to_toml(scene);
 
   Renderer renderer({options.device, options.validation, options.verbose});
-  const Frame frame = renderer.render(scene);
-  write_image(frame.color, options.output, scene.output.exposure);
-  if (!options.stats_json.empty()) write_text_file(options.stats_json, stats_to_json(frame.stats));
-  if (options.verbose)
-    std::fprintf(stderr, "nephele: %dx%d on %s: %.1f ms GPU, %.1f ms wall\n", frame.stats.width,
-                 frame.stats.height, frame.stats.device.c_str(), frame.stats.frame_ms,
-                 frame.stats.wall_ms);
-  if (options.validation && renderer.validation_messages() > 0) {
-    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n",
-                 renderer.validation_messages());
-    return 1;
+  for (int i = 0; i < options.frames; ++i) {
+    Scene frame_scene = scene;
+    frame_scene.time_s = scene.time_s + float(i) * options.step_s;
+    const Frame frame = renderer.render(frame_scene);
+    const float exposure = scene.output.auto_exposure
+                               ? auto_exposure(scene.output.exposure, frame.stats.mean_luminance)
+                               : scene.output.exposure;
+    const std::string path = frame_path(options.output, i, options.frames);
+    write_image(frame.color, path, exposure);
+    if (!options.stats_json.empty())
+      write_text_file(frame_path(options.stats_json, i, options.frames), stats_to_json(frame.stats));
+    if (options.verbose)
+      std::fprintf(stderr, "nephele: %dx%d on %s: %.1f ms GPU, %.1f ms wall, exposure %g\n",
+                   frame.stats.width, frame.stats.height, frame.stats.device.c_str(),
+                   frame.stats.frame_ms, frame.stats.wall_ms, exposure);
+    if (options.validation && renderer.validation_messages() > 0) {
+      std::fprintf(stderr, "nephele: %d Vulkan validation messages\n",
+                   renderer.validation_messages());
+      return 1;
+    }
+    std::cout << path << "\n";
   }
-  std::cout << options.output << "\n";
   return 0;
 }
 

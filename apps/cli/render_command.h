@@ -16,12 +16,18 @@ struct RenderOptions {
   SceneFlags scene;
   std::string output = "nephele.png";
   std::string stats_json;  // empty: none
+  int frames = 1;          // a sequence: frame i at time_s + i step_s, files numbered _0000 ...
+  float step_s = 1.0f;
   std::string device;      // substring of the Vulkan device name
   bool verbose = false;
   bool validation = false;
 };
 
 void add_render_flags(CLI::App& cmd, RenderOptions& options);
+
+// The path of frame `index` of a sequence: "_0007" before the extension ("day.png" ->
+// "day_0007.png"); `path` itself for a single frame.
+std::string frame_path(const std::string& path, int index, int frames);
 int run_render(const RenderOptions& options);
 
 // Flags every command that renders shares: --device, --verbose, --validation.

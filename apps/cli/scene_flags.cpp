@@ -21,7 +21,8 @@ namespace {
 using Target = std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&),
                             uint32_t& (*)(Scene&), glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
                             std::string& (*)(Scene&), MarchMode& (*)(Scene&),
-                            bool& (*)(Scene&), SkyModel& (*)(Scene&)>;
+                            bool& (*)(Scene&), SkyModel& (*)(Scene&),
+                            ConditionsMode& (*)(Scene&)>;
 
 struct FlagSpec {
   const char* flag;
@@ -134,6 +135,16 @@ const std::vector<FlagSpec>& flag_specs() {
        "force, slow)"},
       {"--turbidity", &F::turbidity, "atmosphere.turbidity", TO(atmosphere.turbidity), "T",
        "Preetham sky's turbidity, [2, 10]"},
+      {"--conditions", &F::conditions, "conditions.mode", TO(conditions.mode),
+       "off|artist|overlay",
+       "time-of-day keyframes (seed 003): artist = instead of the physical sky, overlay = their "
+       "fog and stars on top of it"},
+      {"--weather", &F::weather, "conditions.weather", TO(conditions.weather), "W",
+       "keyframes' weather, [0, 1]: 1 good, 0 bad"},
+      {"--hour", &F::hour, "conditions.hour", TO(conditions.hour), "H",
+       "keyframes' local solar time [0, 24); default: from --time and --lon-deg"},
+      {"--auto-exposure", &F::auto_exposure, "output.auto_exposure", TO(output.auto_exposure),
+       "true|false", "scale the exposure by each frame's brightness (day-to-night sequences)"},
       {"--exposure", &F::exposure, "output.exposure", TO(output.exposure), "X",
        "linear exposure before tone mapping, > 0"},
   };
@@ -218,6 +229,11 @@ void parse_into(const std::string& flag, const std::string& text, bool& out) {
 void parse_into(const std::string& flag, const std::string& text, MarchMode& out) {
   std::optional<MarchMode> mode = parse_march_mode(text);
   if (!mode) fail(flag, text, "expected default or baseline");
+  out = *mode;
+}
+void parse_into(const std::string& flag, const std::string& text, ConditionsMode& out) {
+  std::optional<ConditionsMode> mode = parse_conditions_mode(text);
+  if (!mode) fail(flag, text, "expected off, artist or overlay");
   out = *mode;
 }
 void parse_into(const std::string& flag, const std::string& text, SkyModel& out) {

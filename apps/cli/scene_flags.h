@@ -25,7 +25,8 @@ struct SceneFlags {
   std::optional<std::string> lobe_weight, powder, ambient, wind_mps, weather_map;
   std::optional<std::string> time, lat_deg, lon_deg;
   std::optional<std::string> time_s, seed, steps, light_steps, march_stride,
-      cloud_downsample, light_volume_km, mode, sky, turbidity, exposure;
+      cloud_downsample, light_volume_km, mode, sky, turbidity, conditions, weather, hour,
+      exposure, auto_exposure;
 };
 
 // Registers --scene, --preset and the scene overrides on `cmd`, writing into `flags`.

@@ -85,7 +85,7 @@ ConditionTable default_bad_weather();
 ConditionSet interpolate(const ConditionTable& table, float hour);
 
 // Field by field a + (b - a) * t, exact at t = 0 and t = 1; t is not clamped.
-ConditionSet mix(const ConditionSet& a, const ConditionSet& b, float t);
+ConditionSet mix_conditions(const ConditionSet& a, const ConditionSet& b, float t);
 
 // The seed's P = w * good + (1 - w) * bad; `weather` is clamped to [0, 1] (1 = good weather).
 ConditionSet blend(const ConditionSet& good, const ConditionSet& bad, float weather);

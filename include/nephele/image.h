@@ -26,6 +26,14 @@ float luminance(const glm::vec4& rgb);
 // NaN and negative values give 0, large ones 255.
 std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure);
 
+// The exposure for a frame of mean luminance `mean_luminance` when `exposure` suits a clear
+// day (mean luminance kDayMeanLuminance): exposure (kDayMeanLuminance / mean)^0.85, at most
+// 1e7 times `exposure`. The power below 1 compensates a darker frame only in part, as the eye
+// adapts: a moonlit frame (1e-5 of the day) comes out about 5x darker than the day, not as
+// bright.
+constexpr double kDayMeanLuminance = 0.4;
+float auto_exposure(float exposure, double mean_luminance);
+
 // Writes by extension, case-insensitive: .png (tone-mapped 8-bit sRGB, alpha 255) or .exr
 // (linear half float RGBA, ZIP; `exposure` applies to PNG only, an EXR keeps the values as
 // they are). Writes to a temporary file beside the target and renames, so a failed write

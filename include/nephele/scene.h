@@ -12,6 +12,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "nephele/conditions.h"
+
 namespace nephele {
 
 struct CameraParams {
@@ -108,6 +110,9 @@ struct OutputParams {
   int width = 900;    // pixels, [1, 16384]
   int height = 600;   // pixels, [1, 16384]
   float exposure = 0.5f;  // linear scale before tone mapping, > 0
+  // Scale the exposure with the frame's brightness (auto_exposure()), so that a day-to-night
+  // sequence shows the night, darker than the day as the eye sees it.
+  bool auto_exposure = false;
 };
 
 // Where the scene is on the earth: the ENU origin (on the ground below the start position).
@@ -115,6 +120,24 @@ struct LocationParams {
   float lat_deg = 0.0f;     // latitude, [-90, 90], north positive (float: ~1 m)
   float lon_deg = 0.0f;     // longitude, [-180, 360], east positive
   float altitude_m = 0.0f;  // the ground's height above sea level
+};
+
+// The artist-driven time of day and weather of seed 003, section 4 (nephele/conditions.h):
+// eight keyframe sets by local solar time in a good- and a bad-weather table, blended by
+// `weather`.
+enum class ConditionsMode {
+  Off,      // the physical model alone
+  Artist,   // the keyframes instead of it: sky colours and fog, the lights of clouds and ground
+  Overlay,  // the physical sky and lights, with the keyframes' sky fog, disc fog, fog on clouds
+            // and ground, and star visibility on top
+};
+
+struct ConditionsParams {
+  ConditionsMode mode = ConditionsMode::Off;
+  float weather = 1.0f;  // [0, 1]: 1 the good-weather table, 0 the bad
+  float hour = -1.0f;    // local solar time [0, 24); -1 = from `time` and location.lon_deg
+  ConditionTable good = default_good_weather();
+  ConditionTable bad = default_bad_weather();
 };
 
 struct Scene {
@@ -125,6 +148,7 @@ struct Scene {
   QualityParams quality;
   OutputParams output;
   LocationParams location;
+  ConditionsParams conditions;
   // Date and time (ISO 8601, UTC or with an offset: "2026-06-21T18:30:00Z"); empty = none (no
   // moon, and the sun from sun.direction). The sky's clock is time + time_s.
   std::string time;
@@ -134,5 +158,6 @@ struct Scene {
 
 const char* to_string(MarchMode mode);
 const char* to_string(SkyModel model);
+const char* to_string(ConditionsMode mode);
 
 }  // namespace nephele

@@ -50,6 +50,8 @@ std::string scene_to_toml(const Scene& scene);
 std::optional<MarchMode> parse_march_mode(std::string_view text);
 // "hillaire" / "preetham" / "reference" (the inverse of to_string(SkyModel)).
 std::optional<SkyModel> parse_sky_model(std::string_view text);
+// "off" / "artist" / "overlay".
+std::optional<ConditionsMode> parse_conditions_mode(std::string_view text);
 
 // Sun direction (ENU, unit length) from its elevation above the horizon and its azimuth
 // from north through east: (cos el sin az, cos el cos az, sin el).

@@ -83,14 +83,22 @@ vec3 transmittance_lut_texel(Atmosphere a, vec2 uv) {
 // Transmittance from `pos` to the light along unit `dir`: 0 when the planet is in the way. From
 // space the light enters the atmosphere where the ray does. `exact` integrates it in place.
 vec3 transmittance_to_light(Atmosphere a, sampler2D lut, bool exact, vec3 pos, vec3 dir) {
-  if (ray_sphere(pos, dir, a.planet_radius_m).x > 0.0f) return vec3(0.0f);
+  // The planet is in the way below the geometric horizon, cos = -sqrt(1 - R^2 / r^2); from a
+  // point at or below the ground (float rounding at the end of a ground ray) below the local
+  // horizontal. (A ray_sphere test lets a point a millimetre underground see the sun through
+  // the planet.)
+  float r = length(pos);
+  float h = r - a.planet_radius_m;
+  float mu = dot(pos, dir) / r;
+  float horizon = h <= 0.0f ? 0.0f : -sqrt(h * (r + a.planet_radius_m)) / r;
+  if (mu < horizon) return vec3(0.0f);
   if (dot(pos, pos) > a.top_radius_m * a.top_radius_m) {
     vec2 top = ray_sphere(pos, dir, a.top_radius_m);
     if (top.x <= 0.0f) return vec3(1.0f);
     pos += dir * top.x;
   }
   if (exact) return exp(-atmosphere_optical_depth_to_top(a, pos, dir, EXACT_SUN_SAMPLES));
-  float r = length(pos);
+  r = length(pos);
   return vec3(textureLod(lut, transmittance_lut_uv(a, r, dot(pos, dir) / r), 0.0f));
 }
 

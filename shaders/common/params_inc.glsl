@@ -69,6 +69,14 @@ struct FrameParams {
   vec4 sky_model;           // x ozone half width (m), y ground albedo, z SKY_MODEL_*, w Preetham
                             // turbidity
   ivec4 reference_tile;     // the reference sky's tile: xy its first pixel, z its size (pixels)
+  // Time-of-day keyframes (seed 003; nephele/conditions.h), colours per unit key-light
+  // illuminance (compose multiplies by sun_illuminance):
+  vec4 conditions_sky;       // rgb sky colour; w mode: 0 off, 1 artist, 2 overlay
+  vec4 conditions_sky_fog;   // rgb fog on the sky; w star visibility (1 when off)
+  vec4 conditions_fog_deg;   // x, y sky fog start and end elevation; z, w the discs' (deg)
+  vec4 conditions_disk_fog;  // rgb fog on the sun and moon discs; w fog near (m)
+  vec4 conditions_fog;       // rgb fog on clouds and ground; w fog far (m)
+  vec4 conditions_light;     // rgb the key light on the ground (artist mode); w unused
 };
 
 // FrameParams::sky_model.z: what fills the sky.

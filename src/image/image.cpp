@@ -298,6 +298,11 @@ std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure) {
   return out;
 }
 
+float auto_exposure(float exposure, double mean_luminance) {
+  const double gain = std::pow(kDayMeanLuminance / std::max(mean_luminance, 1e-30), 0.85);
+  return float(exposure * std::min(gain, 1e7));
+}
+
 void write_image(const Image& image, const std::string& path, float exposure) {
   const ImageFormat format = format_of(path);
   if (format == ImageFormat::kUnsupported) {

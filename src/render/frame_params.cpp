@@ -191,6 +191,33 @@ static void set_stars(gpu::FrameParams& f, const Scene& scene, const std::option
   f.stars = glm::vec4(scene.sun.illuminance, float(star_catalogue().size()), pixel_rad * pixel_rad, 0.0f);
 }
 
+// The time-of-day keyframes' set for this frame, per unit of the key light's illuminance; the
+// lights of clouds and ground are set by make_frame_params.
+static void set_conditions(gpu::FrameParams& f, const Scene& scene, const SkyLights& lights) {
+  f.conditions_sky_fog.w = 1.0f;  // stars fully visible
+  const std::optional<ConditionSet> c = scene_conditions(scene, lights.ephemeris);
+  if (!c) return;
+  const float per_unit = 1.0f / std::max(lights.key.illuminance, 1e-30f);
+  f.conditions_sky = glm::vec4(c->sky_zenith_rgb * per_unit,
+                               scene.conditions.mode == ConditionsMode::Artist ? 1.0f : 2.0f);
+  f.conditions_sky_fog = glm::vec4(c->sky_fog_rgb * per_unit, c->star_visibility);
+  f.conditions_fog_deg = glm::vec4(c->sky_fog_start_deg, c->sky_fog_end_deg,
+                                   c->disk_fog_start_deg, c->disk_fog_end_deg);
+  f.conditions_disk_fog = glm::vec4(c->disk_fog_rgb * per_unit, c->fog_near_m);
+  f.conditions_fog = glm::vec4(c->fog_rgb * per_unit, c->fog_far_m);
+  f.conditions_light =
+      glm::vec4((lights.key.moon ? c->moon_light_rgb : c->sun_light_rgb) * per_unit, 0.0f);
+}
+
+std::optional<ConditionSet> scene_conditions(const Scene& scene,
+                                             const std::optional<Ephemeris>& ephemeris) {
+  const ConditionsParams& p = scene.conditions;
+  if (p.mode == ConditionsMode::Off) return std::nullopt;
+  float hour = p.hour;
+  if (hour < 0.0f && ephemeris) hour = local_solar_hour(ephemeris->jd_ut, scene.location.lon_deg);
+  return conditions_at(p.good, p.bad, std::max(hour, 0.0f), p.weather);
+}
+
 SkyLights sky_lights(const Scene& scene) {
   SkyLights lights{scene_ephemeris(scene), {}};
   const std::optional<Ephemeris>& e = lights.ephemeris;
@@ -259,6 +286,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
       key.moon ? glm::vec3(0.0f) : glsl::atmosphere_transmittance_to_top(atmosphere, eye, sun, 256),
       0.0f);
   set_moon(f, scene, atmosphere, lights);
+  set_conditions(f, scene, lights);
   set_stars(f, scene, lights.ephemeris, tan_half_fov);
   // The sky-view LUT's frame, shared by its pass and compose.
   const glsl::SkyViewFrame sky_view = glsl::sky_view_frame(eye, sun, planet_m);
@@ -278,6 +306,12 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
       glm::vec4(illuminance * sky_irradiance_over_pi(sky, ground, sun), 0.0f);
 
   set_atmosphere(f, scene);
+  if (scene.conditions.mode == ConditionsMode::Artist) {  // the keyframes light clouds and ground
+    const ConditionSet set = *scene_conditions(scene, lights.ephemeris);
+    f.sun_at_clouds = glm::vec4(key.moon ? set.moon_light_rgb : set.sun_light_rgb, 0.0f);
+    f.ambient_at_clouds = glm::vec4(set.ambient_rgb, 0.0f);
+    f.ground_sky_light = f.ambient_at_clouds;
+  }
   f.radii_m.z = planet_m + c.bottom_altitude_m;
   f.radii_m.w = planet_m + c.top_altitude_m;
   f.cloud_shape = glm::vec4(c.coverage, c.density, c.extinction_per_m, c.albedo);

@@ -56,6 +56,11 @@ struct SkyLights {
   KeyLight key;
 };
 SkyLights sky_lights(const Scene& scene);
+
+// The time-of-day keyframes' conditions for the scene's hour (conditions.hour, or the local
+// solar time of its date at location.lon_deg) and weather; none when conditions.mode is off.
+std::optional<ConditionSet> scene_conditions(const Scene& scene,
+                                             const std::optional<Ephemeris>& ephemeris);
 inline KeyLight key_light(const Scene& scene) { return sky_lights(scene).key; }
 
 // The moon's illuminance at the top of the atmosphere as a share of the sun's: the full moon's

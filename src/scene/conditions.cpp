@@ -12,9 +12,9 @@ namespace {
 
 using scene_detail::format_float;
 
-// mix() and the tests name every field; a new field must be added there too.
+// mix_conditions() and the tests name every field; a new field must be added there too.
 static_assert(sizeof(ConditionSet) == 28 * sizeof(float),
-              "ConditionSet changed: update mix() and validate_table()");
+              "ConditionSet changed: update mix_conditions() and validate_table()");
 
 glm::vec3 lerp3(const glm::vec3& a, const glm::vec3& b, float t) {
   // std::lerp is exact at t = 0 and t = 1, so a key's hour gives the key's values bit for bit.
@@ -296,7 +296,7 @@ ConditionTable default_bad_weather() {
   }});
 }
 
-ConditionSet mix(const ConditionSet& a, const ConditionSet& b, float t) {
+ConditionSet mix_conditions(const ConditionSet& a, const ConditionSet& b, float t) {
   ConditionSet r;
   r.sky_zenith_rgb = lerp3(a.sky_zenith_rgb, b.sky_zenith_rgb, t);
   r.sky_fog_rgb = lerp3(a.sky_fog_rgb, b.sky_fog_rgb, t);
@@ -325,7 +325,7 @@ ConditionSet interpolate(const ConditionTable& table, float hour) {
   // Linear from key a at hour h0 to key b at hour h1 > h0.
   auto between = [](const Keyframe& a, float h0, const Keyframe& b, float h1, float x) {
     if (!(h1 > h0)) return a.set;  // an invalid table; validate_table says why
-    return mix(a.set, b.set, (x - h0) / (h1 - h0));
+    return mix_conditions(a.set, b.set, (x - h0) / (h1 - h0));
   };
 
   const Keyframe& first = k.front();
@@ -341,7 +341,7 @@ ConditionSet interpolate(const ConditionTable& table, float hour) {
 
 ConditionSet blend(const ConditionSet& good, const ConditionSet& bad, float weather) {
   const float w = std::isfinite(weather) ? std::clamp(weather, 0.0f, 1.0f) : 1.0f;
-  return mix(bad, good, w);
+  return mix_conditions(bad, good, w);
 }
 
 ConditionSet conditions_at(const ConditionTable& good, const ConditionTable& bad, float hour,

@@ -37,6 +37,24 @@ std::optional<SkyModel> parse_sky_model(std::string_view text) {
   return std::nullopt;
 }
 
+const char* to_string(ConditionsMode mode) {
+  switch (mode) {
+    case ConditionsMode::Off:
+      return "off";
+    case ConditionsMode::Artist:
+      return "artist";
+    case ConditionsMode::Overlay:
+      return "overlay";
+  }
+  return "unknown";
+}
+
+std::optional<ConditionsMode> parse_conditions_mode(std::string_view text) {
+  for (ConditionsMode m : {ConditionsMode::Off, ConditionsMode::Artist, ConditionsMode::Overlay})
+    if (text == to_string(m)) return m;
+  return std::nullopt;
+}
+
 std::optional<MarchMode> parse_march_mode(std::string_view text) {
   if (text == "default") return MarchMode::Default;
   if (text == "baseline") return MarchMode::Baseline;
@@ -62,8 +80,58 @@ namespace scene_detail {
     , note                           \
   }
 
+// The keyframe tables: [conditions.good.night] ... [conditions.bad.late_evening], one section
+// per keyframe, generated for table T (0 good, 1 bad) and key K.
+template <int T, int K>
+Keyframe& keyframe_of(Scene& s) {
+  return (T == 0 ? s.conditions.good : s.conditions.bad).keys[K];
+}
+
+std::string_view keyframe_section_name(int table, int key) {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const char* t : {"good", "bad"})
+      for (int k = 0; k < kKeyframeCount; ++k)
+        n.push_back(std::string("conditions.") + t + "." + keyframe_name(k));
+    return n;
+  }();
+  return names[size_t(table * kKeyframeCount + key)];
+}
+
+#define KEY_FIELD(member, note)                                         \
+  Field {                                                               \
+#member, +[](Scene & s) -> auto& { return keyframe_of<T, K>(s).set.member; }, note \
+  }
+
+template <int T, int K>
+Section keyframe_section() {
+  return {keyframe_section_name(T, K),
+          {Field{"hour", +[](Scene& s) -> auto& { return keyframe_of<T, K>(s).hour; },
+                 "local solar time, [0, 24), increasing through the table"},
+           KEY_FIELD(sky_zenith_rgb, "sky colour (HDR; a clear day's zenith is about 1)"),
+           KEY_FIELD(sky_fog_rgb, "fog on the sky near the horizon"),
+           KEY_FIELD(sky_fog_start_deg, "fully fogged at and below this elevation"),
+           KEY_FIELD(sky_fog_end_deg, "no fog from this elevation up"),
+           KEY_FIELD(disk_fog_rgb, "fog on the sun and moon discs"),
+           KEY_FIELD(disk_fog_start_deg, ""), KEY_FIELD(disk_fog_end_deg, ""),
+           KEY_FIELD(star_visibility, "[0, 1]"),
+           KEY_FIELD(sun_light_rgb, "sunlight on clouds and ground"),
+           KEY_FIELD(moon_light_rgb, "moonlight on clouds and ground"),
+           KEY_FIELD(ambient_rgb, "sky light on clouds and ground"),
+           KEY_FIELD(fog_rgb, "fog on clouds and ground"), KEY_FIELD(fog_near_m, ""),
+           KEY_FIELD(fog_far_m, "")},
+          {}};
+}
+#undef KEY_FIELD
+
+template <int T, int... K>
+void append_keyframe_sections(std::vector<Section>& sections, std::integer_sequence<int, K...>) {
+  (sections.push_back(keyframe_section<T, K>()), ...);
+}
+
 const std::vector<Section>& scene_sections() {
-  static const std::vector<Section> sections = {
+  static const std::vector<Section> sections = [] {
+  std::vector<Section> list = {
       {"",
        {TOP_FIELD(time, "date and time, ISO 8601 (\"2026-06-21T18:30:00Z\"); \"\" = none"),
         TOP_FIELD(time_s, "animation time (s) after `time`; clouds move with the wind"),
@@ -130,9 +198,25 @@ const std::vector<Section>& scene_sections() {
        {}},
       {"output",
        {FIELD(output, width, "pixels, [1, 16384]"), FIELD(output, height, "pixels, [1, 16384]"),
-        FIELD(output, exposure, "linear scale before tone mapping, > 0")},
+        FIELD(output, exposure, "linear scale before tone mapping, > 0"),
+        FIELD(output, auto_exposure, "true: scale the exposure by the frame's brightness")},
        {}},
+      {"conditions",
+       {FIELD(conditions, mode,
+              "off, artist (keyframes instead of the physical sky and lights) or overlay "
+              "(keyframes' fog and star visibility on the physical sky)"),
+        FIELD(conditions, weather, "[0, 1]: 1 good weather, 0 bad"),
+        FIELD(conditions, hour, "local solar time [0, 24); -1 = from time and location")},
+       {"good", "bad"}},
   };
+  std::vector<std::string_view> names;
+  for (int k = 0; k < kKeyframeCount; ++k) names.push_back(keyframe_name(k));
+  list.push_back({"conditions.good", {}, names});
+  append_keyframe_sections<0>(list, std::make_integer_sequence<int, kKeyframeCount>());
+  list.push_back({"conditions.bad", {}, names});
+  append_keyframe_sections<1>(list, std::make_integer_sequence<int, kKeyframeCount>());
+  return list;
+  }();
   return sections;
 }
 

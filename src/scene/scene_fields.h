@@ -18,7 +18,7 @@ namespace nephele::scene_detail {
 using FieldAccess = std::variant<float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
                                  glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
                                  std::string& (*)(Scene&), MarchMode& (*)(Scene&), bool& (*)(Scene&),
-                                 SkyModel& (*)(Scene&)>;
+                                 SkyModel& (*)(Scene&), ConditionsMode& (*)(Scene&)>;
 
 struct Field {
   std::string_view name;  // key inside its table, e.g. "coverage"

@@ -82,7 +82,8 @@ std::string allowed_keys(const Section& section) {
   for (std::string_view extra : section.extra_keys) names.emplace_back(extra);
   if (section.name.empty())
     for (const Section& nested : scene_detail::scene_sections())
-      if (!nested.name.empty()) names.push_back(std::string("[").append(nested.name).append("]"));
+      if (!nested.name.empty() && nested.name.find('.') == std::string_view::npos)
+        names.push_back(std::string("[").append(nested.name).append("]"));
   return join(names);
 }
 
@@ -153,6 +154,12 @@ class SceneReader {
     for (const auto& [key, node] : table) {
       std::string name(key.str());
       std::string full_key = std::string(section.name) + "." + name;
+      const Section* nested = find_table(full_key);  // e.g. [conditions.good.night]
+      if (nested && node.as_table()) {
+        read_table(*nested, *node.as_table(), scene);
+        continue;
+      }
+      if (nested) fail_value(node, full_key, "expected a table [" + full_key + "]");
       if (is_extra_key(section, name)) continue;  // read below, after the plain fields
       const Field* field = find_field(section, name);
       if (!field)
@@ -229,6 +236,12 @@ class SceneReader {
     const auto* s = node.as_string();
     std::optional<MarchMode> mode = s ? parse_march_mode(s->get()) : std::nullopt;
     if (!mode) fail_value(node, key, "expected \"default\" or \"baseline\"");
+    out = *mode;
+  }
+  void read_value(const toml::node& node, const std::string& key, ConditionsMode& out) const {
+    const auto* s = node.as_string();
+    std::optional<ConditionsMode> mode = s ? parse_conditions_mode(s->get()) : std::nullopt;
+    if (!mode) fail_value(node, key, "expected \"off\", \"artist\" or \"overlay\"");
     out = *mode;
   }
   void read_value(const toml::node& node, const std::string& key, SkyModel& out) const {

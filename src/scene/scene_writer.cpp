@@ -27,6 +27,9 @@ std::string toml_value(bool value) {
 std::string toml_value(MarchMode mode) {
   return scene_detail::toml_quote(to_string(mode));
 }
+std::string toml_value(ConditionsMode mode) {
+  return scene_detail::toml_quote(to_string(mode));
+}
 std::string toml_value(SkyModel model) {
   return scene_detail::toml_quote(to_string(model));
 }

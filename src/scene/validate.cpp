@@ -209,6 +209,21 @@ void check_output(const Checker& check, const OutputParams& output) {
   check.positive("output.exposure", output.exposure);
 }
 
+void check_conditions(const Checker& check, const Scene& scene) {
+  const ConditionsParams& c = scene.conditions;
+  if (c.mode != ConditionsMode::Off && c.mode != ConditionsMode::Artist &&
+      c.mode != ConditionsMode::Overlay)
+    check.fail("conditions.mode", std::to_string(static_cast<int>(c.mode)),
+               "must be off, artist or overlay");
+  check.in_range("conditions.weather", c.weather, 0.0f, 1.0f);
+  if (c.hour != -1.0f) check.in_range("conditions.hour", c.hour, 0.0f, 24.0f, false, true);
+  if (c.mode != ConditionsMode::Off && c.hour == -1.0f && scene.time.empty())
+    check.fail("conditions.hour", "-1",
+               "the keyframes need a time of day: give an hour in [0, 24) or a time");
+  for (const auto& [table, name] : {std::pair{&c.good, "conditions.good"}, {&c.bad, "conditions.bad"}})
+    if (std::string problem = validate_table(*table, name); !problem.empty()) throw InputError(problem);
+}
+
 // The date, the place, and the sun placed by them.
 void check_time(const Checker& check, const Scene& scene) {
   if (!scene.time.empty() && !julian_day_from_iso8601(scene.time))
@@ -232,6 +247,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_layers(check, scene);
   check_quality(check, scene.quality);
   check_output(check, scene.output);
+  check_conditions(check, scene);
   check.finite("time_s", scene.time_s);
   check_time(check, scene);
 }

@@ -178,3 +178,19 @@ TEST_F(AtmosphereTest, PreethamModelDrawsPreethamsSky) {
   s.atmosphere.model = SkyModel::Hillaire;
   EXPECT_GT(nephele::luminance_error(render(s).color, frame.color), 0.05);
 }
+
+// In twilight (sun 12 degrees down) the ground is lit by the sky alone: darker than the sky just
+// above the horizon. (Points at the end of ground rays, a rounding below the surface, once saw
+// the sun through the planet and glowed orange.)
+TEST_F(AtmosphereTest, TwilightGroundIsDarkerThanTheSkyAboveIt) {
+  Scene s = clear_sky(-12.0f);
+  s.camera.view_dir = {0.0f, 1.0f, 0.0f};
+  s.camera.fov_deg = 20.0f;
+  const nephele::Frame frame = render(s);
+  double above = 0.0, below = 0.0;
+  for (int x = 0; x < s.output.width; ++x) {
+    above += nephele::luminance(frame.color.at(x, s.output.height / 2 - 3));
+    below += nephele::luminance(frame.color.at(x, s.output.height / 2 + 3));
+  }
+  EXPECT_LT(below, 0.2 * above);
+}
