@@ -200,3 +200,33 @@ TEST_F(CliTest, BenchRealtimeOnlyWritesTheJsonFile) {
       EXPECT_GT(j[key][pass].get<double>(), 0.0) << key << " " << pass;
     }
 }
+
+// A sequence: --frames N numbers the files, each a --step later on the scene's clock.
+TEST_F(CliTest, SequenceWritesNumberedFramesAlongTheClock) {
+  const CliRun r = run_cli("render --width 24 --height 16 --time 2026-06-21T03:00:00Z "
+                           "--lat-deg 48.85 --lon-deg 2.35 --frames 3 --step 3600 "
+                           "--auto-exposure true -o " + path("seq.png") + " --stats-json " +
+                           path("seq.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  double previous = -90.0;
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = "seq_000" + std::to_string(i);
+    EXPECT_TRUE(fs::exists(path(name + ".png"))) << name;
+    EXPECT_NE(r.output.find(name + ".png"), std::string::npos) << r.output;
+    std::ifstream json(path(name + ".json"));
+    const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+    const size_t at = text.find("\"sun_elevation_deg\": ");
+    ASSERT_NE(at, std::string::npos);
+    const double elevation = std::stod(text.substr(at + 21));
+    EXPECT_GT(elevation, previous + 5.0) << "the sun rises over the morning";
+    previous = elevation;
+  }
+}
+
+TEST_F(CliTest, BadSequenceAndConditionsFlagsAreRejected) {
+  expect_rejected("--width 8 --height 8 --frames 0", {"--frames", "0"});
+  expect_rejected("--width 8 --height 8 --conditions sometimes", {"--conditions", "sometimes"});
+  expect_rejected("--width 8 --height 8 --conditions artist", {"conditions.hour"});
+  expect_rejected("--width 8 --height 8 --hour 25", {"--hour", "25"});
+  expect_rejected("--width 8 --height 8 --sky rayleigh", {"--sky", "rayleigh"});
+}
