@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "nephele/error.h"
 #include "nephele/image.h"
@@ -124,3 +125,4 @@ TEST(AutoExposure, CompensatesDarkFramesInPart) {
   EXPECT_LT(nephele::auto_exposure(0.5f, 4.0), 0.5f);  // a brighter frame is exposed down
   EXPECT_TRUE(std::isfinite(nephele::auto_exposure(0.5f, 0.0)));
 }
+
