@@ -126,3 +126,31 @@ TEST(AutoExposure, CompensatesDarkFramesInPart) {
   EXPECT_TRUE(std::isfinite(nephele::auto_exposure(0.5f, 0.0)));
 }
 
+// A sequence through sunset and dusk at a real place has no jumps: frames 10 minutes apart
+// (Paris, midsummer, 19:00 to 21:20 UTC; sunset about 19:58) darken smoothly, the step in log
+// mean luminance never more than twice the largest of its neighbours' and under 1.5 (4.5x).
+// DISABLED: fails at the sun-to-moon hand-over (21:10 -> 21:20, 330x darker): only the key
+// light lights the sky, and the sky-view LUT's mirror symmetry about the key light cannot hold
+// a second one. Enable it with a full-azimuth sky-view LUT.
+TEST_F(ConditionsRenderTest, DISABLED_SunsetSequenceHasNoJumps) {
+  Scene s;
+  s.output.width = 32;
+  s.output.height = 20;
+  s.time = "2026-06-21T19:00:00Z";
+  s.sun.from_time = true;
+  s.location = {48.85f, 2.35f, 0.0f};
+  s.camera.view_dir = {-0.5f, 1.0f, 0.3f};
+  std::vector<double> log_l;
+  for (int i = 0; i < 15; ++i) {
+    s.time_s = 600.0f * float(i);
+    log_l.push_back(std::log(render(s).stats.mean_luminance));
+  }
+  for (size_t i = 1; i < log_l.size(); ++i) {
+    const double step = std::abs(log_l[i] - log_l[i - 1]);
+    EXPECT_LT(step, 1.5) << "frame " << i;
+    double neighbours = 0.0;
+    if (i >= 2) neighbours = std::max(neighbours, std::abs(log_l[i - 1] - log_l[i - 2]));
+    if (i + 1 < log_l.size()) neighbours = std::max(neighbours, std::abs(log_l[i + 1] - log_l[i]));
+    EXPECT_LT(step, 2.0 * neighbours + 0.05) << "frame " << i;
+  }
+}

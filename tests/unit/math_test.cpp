@@ -168,7 +168,7 @@ TEST(CloudModel, BeerPowderFollowsTheSeedsFormula) {
 }
 
 TEST(Atmosphere, TransmittanceStraightUpMatchesTheClosedForm) {
-  g::Atmosphere a;
+  g::Atmosphere a{};  // zero: no ozone
   a.planet_radius_m = 6360e3f;
   a.top_radius_m = 6460e3f;
   a.rayleigh_sigma_s = vec3(5.802e-6f, 13.558e-6f, 33.1e-6f);
