@@ -52,9 +52,8 @@ void main() {
       vec3 step_t = exp(-m.extinction * dt);
       vec3 t_sun = transmittance_to_light(a, transmittance_lut, false, x, sun);
       vec3 psi = multiple_scattering_at(a, transmittance_lut, ms_lut, false, x, sun, albedo);
-      vec3 source = (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) * t_sun +
-                    (m.scattering_r + vec3(m.scattering_m)) * psi;
-      inscatter += throughput * source * (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
+      inscatter += throughput * sky_source(m, phase_r, phase_m, t_sun, psi) *
+                   (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
       throughput *= step_t;
     }
     imageStore(aerial_perspective_out, ivec3(texel, k), vec4(inscatter, throughput.g));

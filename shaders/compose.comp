@@ -77,7 +77,8 @@ void main() {
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
                         float(pixel.y), float(width), float(height));
   vec3 sun = frame.sun_dir.xyz;
-  vec2 uv = sky_view_uv(sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward), dir);
+  SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward);
+  vec2 uv = sky_view_uv(sky_frame, dir);
   bool above_horizon = uv.y >= 0.5f;
   vec3 sky, ground_sun;
   if (REFERENCE == 1) {
@@ -91,7 +92,6 @@ void main() {
                      : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f).rgb;
   }
   int conditions = int(frame.conditions_sky.w);
-  SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward);
   float elevation_deg = degrees(asin(clamp(dot(dir, sky_frame.up), -1.0f, 1.0f)));
   if (conditions == 1) {  // artist: the keyframes' sky, and the ground lit by their lights
     float albedo = frame.sky_model.y;

@@ -43,7 +43,7 @@ struct FrameParams {
   vec4 prev_camera_up;
   vec4 light_volume;        // xy centre in cloud space (m), z half extent (m), w 1 when in use
   ivec4 size;               // x width, y height, z frame index, w noise seed
-  ivec4 steps;              // x primary steps, y light steps, z sky view samples, w sky light samples
+  ivec4 steps;              // x primary steps, y light steps, z sky view samples, w unused
   vec4 sun_transmittance;   // rgb transmittance from the camera towards the sun's centre (0 when
                             // the planet hides it): the sun disk's colour; w unused
   vec4 sky_view_up;         // sky-view LUT frame (common/sky_view_inc.glsl): xyz local zenith at

@@ -192,11 +192,12 @@ static void set_stars(gpu::FrameParams& f, const Scene& scene, const std::option
 }
 
 // The time-of-day keyframes' set for this frame, per unit of the key light's illuminance; the
-// lights of clouds and ground are set by make_frame_params.
-static void set_conditions(gpu::FrameParams& f, const Scene& scene, const SkyLights& lights) {
+// lights of clouds and ground are set by make_frame_params from the set returned.
+static std::optional<ConditionSet> set_conditions(gpu::FrameParams& f, const Scene& scene,
+                                                  const SkyLights& lights) {
   f.conditions_sky_fog.w = 1.0f;  // stars fully visible
   const std::optional<ConditionSet> c = scene_conditions(scene, lights.ephemeris);
-  if (!c) return;
+  if (!c) return c;
   const float per_unit = 1.0f / std::max(lights.key.illuminance, 1e-30f);
   f.conditions_sky = glm::vec4(c->sky_zenith_rgb * per_unit,
                                scene.conditions.mode == ConditionsMode::Artist ? 1.0f : 2.0f);
@@ -207,6 +208,7 @@ static void set_conditions(gpu::FrameParams& f, const Scene& scene, const SkyLig
   f.conditions_fog = glm::vec4(c->fog_rgb * per_unit, c->fog_far_m);
   f.conditions_light =
       glm::vec4((lights.key.moon ? c->moon_light_rgb : c->sun_light_rgb) * per_unit, 0.0f);
+  return c;
 }
 
 std::optional<ConditionSet> scene_conditions(const Scene& scene,
@@ -286,7 +288,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
       key.moon ? glm::vec3(0.0f) : glsl::atmosphere_transmittance_to_top(atmosphere, eye, sun, 256),
       0.0f);
   set_moon(f, scene, atmosphere, lights);
-  set_conditions(f, scene, lights);
+  const std::optional<ConditionSet> conditions = set_conditions(f, scene, lights);
   set_stars(f, scene, lights.ephemeris, tan_half_fov);
   // The sky-view LUT's frame, shared by its pass and compose.
   const glsl::SkyViewFrame sky_view = glsl::sky_view_frame(eye, sun, planet_m);
@@ -307,7 +309,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
 
   set_atmosphere(f, scene);
   if (scene.conditions.mode == ConditionsMode::Artist) {  // the keyframes light clouds and ground
-    const ConditionSet set = *scene_conditions(scene, lights.ephemeris);
+    const ConditionSet& set = *conditions;
     f.sun_at_clouds = glm::vec4(key.moon ? set.moon_light_rgb : set.sun_light_rgb, 0.0f);
     f.ambient_at_clouds = glm::vec4(set.ambient_rgb, 0.0f);
     f.ground_sky_light = f.ambient_at_clouds;

@@ -89,7 +89,7 @@ struct SkyViewKey {
   glm::vec3 camera_pos_m, sun_dir, sun_illuminance, ground_sky_light;
   glm::vec4 rayleigh, mie, ozone, sky_model;
   glm::vec2 radii_m;   // planet, atmosphere top
-  glm::ivec2 samples;  // view, light
+  glm::ivec2 samples;  // sky view samples, unused (FrameParams::steps.zw)
   bool operator==(const SkyViewKey&) const = default;
 };
 SkyViewKey sky_view_key(const gpu::FrameParams& f);
