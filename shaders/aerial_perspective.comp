@@ -1,10 +1,10 @@
 #version 450
 // Pass 2d: the aerial-perspective volume (Hillaire 2020, section 5.4; layout in
 // common/sky_view_inc.glsl), rebuilt with the sky-view LUT. One invocation per direction
-// marches its slices front to back: in-scattered radiance (single scattering through the
-// transmittance LUT plus Psi_ms) and the green transmittance from the camera to each slice's
-// end. Past the ground nothing is added. compose.comp colours the haze in front of clouds
-// with it.
+// marches its slices front to back: in-scattered radiance of the key and the second light
+// (single scattering through the transmittance LUT plus Psi_ms) and the green transmittance
+// from the camera to each slice's end. Past the ground nothing is added. compose.comp colours
+// the haze in front of clouds with it.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
@@ -32,9 +32,17 @@ void main() {
   vec2 top = ray_sphere(eye, dir, a.top_radius_m);
   float t_in = max(top.x, 0.0f);
   float t_out = top.y > 0.0f ? min(top.y, t_ground) : 0.0f;
-  float mu = dot(dir, sun);
-  float phase_r = rayleigh_phase(mu);
-  float phase_m = cornette_shanks_phase(a.mie_g, mu);
+  // The key light and, when there is one, the second (both in units of the key's illuminance).
+  vec4 second = frame.second_light;
+  int lights = second.w > 0.0f ? 2 : 1;
+  vec3 light_dir[2] = vec3[2](sun, second.xyz);
+  float light_share[2] = float[2](1.0f, second.w);
+  float phase_r[2], phase_m[2];
+  for (int l = 0; l < lights; ++l) {
+    float mu = dot(dir, light_dir[l]);
+    phase_r[l] = rayleigh_phase(mu);
+    phase_m[l] = cornette_shanks_phase(a.mie_g, mu);
+  }
   float albedo = frame.sky_model.y;
 
   vec3 throughput = vec3(1.0f);
@@ -50,10 +58,14 @@ void main() {
       vec3 x = eye + dir * (t0 + (float(i) + 0.5f) * dt);
       AtmosphereMedium m = atmosphere_medium(a, length(x) - a.planet_radius_m);
       vec3 step_t = exp(-m.extinction * dt);
-      vec3 t_sun = transmittance_to_light(a, transmittance_lut, false, x, sun);
-      vec3 psi = multiple_scattering_at(a, transmittance_lut, ms_lut, false, x, sun, albedo);
-      inscatter += throughput * sky_source(m, phase_r, phase_m, t_sun, psi) *
-                   (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
+      vec3 source = vec3(0.0f);
+      for (int l = 0; l < lights; ++l) {
+        vec3 t_sun = transmittance_to_light(a, transmittance_lut, false, x, light_dir[l]);
+        vec3 psi =
+            multiple_scattering_at(a, transmittance_lut, ms_lut, false, x, light_dir[l], albedo);
+        source += light_share[l] * sky_source(m, phase_r[l], phase_m[l], t_sun, psi);
+      }
+      inscatter += throughput * source * (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
       throughput *= step_t;
     }
     imageStore(aerial_perspective_out, ivec3(texel, k), vec4(inscatter, throughput.g));

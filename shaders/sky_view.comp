@@ -4,7 +4,8 @@
 // and multiple scattering through the transmittance and multiple-scattering LUTs) is integrated
 // once per texel of a small latitude/longitude table around the camera
 // (common/sky_view_inc.glsl) instead of once per pixel; compose.comp samples it bilinearly.
-// With atmosphere.model = preetham the sky above the horizon is Preetham's (seed 002) instead.
+// Both of the sky's lights (FrameParams sun_dir and second_light) are summed. With
+// atmosphere.model = preetham the sky above the horizon is Preetham's (seed 002) instead.
 // The image stacks two tables: the in-scattered radiance (with the ground's sky-lit part) and
 // the ground's sun-lit radiance, which compose multiplies by the clouds' shadow.
 #extension GL_GOOGLE_include_directive : require
@@ -31,12 +32,22 @@ void main() {
   vec2 uv = (vec2(texel) + 0.5f) / vec2(size.x, rows);
   vec3 dir = sky_view_texel_dir(sky_frame, uv, eye, frame.radii_m.x);
   vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
-  SkySample sky = sky_hillaire(frame_atmosphere(), transmittance_lut, ms_lut, false, eye, dir, sun,
-                               frame.steps.z, frame.sky_model.y, ground_sky);
+  Atmosphere a = frame_atmosphere();
+  SkySample sky = sky_hillaire(a, transmittance_lut, ms_lut, false, eye, dir, sun, frame.steps.z,
+                               frame.sky_model.y, ground_sky);
+  // The second light (the twilight sun under the moon, or the moon in twilight): its sky, and
+  // its light on the ground, which the key light's cloud shadow does not darken. The ground's
+  // sky light (ground_sky) already holds both lights' and is added once.
+  vec4 second = frame.second_light;
+  if (second.w > 0.0f) {
+    SkySample s2 = sky_hillaire(a, transmittance_lut, ms_lut, false, eye, dir, second.xyz,
+                                frame.steps.z, frame.sky_model.y, vec3(0.0f));
+    sky.radiance += second.w * (s2.radiance + s2.ground_sun);
+  }
   if (int(frame.sky_model.z) == SKY_MODEL_PREETHAM && uv.y >= 0.5f) {
     // Preetham's analytic sky above the horizon (the ground stays the physical model's). The
     // model knows no sun below the horizon: it is faded by a factor 10 every 3 degrees the sun
-    // sinks, about how fast the twilight sky darkens.
+    // sinks, about how fast the twilight sky darkens. It has no second light.
     float sun_elevation_deg = degrees(asin(clamp(dot(sun, sky_frame.up), -1.0f, 1.0f)));
     float fade = pow(10.0f, min(sun_elevation_deg, 0.0f) / 3.0f);
     sky.radiance = preetham_sky_radiance(frame.sky_model.w, dir, sun, sky_frame.up) * fade;

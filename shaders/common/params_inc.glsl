@@ -48,7 +48,11 @@ struct FrameParams {
                             // the planet hides it): the sun disk's colour; w unused
   vec4 sky_view_up;         // sky-view LUT frame (common/sky_view_inc.glsl): xyz local zenith at
                             // the camera, w elevation of the planet's horizon (rad, <= 0)
-  vec4 sky_view_forward;    // xyz horizontal unit vector towards the sun's azimuth; w unused
+  vec4 sky_view_forward;    // xyz horizontal unit vector towards the key light's azimuth;
+                            // w unused
+  vec4 second_light;        // the sky's other light (render/frame_params.h, SkyLights): xyz
+                            // unit vector towards it, w its illuminance in units of the key
+                            // light's (0: none)
   ivec4 cloud_grid;         // x, y cloud buffer size (pixels); z march stride s (one pixel of
                             // each s x s block is marched per frame); w 1 if the history is valid
   ivec4 march_offset;       // xy the pixel of each block marched this frame; z jitter index;

@@ -1,9 +1,11 @@
 // Sky-view look-up table (Hillaire 2020, "A Scalable and Production Ready Sky and Atmosphere
 // Rendering Technique", section 5.3): the sky seen from the camera as a latitude/longitude table
 // in a local frame at the camera, filled by sky_view.comp and sampled bilinearly by compose.comp.
-// u: azimuth relative to the sun's azimuth. Single scattering around a spherical planet is
-// mirror-symmetric about the sun's vertical plane, so u covers |azimuth| in [0, pi] only
-// (u = 0 towards the sun, u = 1 away from it): twice the resolution for the same texels.
+// u: azimuth phi relative to the key light's azimuth, u = 0.5 + phi / (2 pi) over the full
+// circle (u = 0.5 towards the key light, u = 0 and 1 away from it; the texture wraps in u). The
+// sky lit by one light is mirror-symmetric about its vertical plane, but the table also holds the
+// second light (FrameParams::second_light: the twilight sun under a moon key, or the moon under a
+// sun key), which is not in that plane.
 // v: elevation l relative to the planet's horizon seen from the camera,
 // v = 0.5 + 0.5 sign(l) sqrt(|l| / range), range the angle from the horizon to the zenith
 // (above) or to the nadir (below), as in Hillaire's code: texels crowd at the horizon, where
@@ -14,7 +16,7 @@
 
 struct SkyViewFrame {
   vec3 up;                      // local zenith at the camera
-  vec3 forward;                 // horizontal, towards the sun's azimuth (u = 0)
+  vec3 forward;                 // horizontal, towards the key light's azimuth (u = 0.5)
   vec3 side;                    // up x forward
   float horizon_elevation_rad;  // elevation of the planet's horizon seen from the camera, <= 0
 };
@@ -60,25 +62,23 @@ float sky_view_range_below(SkyViewFrame f) {
 // the horizon.
 vec2 sky_view_uv(SkyViewFrame f, vec3 dir) {
   float x = dot(dir, f.forward);
-  float y = abs(dot(dir, f.side));
+  float y = dot(dir, f.side);
   float z = dot(dir, f.up);
-  float horizontal = sqrt(x * x + y * y);
-  // acos and asin rather than two atan: about 1 ms less of compose at 900x600 on lavapipe. They
-  // lose accuracy only next to the sun's vertical plane and the zenith (a few 1e-4 rad, a
-  // thirtieth of a texel), none at the horizon.
-  float u = horizontal > 1e-7f ? acos(clamp(x / horizontal, -1.0f, 1.0f)) / PI : 0.0f;
+  // asin rather than atan for the elevation: it loses accuracy only next to the zenith (a few
+  // 1e-4 rad, a thirtieth of a texel), none at the horizon.
+  float u = x * x + y * y > 1e-14f ? 0.5f + atan(y, x) / (2.0f * PI) : 0.5f;
   float l = asin(clamp(z, -1.0f, 1.0f)) - f.horizon_elevation_rad;
   float v = l >= 0.0f ? 0.5f + 0.5f * sqrt(l / sky_view_range_above(f))
                       : 0.5f - 0.5f * sqrt(-l / sky_view_range_below(f));
   return vec2(u, v);
 }
 
-// Unit direction of LUT coordinates `uv` (the inverse of sky_view_uv for y >= 0).
+// Unit direction of LUT coordinates `uv` (the inverse of sky_view_uv).
 vec3 sky_view_dir(SkyViewFrame f, vec2 uv) {
   float s = 2.0f * uv.y - 1.0f;
   float l = s >= 0.0f ? sky_view_range_above(f) * s * s : -sky_view_range_below(f) * s * s;
   float elevation = f.horizon_elevation_rad + l;
-  float azimuth = PI * uv.x;
+  float azimuth = 2.0f * PI * (uv.x - 0.5f);
   return cos(elevation) * (cos(azimuth) * f.forward + sin(azimuth) * f.side) +
          sin(elevation) * f.up;
 }
@@ -101,8 +101,8 @@ vec3 sky_view_texel_dir(SkyViewFrame f, vec2 uv, vec3 eye, float planet_radius_m
 // Texture coordinates in the LUT image, which stacks two tables of `rows` rows each (table 0:
 // rows [0, rows), table 1: rows [rows, 2 rows)), for LUT coordinates `uv`. v stays half a
 // texel away from the horizon on uv's side of it and from the table's ends, so the bilinear
-// filter never blends ground into sky nor one table into the other; u is clamped to the edge by
-// the sampler (by the mirror symmetry the table is flat across u = 0 and u = 1).
+// filter never blends ground into sky nor one table into the other; u wraps (the sampler
+// repeats), so the columns at u = 0 and u = 1 blend across the anti-key-light azimuth.
 float sky_view_v_clamped(vec2 uv, float rows) {
   float half_texel = 0.5f / rows;
   return uv.y < 0.5f ? clamp(uv.y, half_texel, 0.5f - half_texel)
@@ -119,7 +119,7 @@ vec2 sky_view_texcoord(vec2 uv, float rows, float table) {
 // (u, v above) as its first two axes, so it depends on the camera's position and the sun only
 // and is rebuilt with the sky-view LUT, not when the camera turns. Slice k (0-based) ends at
 // AP_MAX_DISTANCE_M ((k + 1) / AP_SLICES)^2: fine slices near the camera.
-const int AP_SIZE_U = 32;
+const int AP_SIZE_U = 48;
 const int AP_SIZE_V = 64;
 const int AP_SLICES = 32;
 const float AP_MAX_DISTANCE_M = 400000.0f;

@@ -131,14 +131,20 @@ double lommel_seeliger_phase(double i) {
   return std::max(1.0 - std::sin(i / 2) * std::tan(i / 2) * std::log(1.0 / std::tan(i / 4)), 1e-6);
 }
 
-// Zenith sky luminance above the ground point below the camera, lit by a unit light from `dir`.
-float zenith_sky_luminance(const Scene& scene, const glm::vec3& dir) {
+// The middle of the cloud layer above the camera (planet frame, m), where the clouds' direct
+// and ambient light are measured.
+glm::vec3 cloud_layer_middle(const Scene& scene, float planet_radius_m) {
+  const CloudParams& c = scene.clouds;
+  return {scene.camera.position_m.x, scene.camera.position_m.y,
+          planet_radius_m + 0.5f * (c.bottom_altitude_m + c.top_altitude_m)};
+}
+
+// Luminance of a unit light from `dir` reaching the middle of the cloud layer.
+float direct_luminance_at_clouds(const Scene& scene, const glm::vec3& dir) {
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
-  const glm::vec3 ground(scene.camera.position_m.x, scene.camera.position_m.y,
-                         atmosphere.planet_radius_m + 1.0f);
-  const glsl::SkySample sky = glsl::sky_single_scattering(atmosphere, ground, glm::vec3(0, 0, 1),
-                                                          dir, 16, 8, 0.1f, glm::vec3(0.0f));
-  return glm::dot(sky.radiance, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+  const glm::vec3 t = glsl::atmosphere_transmittance_to_top(
+      atmosphere, cloud_layer_middle(scene, atmosphere.planet_radius_m), dir, 32);
+  return glm::dot(t, glm::vec3(0.2126f, 0.7152f, 0.0722f));
 }
 
 }  // namespace
@@ -225,12 +231,18 @@ SkyLights sky_lights(const Scene& scene) {
   const std::optional<Ephemeris>& e = lights.ephemeris;
   const glm::vec3 sun = scene_sun_direction(scene, e);
   lights.key = {sun, scene.sun.illuminance, false};
-  if (!e || e->moon.elevation_deg <= 0.0 || sun.z > 0.0f) return lights;
+  if (!e || sun.z > 0.0f) return lights;  // by day the moon's sky is a millionth of the sun's
   const float moon_share =
       float(moon_illuminance_ratio(e->moon_illuminated_fraction, e->moon.distance_km));
-  const glm::vec3 moon = e->moon.direction;
-  if (zenith_sky_luminance(scene, sun) < moon_share * zenith_sky_luminance(scene, moon))
-    lights.key = {moon, scene.sun.illuminance * moon_share, true};
+  const KeyLight moon{e->moon.direction, scene.sun.illuminance * moon_share, true};
+  const float min_z = std::sin(glm::radians(kSecondLightMinElevationDeg));
+  if (direct_luminance_at_clouds(scene, sun) <
+      moon_share * direct_luminance_at_clouds(scene, moon.direction)) {
+    lights.key = moon;
+    if (sun.z > min_z) lights.second = {sun, scene.sun.illuminance, false};
+  } else if (moon.direction.z > min_z) {
+    lights.second = moon;
+  }
   return lights;
 }
 
@@ -297,15 +309,23 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
 
   // Sunlight and sky light at the middle of the cloud layer above the camera: reddened by the
   // atmosphere when the sun is low.
-  const glm::vec3 cloud_mid(scene.camera.position_m.x, scene.camera.position_m.y,
-                            planet_m + 0.5f * (c.bottom_altitude_m + c.top_altitude_m));
+  const glm::vec3 cloud_mid = cloud_layer_middle(scene, planet_m);
   f.sun_at_clouds = glm::vec4(
       illuminance * glsl::atmosphere_transmittance_to_top(atmosphere, cloud_mid, sun, 32), 0.0f);
+  // Sky light from both of the sky's lights.
   const CpuSky sky{atmosphere, tables, scene.atmosphere.ground_albedo};
-  f.ambient_at_clouds = glm::vec4(illuminance * mean_sky_radiance(sky, cloud_mid, sun), 0.0f);
   const glm::vec3 ground(scene.camera.position_m.x, scene.camera.position_m.y, planet_m + 1.0f);
-  f.ground_sky_light =
-      glm::vec4(illuminance * sky_irradiance_over_pi(sky, ground, sun), 0.0f);
+  f.ambient_at_clouds = glm::vec4(illuminance * mean_sky_radiance(sky, cloud_mid, sun), 0.0f);
+  f.ground_sky_light = glm::vec4(illuminance * sky_irradiance_over_pi(sky, ground, sun), 0.0f);
+  const KeyLight& second = lights.second;
+  if (second.illuminance > 0.0f) {
+    f.second_light = glm::vec4(second.direction, second.illuminance / key.illuminance);
+    const glm::vec3 second_illuminance(second.illuminance);
+    f.ambient_at_clouds += glm::vec4(
+        second_illuminance * mean_sky_radiance(sky, cloud_mid, second.direction), 0.0f);
+    f.ground_sky_light += glm::vec4(
+        second_illuminance * sky_irradiance_over_pi(sky, ground, second.direction), 0.0f);
+  }
 
   set_atmosphere(f, scene);
   if (scene.conditions.mode == ConditionsMode::Artist) {  // the keyframes light clouds and ground
@@ -332,18 +352,33 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
 }
 
 bool sky_view_reusable(const SkyViewKey& built, const SkyViewKey& now) {
-  // The sky light on the ground below the camera changes with it too, by far less.
-  SkyViewKey moved = now;
-  moved.camera_pos_m = built.camera_pos_m;
-  moved.ground_sky_light = built.ground_sky_light;
-  // A sun moving with the clock (0.004 deg/s) is followed in steps of kSkyViewReuseSunDeg.
-  moved.sun_dir = built.sun_dir;
-  if (!(moved == built)) return false;
-  if (glm::dot(now.sun_dir, built.sun_dir) < std::cos(glm::radians(kSkyViewReuseSunDeg))) return false;
-  const glm::vec3 light_change = glm::abs(now.ground_sky_light - built.ground_sky_light);
-  if (glm::any(glm::greaterThan(light_change, 1e-3f * glm::abs(built.ground_sky_light))))
+  // The atmosphere and the samples exactly; the rest within tolerances. The LUT holds radiance
+  // per unit key-light illuminance, so the key light's illuminance may change (the moon's does
+  // with its phase and distance) as long as the lights' ratios stay.
+  SkyViewKey same = now;
+  same.camera_pos_m = built.camera_pos_m;
+  same.sun_dir = built.sun_dir;
+  same.sun_illuminance = built.sun_illuminance;
+  same.ground_sky_light = built.ground_sky_light;
+  same.second_light = built.second_light;
+  if (!(same == built)) return false;
+  // A sun moving with the clock (0.004 deg/s) is followed in steps of kSkyViewReuseSunDeg, the
+  // second light likewise, its share of the key light's within 1%.
+  const float cos_reuse = std::cos(glm::radians(kSkyViewReuseSunDeg));
+  if (glm::dot(now.sun_dir, built.sun_dir) < cos_reuse) return false;
+  const glm::vec4 second = now.second_light, second_built = built.second_light;
+  if ((second.w > 0.0f) != (second_built.w > 0.0f)) return false;
+  if (second.w > 0.0f && (std::abs(second.w - second_built.w) > 0.01f * second_built.w ||
+                          glm::dot(glm::vec3(second), glm::vec3(second_built)) < cos_reuse))
     return false;
-  // In double: positions are 6.4e6 m from the planet's centre.
+  // The sky light on the ground below the camera (per unit key light) within 2%: it lights only
+  // the ground's shadowed part, and in twilight it changes by 0.2% a second.
+  const glm::vec3 ground = now.ground_sky_light / glm::max(now.sun_illuminance, glm::vec3(1e-30f));
+  const glm::vec3 ground_built =
+      built.ground_sky_light / glm::max(built.sun_illuminance, glm::vec3(1e-30f));
+  if (glm::any(glm::greaterThan(glm::abs(ground - ground_built), 0.02f * glm::abs(ground_built))))
+    return false;
+  // The camera: in double, positions are 6.4e6 m from the planet's centre.
   const glm::dvec3 from(built.camera_pos_m), to(now.camera_pos_m);
   const double altitude_m = std::max(glm::length(from) - double(built.radii_m.x), 0.0);
   const double climb_m = std::abs(glm::length(to) - glm::length(from));
@@ -356,6 +391,7 @@ SkyViewKey sky_view_key(const gpu::FrameParams& f) {
           .sun_dir = glm::vec3(f.sun_dir),
           .sun_illuminance = glm::vec3(f.sun_illuminance),
           .ground_sky_light = glm::vec3(f.ground_sky_light),
+          .second_light = f.second_light,
           .rayleigh = f.rayleigh,
           .mie = f.mie,
           .ozone = f.ozone,

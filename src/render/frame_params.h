@@ -40,9 +40,10 @@ struct CameraBasis {
 };
 CameraBasis camera_basis(const glm::vec3& view_dir);
 
-// The light that the sky, the clouds and the ground are lit by: the sun, or at night the moon
-// when it lights the zenith sky more than the sun below the horizon does (compared with the
-// same single-scattering model, so the hand-over happens where both are equally bright).
+// The light whose direct light and shadows the clouds and the ground get: the sun, or at night
+// the moon once it lights the middle of the cloud layer more than the setting sun does (the
+// hand-over happens where both are equally bright, after the sun has set there). The sky-view
+// LUT is oriented to it.
 struct KeyLight {
   glm::vec3 direction;  // ENU unit vector towards it
   float illuminance;    // at the top of the atmosphere, in the units of sun.illuminance
@@ -50,11 +51,18 @@ struct KeyLight {
 };
 
 // The sky's lights of one frame: the ephemeris (computed once: libnova's lunar series costs
-// about 2 ms) and the key light chosen from it.
+// about 2 ms), the key light chosen from it, and the other of sun and moon while it still
+// lights the sky (above kSecondLightMinElevationDeg; illuminance 0 when none). Sky, aerial
+// perspective and the clouds' ambient light sum both, so nothing jumps when the key light
+// changes; only the key light casts the clouds' direct light and shadows.
 struct SkyLights {
   std::optional<Ephemeris> ephemeris;  // when the scene has a time
   KeyLight key;
+  KeyLight second{glm::vec3(0.0f, 0.0f, 1.0f), 0.0f};
 };
+// Below this elevation the sun or moon lights no air under the atmosphere's top (100 km) for
+// 1100 km around (the sky seen from the ground down to the horizon): its sky is black.
+constexpr float kSecondLightMinElevationDeg = -20.0f;
 SkyLights sky_lights(const Scene& scene);
 
 // The time-of-day keyframes' conditions for the scene's hour (conditions.hour, or the local
@@ -87,15 +95,15 @@ void set_previous_frame(gpu::FrameParams& params, const Scene& scene, const Scen
 // the key changes.
 struct SkyViewKey {
   glm::vec3 camera_pos_m, sun_dir, sun_illuminance, ground_sky_light;
+  glm::vec4 second_light;
   glm::vec4 rayleigh, mie, ozone, sky_model;
   glm::vec2 radii_m;   // planet, atmosphere top
   glm::ivec2 samples;  // sky view samples, unused (FrameParams::steps.zw)
   bool operator==(const SkyViewKey&) const = default;
 };
 SkyViewKey sky_view_key(const gpu::FrameParams& f);
-// Whether a LUT built for `built` serves `now`: the same atmosphere and samples, the sun within
-// kSkyViewReuseSunDeg, and the
-// camera within kSkyViewReuseM of where it was built and within 1% of its altitude (at most
+// Whether a LUT built for `built` serves `now`: the same atmosphere and samples, the sun (and
+// the second light) within kSkyViewReuseSunDeg, and the camera within kSkyViewReuseM of where it was built and within 1% of its altitude (at most
 // kSkyViewReuseM; the horizon's dip changes with altitude, fastest near the ground).
 constexpr float kSkyViewReuseM = 50.0f;
 constexpr float kSkyViewReuseSunDeg = 0.05f;

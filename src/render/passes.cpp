@@ -36,9 +36,10 @@ GpuState::GpuState(gpu::Context& c)
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
                    VK_FORMAT_R8G8B8A8_UNORM),
       weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM),
-      // Half floats hold radiance to 0.05%; clamp-to-edge: the table does not wrap.
+      // Half floats hold radiance to 0.05%. Both tables wrap in azimuth (u); v and w are kept
+      // half a texel inside by the shaders (sky_view_inc.glsl), so repeating there reads nothing.
       sky_view(c, kSkyViewWidth, 2 * kSkyViewHeight, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
-               VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+               VK_SAMPLER_ADDRESS_MODE_REPEAT),
       light_volume(c, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
                    VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       transmittance_lut(c, glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1,
@@ -46,7 +47,7 @@ GpuState::GpuState(gpu::Context& c)
       ms_lut(c, glsl::MS_LUT_W, glsl::MS_LUT_H, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
              VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       aerial_perspective(c, glsl::AP_SIZE_U, glsl::AP_SIZE_V, glsl::AP_SLICES,
-                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_REPEAT),
       reference_psi(c, gpu::REFERENCE_TILE, gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES,
                     VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set.bind_image(gpu::kReferencePsiOut, gpu::kReferencePsi, reference_psi);

@@ -15,7 +15,7 @@ constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
 constexpr uint32_t kWeatherMapSize = 512;   // procedural weather map 512^2
 // Sky-view LUT (Hillaire 2020, 5.3): azimuth x elevation texels per table; the image stacks two
 // tables (radiance, sun-lit ground), so it is kSkyViewWidth x 2 kSkyViewHeight.
-constexpr uint32_t kSkyViewWidth = 192;
+constexpr uint32_t kSkyViewWidth = 256;
 constexpr uint32_t kSkyViewHeight = 108;
 
 // Everything the passes read and write.

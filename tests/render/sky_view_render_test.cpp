@@ -199,6 +199,41 @@ TEST_F(SkyViewTest, LutFollowsTheClockInSteps) {
   EXPECT_TRUE(has_pass(render(later), "sky_view"));
 }
 
+// At night the moon is the key light and the twilight sun the second: the LUT follows both in
+// steps too, and a second light that turns, brightens, appears or vanishes rebuilds it.
+TEST_F(SkyViewTest, LutFollowsTheSecondLight) {
+  Scene a = cloudless("default");
+  a.output.width = 48;
+  a.output.height = 32;
+  a.time = "2026-06-24T21:30:00Z";  // Paris: moon 18.5 deg up, sun -11 deg
+  a.sun.from_time = true;
+  a.location = {48.85f, 2.35f, 0.0f};
+  const nephele::gpu::FrameParams f = nephele::make_frame_params(a, 0);
+  ASSERT_GT(f.second_light.w, 0.0f);
+  const nephele::SkyViewKey built = nephele::sky_view_key(f);
+  EXPECT_TRUE(nephele::sky_view_reusable(built, built));
+  nephele::SkyViewKey turned = built;
+  const float angle = glm::radians(2.0f * nephele::kSkyViewReuseSunDeg);
+  turned.second_light = glm::vec4(glm::normalize(glm::vec3(built.second_light) +
+                                                 angle * glm::vec3(0.0f, 0.0f, 1.0f)),
+                                  built.second_light.w);
+  EXPECT_FALSE(nephele::sky_view_reusable(built, turned));
+  nephele::SkyViewKey brighter = built;
+  brighter.second_light.w *= 1.02f;
+  EXPECT_FALSE(nephele::sky_view_reusable(built, brighter));
+  nephele::SkyViewKey none = built;
+  none.second_light = glm::vec4(0.0f);
+  EXPECT_FALSE(nephele::sky_view_reusable(built, none));
+  EXPECT_FALSE(nephele::sky_view_reusable(none, built));
+  EXPECT_TRUE(nephele::sky_view_reusable(none, none));
+  if (render(a).stats.passes.empty()) GTEST_SKIP() << "the device has no timestamps";
+  Scene later = a;
+  later.time_s = 5.0f;
+  EXPECT_FALSE(has_pass(render(later), "sky_view"));
+  later.time_s = 30.0f;
+  EXPECT_TRUE(has_pass(render(later), "sky_view"));
+}
+
 // The sun's centre 0.1 degrees above the horizon, its disk 0.27 degrees in radius: the part of
 // the disk above the horizon shines, the planet hides the rest.
 TEST_F(SkyViewTest, TheGroundHidesTheSunDiskBelowTheHorizon) {
