@@ -24,6 +24,62 @@ float cloud_density_gradient(float h) {
   return bottom * top;
 }
 
+// Cloud types (seed 002, "Cloud Modeling 改进": height-density gradients blended by the weather
+// map's cloud-type channel). A type t in [0, 1] runs through five genera, each a trapezoid over
+// the layer's height fraction h (rising from r0 to r1, falling from f0 to f1):
+//   t = 0     stratus         flat sheet at the base       0.00-0.05 ... 0.12-0.22
+//   t = 0.25  stratocumulus   low lumpy layer              0.00-0.08 ... 0.28-0.42
+//   t = 0.5   altocumulus     band high in the layer       0.30-0.42 ... 0.58-0.72
+//   t = 0.75  cumulus         flat base, rounded tops      0.00-0.07 ... 0.40-0.70
+//   t = 1     cumulonimbus    the whole layer, anvil top   0.00-0.05 ... 0.92-1.00
+// Neighbouring genera blend linearly, so precipitation (which pushes t towards 1) grows
+// cumulus into cumulonimbus.
+const int CLOUD_GENERA = 5;
+
+float cloud_trapezoid(float h, vec4 r) {
+  return saturate(remap(h, r.x, r.y, 0.0f, 1.0f)) * saturate(remap(h, r.z, r.w, 1.0f, 0.0f));
+}
+
+vec4 cloud_genus_profile(int genus) {
+  if (genus == 0) return vec4(0.0f, 0.05f, 0.12f, 0.22f);
+  if (genus == 1) return vec4(0.0f, 0.08f, 0.28f, 0.42f);
+  if (genus == 2) return vec4(0.30f, 0.42f, 0.58f, 0.72f);
+  if (genus == 3) return vec4(0.0f, 0.07f, 0.40f, 0.70f);
+  return vec4(0.0f, 0.05f, 0.92f, 1.0f);
+}
+
+// The type's height gradient at h: 1 inside its genus' core, 0 outside it.
+float cloud_type_gradient(float h, float type) {
+  float x = saturate(type) * float(CLOUD_GENERA - 1);
+  int lo = min(int(x), CLOUD_GENERA - 2);
+  float w = x - float(lo);
+  return mix(cloud_trapezoid(h, cloud_genus_profile(lo)),
+             cloud_trapezoid(h, cloud_genus_profile(lo + 1)), w);
+}
+
+// The highest height fraction the type reaches (its profile's f1, blended): the seed 000
+// baseline's "maximum cloud height".
+float cloud_type_top(float type) {
+  float x = saturate(type) * float(CLOUD_GENERA - 1);
+  int lo = min(int(x), CLOUD_GENERA - 2);
+  return mix(cloud_genus_profile(lo).w, cloud_genus_profile(lo + 1).w, x - float(lo));
+}
+
+// How much of cumulonimbus the type holds: 0 up to cumulus (t = 0.75), 1 at t = 1.
+float cloud_cumulonimbus_share(float type) { return saturate(4.0f * type - 3.0f); }
+
+// Precipitation (seed 002, 积雨云渐变): the weather map's precipitation p in [0, 1] turns any
+// sky into cumulonimbus at 70% coverage or more. Returns (coverage, type).
+vec2 cloud_precipitate(float coverage, float type, float p) {
+  return vec2(mix(coverage, max(coverage, 0.7f), p), mix(type, 1.0f, p));
+}
+
+// The anvil (seed 002, "shape bias"): cumulonimbus coverage rises towards the top of the layer,
+// so tops spread out; `anvil` in [0, 1] is the share of cumulonimbus.
+float cloud_anvil_coverage(float coverage, float h, float anvil) {
+  return mix(coverage, max(coverage, 0.95f), anvil * smoothstep(0.6f, 0.9f, h));
+}
+
 // Local coverage in [0, 1] from the weather map's low (R) and high (G) coverage channels and
 // the global coverage c in [0, 1]. c = 0.5 takes the weather map as it is; c -> 0 removes all
 // cloud, c -> 1 covers everything (the seed's WMc = max(R, saturate(c - 0.5) * G * 2) with
