@@ -149,7 +149,10 @@ void main() {
   float powder = frame.cloud_light.z;
   float albedo = frame.cloud_shape.w;
   vec3 sun_light = frame.sun_at_clouds.rgb;
-  vec3 ambient = frame.ambient_at_clouds.rgb * frame.cloud_light.w;
+  // Ambient light from above (the sky) at the tops, from below (the ground) at the bases.
+  vec3 ambient_above = frame.ambient_at_clouds.rgb * frame.cloud_light.w;
+  vec3 ambient_below = frame.ambient_below_clouds.rgb * frame.cloud_light.w;
+  vec3 ambient = 0.5f * (ambient_above + ambient_below);
   float g_f = frame.cloud_phase.x;
   float g_b = frame.cloud_phase.y;
   float lobe = frame.cloud_phase.z;
@@ -241,7 +244,7 @@ void main() {
         float tau_light = depth * sigma_scale * light_atten;
         float energy = multiple_scattering(tau_light, mu, powder, phases);
         float h = altitude_fraction(lit_pos);
-        vec3 luminance = albedo * (sun_light * energy + ambient * mix(0.5f, 1.0f, h));
+        vec3 luminance = albedo * (sun_light * energy + mix(ambient_below, ambient_above, h));
         float step_t = exp(-lit_sigma_t * lit_step_m);
         vec3 air = air_transmittance(eye_alt_m, length(lit_pos) - frame.radii_m.x, t);
         // Energy-conserving integration over the step (Hillaire 2016).

@@ -26,7 +26,9 @@ struct FrameParams {
   vec4 sun_illuminance;     // rgb the key light's illuminance at the top of the atmosphere;
                             // w 1 when the key light is the moon
   vec4 sun_at_clouds;       // rgb sunlight reaching the middle of the cloud layer; w unused
-  vec4 ambient_at_clouds;   // rgb mean sky radiance over all directions at the clouds
+  vec4 ambient_at_clouds;   // rgb irradiance / pi on a horizontal surface facing up at the
+                            // middle of the cloud layer (cosine-weighted mean sky radiance)
+  vec4 ambient_below_clouds;  // rgb the same facing down (the lit ground, the air below)
   vec4 ground_sky_light;    // rgb sky irradiance on the ground / pi (radiance of a white
                             // Lambertian ground lit by the sky alone)
   vec4 radii_m;             // x planet, y atmosphere top, z cloud bottom, w cloud top (m)

@@ -88,24 +88,15 @@ glm::vec3 mean_sky(const CpuSky& sky, const glm::vec3& pos, const glm::vec3& sun
   return sum / float(kSkyDirections);
 }
 
-// Mean sky radiance over all directions at `pos` per unit solar illuminance: the light an
-// isotropic scatterer receives from the sky (Fibonacci sphere).
-glm::vec3 mean_sky_radiance(const CpuSky& sky, const glm::vec3& pos, const glm::vec3& sun) {
-  return mean_sky(sky, pos, sun, [](int i, float golden) {
-    float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(kSkyDirections);
-    float r = std::sqrt(1.0f - z * z);
-    return glm::vec3(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
-  });
-}
-
-// Sky irradiance on a horizontal surface at `pos` divided by pi, per unit solar illuminance:
-// the cosine-weighted mean sky radiance over the upper hemisphere.
-glm::vec3 sky_irradiance_over_pi(const CpuSky& sky, const glm::vec3& pos, const glm::vec3& sun) {
-  const glm::vec3 up = glm::normalize(pos);
+// Irradiance on a horizontal surface at `pos` facing up (or down) divided by pi, per unit solar
+// illuminance: the cosine-weighted mean radiance over the upper (or lower) hemisphere.
+glm::vec3 hemisphere_radiance(const CpuSky& sky, const glm::vec3& pos, const glm::vec3& sun,
+                              bool up_side = true) {
+  const glm::vec3 up = glm::normalize(pos) * (up_side ? 1.0f : -1.0f);
   const glm::vec3 east = glm::normalize(glm::cross(glm::vec3(0, 1, 0), up));
   const glm::vec3 north = glm::cross(up, east);
   return mean_sky(sky, pos, sun, [&](int i, float golden) {
-    // Cosine-weighted: sin^2 of the angle from the zenith uniform in [0, 1].
+    // Cosine-weighted: sin^2 of the angle from the axis uniform in [0, 1].
     float s2 = (float(i) + 0.5f) / float(kSkyDirections);
     float sin_t = std::sqrt(s2), cos_t = std::sqrt(1.0f - s2);
     return sin_t * (std::cos(golden * float(i)) * east + std::sin(golden * float(i)) * north) +
@@ -315,16 +306,24 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   // Sky light from both of the sky's lights.
   const CpuSky sky{atmosphere, tables, scene.atmosphere.ground_albedo};
   const glm::vec3 ground(scene.camera.position_m.x, scene.camera.position_m.y, planet_m + 1.0f);
-  f.ambient_at_clouds = glm::vec4(illuminance * mean_sky_radiance(sky, cloud_mid, sun), 0.0f);
-  f.ground_sky_light = glm::vec4(illuminance * sky_irradiance_over_pi(sky, ground, sun), 0.0f);
+  // The clouds' ambient light: what a horizontal surface at the layer receives from above (the
+  // sky) and from below (the lit ground and the air under the clouds), cosine-weighted. An
+  // isotropic mean over all directions let the horizon's twilight glow (at sun -12 deg 6,500
+  // times the zenith's radiance, in a band a few degrees high) light whole clouds red.
+  f.ambient_at_clouds = glm::vec4(illuminance * hemisphere_radiance(sky, cloud_mid, sun), 0.0f);
+  f.ambient_below_clouds =
+      glm::vec4(illuminance * hemisphere_radiance(sky, cloud_mid, sun, false), 0.0f);
+  f.ground_sky_light = glm::vec4(illuminance * hemisphere_radiance(sky, ground, sun), 0.0f);
   const KeyLight& second = lights.second;
   if (second.illuminance > 0.0f) {
     f.second_light = glm::vec4(second.direction, second.illuminance / key.illuminance);
     const glm::vec3 second_illuminance(second.illuminance);
     f.ambient_at_clouds += glm::vec4(
-        second_illuminance * mean_sky_radiance(sky, cloud_mid, second.direction), 0.0f);
+        second_illuminance * hemisphere_radiance(sky, cloud_mid, second.direction), 0.0f);
+    f.ambient_below_clouds += glm::vec4(
+        second_illuminance * hemisphere_radiance(sky, cloud_mid, second.direction, false), 0.0f);
     f.ground_sky_light += glm::vec4(
-        second_illuminance * sky_irradiance_over_pi(sky, ground, second.direction), 0.0f);
+        second_illuminance * hemisphere_radiance(sky, ground, second.direction), 0.0f);
   }
 
   set_atmosphere(f, scene);
@@ -332,6 +331,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
     const ConditionSet& set = *conditions;
     f.sun_at_clouds = glm::vec4(key.moon ? set.moon_light_rgb : set.sun_light_rgb, 0.0f);
     f.ambient_at_clouds = glm::vec4(set.ambient_rgb, 0.0f);
+    f.ambient_below_clouds = f.ambient_at_clouds;
     f.ground_sky_light = f.ambient_at_clouds;
   }
   f.radii_m.z = planet_m + c.bottom_altitude_m;

@@ -13,6 +13,7 @@
 #include "nephele/scene_io.h"
 #include "nephele/sky.h"
 #include "render/frame_params.h"
+#include "render/frame_atmosphere.h"
 #include "render/render_fixture.h"
 
 namespace nephele {
@@ -126,6 +127,36 @@ TEST(MoonLight, TheMoonTakesOverAtNightAndNotByDay) {
   EXPECT_EQ(key_light(s).illuminance, s.sun.illuminance);
   s.time = "2026-06-24T20:00:00Z";  // sun -1 deg: it still lights the clouds, reddened
   EXPECT_FALSE(key_light(s).moon);
+}
+
+// Sun 12.4 deg down (Paris, 2026-06-24 02:00 UTC, no moon key): the horizon below the sun glows
+// 6,500 times brighter than the zenith, in a band a few degrees high. The clouds' sky light is
+// the cosine-weighted sky above them, not that glow: an isotropic mean over all directions
+// made it 100 times the zenith's radiance and 27 times redder than blue, and the clouds glowed
+// red against a black sky.
+TEST(CloudLight, TwilightCloudsAreLitByTheSkyAboveNotByTheHorizonGlow) {
+  Scene s = load_preset("default");
+  s.time = "2026-06-24T02:00:00Z";
+  s.sun.from_time = true;
+  s.location = {48.85f, 2.35f, 35.0f};
+  ASSERT_FALSE(sky_lights(s).key.moon);
+  const gpu::FrameParams f = make_frame_params(s, 0);
+  ASSERT_NEAR(glm::degrees(std::asin(f.sun_dir.z)), -12.4f, 0.3f);
+  const glm::vec3 above(f.ambient_at_clouds), below(f.ambient_below_clouds);
+  EXPECT_GT(above.b, 0.0f);
+  EXPECT_LT(above.r / above.b, 1.5f);
+  // The zenith sky from the cloud layer's middle, per unit illuminance like the ambient.
+  const glsl::Atmosphere a = frame_atmosphere(f);
+  const nephele::AtmosphereTables t = compute_atmosphere_tables(s);
+  const glm::vec3 mid(0.0f, 0.0f, a.planet_radius_m + 2750.0f);
+  const glm::vec3 zenith = glsl::sky_hillaire(a, t.transmittance_lut(), t.ms_lut(), false, mid,
+                                              glm::vec3(0, 0, 1), glm::vec3(f.sun_dir), 32, 0.3f,
+                                              glm::vec3(0.0f))
+                               .radiance *
+                           glm::vec3(f.sun_illuminance);
+  EXPECT_LT(above.g, 10.0f * zenith.g);
+  EXPECT_GT(above.g, zenith.g);  // the horizon still adds some
+  EXPECT_LT(below.g, above.g);   // the ground is darker than the sky at night
 }
 
 TEST(MoonLight, TheOtherBodyLightsTheSkyTooUntilItIsFarBelowTheHorizon) {
