@@ -303,28 +303,24 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   const glm::vec3 cloud_mid = cloud_layer_middle(scene, planet_m);
   f.sun_at_clouds = glm::vec4(
       illuminance * glsl::atmosphere_transmittance_to_top(atmosphere, cloud_mid, sun, 32), 0.0f);
-  // Sky light from both of the sky's lights.
+  // Sky light from both of the sky's lights: what a horizontal surface at the cloud layer
+  // receives from above (the sky) and from below (the lit ground and the air under the clouds),
+  // cosine-weighted, and the sky light on the ground. An isotropic mean over all directions let
+  // the horizon's twilight glow (at sun -12 deg 6,500 times the zenith's radiance, in a band a
+  // few degrees high) light whole clouds red.
   const CpuSky sky{atmosphere, tables, scene.atmosphere.ground_albedo};
   const glm::vec3 ground(scene.camera.position_m.x, scene.camera.position_m.y, planet_m + 1.0f);
-  // The clouds' ambient light: what a horizontal surface at the layer receives from above (the
-  // sky) and from below (the lit ground and the air under the clouds), cosine-weighted. An
-  // isotropic mean over all directions let the horizon's twilight glow (at sun -12 deg 6,500
-  // times the zenith's radiance, in a band a few degrees high) light whole clouds red.
-  f.ambient_at_clouds = glm::vec4(illuminance * hemisphere_radiance(sky, cloud_mid, sun), 0.0f);
-  f.ambient_below_clouds =
-      glm::vec4(illuminance * hemisphere_radiance(sky, cloud_mid, sun, false), 0.0f);
-  f.ground_sky_light = glm::vec4(illuminance * hemisphere_radiance(sky, ground, sun), 0.0f);
-  const KeyLight& second = lights.second;
-  if (second.illuminance > 0.0f) {
-    f.second_light = glm::vec4(second.direction, second.illuminance / key.illuminance);
-    const glm::vec3 second_illuminance(second.illuminance);
-    f.ambient_at_clouds += glm::vec4(
-        second_illuminance * hemisphere_radiance(sky, cloud_mid, second.direction), 0.0f);
-    f.ambient_below_clouds += glm::vec4(
-        second_illuminance * hemisphere_radiance(sky, cloud_mid, second.direction, false), 0.0f);
-    f.ground_sky_light += glm::vec4(
-        second_illuminance * hemisphere_radiance(sky, ground, second.direction), 0.0f);
+  for (const KeyLight* light : {&key, &lights.second}) {
+    if (light->illuminance <= 0.0f) continue;
+    const glm::vec3 e(light->illuminance);
+    const glm::vec3 d = light->direction;
+    f.ambient_at_clouds += glm::vec4(e * hemisphere_radiance(sky, cloud_mid, d), 0.0f);
+    f.ambient_below_clouds += glm::vec4(e * hemisphere_radiance(sky, cloud_mid, d, false), 0.0f);
+    f.ground_sky_light += glm::vec4(e * hemisphere_radiance(sky, ground, d), 0.0f);
   }
+  if (lights.second.illuminance > 0.0f)
+    f.second_light =
+        glm::vec4(lights.second.direction, lights.second.illuminance / key.illuminance);
 
   set_atmosphere(f, scene);
   if (scene.conditions.mode == ConditionsMode::Artist) {  // the keyframes light clouds and ground
