@@ -45,8 +45,7 @@ void main() {
   }
   float albedo = frame.sky_model.y;
 
-  vec3 throughput = vec3(1.0f);
-  vec3 inscatter = vec3(0.0f);
+  SkySample air = sky_sample_start();
   float t_prev = 0.0f;
   for (int k = 0; k < AP_SLICES; ++k) {
     float t_end = aerial_perspective_slice_end_m(k);
@@ -57,7 +56,6 @@ void main() {
     for (int i = 0; i < STEPS_PER_SLICE; ++i) {
       vec3 x = eye + dir * (t0 + (float(i) + 0.5f) * dt);
       AtmosphereMedium m = atmosphere_medium(a, length(x) - a.planet_radius_m);
-      vec3 step_t = exp(-m.extinction * dt);
       vec3 source = vec3(0.0f);
       for (int l = 0; l < lights; ++l) {
         vec3 t_sun = transmittance_to_light(a, transmittance_lut, false, x, light_dir[l]);
@@ -65,10 +63,9 @@ void main() {
             multiple_scattering_at(a, transmittance_lut, ms_lut, false, x, light_dir[l], albedo);
         source += light_share[l] * sky_source(m, phase_r[l], phase_m[l], t_sun, psi);
       }
-      inscatter += throughput * source * (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
-      throughput *= step_t;
+      air = sky_accumulate(air, m.extinction, dt, source);
     }
-    imageStore(aerial_perspective_out, ivec3(texel, k), vec4(inscatter, throughput.g));
+    imageStore(aerial_perspective_out, ivec3(texel, k), vec4(air.radiance, air.transmittance.g));
     t_prev = t_end;
   }
 }

@@ -95,8 +95,7 @@ void main() {
   float elevation_deg = degrees(asin(clamp(dot(dir, sky_frame.up), -1.0f, 1.0f)));
   if (conditions == 1) {  // artist: the keyframes' sky, and the ground lit by their lights
     float albedo = frame.sky_model.y;
-    sky = above_horizon ? frame.conditions_sky.rgb
-                        : albedo * frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
+    sky = above_horizon ? frame.conditions_sky.rgb : albedo * frame_ground_sky();
     ground_sun = above_horizon ? vec3(0.0f)
                                : albedo / PI * max(dot(sky_frame.up, sun), 0.0f) *
                                      frame.conditions_light.rgb;

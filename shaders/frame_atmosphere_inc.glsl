@@ -23,4 +23,10 @@ Atmosphere frame_atmosphere() {
   return a;
 }
 
+// The sky light on the ground below the camera per unit key-light illuminance (the radiance
+// of a white Lambertian ground lit by the sky alone).
+vec3 frame_ground_sky() {
+  return frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
+}
+
 #endif

@@ -24,10 +24,7 @@ void main() {
   vec3 sun = frame.sun_dir.xyz;
   float albedo = frame.sky_model.y;
   SkyRay ray = sky_ray(a, frame.camera_pos_m.xyz, dir);
-  SkySample result;
-  result.radiance = vec3(0.0f);
-  result.ground_sun = vec3(0.0f);
-  result.transmittance = vec3(1.0f);
+  SkySample result = sky_sample_start();
   float mu = dot(dir, sun);
   float phase_r = rayleigh_phase(mu);
   float phase_m = cornette_shanks_phase(a.mie_g, mu);
@@ -36,18 +33,14 @@ void main() {
     vec2 t = sky_step(ray.length_m, i, REFERENCE_SAMPLES);
     vec3 x = ray.origin + dir * (0.5f * (t.x + t.y));
     AtmosphereMedium m = atmosphere_medium(a, length(x) - a.planet_radius_m);
-    vec3 step_t = exp(-m.extinction * (t.y - t.x));
     vec3 t_sun = transmittance_to_light(a, transmittance_lut, true, x, sun);
     vec3 psi = texelFetch(reference_psi, ivec3(id, i), 0).rgb;
-    result.radiance += result.transmittance * sky_source(m, phase_r, phase_m, t_sun, psi) *
-                       (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
-    result.transmittance *= step_t;
+    result = sky_accumulate(result, m.extinction, t.y - t.x,
+                            sky_source(m, phase_r, phase_m, t_sun, psi));
   }
-  if (ray.hits_ground && n > 0) {
-    vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
+  if (ray.hits_ground && n > 0)
     result = sky_add_ground(a, transmittance_lut, true, result, ray.origin + dir * ray.length_m,
-                            sun, albedo, ground_sky);
-  }
+                            sun, albedo, frame_ground_sky());
   imageStore(reference_sky_out, pixel, vec4(result.radiance, 1.0f));
   imageStore(reference_sky_out, ivec2(pixel.x, pixel.y + frame.size.y), vec4(result.ground_sun, 1.0f));
 }

@@ -31,13 +31,12 @@ void main() {
   SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward);
   vec2 uv = (vec2(texel) + 0.5f) / vec2(size.x, rows);
   vec3 dir = sky_view_texel_dir(sky_frame, uv, eye, frame.radii_m.x);
-  vec3 ground_sky = frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
   Atmosphere a = frame_atmosphere();
   SkySample sky = sky_hillaire(a, transmittance_lut, ms_lut, false, eye, dir, sun, frame.steps.z,
-                               frame.sky_model.y, ground_sky);
+                               frame.sky_model.y, frame_ground_sky());
   // The second light (the twilight sun under the moon, or the moon in twilight): its sky, and
   // its light on the ground, which the key light's cloud shadow does not darken. The ground's
-  // sky light (ground_sky) already holds both lights' and is added once.
+  // sky light (frame_ground_sky) already holds both lights' and is added once.
   vec4 second = frame.second_light;
   if (second.w > 0.0f) {
     SkySample s2 = sky_hillaire(a, transmittance_lut, ms_lut, false, eye, dir, second.xyz,

@@ -93,15 +93,31 @@ struct SkySample {
   vec3 transmittance;  // from the eye to the end of the ray (0 if the ground was hit)
 };
 
+// Nothing gathered yet: no radiance, full transmittance.
+SkySample sky_sample_start() {
+  SkySample s;
+  s.radiance = vec3(0.0f);
+  s.ground_sun = vec3(0.0f);
+  s.transmittance = vec3(1.0f);
+  return s;
+}
+
+// Adds one step of `dt_m` through air of extinction `extinction` (1/m) that in-scatters
+// `source` (radiance per metre) to `s`, integrated over the step with the energy-conserving
+// formula (Hillaire 2015; 2020, section 5.6.3).
+SkySample sky_accumulate(SkySample s, vec3 extinction, float dt_m, vec3 source) {
+  vec3 step_t = exp(-extinction * dt_m);
+  s.radiance += s.transmittance * source * (vec3(1.0f) - step_t) / max(extinction, vec3(1e-12f));
+  s.transmittance *= step_t;
+  return s;
+}
+
 // Radiance seen from `eye` along unit `dir`, per unit solar illuminance, for the sun in unit
 // direction `sun`. A ray that hits the ground ends there and adds the ground (Lambertian,
 // albedo `ground_albedo`, lit by the attenuated sun and by sky radiance `sky_ambient`).
 SkySample sky_single_scattering(Atmosphere a, vec3 eye, vec3 dir, vec3 sun, int view_samples,
                                 int light_samples, float ground_albedo, vec3 sky_ambient) {
-  SkySample result;
-  result.radiance = vec3(0.0f);
-  result.ground_sun = vec3(0.0f);
-  result.transmittance = vec3(1.0f);
+  SkySample result = sky_sample_start();
   float r_eye = length(eye);
   vec2 top = ray_sphere(eye, dir, a.top_radius_m);
   if (top.y <= 0.0f) return result;  // looking away from the atmosphere, from space

@@ -117,16 +117,16 @@ vec3 ms_psi(Atmosphere a, sampler2D t_lut, bool exact, vec3 pos, vec3 sun, float
   vec3 l2 = vec3(0.0f);
   vec3 f_ms = vec3(0.0f);
   const float ISOTROPIC = 1.0f / (4.0f * PI);
+  // Directions around the local zenith: any frame will do for a uniform sphere.
+  vec3 up = normalize(pos);
+  vec3 e1 = normalize(abs(up.x) < 0.9f ? cross(up, vec3(1.0f, 0.0f, 0.0f))
+                                      : cross(up, vec3(0.0f, 1.0f, 0.0f)));
+  vec3 e2 = cross(up, e1);
   for (int i = 0; i < MS_DIRECTIONS_SQRT; ++i) {
     for (int j = 0; j < MS_DIRECTIONS_SQRT; ++j) {
       float cos_t = 1.0f - 2.0f * (float(i) + 0.5f) / float(MS_DIRECTIONS_SQRT);
       float sin_t = sqrt(max(1.0f - cos_t * cos_t, 0.0f));
       float phi = 2.0f * PI * (float(j) + 0.5f) / float(MS_DIRECTIONS_SQRT);
-      // Around the local zenith: any frame will do for a uniform sphere.
-      vec3 up = normalize(pos);
-      vec3 e1 = normalize(abs(up.x) < 0.9f ? cross(up, vec3(1.0f, 0.0f, 0.0f))
-                                          : cross(up, vec3(0.0f, 1.0f, 0.0f)));
-      vec3 e2 = cross(up, e1);
       vec3 dir = sin_t * (cos(phi) * e1 + sin(phi) * e2) + cos_t * up;
       vec2 ground = ray_sphere(pos, dir, a.planet_radius_m);
       vec2 top = ray_sphere(pos, dir, a.top_radius_m);
@@ -236,10 +236,7 @@ SkySample sky_add_ground(Atmosphere a, sampler2D t_lut, bool exact, SkySample re
 // shadow) and by sky radiance `sky_ambient` (per unit illuminance).
 SkySample sky_hillaire(Atmosphere a, sampler2D t_lut, sampler2D ms_lut, bool exact, vec3 eye,
                        vec3 dir, vec3 sun, int samples, float ground_albedo, vec3 sky_ambient) {
-  SkySample result;
-  result.radiance = vec3(0.0f);
-  result.ground_sun = vec3(0.0f);
-  result.transmittance = vec3(1.0f);
+  SkySample result = sky_sample_start();
   SkyRay ray = sky_ray(a, eye, dir);
   if (ray.length_m < 0.0f) return result;  // looking away from the atmosphere, from space
   float mu = dot(dir, sun);
@@ -249,12 +246,10 @@ SkySample sky_hillaire(Atmosphere a, sampler2D t_lut, sampler2D ms_lut, bool exa
     vec2 t = sky_step(ray.length_m, i, samples);
     vec3 x = ray.origin + dir * (0.5f * (t.x + t.y));
     AtmosphereMedium m = atmosphere_medium(a, length(x) - a.planet_radius_m);
-    vec3 step_t = exp(-m.extinction * (t.y - t.x));
     vec3 t_sun = transmittance_to_light(a, t_lut, exact, x, sun);
     vec3 psi = multiple_scattering_at(a, t_lut, ms_lut, exact, x, sun, ground_albedo);
-    result.radiance += result.transmittance * sky_source(m, phase_r, phase_m, t_sun, psi) *
-                       (vec3(1.0f) - step_t) / max(m.extinction, vec3(1e-12f));
-    result.transmittance *= step_t;
+    result = sky_accumulate(result, m.extinction, t.y - t.x,
+                            sky_source(m, phase_r, phase_m, t_sun, psi));
   }
   if (ray.hits_ground)
     result = sky_add_ground(a, t_lut, exact, result, ray.origin + dir * ray.length_m, sun,

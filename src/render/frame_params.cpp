@@ -1,4 +1,5 @@
 #include "render/frame_params.h"
+#include "nephele/image.h"
 #include "nephele/sky.h"
 #include "sky/stars.h"
 
@@ -135,7 +136,7 @@ float direct_luminance_at_clouds(const Scene& scene, const glm::vec3& dir) {
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
   const glm::vec3 t = glsl::atmosphere_transmittance_to_top(
       atmosphere, cloud_layer_middle(scene, atmosphere.planet_radius_m), dir, 32);
-  return glm::dot(t, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+  return luminance(glm::vec4(t, 0.0f));
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
 #include "render/passes.h"
 
+#include <algorithm>
+
 #include "render/glsl.h"
 #include "render/gpu_params.h"
 #include "sky/stars.h"
-
-#include <algorithm>
 
 namespace nephele {
 
@@ -60,7 +60,8 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_buffer(gpu::kStars, stars, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   auto* star_data = static_cast<gpu::StarGpu*>(stars.data());
   for (const Star& star : star_catalogue())
-    star_data[star_count++] = {glm::vec4(star.dir_j2000, star.vmag), glm::vec4(star.irradiance, star.b_v)};
+    star_data[star_count++] = {glm::vec4(star.dir_j2000, star.vmag),
+                               glm::vec4(star.irradiance, star.b_v)};
   set.bind_image(gpu::kBaseNoiseOut, gpu::kBaseNoise, base_noise);
   set.bind_image(gpu::kDetailNoiseOut, gpu::kDetailNoise, detail_noise);
   set.bind_image(gpu::kWeatherOut, gpu::kWeatherMap, weather_map);
@@ -71,8 +72,8 @@ GpuState::GpuState(gpu::Context& c)
 void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   if (w == width && h == height && cloud_w == cloud_width && cloud_h == cloud_height) return;
   const auto cloud_image = [&] {
-    return gpu::Texture(ctx, uint32_t(cloud_w), uint32_t(cloud_h), 1,
-                        VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    return gpu::Texture(ctx, uint32_t(cloud_w), uint32_t(cloud_h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   };
   // Room for a still image's march of every pixel.
   march_a = cloud_image();
@@ -93,8 +94,8 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   set.bind_storage_image(gpu::kColor, color);
   // Defined contents: filters read neighbours of the texels a frame writes.
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    for (const gpu::Texture* t : {&march_a, &march_b, &range_lo, &range_hi, &clouds_a[0], &clouds_a[1], &clouds_b[0],
-                                  &clouds_b[1], &color})
+    for (const gpu::Texture* t : {&march_a, &march_b, &range_lo, &range_hi, &clouds_a[0],
+                                  &clouds_a[1], &clouds_b[0], &clouds_b[1], &color})
       t->record_clear(cmd);
   });
   current = 1;
@@ -131,8 +132,8 @@ void pass_noise_detail(VkCommandBuffer cmd, GpuState& s) {
 }
 
 void pass_weather(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.weather_kernel, s.set, s.timer, "weather", kWeatherMapSize,
-                kWeatherMapSize, 1, 8, 8, 1);
+  gpu::dispatch(cmd, s.weather_kernel, s.set, s.timer, "weather", kWeatherMapSize, kWeatherMapSize,
+                1, 8, 8, 1);
 }
 
 void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s) {
@@ -145,8 +146,8 @@ void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s) {
 void pass_sky_view(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.sky_view_kernel, s.set, s.timer, "sky_view", kSkyViewWidth, kSkyViewHeight,
                 1, 8, 8, 1);
-  gpu::dispatch(cmd, s.aerial_perspective_kernel, s.set, s.timer, "aerial_persp",
-                glsl::AP_SIZE_U, glsl::AP_SIZE_V, 1, 8, 8, 1);
+  gpu::dispatch(cmd, s.aerial_perspective_kernel, s.set, s.timer, "aerial_persp", glsl::AP_SIZE_U,
+                glsl::AP_SIZE_V, 1, 8, 8, 1);
 }
 
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
@@ -181,12 +182,13 @@ void pass_reference_sky(VkCommandBuffer cmd, GpuState& s) {
 }
 
 void pass_stars(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.stars_kernel, s.set, s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1, 1);
+  gpu::dispatch(cmd, s.stars_kernel, s.set, s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1,
+                1);
 }
 
 void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model) {
-  gpu::dispatch(cmd, model == SkyModel::Reference ? s.compose_reference_kernel : s.compose_kernel, s.set, s.timer, "compose", uint32_t(s.width),
-                uint32_t(s.height), 1, 8, 8, 1);
+  gpu::dispatch(cmd, model == SkyModel::Reference ? s.compose_reference_kernel : s.compose_kernel,
+                s.set, s.timer, "compose", uint32_t(s.width), uint32_t(s.height), 1, 8, 8, 1);
 }
 
 }  // namespace nephele
