@@ -75,18 +75,24 @@ vec2 cloud_precipitate(float coverage, float type, float p) {
 }
 
 // The anvil (seed 002, "shape bias"): cumulonimbus coverage rises towards the top of the layer,
-// so tops spread out; `anvil` in [0, 1] is the share of cumulonimbus.
+// doubling over its top third, so each cell's top spreads out (where there is no cloud there
+// is no anvil); `anvil` in [0, 1] is the share of cumulonimbus.
 float cloud_anvil_coverage(float coverage, float h, float anvil) {
-  return mix(coverage, max(coverage, 0.95f), anvil * smoothstep(0.6f, 0.9f, h));
+  return min(coverage * (1.0f + anvil * smoothstep(0.6f, 0.9f, h)), 1.0f);
 }
 
-// Local coverage in [0, 1] from the weather map's low (R) and high (G) coverage channels and
-// the global coverage c in [0, 1]. c = 0.5 takes the weather map as it is; c -> 0 removes all
-// cloud, c -> 1 covers everything (the seed's WMc = max(R, saturate(c - 0.5) * G * 2) with
-// c rescaled so its ends mean "clear" and "overcast").
-float cloud_local_coverage(float weather_low, float weather_high, float coverage) {
-  float wm = max(weather_low, saturate(coverage - 0.5f) * weather_high * 2.0f);
-  return saturate(wm + 2.0f * coverage - 1.0f);
+// Density height gradient of the default model over the height fraction h within the cloud
+// type's extent: bases at 40% of the tops' density (the seed's h^2 left the lower half of a
+// cumulonimbus a transparent veil seen from below), rising linearly, faded over the last 10%.
+float cloud_type_density_gradient(float h) {
+  return mix(0.4f, 1.0f, h) * saturate(remap(h, 0.9f, 1.0f, 1.0f, 0.0f));
+}
+
+// Local coverage in [0, 1] from the weather map's coverage channel (R) and the layer's coverage
+// c in [0, 1]: c = 0.5 takes the map as it is, c -> 0 removes all cloud, c -> 1 covers
+// everything.
+float cloud_local_coverage(float weather_coverage, float coverage) {
+  return saturate(weather_coverage + 2.0f * coverage - 1.0f);
 }
 
 // Shape from noise and coverage (listing B.1): noise below 1 - coverage is cut away, the rest
