@@ -30,19 +30,36 @@ vec2 cloud_density_pair(vec3 pos) {
   vec4 base = textureLod(base_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.x, 0.0f);
   vec3 d = textureLod(detail_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.y, 0.0f).rgb;
   if (h <= 0.0f || h >= 1.0f) return vec2(0.0f);
-  float coverage = cloud_local_coverage(weather.r, weather.g, frame.cloud_shape.x);
-  float shape_gradient = cloud_shape_gradient(h, weather.b);
-  float density_gradient = cloud_density_gradient(h) * weather.a * 2.0f * frame.cloud_shape.y;
+  // Cloud type (B, around the layer's type) and precipitation (the layer's, doubled in the
+  // map's storm cells, G), which turns any cloud into cumulonimbus.
+  vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, frame.cloud_shape.x),
+                                         saturate(frame.cloud_type.x + weather.b - 0.5f),
+                                         saturate(frame.cloud_type.y * (1.0f + weather.g)));
+  float type = coverage_type.y;
+  float coverage = cloud_anvil_coverage(coverage_type.x, h, cloud_cumulonimbus_share(type));
+  float top = cloud_type_top(type);
+  float h_type = saturate(h / top);  // height fraction within the type's extent
+  // The seed's gradient (thin bases, dense tops; over the type's extent); cumulonimbus fills
+  // towards the flatter one, so a storm's base is dark from below rather than a transparent
+  // veil. The baseline keeps the seed's gradient over the whole layer.
+  float density_gradient =
+      (MARCH_MODE == 1 ? cloud_density_gradient(h)
+                       : mix(cloud_density_gradient(h_type), cloud_type_density_gradient(h_type),
+                             cloud_cumulonimbus_share(type))) *
+      weather.a * 2.0f * frame.cloud_shape.y;
   if (MARCH_MODE == 1) {
+    // The seed's shape gradient, up to the type's top (the seed's "maximum height").
+    float shape_gradient = cloud_shape_gradient(h, top);
     // Seed: low-frequency noise 85% plus detail noise 15%, then coverage and height shape.
     float noise = base.r * 0.85f + d.r * 0.15f;
     float field = cloud_apply_coverage(noise * shape_gradient, coverage) * density_gradient;
     return vec2(field);
   }
-  // Schneider: Worley fBm (GBA) carves the Perlin-Worley (R), coverage cuts, detail erodes.
+  // Schneider: Worley fBm (GBA) carves the Perlin-Worley (R), the type's height gradient
+  // shapes it, coverage cuts, detail erodes.
   float worley = base.g * 0.625f + base.b * 0.25f + base.a * 0.125f;
   float shape = saturate(remap(base.r, worley - 1.0f, 1.0f, 0.0f, 1.0f));
-  shape = cloud_apply_coverage(shape * shape_gradient, coverage);
+  shape = cloud_apply_coverage(shape * cloud_type_gradient(h, type), coverage);
   float eroded = cloud_erode(shape, d.r * 0.625f + d.g * 0.25f + d.b * 0.125f, h,
                              frame.cloud_noise.w);
   return vec2(shape, shape > 0.0f ? eroded : 0.0f) * density_gradient;

@@ -128,9 +128,12 @@ void main() {
   if (block.x >= blocks_x || pixel.x >= width || pixel.y >= height) return;
 
   vec3 eye = frame.camera_pos_m.xyz;
-  vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
-                        frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
-                        float(pixel.y), float(width), float(height));
+  vec3 dir = frame.steps.w == PROJECTION_SKY_DOME
+                 ? sky_dome_ray(normalize(eye), float(pixel.x), float(pixel.y), float(width),
+                                float(height))
+                 : camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz,
+                              frame.camera_up.xyz, frame.camera_pos_m.w, frame.camera_forward.w,
+                              float(pixel.x), float(pixel.y), float(width), float(height));
   vec3 sun = frame.sun_dir.xyz;
   float mu = dot(dir, sun);
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);

@@ -1,6 +1,7 @@
 #version 450
-// Pass 1c: procedural weather map (seed 000, 2.2.2), 2D RGBA, tiles: R low-altitude coverage,
-// G high-altitude coverage, B maximum cloud height (fraction of the layer), A density.
+// Pass 1c: procedural weather map (seed 000, 2.2.2; channels as in seed 002 and Schneider 2015),
+// 2D RGBA, tiles: R coverage, G storm cells (where precipitation doubles), B cloud type around
+// the layer's (B - 0.5 is added to clouds.type), A density.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
@@ -18,8 +19,10 @@ void main() {
   float cells = worley_fbm(uv, 12, seed + 1u);
   float field = perlin_fbm01(uv, 6, 4, seed + 2u);
   float low = saturate(remap(field * 0.55f + cells * 0.65f, 0.45f, 1.0f, 0.0f, 1.0f));
-  float high = saturate(remap(perlin_fbm01(uv, 4, 3, seed + 3u), 0.35f, 0.75f, 0.0f, 1.0f));
-  float height = mix(0.55f, 1.0f, perlin_fbm01(uv, 8, 2, seed + 4u));
+  // A few storm cells where the coverage field peaks; the type varies by +-0.1 around the
+  // layer's.
+  float storms = saturate(remap(perlin_fbm01(uv, 4, 3, seed + 3u) * low, 0.35f, 0.6f, 0.0f, 1.0f));
+  float type = mix(0.4f, 0.6f, perlin_fbm01(uv, 8, 2, seed + 4u));
   float density = mix(0.6f, 1.0f, perlin_fbm01(uv, 5, 2, seed + 5u));
-  imageStore(weather_out, id, vec4(low, high, height, density));
+  imageStore(weather_out, id, vec4(low, storms, type, density));
 }

@@ -75,6 +75,10 @@ std::string stats_to_json(const FrameStats& stats) {
   j["wall_ms"] = stats.wall_ms;
   j["mean_luminance"] = stats.mean_luminance;
   j["cloud_cover_fraction"] = stats.cloud_cover_fraction;
+  if (stats.sky_cover_fraction) {  // still images
+    j["sky_cover_fraction"] = *stats.sky_cover_fraction;
+    j["sky_cover_oktas"] = sky_cover_oktas(*stats.sky_cover_fraction);
+  }
   // Topocentric, geometric (no refraction), azimuth from north through east.
   j["sun_elevation_deg"] = stats.sun.elevation_deg;
   j["sun_azimuth_deg"] = stats.sun.azimuth_deg;

@@ -41,7 +41,7 @@ void check_writable_file(const std::string& path, const std::string& parameter);
 void write_text_file(const std::string& path, const std::string& text);
 
 // The stats of a frame as JSON (device, width, height, frame_ms, mean_luminance,
-// cloud_cover_fraction, wall_ms, passes).
+// cloud_cover_fraction, sky_cover_fraction and oktas for still images, wall_ms, passes).
 std::string stats_to_json(const FrameStats& stats);
 
 }  // namespace nephele::cli

@@ -80,6 +80,11 @@ const std::vector<FlagSpec>& flag_specs() {
        "sunlight scale at the top of the atmosphere, >= 0"},
       {"--coverage", &F::coverage, "clouds.coverage", TO(clouds.coverage), "C",
        "cloud coverage, [0, 1]"},
+      {"--cloud-type", &F::cloud_type, "clouds.type", TO(clouds.type), "T",
+       "cloud type, [0, 1]: 0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus, 1 "
+       "cumulonimbus"},
+      {"--precipitation", &F::precipitation, "clouds.precipitation", TO(clouds.precipitation),
+       "P", "precipitation, [0, 1]: grows cumulonimbus"},
       {"--density", &F::density, "clouds.density", TO(clouds.density), "D",
        "cloud density scale, [0, 1]"},
       {"--cloud-bottom-m", &F::cloud_bottom_m, "clouds.bottom_altitude_m",

@@ -31,10 +31,19 @@ struct FrameStats {
   double wall_ms = 0.0;          // host wall-clock time of render()
   double mean_luminance = 0.0;   // mean relative luminance of the linear HDR image
   double cloud_cover_fraction = 0.0;  // share of above-horizon pixels with cloud T < 0.5
+  // Still images (render()): the share of the whole sky dome above the observer (the upper
+  // hemisphere, wherever the camera looks, 4096 directions of equal solid angle) with cloud
+  // T < 0.5, as an observer reports cloud cover; sky_cover_oktas() turns it into oktas.
+  std::optional<double> sky_cover_fraction;
   std::vector<PassTiming> passes;
   SkyPosition sun;                     // the frame's sun (distance 0 without a time)
   std::optional<Ephemeris> ephemeris;  // sun, moon and sidereal time when the scene has a time
 };
+
+// Cloud cover in oktas (eighths of the sky, WMO code 2700) from the covered share of the sky:
+// 0 only when no cloud at all (under 1/100), 8 only when overcast (over 99/100), otherwise the
+// nearest eighth, at least 1 and at most 7.
+int sky_cover_oktas(double fraction);
 
 struct Frame {
   Image color;          // linear HDR radiance (rgb), a = 1

@@ -66,6 +66,12 @@ struct CloudParams {
   float bottom_altitude_m = 1500.0f;  // cloud layer bottom above ground
   float top_altitude_m = 4000.0f;     // cloud layer top above ground, > bottom
   float coverage = 0.45f;             // [0, 1]; 1 = sky fully covered
+  // Cloud type [0, 1] (seed 002): 0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus,
+  // 1 cumulonimbus, blended in between; the weather map's B channel adds B - 0.5.
+  float type = 0.75f;
+  // Precipitation [0, 1] (seed 002): turns the clouds into cumulonimbus at 70% coverage or more;
+  // doubled in the weather map's storm cells (G).
+  float precipitation = 0.0f;
   float density = 0.5f;               // [0, 1]; scales the cloud density field (seed u_density)
   float extinction_per_m = 1.0f;      // sigma_t at density field value 1 (1/m), > 0
   float attenuation = 1.0f;           // multiplier on sigma_t along view rays (seed u_attenuation)

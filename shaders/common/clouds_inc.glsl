@@ -30,7 +30,7 @@ float cloud_density_gradient(float h) {
 //   t = 0     stratus         flat sheet at the base       0.00-0.05 ... 0.12-0.22
 //   t = 0.25  stratocumulus   low lumpy layer              0.00-0.08 ... 0.28-0.42
 //   t = 0.5   altocumulus     band high in the layer       0.30-0.42 ... 0.58-0.72
-//   t = 0.75  cumulus         flat base, rounded tops      0.00-0.07 ... 0.40-0.70
+//   t = 0.75  cumulus         flat base, rounded tops      0.00-0.07 ... 0.25-0.80
 //   t = 1     cumulonimbus    the whole layer, anvil top   0.00-0.05 ... 0.92-1.00
 // Neighbouring genera blend linearly, so precipitation (which pushes t towards 1) grows
 // cumulus into cumulonimbus.
@@ -44,7 +44,7 @@ vec4 cloud_genus_profile(int genus) {
   if (genus == 0) return vec4(0.0f, 0.05f, 0.12f, 0.22f);
   if (genus == 1) return vec4(0.0f, 0.08f, 0.28f, 0.42f);
   if (genus == 2) return vec4(0.30f, 0.42f, 0.58f, 0.72f);
-  if (genus == 3) return vec4(0.0f, 0.07f, 0.40f, 0.70f);
+  if (genus == 3) return vec4(0.0f, 0.07f, 0.25f, 0.80f);
   return vec4(0.0f, 0.05f, 0.92f, 1.0f);
 }
 
@@ -75,18 +75,24 @@ vec2 cloud_precipitate(float coverage, float type, float p) {
 }
 
 // The anvil (seed 002, "shape bias"): cumulonimbus coverage rises towards the top of the layer,
-// so tops spread out; `anvil` in [0, 1] is the share of cumulonimbus.
+// doubling over its top third, so each cell's top spreads out (where there is no cloud there
+// is no anvil); `anvil` in [0, 1] is the share of cumulonimbus.
 float cloud_anvil_coverage(float coverage, float h, float anvil) {
-  return mix(coverage, max(coverage, 0.95f), anvil * smoothstep(0.6f, 0.9f, h));
+  return min(coverage * (1.0f + anvil * smoothstep(0.6f, 0.9f, h)), 1.0f);
 }
 
-// Local coverage in [0, 1] from the weather map's low (R) and high (G) coverage channels and
-// the global coverage c in [0, 1]. c = 0.5 takes the weather map as it is; c -> 0 removes all
-// cloud, c -> 1 covers everything (the seed's WMc = max(R, saturate(c - 0.5) * G * 2) with
-// c rescaled so its ends mean "clear" and "overcast").
-float cloud_local_coverage(float weather_low, float weather_high, float coverage) {
-  float wm = max(weather_low, saturate(coverage - 0.5f) * weather_high * 2.0f);
-  return saturate(wm + 2.0f * coverage - 1.0f);
+// Density height gradient of the default model over the height fraction h within the cloud
+// type's extent: bases at 40% of the tops' density (the seed's h^2 left the lower half of a
+// cumulonimbus a transparent veil seen from below), rising linearly, faded over the last 10%.
+float cloud_type_density_gradient(float h) {
+  return mix(0.4f, 1.0f, h) * saturate(remap(h, 0.9f, 1.0f, 1.0f, 0.0f));
+}
+
+// Local coverage in [0, 1] from the weather map's coverage channel (R) and the layer's coverage
+// c in [0, 1]: c = 0.5 takes the map as it is, c -> 0 removes all cloud, c -> 1 covers
+// everything.
+float cloud_local_coverage(float weather_coverage, float coverage) {
+  return saturate(weather_coverage + 2.0f * coverage - 1.0f);
 }
 
 // Shape from noise and coverage (listing B.1): noise below 1 - coverage is cut away, the rest

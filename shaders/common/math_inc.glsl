@@ -41,6 +41,20 @@ vec3 camera_ray(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float asp
   return normalize(forward + sx * right + sy * up);
 }
 
+// The sky dome's ray through cell (x, y) of a width x height grid: the cells split the upper
+// hemisphere around `zenith` into equal solid angles (rows uniform in the cosine of the zenith
+// angle, columns in azimuth), so counting cells measures a share of the sky as an observer
+// reports it (oktas).
+vec3 sky_dome_ray(vec3 zenith, float x, float y, float width, float height) {
+  vec3 any_axis = abs(zenith.z) < 0.9f ? vec3(0.0f, 0.0f, 1.0f) : vec3(1.0f, 0.0f, 0.0f);
+  vec3 east = normalize(cross(any_axis, zenith));
+  vec3 north = cross(zenith, east);
+  float cos_zenith = (y + 0.5f) / height;
+  float sin_zenith = sqrt(max(1.0f - cos_zenith * cos_zenith, 0.0f));
+  float azimuth = 6.2831853f * (x + 0.5f) / width;
+  return sin_zenith * (cos(azimuth) * east + sin(azimuth) * north) + cos_zenith * zenith;
+}
+
 // Inverse of camera_ray: the continuous pixel coordinates (pixel centres at integers) where the
 // unit direction `dir` meets the image; (-1e9, -1e9) for directions behind the camera.
 vec2 camera_pixel(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float aspect, vec3 dir,

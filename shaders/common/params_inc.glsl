@@ -37,6 +37,8 @@ struct FrameParams {
   vec4 cloud_shape;         // x coverage [0,1], y density [0,1], z sigma_t at density 1 (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
   vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w unused
+  vec4 cloud_type;          // x type [0, 1] (common/clouds_inc.glsl), y precipitation [0, 1],
+                            // zw unused
   vec4 cloud_noise;         // x 1/base period, y 1/detail period, z 1/weather period (1/m), w erosion
   vec4 wind_offset_m;       // xy wind displacement (m) = wind * time; zw the previous frame's
   vec4 prev_camera_pos_m;   // the previous frame's camera, as camera_pos_m ... camera_up
@@ -45,7 +47,7 @@ struct FrameParams {
   vec4 prev_camera_up;
   vec4 light_volume;        // xy centre in cloud space (m), z half extent (m), w 1 when in use
   ivec4 size;               // x width, y height, z frame index, w noise seed
-  ivec4 steps;              // x primary steps, y light steps, z sky view samples, w unused
+  ivec4 steps;              // x primary steps, y light steps, z sky view samples, w PROJECTION_*
   vec4 sun_transmittance;   // rgb transmittance from the camera towards the sun's centre (0 when
                             // the planet hides it): the sun disk's colour; w unused
   vec4 sky_view_up;         // sky-view LUT frame (common/sky_view_inc.glsl): xyz local zenith at
@@ -84,6 +86,10 @@ struct FrameParams {
   vec4 conditions_fog;       // rgb fog on clouds and ground; w fog far (m)
   vec4 conditions_light;     // rgb the key light on the ground (artist mode); w unused
 };
+
+// FrameParams::steps.w: how the clouds pass turns its pixels into rays.
+const int PROJECTION_CAMERA = 0;    // the camera's perspective
+const int PROJECTION_SKY_DOME = 1;  // the observer's upper hemisphere (sky_dome_ray)
 
 // FrameParams::sky_model.z: what fills the sky.
 const int SKY_MODEL_HILLAIRE = 0;   // Hillaire 2020 LUTs (the default)

@@ -337,6 +337,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   f.cloud_light = glm::vec4(c.attenuation, c.light_attenuation, c.powder_strength,
                             c.ambient_strength);
   f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight, 0.0f);
+  f.cloud_type = glm::vec4(c.type, c.precipitation, 0.0f, 0.0f);
   f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
                             1.0f / c.weather_period_m, c.detail_erosion);
   f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);
@@ -394,7 +395,7 @@ SkyViewKey sky_view_key(const gpu::FrameParams& f) {
           .ozone = f.ozone,
           .sky_model = f.sky_model,
           .radii_m = glm::vec2(f.radii_m),
-          .samples = glm::ivec2(f.steps.z, f.steps.w)};
+          .samples = f.steps.z};
 }
 
 }  // namespace nephele

@@ -98,7 +98,7 @@ struct SkyViewKey {
   glm::vec4 second_light;
   glm::vec4 rayleigh, mie, ozone, sky_model;
   glm::vec2 radii_m;   // planet, atmosphere top
-  glm::ivec2 samples;  // sky view samples, unused (FrameParams::steps.zw)
+  int samples;  // sky view samples (FrameParams::steps.z)
   bool operator==(const SkyViewKey&) const = default;
 };
 SkyViewKey sky_view_key(const gpu::FrameParams& f);

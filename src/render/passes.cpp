@@ -51,6 +51,9 @@ GpuState::GpuState(gpu::Context& c)
       reference_psi(c, gpu::REFERENCE_TILE, gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES,
                     VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set.bind_image(gpu::kReferencePsiOut, gpu::kReferencePsi, reference_psi);
+  for (gpu::Texture* t : {&dome_a, &dome_b})
+    *t = gpu::Texture(c, kSkyDomeSize, kSkyDomeSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   resize_reference_sky(1, 1);
   set.bind_image(gpu::kTransmittanceLutOut, gpu::kTransmittanceLut, transmittance_lut);
   set.bind_image(gpu::kMsLutOut, gpu::kMsLut, ms_lut);
@@ -86,8 +89,7 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   }
   color = gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-  set.bind_image(gpu::kMarchAOut, gpu::kMarchA, march_a);
-  set.bind_image(gpu::kMarchBOut, gpu::kMarchB, march_b);
+  bind_march(false);
   set.bind_storage_image(gpu::kRangeLo, range_lo);
   set.bind_storage_image(gpu::kRangeHi, range_hi);
   set.bind_storage_image(gpu::kColorOut, color);
@@ -104,6 +106,11 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   height = h;
   cloud_width = cloud_w;
   cloud_height = cloud_h;
+}
+
+void GpuState::bind_march(bool sky_dome) {
+  set.bind_image(gpu::kMarchAOut, gpu::kMarchA, sky_dome ? dome_a : march_a);
+  set.bind_image(gpu::kMarchBOut, gpu::kMarchB, sky_dome ? dome_b : march_b);
 }
 
 void GpuState::resize_reference_sky(int w, int h) {
@@ -156,6 +163,12 @@ void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
   const auto blocks = [&](int n) { return uint32_t((n + s.stride - 1) / s.stride); };
   gpu::dispatch(cmd, kernel, s.set, s.timer, "clouds", blocks(s.cloud_width),
                 blocks(s.cloud_height), 1, 8, 8, 1);
+}
+
+void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
+  const gpu::Kernel& kernel =
+      mode == MarchMode::Baseline ? s.clouds_baseline_kernel : s.clouds_default_kernel;
+  gpu::dispatch(cmd, kernel, s.set, s.timer, "sky_dome", kSkyDomeSize, kSkyDomeSize, 1, 8, 8, 1);
 }
 
 void pass_march_range(VkCommandBuffer cmd, GpuState& s) {

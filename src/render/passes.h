@@ -17,6 +17,9 @@ constexpr uint32_t kWeatherMapSize = 512;   // procedural weather map 512^2
 // tables (radiance, sun-lit ground), so it is kSkyViewWidth x 2 kSkyViewHeight.
 constexpr uint32_t kSkyViewWidth = 256;
 constexpr uint32_t kSkyViewHeight = 108;
+// The sky dome (sky_dome_ray): kSkyDomeSize^2 directions of equal solid angle over the
+// observer's upper hemisphere, where sky_cover_fraction is measured.
+constexpr uint32_t kSkyDomeSize = 64;
 
 // Everything the passes read and write.
 struct GpuState {
@@ -25,6 +28,8 @@ struct GpuState {
   void resize(int width, int height, int cloud_width, int cloud_height);
   // The cloud buffer just written becomes the history of the next frame.
   void swap_history();
+  // Points the clouds pass's outputs at the sky dome's images (true) or the marched samples.
+  void bind_march(bool sky_dome);
 
   gpu::Context& ctx;
   gpu::DescriptorSet set;
@@ -47,6 +52,7 @@ struct GpuState {
   // Per-pixel images (bindings_inc.glsl): the marched samples (A, B), the cloud buffer of this
   // frame and of the previous one (history), and the final image.
   gpu::Texture march_a, march_b, range_lo, range_hi;
+  gpu::Texture dome_a, dome_b;  // the clouds pass over the sky dome (bind_march)
   gpu::Texture clouds_a[2], clouds_b[2];
   gpu::Texture color;
   int current = 0;  // index of this frame's cloud buffer
@@ -63,6 +69,9 @@ void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s);
 // the aerial-perspective volume, which share its frame.
 void pass_sky_view(VkCommandBuffer cmd, GpuState& s);
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
+// The clouds pass over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME), into dome_a
+// and dome_b (bind_march(true) first).
+void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
 void pass_march_range(VkCommandBuffer cmd, GpuState& s);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s);

@@ -2,7 +2,9 @@
 #include "nephele/renderer.h"
 #include "nephele/sky.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <optional>
@@ -55,6 +57,9 @@ struct Renderer::Impl {
   void render_reference_sky(gpu::FrameParams params);
 
   Frame render_frame(const Scene& scene, bool still, bool read_back);
+  // The clouds pass over the sky dome (after a frame, with its parameters and textures):
+  // the share of the observer's upper hemisphere with cloud T < 0.5, and the pass's time.
+  double measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms);
 
   void update_textures(const Scene& scene);
   void upload_weather_png(const std::string& path);
@@ -262,6 +267,31 @@ bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& ke
   return stale;
 }
 
+double Renderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms) {
+  params.steps.w = gpu::PROJECTION_SKY_DOME;
+  params.cloud_grid = glm::ivec4(kSkyDomeSize, kSkyDomeSize, 1, 0);
+  params.march_offset = glm::ivec4(0, 0, 0, 1);
+  std::memcpy(state.frame_params.data(), &params, sizeof(params));
+  state.bind_march(true);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    state.timer.reset(cmd);
+    pass_sky_dome(cmd, state, mode);
+  });
+  state.bind_march(false);
+  ms = 0.0;
+  for (const auto& [name, pass_ms] : state.timer.results()) ms += pass_ms;
+  const Image dome = download(ctx, state.dome_a, false);
+  const auto covered = std::count_if(dome.pixels.begin(), dome.pixels.end(),
+                                     [](const glm::vec4& p) { return p.a < 0.5f; });
+  return double(covered) / double(dome.pixels.size());
+}
+
+int sky_cover_oktas(double fraction) {
+  if (fraction < 0.01) return 0;
+  if (fraction > 0.99) return 8;
+  return std::clamp(int(std::lround(fraction * 8.0)), 1, 7);
+}
+
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {
   impl_->verbose = options.verbose;
 }
@@ -361,6 +391,11 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
     for (const glm::vec4& p : frame.color.pixels) sum += luminance(p);
     stats.mean_luminance = sum / double(frame.color.pixels.size());
     stats.cloud_cover_fraction = cloud_cover_fraction(scene, frame.clouds);
+  }
+  if (still && read_back) {
+    double ms = 0.0;
+    stats.sky_cover_fraction = measure_sky_cover(params, scene.quality.mode, ms);
+    stats.passes.push_back({"sky_dome", ms});
   }
   stats.wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

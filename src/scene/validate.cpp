@@ -163,6 +163,8 @@ void check_clouds(const Checker& check, const CloudParams& clouds) {
   check.less_than("clouds.bottom_altitude_m", clouds.bottom_altitude_m, "clouds.top_altitude_m",
                   clouds.top_altitude_m);
   check.in_range("clouds.coverage", clouds.coverage, 0.0f, 1.0f);
+  check.in_range("clouds.type", clouds.type, 0.0f, 1.0f);
+  check.in_range("clouds.precipitation", clouds.precipitation, 0.0f, 1.0f);
   check.in_range("clouds.density", clouds.density, 0.0f, 1.0f);
   check.positive("clouds.extinction_per_m", clouds.extinction_per_m);
   check.non_negative("clouds.attenuation", clouds.attenuation);

@@ -138,12 +138,11 @@ TEST(Noise, FbmTilesOverTheUnitCube) {
 }
 
 TEST(CloudModel, CoverageEndsMeanClearAndOvercast) {
-  for (float r : {0.0f, 0.3f, 0.99f})
-    for (float gr : {0.0f, 0.7f}) {
-      EXPECT_EQ(g::cloud_local_coverage(r, gr, 0.0f), 0.0f);
-      EXPECT_EQ(g::cloud_local_coverage(r, gr, 1.0f), 1.0f);
-    }
-  EXPECT_FLOAT_EQ(g::cloud_local_coverage(0.4f, 0.9f, 0.5f), 0.4f);  // the map as it is
+  for (float r : {0.0f, 0.3f, 0.99f}) {
+    EXPECT_EQ(g::cloud_local_coverage(r, 0.0f), 0.0f);
+    EXPECT_EQ(g::cloud_local_coverage(r, 1.0f), 1.0f);
+  }
+  EXPECT_FLOAT_EQ(g::cloud_local_coverage(0.4f, 0.5f), 0.4f);  // the map as it is
   EXPECT_EQ(g::cloud_apply_coverage(0.9f, 0.0f), 0.0f);
   EXPECT_FLOAT_EQ(g::cloud_apply_coverage(0.7f, 1.0f), 0.7f);
   EXPECT_EQ(g::cloud_apply_coverage(0.2f, 0.5f), 0.0f);  // noise below 1 - coverage is cut
@@ -208,4 +207,47 @@ TEST(Atmosphere, SkyIsBlueAtNoonAndRedderNearTheHorizonAtSunset) {
                                vec3(0))
           .radiance;
   EXPECT_GT(toward_sun.r / toward_sun.b, zenith.r / zenith.b * 3.0f);
+}
+
+// The five genera's height gradients (seed 002): each is 1 in its core and 0 well outside it,
+// the cores in the order of their heights, and neighbours blend.
+TEST(CloudTypes, EachGenusSitsAtItsHeight) {
+  struct Genus {
+    float type, core_lo, core_hi, empty_above;
+  };
+  // type, a height fraction range inside the core, the height above which it is empty.
+  const Genus genera[] = {{0.0f, 0.05f, 0.12f, 0.22f},   // stratus
+                          {0.25f, 0.08f, 0.28f, 0.42f},  // stratocumulus
+                          {0.5f, 0.42f, 0.58f, 0.72f},   // altocumulus
+                          {0.75f, 0.07f, 0.25f, 0.80f},  // cumulus
+                          {1.0f, 0.05f, 0.92f, 1.0f}};   // cumulonimbus
+  for (const Genus& gen : genera) {
+    for (float h = gen.core_lo; h <= gen.core_hi; h += 0.01f)
+      EXPECT_FLOAT_EQ(g::cloud_type_gradient(h, gen.type), 1.0f) << gen.type << " at " << h;
+    for (float h = gen.empty_above; h <= 1.0f; h += 0.01f)
+      EXPECT_EQ(g::cloud_type_gradient(h, gen.type), 0.0f) << gen.type << " at " << h;
+    EXPECT_FLOAT_EQ(g::cloud_type_top(gen.type), gen.empty_above);
+  }
+  EXPECT_EQ(g::cloud_type_gradient(0.2f, 0.5f), 0.0f);  // altocumulus leaves the base empty
+  // Halfway between stratus and stratocumulus: half of each.
+  EXPECT_FLOAT_EQ(g::cloud_type_gradient(0.3f, 0.125f),
+                  0.5f * g::cloud_type_gradient(0.3f, 0.25f));
+  EXPECT_EQ(g::cloud_cumulonimbus_share(0.75f), 0.0f);
+  EXPECT_EQ(g::cloud_cumulonimbus_share(1.0f), 1.0f);
+}
+
+// Precipitation turns any sky into cumulonimbus at 70% coverage or more (seed 002); the anvil
+// spreads coverage at the top of cumulonimbus only.
+TEST(CloudTypes, PrecipitationMakesCumulonimbusWithAnAnvil) {
+  const vec2 dry = g::cloud_precipitate(0.3f, 0.25f, 0.0f);
+  EXPECT_FLOAT_EQ(dry.x, 0.3f);
+  EXPECT_FLOAT_EQ(dry.y, 0.25f);
+  const vec2 storm = g::cloud_precipitate(0.3f, 0.25f, 1.0f);
+  EXPECT_FLOAT_EQ(storm.x, 0.7f);
+  EXPECT_FLOAT_EQ(storm.y, 1.0f);
+  EXPECT_FLOAT_EQ(g::cloud_precipitate(0.9f, 0.0f, 1.0f).x, 0.9f);  // never less cloud
+  EXPECT_FLOAT_EQ(g::cloud_anvil_coverage(0.5f, 0.95f, 0.0f), 0.5f);
+  EXPECT_FLOAT_EQ(g::cloud_anvil_coverage(0.5f, 0.3f, 1.0f), 0.5f);
+  EXPECT_FLOAT_EQ(g::cloud_anvil_coverage(0.4f, 0.95f, 1.0f), 0.8f);
+  EXPECT_EQ(g::cloud_anvil_coverage(0.0f, 0.95f, 1.0f), 0.0f);  // no cell, no anvil
 }
