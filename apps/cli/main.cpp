@@ -1,10 +1,11 @@
-// nephele — command-line tool: render a scene to PNG/EXR, run the benchmark, list presets.
+// nephele — command-line tool: render a scene to PNG/EXR, run the benchmark, render the preset gallery, list presets.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <iostream>
 
 #include "bench.h"
+#include "gallery.h"
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
 #include "render_command.h"
@@ -22,6 +23,11 @@ int main(int argc, char** argv) {
   CLI::App* bench_cmd = app.add_subcommand(
       "bench", "frame rate against density, coverage and resolution (seed 000 section 4)");
   nephele::cli::add_bench_flags(*bench_cmd, bench);
+
+  nephele::cli::GalleryOptions gallery;
+  CLI::App* gallery_cmd = app.add_subcommand(
+      "gallery", "the sky-cover presets (clear to overcast, stratus, storm, cirrus, sunset) side by side, labelled with their measured oktas");
+  nephele::cli::add_gallery_flags(*gallery_cmd, gallery);
 
   CLI::App* presets_cmd = app.add_subcommand("presets", "list the built-in scene presets");
 
@@ -41,6 +47,7 @@ int main(int argc, char** argv) {
   try {
     if (render_cmd->parsed()) return nephele::cli::run_render(render);
     if (bench_cmd->parsed()) return nephele::cli::run_bench(bench);
+    if (gallery_cmd->parsed()) return nephele::cli::run_gallery(gallery);
     if (presets_cmd->parsed()) {
       for (const std::string& name : nephele::preset_names()) std::cout << name << "\n";
       return 0;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <stb/stb_image.h>
 
 namespace fs = std::filesystem;
 
@@ -70,11 +71,26 @@ TEST_F(CliTest, RendersPngAndStatsJson) {
   EXPECT_GT(fs::file_size(out), 100u);
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
   for (const char* key : {"device", "width", "height", "frame_ms", "mean_luminance",
-                          "cloud_cover_fraction"})
+                          "cloud_cover_fraction", "sky_cover_fraction", "sky_cover_oktas"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["width"], 64);
   EXPECT_EQ(j["height"], 40);
   EXPECT_GT(j["mean_luminance"].get<double>(), 0.0);
+}
+
+// One command renders the presets side by side: a grid of tiles (3 columns, a 4-pixel gap).
+TEST_F(CliTest, GalleryRendersThePresetsInOneImage) {
+  const std::string out = path("gallery.png");
+  const CliRun r = run_cli("gallery --tile-width 48 --tile-height 32 --validation -o " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  int w = 0, h = 0, n = 0;
+  ASSERT_TRUE(stbi_info(out.c_str(), &w, &h, &n));
+  EXPECT_EQ(w, 3 * 48 + 2 * 4);
+  EXPECT_EQ(h, 3 * 32 + 2 * 4);
+  const CliRun bad = run_cli("gallery --columns 0 -o " + path("bad.png"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("--columns 0: must be in [1, 16]"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
 TEST_F(CliTest, StatsJsonGivesTheSunAndMoonOfTheDateAndPlace) {

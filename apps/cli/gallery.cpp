@@ -1,0 +1,134 @@
+#include "gallery.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#define STB_EASY_FONT_IMPLEMENTATION
+#include <stb/stb_easy_font.h>
+
+#include "nephele/error.h"
+#include "nephele/image.h"
+#include "nephele/renderer.h"
+#include "nephele/scene_io.h"
+#include "render_command.h"
+
+namespace nephele::cli {
+
+namespace {
+
+struct GalleryEntry {
+  const char* preset;
+  OktaRange oktas;
+};
+
+const std::vector<GalleryEntry>& entries() {
+  static const std::vector<GalleryEntry> table = {
+      {"clear", {0, 0}},     {"few", {1, 2}},     {"scattered", {3, 4}},
+      {"broken", {5, 7}},    {"overcast", {8, 8}}, {"stratus", {7, 8}},
+      {"cumulonimbus-storm", {4, 8}}, {"sunset-cumulus", {3, 4}}};
+  return table;
+}
+
+// Draws `text` with stb_easy_font at (x, y), `scale` pixels per font unit, on a dark box.
+void draw_label(Image& image, int x, int y, const std::string& text, int scale) {
+  static char quads[64 * 1024];
+  const int n = stb_easy_font_print(0.0f, 0.0f, const_cast<char*>(text.c_str()), nullptr, quads,
+                                    sizeof quads);
+  const int box_w = (stb_easy_font_width(const_cast<char*>(text.c_str())) + 4) * scale;
+  const int box_h = 12 * scale;
+  for (int py = y; py < std::min(y + box_h, image.height); ++py)
+    for (int px = x; px < std::min(x + box_w, image.width); ++px)
+      image.at(px, py) = glm::vec4(glm::vec3(image.at(px, py)) * 0.25f, 1.0f);
+  // Each quad: four vertices of x, y, z (floats) and a colour (4 bytes), 16 bytes each.
+  const auto* v = reinterpret_cast<const float*>(quads);
+  for (int q = 0; q < n; ++q, v += 16) {
+    const int x0 = x + (2 + int(v[0])) * scale, y0 = y + (2 + int(v[1])) * scale;
+    const int x1 = x + (2 + int(v[8])) * scale, y1 = y + (2 + int(v[9])) * scale;
+    for (int py = std::max(y0, 0); py < std::min(y1, image.height); ++py)
+      for (int px = std::max(x0, 0); px < std::min(x1, image.width); ++px)
+        image.at(px, py) = glm::vec4(50.0f, 50.0f, 50.0f, 1.0f);  // white after tone mapping
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& gallery_presets() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const GalleryEntry& e : entries()) out.push_back(e.preset);
+    return out;
+  }();
+  return names;
+}
+
+OktaRange gallery_okta_range(const std::string& preset) {
+  for (const GalleryEntry& e : entries())
+    if (preset == e.preset) return e.oktas;
+  throw InputError("'" + preset + "' is not a gallery preset");
+}
+
+void add_gallery_flags(CLI::App& cmd, GalleryOptions& options) {
+  cmd.add_option("-o,--output", options.output, "image to write: .png or .exr")
+      ->capture_default_str();
+  cmd.add_option("--tile-width", options.tile_width, "width of each preset's tile (pixels), [16, 4096]")
+      ->capture_default_str();
+  cmd.add_option("--tile-height", options.tile_height, "height of each tile (pixels), [16, 4096]")
+      ->capture_default_str();
+  cmd.add_option("--columns", options.columns, "tiles per row, [1, 16]")->capture_default_str();
+  add_device_flags(cmd, options.device, options.verbose, options.validation);
+}
+
+int run_gallery(const GalleryOptions& options) {
+  const auto check = [](const char* flag, int value, int lo, int hi) {
+    if (value < lo || value > hi)
+      throw InputError(std::string(flag) + " " + std::to_string(value) + ": must be in [" +
+                       std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  };
+  check("--tile-width", options.tile_width, 16, 4096);
+  check("--tile-height", options.tile_height, 16, 4096);
+  check("--columns", options.columns, 1, 16);
+  check_output_path(options.output, "--output");
+
+  const std::vector<std::string>& names = gallery_presets();
+  const int columns = std::min(options.columns, int(names.size()));
+  const int rows = (int(names.size()) + columns - 1) / columns;
+  const int gap = 4;
+  Image gallery(columns * options.tile_width + (columns - 1) * gap,
+                rows * options.tile_height + (rows - 1) * gap);
+  for (glm::vec4& p : gallery.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  const int scale = options.tile_height >= 200 ? 2 : 1;
+
+  Renderer renderer({options.device, options.validation, options.verbose});
+  for (size_t i = 0; i < names.size(); ++i) {
+    Scene scene = load_preset(names[i]);
+    scene.output.width = options.tile_width;
+    scene.output.height = options.tile_height;
+    const Frame frame = renderer.render(scene);
+    const float exposure = scene.output.auto_exposure
+                               ? auto_exposure(scene.output.exposure, frame.stats.mean_luminance)
+                               : scene.output.exposure;
+    const int x0 = int(i % columns) * (options.tile_width + gap);
+    const int y0 = int(i / columns) * (options.tile_height + gap);
+    for (int y = 0; y < options.tile_height; ++y)
+      for (int x = 0; x < options.tile_width; ++x)
+        gallery.at(x0 + x, y0 + y) = glm::vec4(glm::vec3(frame.color.at(x, y)) * exposure, 1.0f);
+    const double cover = frame.stats.sky_cover_fraction.value_or(0.0);
+    char label[160];
+    std::snprintf(label, sizeof label, "%s  %d/8 (%.2f)", names[i].c_str(),
+                  sky_cover_oktas(cover), cover);
+    draw_label(gallery, x0, y0, label, scale);
+    if (options.verbose) std::fprintf(stderr, "nephele: gallery %s\n", label);
+  }
+  if (options.validation && renderer.validation_messages() > 0) {
+    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
+    return 1;
+  }
+  write_image(gallery, options.output, 1.0f);
+  std::cout << options.output << "\n";
+  return 0;
+}
+
+}  // namespace nephele::cli

@@ -1,0 +1,35 @@
+// `nephele gallery`: the sky-cover presets rendered side by side in one labelled image.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace nephele::cli {
+
+// The presets of the gallery, in its order: the okta presets from clear to overcast, then the
+// named skies.
+const std::vector<std::string>& gallery_presets();
+
+// The okta range [lo, hi] a gallery preset stands for (sky_cover_oktas): clear 0, few 1-2,
+// scattered 3-4, broken 5-7, overcast 8; the named skies have their own.
+struct OktaRange {
+  int lo = 0, hi = 8;
+};
+OktaRange gallery_okta_range(const std::string& preset);
+
+struct GalleryOptions {
+  std::string output = "gallery.png";
+  int tile_width = 400, tile_height = 250, columns = 3;
+  std::string device;
+  bool verbose = false;
+  bool validation = false;
+};
+
+void add_gallery_flags(CLI::App& cmd, GalleryOptions& options);
+int run_gallery(const GalleryOptions& options);
+
+}  // namespace nephele::cli
