@@ -33,8 +33,8 @@ vec2 cloud_density_pair(vec3 pos) {
   // Cloud type (B, around the layer's type) and precipitation (the layer's, doubled in the
   // map's storm cells, G), which turns any cloud into cumulonimbus.
   vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, frame.cloud_shape.x),
-                                         saturate(frame.cloud_type.x + weather.b - 0.5f),
-                                         saturate(frame.cloud_type.y * 2.0f * weather.g));
+                                         saturate(frame.cloud_weather.x + weather.b - 0.5f),
+                                         saturate(frame.cloud_weather.y * 2.0f * weather.g));
   float type = coverage_type.y;
   float coverage = cloud_anvil_coverage(coverage_type.x, h, cloud_cumulonimbus_share(type));
   float top = cloud_type_top(type);

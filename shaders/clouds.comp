@@ -23,6 +23,7 @@ layout(constant_id = 0) const int MARCH_MODE = 0;
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"
+#include "cirrus_inc.glsl"
 
 const float FAR_M = 1.0e7f;  // distance written for rays that meet neither cloud nor ground
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
@@ -139,8 +140,13 @@ void main() {
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   vec2 segment = shell_segment(eye, dir, ground);
   float shadow = ground_shadow(eye, dir, sun, ground);
+  // The sky dome counts cloud of any kind as an observer does: a visible cirrus sheet
+  // (vertical optical depth 0.03 or more) covers its direction as thick cloud does.
+  float cirrus_m = frame.steps.w == PROJECTION_SKY_DOME ? cirrus_distance(eye, dir) : 0.0f;
+  bool cirrus_covers = cirrus_m > 0.0f && cirrus_optical_depth(eye + dir * cirrus_m) >= 0.03f;
   if (segment.y <= segment.x) {
-    write_sample(block, vec3(0.0f), 1.0f, 0.0f, shadow, ground.x > 0.0f ? ground.x : FAR_M);
+    write_sample(block, vec3(0.0f), cirrus_covers ? 0.0f : 1.0f, 0.0f, shadow,
+                 ground.x > 0.0f ? ground.x : FAR_M);
     return;
   }
   float eye_alt_m = length(eye) - frame.radii_m.x;
@@ -296,6 +302,7 @@ void main() {
     if (transmittance.x < 0.01f) transmittance = vec3(0.0f);
   }
   float t_mean = (transmittance.r + transmittance.g + transmittance.b) / 3.0f;
+  if (cirrus_covers) t_mean = 0.0f;
   float opacity = 1.0f - (MARCH_MODE == 1 ? transmittance.g : transmittance.x);
   // Where the pixel's content is, for reprojection: the cloud's opacity-weighted distance,
   // else the ground, else the middle of the cloud shell along the ray.

@@ -3,7 +3,8 @@
 // the sun disk with limb darkening and the moon disk with its phase drawn separately so clouds
 // occlude them, and the clouds over both: color = background * T_cloud + cloud in-scattering
 // (seed listing B.3), plus the haze in front of distant clouds, coloured by the
-// aerial-perspective volume at the cloud's distance.
+// aerial-perspective volume at the cloud's distance; the cirrus sheet behind the clouds or in
+// front of them (cirrus_inc.glsl).
 // REFERENCE (specialization constant) 1: the sky comes per pixel from the brute-force reference
 // (sky_reference.comp), which the LUT path is checked against.
 #extension GL_GOOGLE_include_directive : require
@@ -14,6 +15,8 @@
 #include "common/atmosphere_lut_inc.glsl"
 #include "common/sky_view_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
+#include "common/clouds_inc.glsl"
+#include "cirrus_inc.glsl"
 
 layout(constant_id = 0) const int REFERENCE = 0;
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -46,6 +49,22 @@ float moon_disk(vec3 dir) {
   vec3 normal = q - m * mu;  // the surface normal facing the viewer
   float mu0 = max(dot(normal, frame.moon_sun_dir.xyz), 0.0f);
   return 2.0f * mu0 / max(mu0 + mu, 1e-6f) + frame.moon_sun_dir.w;
+}
+
+// The sheet along the view ray from `eye`: rgb the light it scatters towards the eye per unit
+// key-light illuminance (single scattering of the key light through the atmosphere's
+// transmittance at the sheet, ice crystals' forward-peaked phase, plus the sky's ambient);
+// a its transmittance; and the distance to it (m) in `distance_m` (0: not crossed).
+vec4 cirrus_layer(Atmosphere atmo, vec3 eye, vec3 dir, out float distance_m) {
+  distance_m = cirrus_distance(eye, dir);
+  if (distance_m <= 0.0f) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  vec3 p = eye + dir * distance_m;
+  float transmittance = cirrus_transmittance(cirrus_optical_depth(p), dot(dir, normalize(p)));
+  vec3 sun = frame.sun_dir.xyz;
+  vec3 sun_t = transmittance_to_light(atmo, transmittance_lut, false, p, sun);
+  float phase = dual_lobe_hg(0.75f, -0.25f, 0.85f, dot(dir, sun));
+  vec3 ambient = frame.ambient_at_clouds.rgb / max(frame.sun_illuminance.rgb, vec3(1e-30f));
+  return vec4((1.0f - transmittance) * (sun_t * phase + ambient), transmittance);
 }
 
 // Linear fog ramps of the time-of-day keyframes: 1 at and below `start_deg`, 0 at and above
@@ -134,6 +153,20 @@ void main() {
     if (ground.x > 0.0f) background = mix(background, frame.conditions_fog.rgb, distance_fog(ground.x));
     cloud_light = mix(cloud_light, fog * (1.0f - cloud.a), distance_fog(cloud_b.z * 1000.0f));
   }
+  // The cirrus sheet: seen from below, over the sky and the discs and behind the volumetric
+  // clouds, its light dimmed by the air in front and the air's own light kept; from above,
+  // in front of everything.
+  float cirrus_m = 0.0f;
+  vec4 cirrus = cirrus_layer(frame_atmosphere(), frame.camera_pos_m.xyz, dir, cirrus_m);
+  bool cirrus_in_front = length(frame.camera_pos_m.xyz) > frame.cirrus.x;
+  if (!cirrus_in_front && cirrus_m > 0.0f && conditions != 1) {
+    vec4 air = textureLod(aerial_perspective,
+                          vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)),
+                               aerial_perspective_w(cirrus_m)),
+                          0.0f);
+    background = background * cirrus.a + (1.0f - cirrus.a) * air.rgb + cirrus.rgb * air.a;
+  }
   vec3 color = background * cloud.a * illuminance + cloud_light;
+  if (cirrus_in_front) color = color * cirrus.a + cirrus.rgb * illuminance;
   imageStore(color_out, pixel, vec4(color, 1.0f));
 }

@@ -1,5 +1,5 @@
 #version 450
-// Pass 1c: procedural weather map (seed 000, 2.2.2; channels as in seed 002 and Schneider 2015),
+// Pass 1c: procedural weather map, evolving with time (FrameParams::cloud_weather.z) (seed 000, 2.2.2; channels as in seed 002 and Schneider 2015),
 // 2D RGBA, tiles: R coverage, G storm cells (where precipitation doubles), B cloud type around
 // the layer's (B - 0.5 is added to clouds.type), A density.
 #extension GL_GOOGLE_include_directive : require
@@ -13,7 +13,10 @@ void main() {
   ivec2 size = imageSize(weather_out);
   ivec2 id = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(id, size))) return;
-  vec3 uv = vec3((vec2(id) + 0.5f) / vec2(size), 0.0f);
+  // The map evolves along the noise's third axis: the coverage field (period 6) moves one
+  // lattice cell per weather_evolution_s. That axis wraps like the others, so the weather
+  // repeats after 6 weather_evolution_s (6 hours at the default hour).
+  vec3 uv = vec3((vec2(id) + 0.5f) / vec2(size), frame.cloud_weather.z / 6.0f);
   uint seed = uint(frame.size.w) * 101u + 13u;
   // Clusters of cumulus cells: Perlin fBm modulated by Worley cells, contrast-stretched.
   float cells = worley_fbm(uv, 12, seed + 1u);

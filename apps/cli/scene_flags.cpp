@@ -113,6 +113,16 @@ const std::vector<FlagSpec>& flag_specs() {
        "wind velocity (m/s): east, north"},
       {"--weather-map", &F::weather_map, "clouds.weather_map", TO(clouds.weather_map), "FILE",
        "weather map PNG (RGBA) instead of the procedural one"},
+      {"--cirrus-coverage", &F::cirrus_coverage, "cirrus.coverage", TO(cirrus.coverage), "C",
+       "cirrus sheet coverage, [0, 1] (0: none)"},
+      {"--cirrus-type", &F::cirrus_type, "cirrus.type", TO(cirrus.type), "T",
+       "[0, 1]: 0 cirrus, 0.5 cirrostratus, 1 cirrocumulus"},
+      {"--cirrus-altitude-m", &F::cirrus_altitude_m, "cirrus.altitude_m", TO(cirrus.altitude_m),
+       "M", "cirrus sheet altitude above the ground (m), above the cloud layer"},
+      {"--weather-evolution-s", &F::weather_evolution_s, "clouds.weather_evolution_s",
+       TO(clouds.weather_evolution_s), "S",
+       "the procedural weather's clusters form and dissipate over about S seconds of --time-s, "
+       ">= 0 (0: static)"},
       {"--time", &F::time, "time", TO(time), "ISO8601",
        "date and time, e.g. 2026-06-21T18:30:00Z: places the sun (unless a --sun-* flag is "
        "given), the moon and the stars"},

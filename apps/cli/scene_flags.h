@@ -22,7 +22,8 @@ struct SceneFlags {
   std::optional<std::string> sun_dir, sun_elevation_deg, sun_azimuth_deg, sun_illuminance;
   std::optional<std::string> coverage, cloud_type, precipitation, density, cloud_bottom_m, cloud_top_m, extinction_per_m;
   std::optional<std::string> attenuation, light_attenuation, albedo, g_forward, g_backward;
-  std::optional<std::string> lobe_weight, powder, ambient, wind_mps, weather_map;
+  std::optional<std::string> lobe_weight, powder, ambient, wind_mps, weather_map,
+      weather_evolution_s, cirrus_coverage, cirrus_type, cirrus_altitude_m;
   std::optional<std::string> time, lat_deg, lon_deg;
   std::optional<std::string> time_s, seed, steps, light_steps, march_stride,
       cloud_downsample, light_volume_km, mode, sky, turbidity, conditions, weather, hour,

@@ -87,12 +87,29 @@ struct CloudParams {
   float detail_noise_period_m = 400.0f;   // period of the detail 32^3 noise tile, > 0
   float detail_erosion = 0.8f;            // [0, 1]; how much detail noise erodes the base shape
   float weather_period_m = 40000.0f;      // size of one weather-map tile on the ground, > 0
+  // The procedural weather map evolves with time_s: its cloud clusters form, drift and
+  // dissipate over about this time (s); the smallest cells change 8x faster. 0 = a static map.
+  // Deterministic: the same seed and time give the same sky; it repeats after 6x this time.
+  float weather_evolution_s = 3600.0f;
   std::string weather_map;                // PNG path (RGBA as in seed 2.2.2); empty = procedural
 };
 
 enum class MarchMode {
   Default,   // jittered, distance-adaptive step count, early exit, longer light march
   Baseline,  // the seed's algorithm as written: fixed 64-step march, 4-sample light march
+};
+
+// The high, thin ice-cloud layer (seed 002, "Cloud Modeling 改进"): a sheet at one altitude,
+// drawn in compose (shaders/cirrus_inc.glsl) behind the volumetric clouds when the camera is
+// below it and in front of everything when above, lit by the same sun and sky.
+struct CirrusParams {
+  float altitude_m = 9000.0f;  // above ground, > clouds.top_altitude_m
+  float coverage = 0.0f;       // [0, 1]; 0 = no cirrus
+  // [0, 1]: 0 cirrus (fibrous streaks along the wind), 0.5 cirrostratus (a thin veil),
+  // 1 cirrocumulus (rows of small cells), blended in between.
+  float type = 0.0f;
+  float optical_depth = 0.3f;  // vertical optical depth where the sheet is densest, [0, 4]
+  glm::vec2 wind_mps{25.0f, 5.0f};  // east, north: the jet stream moves it faster than the clouds
 };
 
 struct QualityParams {
@@ -151,6 +168,7 @@ struct Scene {
   SunParams sun;
   AtmosphereParams atmosphere;
   CloudParams clouds;
+  CirrusParams cirrus;
   QualityParams quality;
   OutputParams output;
   LocationParams location;

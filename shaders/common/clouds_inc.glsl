@@ -109,6 +109,20 @@ float cloud_erode(float base, float detail_fbm, float h, float erosion) {
   return saturate(remap(base, detail * erosion, 1.0f, 0.0f, 1.0f));
 }
 
+// Cirrus genera (seed 002): the weights of cirrus, cirrostratus and cirrocumulus for a cirrus
+// type t in [0, 1] (0, 0.5 and 1 pure), neighbours blended linearly; they sum to 1.
+vec3 cirrus_genus_weights(float type) {
+  float t = saturate(type);
+  return vec3(saturate(1.0f - 2.0f * t), 1.0f - abs(2.0f * t - 1.0f), saturate(2.0f * t - 1.0f));
+}
+
+// Transmittance of a thin sheet of vertical optical depth `tau` crossed at `cos_zenith` (the
+// cosine between the ray and the local vertical): the slant path is 1 / |cos_zenith| longer,
+// capped at 50x where the ray grazes the sheet.
+float cirrus_transmittance(float tau, float cos_zenith) {
+  return exp(-tau / max(abs(cos_zenith), 0.02f));
+}
+
 // Light reaching a sample (listing B.2, formulas 1.7, 1.9, 1.10): Beer-Lambert exp(-tau) times
 // the powder term mix(2 (1 - exp(-2 tau)), 1, (mu + 1) / 2), with `powder` in [0, 1] blending
 // it in. tau is the optical depth towards the sun.

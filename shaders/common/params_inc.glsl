@@ -37,8 +37,12 @@ struct FrameParams {
   vec4 cloud_shape;         // x coverage [0,1], y density [0,1], z sigma_t at density 1 (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
   vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w unused
-  vec4 cloud_type;          // x type [0, 1] (common/clouds_inc.glsl), y precipitation [0, 1],
-                            // zw unused
+  vec4 cloud_weather;       // x type [0, 1] (common/clouds_inc.glsl), y precipitation [0, 1],
+                            // z the weather map's time (weather_time), w unused
+  vec4 cirrus;              // x radius of the cirrus sheet (m, planet frame), y coverage [0, 1],
+                            // z type [0, 1], w vertical optical depth where densest
+  vec4 cirrus_wind;         // xy displacement (m) = its wind * time; zw unit vector along the
+                            // wind (its streaks' axis)
   vec4 cloud_noise;         // x 1/base period, y 1/detail period, z 1/weather period (1/m), w erosion
   vec4 wind_offset_m;       // xy wind displacement (m) = wind * time; zw the previous frame's
   vec4 prev_camera_pos_m;   // the previous frame's camera, as camera_pos_m ... camera_up

@@ -266,6 +266,12 @@ void set_atmosphere(gpu::FrameParams& f, const Scene& scene) {
                           float(static_cast<int>(scene.atmosphere.model)), scene.atmosphere.turbidity);
 }
 
+float weather_time(const Scene& scene) {
+  const float evolution_s = scene.clouds.weather_evolution_s;
+  if (evolution_s <= 0.0f || !scene.clouds.weather_map.empty()) return 0.0f;
+  return float(std::floor(double(scene.time_s) / evolution_s * kWeatherSteps) / kWeatherSteps);
+}
+
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
                                    const AtmosphereTables& tables) {
   const CloudParams& c = scene.clouds;
@@ -337,7 +343,12 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   f.cloud_light = glm::vec4(c.attenuation, c.light_attenuation, c.powder_strength,
                             c.ambient_strength);
   f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight, 0.0f);
-  f.cloud_type = glm::vec4(c.type, c.precipitation, 0.0f, 0.0f);
+  const CirrusParams& ci = scene.cirrus;
+  const float wind_speed = glm::length(ci.wind_mps);
+  f.cirrus = glm::vec4(f.radii_m.x + ci.altitude_m, ci.coverage, ci.type, ci.optical_depth);
+  f.cirrus_wind = glm::vec4(ci.wind_mps * scene.time_s,
+                            wind_speed > 0.0f ? ci.wind_mps / wind_speed : glm::vec2(1.0f, 0.0f));
+  f.cloud_weather = glm::vec4(c.type, c.precipitation, weather_time(scene), 0.0f);
   f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
                             1.0f / c.weather_period_m, c.detail_erosion);
   f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);

@@ -80,6 +80,12 @@ double moon_illuminance_ratio(double illuminated_fraction, double distance_km);
 // table passes read.
 void set_atmosphere(gpu::FrameParams& f, const Scene& scene);
 
+// The weather map's time (FrameParams::cloud_weather.z): time_s in units of
+// clouds.weather_evolution_s, in steps of 1/kWeatherSteps of it (2 s at an hour), so an
+// animation rebuilds the map (weather.comp) at most that often; 0 for a static map.
+constexpr float kWeatherSteps = 1800.0f;
+float weather_time(const Scene& scene);
+
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
                                    const AtmosphereTables& tables);
 inline gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {

@@ -68,8 +68,10 @@ struct Renderer::Impl {
 
 namespace {
 
+// The weather map's inputs: a file, or the seed and the weather's time (weather_time).
 std::string weather_key(const Scene& scene) {
-  return scene.clouds.weather_map.empty() ? "procedural:" + std::to_string(scene.noise_seed)
+  return scene.clouds.weather_map.empty() ? "procedural:" + std::to_string(scene.noise_seed) +
+                                                "@" + std::to_string(weather_time(scene))
                                           : "file:" + scene.clouds.weather_map;
 }
 
@@ -335,7 +337,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   const glm::ivec2 offset = march_offset(stride, frame_counter);
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
-  const bool build_light_volume = plan_light_volume(scene, key, params);
+  const bool build_light_volume = plan_light_volume(scene, key + weather_key(scene), params);
   // The sky-view LUT depends on the sun, the camera's position and the atmosphere only: a
   // camera turning or clouds changing reuse it, and so does a camera that moved a little
   // (sky_view_reusable), sampled in the frame the LUT was built in.

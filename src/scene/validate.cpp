@@ -157,6 +157,15 @@ void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) 
   check.in_range("atmosphere.turbidity", atmosphere.turbidity, 2.0f, 10.0f);
 }
 
+void check_cirrus(const Checker& check, const CirrusParams& cirrus, const CloudParams& clouds) {
+  check.less_than("clouds.top_altitude_m", clouds.top_altitude_m, "cirrus.altitude_m",
+                  cirrus.altitude_m);
+  check.in_range("cirrus.coverage", cirrus.coverage, 0.0f, 1.0f);
+  check.in_range("cirrus.type", cirrus.type, 0.0f, 1.0f);
+  check.in_range("cirrus.optical_depth", cirrus.optical_depth, 0.0f, 4.0f);
+  check.finite("cirrus.wind_mps", cirrus.wind_mps);
+}
+
 void check_clouds(const Checker& check, const CloudParams& clouds) {
   check.non_negative("clouds.bottom_altitude_m", clouds.bottom_altitude_m);
   check.finite("clouds.top_altitude_m", clouds.top_altitude_m);
@@ -165,6 +174,7 @@ void check_clouds(const Checker& check, const CloudParams& clouds) {
   check.in_range("clouds.coverage", clouds.coverage, 0.0f, 1.0f);
   check.in_range("clouds.type", clouds.type, 0.0f, 1.0f);
   check.in_range("clouds.precipitation", clouds.precipitation, 0.0f, 1.0f);
+  check.non_negative("clouds.weather_evolution_s", clouds.weather_evolution_s);
   check.in_range("clouds.density", clouds.density, 0.0f, 1.0f);
   check.positive("clouds.extinction_per_m", clouds.extinction_per_m);
   check.non_negative("clouds.attenuation", clouds.attenuation);
@@ -246,6 +256,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_sun(check, scene.sun);
   check_atmosphere(check, scene.atmosphere);
   check_clouds(check, scene.clouds);
+  check_cirrus(check, scene.cirrus, scene.clouds);
   check_layers(check, scene);
   check_quality(check, scene.quality);
   check_output(check, scene.output);

@@ -138,6 +138,7 @@ Scene unusual_scene() {
               850.0f,
               0.12f,
               35000.0f,
+              1234.5f,
               "/maps/\"quoted\" \\ weather.png"};
   s.quality = {MarchMode::Baseline, 64, 4};
   s.output = {1920, 1080, 2.5f};
