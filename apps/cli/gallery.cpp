@@ -101,11 +101,16 @@ int run_gallery(const GalleryOptions& options) {
   for (glm::vec4& p : gallery.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   const int scale = options.tile_height >= 200 ? 2 : 1;
 
+  std::vector<Scene> scenes;  // all checked before the first is rendered
+  for (const std::string& name : names) {
+    scenes.push_back(load_preset(name));
+    scenes.back().output.width = options.tile_width;
+    scenes.back().output.height = options.tile_height;
+    validate_scene(scenes.back());
+  }
   Renderer renderer({options.device, options.validation, options.verbose});
   for (size_t i = 0; i < names.size(); ++i) {
-    Scene scene = load_preset(names[i]);
-    scene.output.width = options.tile_width;
-    scene.output.height = options.tile_height;
+    const Scene& scene = scenes[i];
     const Frame frame = renderer.render(scene);
     const float exposure = scene.output.auto_exposure
                                ? auto_exposure(scene.output.exposure, frame.stats.mean_luminance)

@@ -103,7 +103,7 @@ enum class MarchMode {
 // drawn in compose (shaders/cirrus_inc.glsl) behind the volumetric clouds when the camera is
 // below it and in front of everything when above, lit by the same sun and sky.
 struct CirrusParams {
-  float altitude_m = 9000.0f;  // above ground, > clouds.top_altitude_m
+  float altitude_m = 9000.0f;  // above ground, > clouds.top_altitude_m when coverage > 0
   float coverage = 0.0f;       // [0, 1]; 0 = no cirrus
   // [0, 1]: 0 cirrus (fibrous streaks along the wind), 0.5 cirrostratus (a thin veil),
   // 1 cirrocumulus (rows of small cells), blended in between.

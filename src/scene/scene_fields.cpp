@@ -173,7 +173,7 @@ const std::vector<Section>& scene_sections() {
         FIELD(atmosphere, view_samples, "samples along each sky-view LUT ray, [1, 256]")},
        {}},
       {"cirrus",
-       {FIELD(cirrus, altitude_m, "above ground, > clouds.top_altitude_m"),
+       {FIELD(cirrus, altitude_m, "above ground, > clouds.top_altitude_m when coverage > 0"),
         FIELD(cirrus, coverage, "[0, 1]; 0 = none"),
         FIELD(cirrus, type, "0 cirrus, 0.5 cirrostratus, 1 cirrocumulus"),
         FIELD(cirrus, optical_depth, "vertical, where densest, [0, 4]"),

@@ -158,8 +158,9 @@ void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) 
 }
 
 void check_cirrus(const Checker& check, const CirrusParams& cirrus, const CloudParams& clouds) {
-  check.less_than("clouds.top_altitude_m", clouds.top_altitude_m, "cirrus.altitude_m",
-                  cirrus.altitude_m);
+  if (cirrus.coverage > 0.0f)  // a sheet that is there sits above the cloud layer
+    check.less_than("clouds.top_altitude_m", clouds.top_altitude_m, "cirrus.altitude_m",
+                    cirrus.altitude_m);
   check.in_range("cirrus.coverage", cirrus.coverage, 0.0f, 1.0f);
   check.in_range("cirrus.type", cirrus.type, 0.0f, 1.0f);
   check.in_range("cirrus.optical_depth", cirrus.optical_depth, 0.0f, 4.0f);
