@@ -54,10 +54,8 @@ float moon_disk(vec3 dir) {
 // The sheet along the view ray from `eye`: rgb the light it scatters towards the eye per unit
 // key-light illuminance (single scattering of the key light through the atmosphere's
 // transmittance at the sheet, ice crystals' forward-peaked phase, plus the sky's ambient);
-// a its transmittance; and the distance to it (m) in `distance_m` (0: not crossed).
-vec4 cirrus_layer(Atmosphere atmo, vec3 eye, vec3 dir, out float distance_m) {
-  distance_m = cirrus_distance(eye, dir);
-  if (distance_m <= 0.0f) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
+// a its transmittance; where the ray crosses it `distance_m` away (cirrus_distance).
+vec4 cirrus_layer(Atmosphere atmo, vec3 eye, vec3 dir, float distance_m) {
   vec3 p = eye + dir * distance_m;
   float transmittance = cirrus_transmittance(cirrus_optical_depth(p), dot(dir, normalize(p)));
   vec3 sun = frame.sun_dir.xyz;
@@ -156,10 +154,15 @@ void main() {
   // The cirrus sheet: seen from below, over the sky and the discs and behind the volumetric
   // clouds, its light dimmed by the air in front and the air's own light kept; from above,
   // in front of everything.
-  float cirrus_m = 0.0f;
-  vec4 cirrus = cirrus_layer(frame_atmosphere(), frame.camera_pos_m.xyz, dir, cirrus_m);
-  bool cirrus_in_front = length(frame.camera_pos_m.xyz) > frame.cirrus.x;
-  if (!cirrus_in_front && cirrus_m > 0.0f && conditions != 1) {
+  // A loop of at most one trip rather than a branch: lavapipe runs both sides of a branch, so
+  // a sky without cirrus would pay for its lookups.
+  vec3 eye = frame.camera_pos_m.xyz;
+  float cirrus_m = cirrus_distance(eye, dir);
+  vec4 cirrus = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  bool cirrus_in_front = length(eye) > frame.cirrus.x;
+  for (int i = 0; i < (cirrus_m > 0.0f ? 1 : 0); ++i) {
+    cirrus = cirrus_layer(frame_atmosphere(), eye, dir, cirrus_m);
+    if (cirrus_in_front || conditions == 1) continue;
     vec4 air = textureLod(aerial_perspective,
                           vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)),
                                aerial_perspective_w(cirrus_m)),
