@@ -30,13 +30,14 @@ vec2 cloud_density_pair(vec3 pos) {
   vec4 base = textureLod(base_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.x, 0.0f);
   vec3 d = textureLod(detail_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.y, 0.0f).rgb;
   if (h <= 0.0f || h >= 1.0f) return vec2(0.0f);
-  // Cloud type (B, around the layer's type) and precipitation (the layer's, doubled in the
-  // map's storm cells, G), which turns any cloud into cumulonimbus.
+  // Cloud type (B, around the layer's type) and precipitation (the layer's, where the map has
+  // storm cells: G), which turns any cloud into cumulonimbus.
   vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, frame.cloud_shape.x),
                                          saturate(frame.cloud_weather.x + weather.b - 0.5f),
                                          saturate(frame.cloud_weather.y * 2.0f * weather.g));
   float type = coverage_type.y;
-  float coverage = cloud_anvil_coverage(coverage_type.x, h, cloud_cumulonimbus_share(type));
+  float cumulonimbus = cloud_cumulonimbus_share(type);
+  float coverage = cloud_anvil_coverage(coverage_type.x, h, cumulonimbus);
   float top = cloud_type_top(type);
   float h_type = saturate(h / top);  // height fraction within the type's extent
   // The seed's gradient (thin bases, dense tops; over the type's extent); cumulonimbus fills
@@ -45,7 +46,7 @@ vec2 cloud_density_pair(vec3 pos) {
   float density_gradient =
       (MARCH_MODE == 1 ? cloud_density_gradient(h)
                        : mix(cloud_density_gradient(h_type), cloud_type_density_gradient(h_type),
-                             cloud_cumulonimbus_share(type))) *
+                             cumulonimbus)) *
       weather.a * 2.0f * frame.cloud_shape.y;
   if (MARCH_MODE == 1) {
     // The seed's shape gradient, up to the type's top (the seed's "maximum height").

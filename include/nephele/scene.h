@@ -69,8 +69,8 @@ struct CloudParams {
   // Cloud type [0, 1] (seed 002): 0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus,
   // 1 cumulonimbus, blended in between; the weather map's B channel adds B - 0.5.
   float type = 0.75f;
-  // Precipitation [0, 1] (seed 002): turns the clouds into cumulonimbus at 70% coverage or more;
-  // doubled in the weather map's storm cells (G).
+  // Precipitation [0, 1] (seed 002): turns the clouds of the weather map's storm cells (G) into
+  // cumulonimbus at 70% coverage or more (local precipitation = this x 2G, at most 1).
   float precipitation = 0.0f;
   float density = 0.5f;               // [0, 1]; scales the cloud density field (seed u_density)
   float extinction_per_m = 1.0f;      // sigma_t at density field value 1 (1/m), > 0

@@ -157,18 +157,22 @@ void pass_sky_view(VkCommandBuffer cmd, GpuState& s) {
                 glsl::AP_SIZE_V, 1, 8, 8, 1);
 }
 
+namespace {
+const gpu::Kernel& clouds_kernel(const GpuState& s, MarchMode mode) {
+  return mode == MarchMode::Baseline ? s.clouds_baseline_kernel : s.clouds_default_kernel;
+}
+}  // namespace
+
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
-  const gpu::Kernel& kernel =
-      mode == MarchMode::Baseline ? s.clouds_baseline_kernel : s.clouds_default_kernel;
+  const gpu::Kernel& kernel = clouds_kernel(s, mode);
   const auto blocks = [&](int n) { return uint32_t((n + s.stride - 1) / s.stride); };
   gpu::dispatch(cmd, kernel, s.set, s.timer, "clouds", blocks(s.cloud_width),
                 blocks(s.cloud_height), 1, 8, 8, 1);
 }
 
 void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
-  const gpu::Kernel& kernel =
-      mode == MarchMode::Baseline ? s.clouds_baseline_kernel : s.clouds_default_kernel;
-  gpu::dispatch(cmd, kernel, s.set, s.timer, "sky_dome", kSkyDomeSize, kSkyDomeSize, 1, 8, 8, 1);
+  gpu::dispatch(cmd, clouds_kernel(s, mode), s.set, s.timer, "sky_dome", kSkyDomeSize,
+                kSkyDomeSize, 1, 8, 8, 1);
 }
 
 void pass_march_range(VkCommandBuffer cmd, GpuState& s) {
