@@ -13,8 +13,28 @@
 
 const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 
+// The layer at `radius_m` (FrameParams::cloud_layers): the high one from its bottom up. A
+// select, not a branch.
+int cloud_layer_at(float radius_m) {
+  return radius_m >= frame.cloud_layers[1].radii_m.x ? 1 : 0;
+}
+
+// Height fraction in the whole cloud shell (all layers): the light volume's vertical axis.
 float altitude_fraction(vec3 pos) {
   return cloud_height_fraction(length(pos), frame.radii_m.z, frame.radii_m.w);
+}
+
+// Height fraction in the layer at pos: 0 at its bottom, 1 at its top.
+float layer_fraction(vec3 pos) {
+  float radius_m = length(pos);
+  vec4 radii = frame.cloud_layers[cloud_layer_at(radius_m)].radii_m;
+  return cloud_height_fraction(radius_m, radii.x, radii.y);
+}
+
+// The thickness of the layer at pos (m).
+float layer_thickness_m(vec3 pos) {
+  vec4 radii = frame.cloud_layers[cloud_layer_at(length(pos))].radii_m;
+  return radii.y - radii.x;
 }
 
 // Cloud density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z.
@@ -23,18 +43,42 @@ float altitude_fraction(vec3 pos) {
 // executes both sides of a branch, so the reads cost the same either way.
 vec2 cloud_density_pair(vec3 pos) {
   float radius_m = length(pos);
-  float h = cloud_height_fraction(radius_m, frame.radii_m.z, frame.radii_m.w);
-  vec2 ground_xy = pos.xy - frame.wind_offset_m.xy;  // clouds drift with the wind
-  vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + 0.5f, 0.0f);
+  CloudLayerGpu layer = frame.cloud_layers[cloud_layer_at(radius_m)];
+  float h = cloud_height_fraction(radius_m, layer.radii_m.x, layer.radii_m.y);
+  float h_wind = saturate(h);
+  // The layer's wind, grown with height and leaning the tops downwind (seed 002).
+  vec2 ground_xy = pos.xy - cloud_wind_offset(layer.wind.xy, layer.wind.zw, frame.cloud_wind.xy,
+                                              frame.cloud_wind.w, frame.cloud_wind.z, h_wind);
+  vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + layer.radii_m.zw + 0.5f, 0.0f);
   float altitude_m = radius_m - frame.radii_m.x;
-  vec4 base = textureLod(base_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.x, 0.0f);
-  vec3 d = textureLod(detail_noise, vec3(ground_xy, altitude_m) * frame.cloud_noise.y, 0.0f).rgb;
+  // The shape noise, moved by the flow map's swirls in two phases half a cycle apart (seed
+  // 002, 局部流动效果); without a flow, one phase of weight 1 and no displacement. The flow's
+  // reads are loops with a uniform trip count (0 without a flow), which a CPU device skips.
+  bool flowing = frame.cloud_flow.x > 0.0f;
+  vec2 flow_m = vec2(0.0f);  // the flow's displacement over a whole cycle
+  for (int k = 0; k < (flowing ? 1 : 0); ++k)
+    flow_m = textureLod(curl_noise, ground_xy * frame.cloud_flow.w, 0.0f).xy *
+             (frame.cloud_flow.x * frame.cloud_flow.y);
+  vec2 phase = flowing ? cloud_flow_phase(frame.cloud_flow.z, 0) : vec2(1.0f, 0.0f);
+  vec4 base = phase.x * textureLod(base_noise, vec3(ground_xy - flow_m * phase.y, altitude_m) *
+                                                   frame.cloud_noise.x, 0.0f);
+  for (int k = 0; k < (flowing ? 1 : 0); ++k) {
+    phase = cloud_flow_phase(frame.cloud_flow.z, 1);
+    base += phase.x * textureLod(base_noise, vec3(ground_xy - flow_m * phase.y, altitude_m) *
+                                                 frame.cloud_noise.x, 0.0f);
+  }
+  // The detail noise: its own wind relative to the shapes, and displaced by curl noise, most
+  // at the bases (Schneider 2015), into swirls.
+  vec2 curl = textureLod(curl_noise, ground_xy * (0.25f * frame.cloud_noise.y), 0.0f).xy;
+  vec3 detail_pos = vec3(ground_xy + curl * (frame.cloud_detail_wind.w * (1.0f - h_wind)), altitude_m) -
+                    frame.cloud_detail_wind.xyz;
+  vec3 d = textureLod(detail_noise, detail_pos * frame.cloud_noise.y, 0.0f).rgb;
   if (h <= 0.0f || h >= 1.0f) return vec2(0.0f);
   // Cloud type (B, around the layer's type) and precipitation (the layer's, where the map has
   // storm cells: G), which turns any cloud into cumulonimbus.
-  vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, frame.cloud_shape.x),
-                                         saturate(frame.cloud_weather.x + weather.b - 0.5f),
-                                         saturate(frame.cloud_weather.y * 2.0f * weather.g));
+  vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, layer.shape.x),
+                                         saturate(layer.shape.z + weather.b - 0.5f),
+                                         saturate(layer.shape.w * 2.0f * weather.g));
   float type = coverage_type.y;
   float cumulonimbus = cloud_cumulonimbus_share(type);
   float coverage = cloud_anvil_coverage(coverage_type.x, h, cumulonimbus);
@@ -47,7 +91,7 @@ vec2 cloud_density_pair(vec3 pos) {
       (MARCH_MODE == 1 ? cloud_density_gradient(h)
                        : mix(cloud_density_gradient(h_type), cloud_type_density_gradient(h_type),
                              cumulonimbus)) *
-      weather.a * 2.0f * frame.cloud_shape.y;
+      weather.a * 2.0f * layer.shape.y;
   if (MARCH_MODE == 1) {
     // The seed's shape gradient, up to the type's top (the seed's "maximum height").
     float shape_gradient = cloud_shape_gradient(h, top);
@@ -120,7 +164,7 @@ float light_volume_lookup(vec3 pos) {
 // Optical depth towards the sun from pos as the seed marches it (listing B.2): three steps of
 // 1% of the layer thickness, the fourth six times longer.
 float seed_light_optical_depth(vec3 pos, vec3 sun) {
-  float step_m = (frame.radii_m.w - frame.radii_m.z) * 0.01f;
+  float step_m = layer_thickness_m(pos) * 0.01f;
   float depth = 0.0f;
   for (int i = 0; i < 4; ++i) {
     float s = i == 3 ? step_m * 6.0f : step_m;

@@ -215,7 +215,7 @@ void main() {
     // device that executes every branch for all its lanes (lavapipe) then pays one density
     // per iteration instead of a primary and a whole light march, and the lanes of a batch
     // stay busy whether their rays cross empty sky or cloud.
-    float fine_base = thickness / float(frame.steps.x);
+    float fine_base = layer_thickness_m(eye + dir * segment.x) / float(frame.steps.x);
     // A new jitter pattern per frame index (Jimenez 2014: offset the pixel by 5.588238 per frame).
     float shift = 5.588238f * float(frame.march_offset.z);
     float jitter = interleaved_gradient_noise(float(pixel.x) + shift, float(pixel.y) + shift);
@@ -238,7 +238,8 @@ void main() {
       float mid_m = lit_unit_m * 0.5f * float(light_k * (light_k - 1)) + 0.5f * seg_m;
       vec3 pos = lighting ? lit_pos + sun * mid_m : eye + dir * t;
       vec2 field = cloud_density_pair(pos);
-      float fine_step = max(fine_base, FINE_PER_M * t);
+      // Fine steps from the thickness of the layer the ray is in.
+      float fine_step = max(layer_thickness_m(pos) / float(frame.steps.x), FINE_PER_M * t);
       float coarse_step = COARSE_STEPS * fine_step;
 
       if (lighting) {
@@ -252,7 +253,7 @@ void main() {
         float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
         float tau_light = depth * sigma_scale * light_atten;
         float energy = multiple_scattering(tau_light, mu, powder, phases);
-        float h = altitude_fraction(lit_pos);
+        float h = layer_fraction(lit_pos);
         vec3 luminance = albedo * (sun_light * energy + mix(ambient_below, ambient_above, h));
         float step_t = exp(-lit_sigma_t * lit_step_m);
         vec3 air = air_transmittance(eye_alt_m, length(lit_pos) - frame.radii_m.x, t);

@@ -24,6 +24,8 @@ struct SceneFlags {
   std::optional<std::string> attenuation, light_attenuation, albedo, g_forward, g_backward;
   std::optional<std::string> lobe_weight, powder, ambient, wind_mps, weather_map,
       weather_evolution_s, cirrus_coverage, cirrus_type, cirrus_altitude_m;
+  std::optional<std::string> wind_shear_mps, detail_drift_mps, flow_speed_mps, high_coverage,
+      high_cloud_type, high_bottom_m, high_top_m, high_wind_mps;
   std::optional<std::string> time, lat_deg, lon_deg;
   std::optional<std::string> time_s, seed, steps, light_steps, march_stride,
       cloud_downsample, light_volume_km, mode, sky, turbidity, conditions, weather, hour,

@@ -51,6 +51,15 @@ struct Frame {
   FrameStats stats;
 };
 
+// Renderer::cloud_profile: per altitude bin, from the bottom of the lowest cloud layer to the
+// top of the highest, the mean density field (sigma_t / clouds.extinction_per_m) and the share
+// of the region in cloud.
+struct CloudProfile {
+  std::vector<float> altitude_m;  // each bin's middle, above the ground
+  std::vector<float> density;     // mean density field
+  std::vector<float> cloud_fraction;
+};
+
 class Renderer {
  public:
   explicit Renderer(const RendererOptions& options = {});
@@ -72,6 +81,11 @@ class Renderer {
   // layer's bottom or top. With read_back false the images stay on the device (Frame's
   // images are empty; timings are filled): what a viewer or a benchmark needs.
   Frame render_next(const Scene& scene, bool read_back = true);
+
+  // The cloud density field averaged per altitude over a square of the ground centred below
+  // the camera, one weather-map tile (clouds.weather_period_m) on a side: how the clouds are
+  // distributed in height (each cloud type's vertical profile). Validates the scene.
+  CloudProfile cloud_profile(const Scene& scene);
 
   const std::string& device_name() const;
   // Number of validation-layer messages (warnings and errors) seen so far.

@@ -82,7 +82,28 @@ struct CloudParams {
   float phase_lobe_weight = 0.7f;     // weight of the forward lobe, [0, 1] (seed DUAL_LOBE_WEIGHT)
   float powder_strength = 1.0f;       // [0, 1]; 0 disables the powder term (seed 1.9)
   float ambient_strength = 1.0f;      // >= 0; scales sky ambient light on clouds
-  glm::vec2 wind_mps{8.0f, 2.0f};     // east, north wind speed (m/s)
+  // Wind (seed 002, 体积云的流动效果). The shape wind moves the clouds' bodies and the weather
+  // map; it grows with height by wind_shear_mps at the layer's top, and a sample at height
+  // fraction h sits where the wind had carried it h x wind_skew_s longer, so tops lean and
+  // anvils stream downwind: displacement = (wind + h shear) (time + h skew).
+  glm::vec2 wind_mps{8.0f, 2.0f};        // east, north wind speed at the layer's bottom (m/s)
+  // East, north: the wind's growth up to the top (m/s). Each height drifts at its own speed,
+  // so over time tops slide away from their bases (an hour at 1 m/s: 3.6 km at the top).
+  glm::vec2 wind_shear_mps{1.0f, 0.5f};
+  float wind_skew_s = 60.0f;             // >= 0; the seed uses 200
+  // The detail noise's own motion relative to the clouds' bodies (east, north, up; m/s; the
+  // seed's second, detail wind is wind_mps + this): the wisps move over the bodies and, with
+  // the up component, roll up their sides.
+  glm::vec3 detail_drift_mps{2.0f, 0.0f, 1.0f};
+  // Curl noise (seed 002, Schneider 2015) displaces the detail noise by up to this (m), most at
+  // the bases, into swirls and wisps. >= 0; 0 = none.
+  float curl_distortion_m = 120.0f;
+  // A flow map of local swirls (seed 002, 局部流动效果): a divergence-free field of eddies a
+  // few km across moves the shape noise at up to flow_speed_mps. The noise restarts every
+  // flow_cycle_s in two phases half a cycle apart, blended, so it is never stretched further
+  // than speed x cycle. 0 = none (and it costs nothing).
+  float flow_speed_mps = 0.0f;  // >= 0
+  float flow_cycle_s = 120.0f;  // > 0
   float base_noise_period_m = 4500.0f;    // horizontal period of the base 128^3 noise tile, > 0
   float detail_noise_period_m = 400.0f;   // period of the detail 32^3 noise tile, > 0
   float detail_erosion = 0.8f;            // [0, 1]; how much detail noise erodes the base shape
@@ -94,6 +115,19 @@ struct CloudParams {
   std::string weather_map;                // PNG path (RGBA as in seed 2.2.2); empty = procedural
 };
 
+// A second, higher volumetric layer (altocumulus by default) with its own altitude range,
+// coverage, type and wind. It shares the weather map (at another place on it), the noise, the
+// lighting and the wind's shear, skew and detail with `clouds`. It must lie wholly above
+// `clouds`, and the cirrus above both.
+struct HighCloudParams {
+  float bottom_altitude_m = 6000.0f;  // above ground, >= clouds.top_altitude_m when coverage > 0
+  float top_altitude_m = 7000.0f;     // > bottom_altitude_m
+  float coverage = 0.0f;              // [0, 1]; 0 = no high layer (and it costs nothing)
+  float type = 0.5f;                  // as clouds.type; 0.5 altocumulus
+  float density = 0.4f;               // [0, 1]
+  glm::vec2 wind_mps{15.0f, 4.0f};    // east, north (m/s)
+};
+
 enum class MarchMode {
   Default,   // jittered, distance-adaptive step count, early exit, longer light march
   Baseline,  // the seed's algorithm as written: fixed 64-step march, 4-sample light march
@@ -103,7 +137,7 @@ enum class MarchMode {
 // drawn in compose (shaders/cirrus_inc.glsl) behind the volumetric clouds when the camera is
 // below it and in front of everything when above, lit by the same sun and sky.
 struct CirrusParams {
-  float altitude_m = 9000.0f;  // above ground, > clouds.top_altitude_m when coverage > 0
+  float altitude_m = 9000.0f;  // above ground, above the volumetric layers when coverage > 0
   float coverage = 0.0f;       // [0, 1]; 0 = no cirrus
   // [0, 1]: 0 cirrus (fibrous streaks along the wind), 0.5 cirrostratus (a thin veil),
   // 1 cirrocumulus (rows of small cells), blended in between.
@@ -168,6 +202,7 @@ struct Scene {
   SunParams sun;
   AtmosphereParams atmosphere;
   CloudParams clouds;
+  HighCloudParams high_clouds;
   CirrusParams cirrus;
   QualityParams quality;
   OutputParams output;

@@ -63,5 +63,8 @@ layout(set = 0, binding = 32, rgba32f) uniform writeonly image3D reference_psi_o
 layout(set = 0, binding = 33) uniform sampler3D reference_psi;
 layout(set = 0, binding = 34, rgba32f) uniform writeonly image2D reference_sky_out;
 layout(set = 0, binding = 35) uniform sampler2D reference_sky;
+// Curl noise (noise_curl.comp): RG a divergence-free 2D field, tiling, 128^2.
+layout(set = 0, binding = 36, rgba32f) uniform writeonly image2D curl_noise_out;
+layout(set = 0, binding = 37) uniform sampler2D curl_noise;
 
 #endif

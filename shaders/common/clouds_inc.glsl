@@ -109,6 +109,25 @@ float cloud_erode(float base, float detail_fbm, float h, float erosion) {
   return saturate(remap(base, detail * erosion, 1.0f, 0.0f, 1.0f));
 }
 
+// Wind displacement (seed 002, 全局流动效果) of a sample at height fraction h in [0, 1] of its
+// layer: the seed's (wind + h shear) (time + h skew). The wind grows with height (shear: its
+// growth up to the top, m/s), and the sample sits where the wind had carried it h x skew
+// seconds longer, so tops lean downwind. drift_m = wind x time, computed on the host.
+vec2 cloud_wind_offset(vec2 drift_m, vec2 wind_mps, vec2 shear_mps, float time_s, float skew_s,
+                       float h) {
+  return drift_m + h * (wind_mps * skew_s + shear_mps * (time_s + h * skew_s));
+}
+
+// The flow map's two phases (seed 002, 局部流动效果): phase k in {0, 1} of a cycle at
+// `phase` = fract(time / cycle). Returns (weight, progress): the noise is displaced by the flow
+// x progress x cycle, so it stretches at most speed x cycle before it restarts; the two phases
+// are half a cycle apart and their weights (1 - |1 - 2 progress|) sum to 1 and vanish where
+// each restarts, hiding the jump.
+vec2 cloud_flow_phase(float phase, int k) {
+  float progress = fract(phase + 0.5f * float(k));
+  return vec2(1.0f - abs(1.0f - 2.0f * progress), progress);
+}
+
 // Cirrus genera (seed 002): the weights of cirrus, cirrostratus and cirrocumulus for a cirrus
 // type t in [0, 1] (0, 0.5 and 1 pure), neighbours blended linearly; they sum to 1.
 vec3 cirrus_genus_weights(float type) {

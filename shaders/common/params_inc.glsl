@@ -15,6 +15,18 @@ using glm::vec4;
 const int LIGHT_VOLUME_XY = 160;  // light volume voxels per horizontal axis
 const int LIGHT_VOLUME_Z = 32;    // light volume voxels across the cloud layer
 
+// The volumetric cloud layers (render/frame_params.cpp fills them): 0 the main (low) layer,
+// 1 the high one. They never overlap; the clouds pass marches one shell from the lowest bottom
+// to the highest top (FrameParams::radii_m.zw) and takes each sample's layer by its altitude.
+const int CLOUD_LAYERS = 2;
+
+struct CloudLayerGpu {
+  vec4 radii_m;  // x bottom, y top radius (m, planet frame; a layer that is off lies beyond
+                 // the atmosphere); zw where it reads the weather map (offset, in tiles)
+  vec4 shape;    // x coverage [0, 1], y density [0, 1], z type [0, 1], w precipitation [0, 1]
+  vec4 wind;     // xy its displacement by the wind (wind x time, m); zw its wind (m/s)
+};
+
 struct FrameParams {
   vec4 camera_pos_m;        // xyz camera position (m, planet frame); w tan(vertical fov / 2)
   vec4 camera_forward;      // xyz unit view direction; w aspect (width / height)
@@ -34,17 +46,26 @@ struct FrameParams {
   vec4 radii_m;             // x planet, y atmosphere top, z cloud bottom, w cloud top (m)
   vec4 rayleigh;            // rgb sigma_s at sea level (1/m); w scale height (m)
   vec4 mie;                 // x sigma_s (1/m), y sigma_t (1/m), z scale height (m), w g
-  vec4 cloud_shape;         // x coverage [0,1], y density [0,1], z sigma_t at density 1 (1/m), w albedo
+  vec4 cloud_shape;         // x, y unused; z sigma_t at density 1 (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
   vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w unused
-  vec4 cloud_weather;       // x type [0, 1] (common/clouds_inc.glsl), y precipitation [0, 1],
-                            // z the weather map's time (weather_time), w unused
+  vec4 cloud_weather;       // x, y unused; z the weather map's time (weather_time), w the
+                            // cloud profile's half extent (m; cloud_profile.comp)
+  CloudLayerGpu cloud_layers[CLOUD_LAYERS];
+  // The wind (seed 002; common/clouds_inc.glsl, cloud_wind_offset): xy its growth from a
+  // layer's bottom to its top (m/s), z skew (s), w time (s)
+  vec4 cloud_wind;
+  vec4 cloud_detail_wind;   // xyz the detail noise's displacement relative to the shapes (m);
+                            // w curl distortion (m)
+  vec4 cloud_flow;          // x flow map speed (m/s), y cycle (s), z phase fract(time / cycle),
+                            // w 1 / the flow map's period (1/m)
   vec4 cirrus;              // x radius of the cirrus sheet (m, planet frame), y coverage [0, 1],
                             // z type [0, 1], w vertical optical depth where densest
   vec4 cirrus_wind;         // xy displacement (m) = its wind * time; zw unit vector along the
                             // wind (its streaks' axis)
   vec4 cloud_noise;         // x 1/base period, y 1/detail period, z 1/weather period (1/m), w erosion
-  vec4 wind_offset_m;       // xy wind displacement (m) = wind * time; zw the previous frame's
+  vec4 wind_offset_m;       // xy the main layer's displacement at its bottom (m) = wind *
+                            // time: the light volume's frame; zw its change since the last frame
   vec4 prev_camera_pos_m;   // the previous frame's camera, as camera_pos_m ... camera_up
   vec4 prev_camera_forward;
   vec4 prev_camera_right;

@@ -50,6 +50,8 @@ enum Binding : uint32_t {
   kReferencePsi = 33,
   kReferenceSkyOut = 34,
   kReferenceSky = 35,
+  kCurlNoiseOut = 36,
+  kCurlNoise = 37,
   kBindingCount
 };
 

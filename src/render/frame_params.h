@@ -86,6 +86,19 @@ void set_atmosphere(gpu::FrameParams& f, const Scene& scene);
 constexpr float kWeatherSteps = 1800.0f;
 float weather_time(const Scene& scene);
 
+// The flow map of local swirls (clouds.flow_speed_mps) is the curl noise texture over a tile
+// of this size: eddies about 4 km across (its coarsest octave has 4 cells a tile).
+constexpr float kFlowMapPeriodM = 16000.0f;
+
+// The altitudes (m above ground) of the cloud shell: the main layer's bottom, and the top of
+// the highest volumetric layer that has coverage.
+glm::vec2 cloud_shell_m(const Scene& scene);
+
+// How far (m) the clouds' features have moved since time 0 relative to the main layer's wind
+// frame (the light volume's): the wind's growth at the top, the detail noise's own wind and
+// the high layer's wind. The light volume is rebuilt as this grows.
+float cloud_relative_drift_m(const Scene& scene);
+
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
                                    const AtmosphereTables& tables);
 inline gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {

@@ -13,6 +13,7 @@ GpuState::GpuState(gpu::Context& c)
       set(c),
       noise_base_kernel(c, set, "noise_base.comp.spv"),
       noise_detail_kernel(c, set, "noise_detail.comp.spv"),
+      noise_curl_kernel(c, set, "noise_curl.comp.spv"),
       weather_kernel(c, set, "weather.comp.spv"),
       sky_view_kernel(c, set, "sky_view.comp.spv"),
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
@@ -28,6 +29,7 @@ GpuState::GpuState(gpu::Context& c)
       aerial_perspective_kernel(c, set, "aerial_perspective.comp.spv"),
       reference_psi_kernel(c, set, "sky_reference_psi.comp.spv"),
       reference_sky_kernel(c, set, "sky_reference.comp.spv"),
+      cloud_profile_kernel(c, set, "cloud_profile.comp.spv"),
       timer(c, 12),
       frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
       stars(c, sizeof(gpu::StarGpu) * std::max<size_t>(star_catalogue().size(), 1),
@@ -35,6 +37,7 @@ GpuState::GpuState(gpu::Context& c)
       base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
                    VK_FORMAT_R8G8B8A8_UNORM),
+      curl_noise(c, kCurlNoiseSize, kCurlNoiseSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT),
       weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM),
       // Half floats hold radiance to 0.05%. Both tables wrap in azimuth (u); v and w are kept
       // half a texel inside by the shaders (sky_view_inc.glsl), so repeating there reads nothing.
@@ -67,6 +70,7 @@ GpuState::GpuState(gpu::Context& c)
                                glm::vec4(star.irradiance, star.b_v)};
   set.bind_image(gpu::kBaseNoiseOut, gpu::kBaseNoise, base_noise);
   set.bind_image(gpu::kDetailNoiseOut, gpu::kDetailNoise, detail_noise);
+  set.bind_image(gpu::kCurlNoiseOut, gpu::kCurlNoise, curl_noise);
   set.bind_image(gpu::kWeatherOut, gpu::kWeatherMap, weather_map);
   set.bind_image(gpu::kSkyViewOut, gpu::kSkyView, sky_view);
   resize(1, 1, 1, 1);
@@ -138,6 +142,11 @@ void pass_noise_detail(VkCommandBuffer cmd, GpuState& s) {
                 kDetailNoiseSize, kDetailNoiseSize, 4, 4, 4);
 }
 
+void pass_noise_curl(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.noise_curl_kernel, s.set, s.timer, "noise_curl", kCurlNoiseSize,
+                kCurlNoiseSize, 1, 8, 8, 1);
+}
+
 void pass_weather(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.weather_kernel, s.set, s.timer, "weather", kWeatherMapSize, kWeatherMapSize,
                 1, 8, 8, 1);
@@ -173,6 +182,11 @@ void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
 void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
   gpu::dispatch(cmd, clouds_kernel(s, mode), s.set, s.timer, "sky_dome", kSkyDomeSize,
                 kSkyDomeSize, 1, 8, 8, 1);
+}
+
+void pass_cloud_profile(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.cloud_profile_kernel, s.set, s.timer, "cloud_profile", kCloudProfileSize,
+                kCloudProfileSize, 1, 8, 8, 1);
 }
 
 void pass_march_range(VkCommandBuffer cmd, GpuState& s) {

@@ -13,6 +13,7 @@ namespace nephele {
 constexpr uint32_t kBaseNoiseSize = 128;    // seed 000, 2.2.2: base shape noise 128^3
 constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
 constexpr uint32_t kWeatherMapSize = 512;   // procedural weather map 512^2
+constexpr uint32_t kCurlNoiseSize = 128;    // curl noise 128^2
 // Sky-view LUT (Hillaire 2020, 5.3): azimuth x elevation texels per table; the image stacks two
 // tables (radiance, sun-lit ground), so it is kSkyViewWidth x 2 kSkyViewHeight.
 constexpr uint32_t kSkyViewWidth = 256;
@@ -20,6 +21,9 @@ constexpr uint32_t kSkyViewHeight = 108;
 // The sky dome (sky_dome_ray): kSkyDomeSize^2 directions of equal solid angle over the
 // observer's upper hemisphere, where sky_cover_fraction is measured.
 constexpr uint32_t kSkyDomeSize = 64;
+// The cloud profile (cloud_profile.comp): altitude bins, and points per side of its grid. It
+// writes the sky dome's image, so the two are one size.
+constexpr uint32_t kCloudProfileSize = kSkyDomeSize;
 
 // Everything the passes read and write.
 struct GpuState {
@@ -33,16 +37,16 @@ struct GpuState {
 
   gpu::Context& ctx;
   gpu::DescriptorSet set;
-  gpu::Kernel noise_base_kernel, noise_detail_kernel, weather_kernel;
+  gpu::Kernel noise_base_kernel, noise_detail_kernel, noise_curl_kernel, weather_kernel;
   gpu::Kernel sky_view_kernel, clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
   gpu::Kernel compose_kernel, compose_reference_kernel, light_volume_kernel, march_range_kernel;
   gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel, aerial_perspective_kernel;
-  gpu::Kernel reference_psi_kernel, reference_sky_kernel;
+  gpu::Kernel reference_psi_kernel, reference_sky_kernel, cloud_profile_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
   int star_count = 0;
-  gpu::Texture base_noise, detail_noise, weather_map, sky_view, light_volume;
+  gpu::Texture base_noise, detail_noise, curl_noise, weather_map, sky_view, light_volume;
   // Hillaire's tables (atmosphere_lut_inc.glsl, sky_view_inc.glsl).
   gpu::Texture transmittance_lut, ms_lut, aerial_perspective;
   // The reference sky (bindings_inc.glsl): one tile's Psi_ms, and the sky per pixel (resized to
@@ -62,6 +66,7 @@ struct GpuState {
 
 void pass_noise_base(VkCommandBuffer cmd, GpuState& s);
 void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
+void pass_noise_curl(VkCommandBuffer cmd, GpuState& s);
 void pass_weather(VkCommandBuffer cmd, GpuState& s);
 // Only when the atmosphere changes: the transmittance LUT, then the multiple-scattering LUT.
 void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s);
@@ -72,6 +77,9 @@ void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
 // The clouds pass over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME), into dome_a
 // and dome_b (bind_march(true) first).
 void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
+// The cloud density averaged per altitude bin (cloud_profile.comp), into dome_a
+// (bind_march(true) first).
+void pass_cloud_profile(VkCommandBuffer cmd, GpuState& s);
 void pass_march_range(VkCommandBuffer cmd, GpuState& s);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s);

@@ -36,6 +36,7 @@ struct Renderer::Impl {
     std::string clouds;    // history_key() of the scene
     glm::vec3 sun{0.0f};
     glm::vec2 centre_m{0.0f};  // in cloud space
+    float drift_m = 0.0f;      // cloud_relative_drift_m
   };
   std::optional<LightVolumeKey> light_volume_built;
 
@@ -135,7 +136,8 @@ std::string history_key(Scene scene) {
 // The camera's side of the cloud layer: -1 below, 0 inside, 1 above.
 int layer_side(const Scene& scene) {
   const float z = scene.camera.position_m.z;
-  return z < scene.clouds.bottom_altitude_m ? -1 : z > scene.clouds.top_altitude_m ? 1 : 0;
+  const glm::vec2 shell_m = cloud_shell_m(scene);
+  return z < shell_m.x ? -1 : z > shell_m.y ? 1 : 0;
 }
 
 // `light_dir` and `previous_light_dir`: the key lights (sky_lights) of the two frames.
@@ -203,6 +205,7 @@ void Renderer::Impl::update_textures(const Scene& scene) {
     if (noise_stale) {
       pass_noise_base(cmd, state);
       pass_noise_detail(cmd, state);
+      pass_noise_curl(cmd, state);
     }
     if (weather_stale) pass_weather(cmd, state);
   });
@@ -259,12 +262,16 @@ bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& ke
   const glm::vec3 sun(params.sun_dir);  // the key light
   const glm::vec2 camera_cloud_m = glm::vec2(scene.camera.position_m) - glm::vec2(params.wind_offset_m);
   const LightVolumeKey* built = light_volume_built ? &*light_volume_built : nullptr;
-  // Rebuilt when the clouds or the sun (by 0.25 deg) change, or when the camera has moved
-  // 1/20 of the half extent from the centre in cloud space (where the voxels are finest).
+  // Rebuilt when the clouds or the sun (by 0.25 deg) change, when the camera has moved 1/20 of
+  // the half extent from the centre in cloud space (where the voxels are finest), or when the
+  // clouds' features have moved 100 m against the volume's frame (shear, detail wind, the high
+  // layer's wind, the flow).
+  const float drift_m = cloud_relative_drift_m(scene);
   const bool stale = !built || built->clouds != key ||
                      glm::dot(built->sun, sun) < std::cos(glm::radians(0.25f)) ||
-                     glm::distance(built->centre_m, camera_cloud_m) > 0.05f * half_m;
-  if (stale) light_volume_built = LightVolumeKey{key, sun, camera_cloud_m};
+                     glm::distance(built->centre_m, camera_cloud_m) > 0.05f * half_m ||
+                     std::abs(drift_m - built->drift_m) > 100.0f;
+  if (stale) light_volume_built = LightVolumeKey{key, sun, camera_cloud_m, drift_m};
   params.light_volume = glm::vec4(light_volume_built->centre_m, half_m, 1.0f);
   return stale;
 }
@@ -286,6 +293,33 @@ double Renderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode mode
   const auto covered = std::count_if(dome.pixels.begin(), dome.pixels.end(),
                                      [](const glm::vec4& p) { return p.a < 0.5f; });
   return double(covered) / double(dome.pixels.size());
+}
+
+CloudProfile Renderer::cloud_profile(const Scene& scene) {
+  validate_scene(scene);
+  Impl& impl = *impl_;
+  impl.update_atmosphere_luts(scene);
+  gpu::FrameParams params = make_frame_params(scene, 0, sky_lights(scene), impl.tables);
+  params.cloud_weather.w = 0.5f * scene.clouds.weather_period_m;
+  std::memcpy(impl.state.frame_params.data(), &params, sizeof(params));
+  impl.update_textures(scene);
+  impl.state.bind_march(true);
+  impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    impl.state.timer.reset(cmd);
+    pass_cloud_profile(cmd, impl.state);
+  });
+  impl.state.bind_march(false);
+  const Image sums = download(impl.ctx, impl.state.dome_a, false);
+  const glm::vec2 shell_m = cloud_shell_m(scene);
+  CloudProfile profile;
+  for (int bin = 0; bin < sums.height; ++bin) {
+    glm::dvec4 total(0.0);
+    for (int x = 0; x < sums.width; ++x) total += glm::dvec4(sums.at(x, bin));
+    profile.altitude_m.push_back(glm::mix(shell_m.x, shell_m.y, (bin + 0.5f) / sums.height));
+    profile.density.push_back(float(total.x / total.w));
+    profile.cloud_fraction.push_back(float(total.z / total.w));
+  }
+  return profile;
 }
 
 int sky_cover_oktas(double fraction) {

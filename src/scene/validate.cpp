@@ -75,6 +75,14 @@ class Checker {
            "must be < " + display(other_key).name + " (" + format_float(other) + ")");
   }
 
+  // `value` must be >= `other` (another parameter, named in the message).
+  void at_least(const std::string& key, float value, const std::string& other_key,
+                float other) const {
+    if (!(value >= other))
+      fail(key, format_float(value),
+           "must be >= " + display(other_key).name + " (" + format_float(other) + ")");
+  }
+
   void readable_file(const std::string& key, const std::string& path) const {
     std::ifstream file(path, std::ios::binary);
     std::error_code error;
@@ -157,14 +165,33 @@ void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) 
   check.in_range("atmosphere.turbidity", atmosphere.turbidity, 2.0f, 10.0f);
 }
 
-void check_cirrus(const Checker& check, const CirrusParams& cirrus, const CloudParams& clouds) {
-  if (cirrus.coverage > 0.0f)  // a sheet that is there sits above the cloud layer
-    check.less_than("clouds.top_altitude_m", clouds.top_altitude_m, "cirrus.altitude_m",
-                    cirrus.altitude_m);
+void check_cirrus(const Checker& check, const CirrusParams& cirrus, const Scene& scene) {
+  if (cirrus.coverage > 0.0f) {  // a sheet that is there sits above the volumetric layers
+    if (scene.high_clouds.coverage > 0.0f)
+      check.less_than("high_clouds.top_altitude_m", scene.high_clouds.top_altitude_m,
+                      "cirrus.altitude_m", cirrus.altitude_m);
+    else
+      check.less_than("clouds.top_altitude_m", scene.clouds.top_altitude_m, "cirrus.altitude_m",
+                      cirrus.altitude_m);
+  }
   check.in_range("cirrus.coverage", cirrus.coverage, 0.0f, 1.0f);
   check.in_range("cirrus.type", cirrus.type, 0.0f, 1.0f);
   check.in_range("cirrus.optical_depth", cirrus.optical_depth, 0.0f, 4.0f);
   check.finite("cirrus.wind_mps", cirrus.wind_mps);
+}
+
+void check_high_clouds(const Checker& check, const HighCloudParams& high,
+                       const CloudParams& clouds) {
+  check.in_range("high_clouds.coverage", high.coverage, 0.0f, 1.0f);
+  check.in_range("high_clouds.type", high.type, 0.0f, 1.0f);
+  check.in_range("high_clouds.density", high.density, 0.0f, 1.0f);
+  check.finite("high_clouds.wind_mps", high.wind_mps);
+  check.finite("high_clouds.bottom_altitude_m", high.bottom_altitude_m);
+  check.less_than("high_clouds.bottom_altitude_m", high.bottom_altitude_m,
+                  "high_clouds.top_altitude_m", high.top_altitude_m);
+  if (high.coverage > 0.0f)  // a layer that is there lies wholly above the low one
+    check.at_least("high_clouds.bottom_altitude_m", high.bottom_altitude_m,
+                   "clouds.top_altitude_m", clouds.top_altitude_m);
 }
 
 void check_clouds(const Checker& check, const CloudParams& clouds) {
@@ -187,6 +214,12 @@ void check_clouds(const Checker& check, const CloudParams& clouds) {
   check.in_range("clouds.powder_strength", clouds.powder_strength, 0.0f, 1.0f);
   check.non_negative("clouds.ambient_strength", clouds.ambient_strength);
   check.finite("clouds.wind_mps", clouds.wind_mps);
+  check.finite("clouds.wind_shear_mps", clouds.wind_shear_mps);
+  check.non_negative("clouds.wind_skew_s", clouds.wind_skew_s);
+  check.finite("clouds.detail_drift_mps", clouds.detail_drift_mps);
+  check.non_negative("clouds.curl_distortion_m", clouds.curl_distortion_m);
+  check.non_negative("clouds.flow_speed_mps", clouds.flow_speed_mps);
+  check.positive("clouds.flow_cycle_s", clouds.flow_cycle_s);
   check.positive("clouds.base_noise_period_m", clouds.base_noise_period_m);
   check.positive("clouds.detail_noise_period_m", clouds.detail_noise_period_m);
   check.in_range("clouds.detail_erosion", clouds.detail_erosion, 0.0f, 1.0f);
@@ -197,8 +230,10 @@ void check_clouds(const Checker& check, const CloudParams& clouds) {
 // The cloud layer must lie inside the atmosphere the sky is integrated over.
 void check_layers(const Checker& check, const Scene& scene) {
   float atmosphere_top_m = scene.atmosphere.atmosphere_height_km * 1000.0f;
-  if (!(scene.clouds.top_altitude_m < atmosphere_top_m))
-    check.fail("clouds.top_altitude_m", format_float(scene.clouds.top_altitude_m),
+  const bool high = scene.high_clouds.coverage > 0.0f;
+  const float top_m = high ? scene.high_clouds.top_altitude_m : scene.clouds.top_altitude_m;
+  if (!(top_m < atmosphere_top_m))
+    check.fail(high ? "high_clouds.top_altitude_m" : "clouds.top_altitude_m", format_float(top_m),
                "must be below the top of the atmosphere (atmosphere.atmosphere_height_km = " +
                    format_float(scene.atmosphere.atmosphere_height_km) + ", i.e. " +
                    format_float(atmosphere_top_m) + " m)");
@@ -257,7 +292,8 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_sun(check, scene.sun);
   check_atmosphere(check, scene.atmosphere);
   check_clouds(check, scene.clouds);
-  check_cirrus(check, scene.cirrus, scene.clouds);
+  check_high_clouds(check, scene.high_clouds, scene.clouds);
+  check_cirrus(check, scene.cirrus, scene);
   check_layers(check, scene);
   check_quality(check, scene.quality);
   check_output(check, scene.output);

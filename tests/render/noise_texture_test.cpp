@@ -92,3 +92,49 @@ TEST(NoiseTextures, TileSeamlesslyAndCarryNoise) {
   }
   EXPECT_EQ(ctx.validation_messages(), 0);
 }
+
+// The curl noise (noise_curl.comp) is a swirl field that displaces the detail noise and is the
+// flow map: divergence-free (so the flow neither piles cloud up nor thins it out), of unit
+// root-mean-square magnitude (so curl_distortion_m and flow_speed_mps mean what they say),
+// seamless across the tile's edges, and not constant.
+TEST(NoiseTextures, CurlNoiseIsDivergenceFreeUnitAndTiles) {
+  nephele::gpu::Context ctx({"", true, false});
+  nephele::GpuState state(ctx);
+  const nephele::gpu::FrameParams params = nephele::make_frame_params(nephele::Scene{}, 0);
+  std::memcpy(state.frame_params.data(), &params, sizeof(params));
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    state.timer.reset(cmd);
+    nephele::pass_noise_curl(cmd, state);
+  });
+  const int n = int(state.curl_noise.width());
+  ASSERT_EQ(n, 128);
+  std::vector<glm::vec4> texels(size_t(n) * n);
+  nephele::gpu::Buffer staging(ctx, texels.size() * sizeof(glm::vec4),
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) { state.curl_noise.record_download(cmd, staging); });
+  std::memcpy(texels.data(), staging.data(), texels.size() * sizeof(glm::vec4));
+  const auto at = [&](int x, int y) {
+    return glm::vec2(texels[size_t((y + n) % n) * n + size_t((x + n) % n)]);
+  };
+  double sum_sq = 0.0, divergence = 0.0, gradient = 0.0, seam = 0.0, interior = 0.0;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const glm::vec2 v = at(x, y);
+      sum_sq += glm::dot(v, v);
+      // Central differences (per texel): du/dx + dv/dy against the size of du/dx alone.
+      const float du_dx = 0.5f * (at(x + 1, y).x - at(x - 1, y).x);
+      const float dv_dy = 0.5f * (at(x, y + 1).y - at(x, y - 1).y);
+      divergence += std::abs(du_dx + dv_dy);
+      gradient += std::abs(du_dx) + std::abs(dv_dy);
+      if (x == n - 1) seam += glm::length(at(0, y) - v);
+      if (x == n / 2) interior += glm::length(at(x + 1, y) - v);
+    }
+  const double rms = std::sqrt(sum_sq / (double(n) * n));
+  std::printf("curl noise: rms %.3f, |div| / |gradient| %.4f, seam %.4f, interior %.4f\n", rms,
+              divergence / gradient, seam / n, interior / n);
+  EXPECT_NEAR(rms, 1.0, 0.1);
+  EXPECT_LT(divergence, 0.1 * gradient);  // a random field has |div| about 0.7 of this
+  EXPECT_LT(seam, 1.5 * interior);
+  EXPECT_GT(interior / n, 0.01);
+  EXPECT_EQ(ctx.validation_messages(), 0);
+}

@@ -24,7 +24,11 @@ Scene view() {
   s.output.height = 100;
   s.camera.view_dir = {0.0f, 1.0f, 0.35f};
   s.quality.cloud_downsample = 1;
-  s.clouds.weather_evolution_s = 0.0f;  // the clouds only drift: reprojection follows that
+  // The clouds only drift, all heights and the detail together: reprojection follows that.
+  // (Shear and the detail's own drift move features against the wind by a few cm a frame.)
+  s.clouds.weather_evolution_s = 0.0f;
+  s.clouds.wind_shear_mps = {0.0f, 0.0f};
+  s.clouds.detail_drift_mps = {0.0f, 0.0f, 0.0f};
   return s;
 }
 

@@ -13,12 +13,15 @@ using nephele::Scene;
 
 namespace {
 
-// Scattered cumulus from the ground, no wind: only the weather's evolution moves the clouds.
+// Scattered cumulus from the ground, no wind (nor shear, nor detail drift): only the weather's
+// evolution moves the clouds.
 Scene still_air(float time_s) {
   Scene s = nephele::load_preset("scattered");
   s.output.width = 120;
   s.output.height = 80;
   s.clouds.wind_mps = {0.0f, 0.0f};
+  s.clouds.wind_shear_mps = {0.0f, 0.0f};
+  s.clouds.detail_drift_mps = {0.0f, 0.0f, 0.0f};
   s.time_s = time_s;
   return s;
 }

@@ -251,3 +251,44 @@ TEST(CloudTypes, PrecipitationMakesCumulonimbusWithAnAnvil) {
   EXPECT_FLOAT_EQ(g::cloud_anvil_coverage(0.4f, 0.95f, 1.0f), 0.8f);
   EXPECT_EQ(g::cloud_anvil_coverage(0.0f, 0.95f, 1.0f), 0.0f);  // no cell, no anvil
 }
+
+// The seed's wind: (wind + h shear) (time + h skew). The bottom moves with the wind alone; the
+// top with the sheared wind and a lead of `skew` seconds, so tops lean downwind.
+TEST(Wind, GrowsWithHeightAndLeansTheTopsDownwind) {
+  const vec2 wind(8.0f, 2.0f), shear(3.0f, 1.0f);
+  const float time_s = 100.0f, skew_s = 60.0f;
+  const vec2 drift = wind * time_s;
+  const vec2 bottom = g::cloud_wind_offset(drift, wind, shear, time_s, skew_s, 0.0f);
+  EXPECT_FLOAT_EQ(bottom.x, 800.0f);
+  EXPECT_FLOAT_EQ(bottom.y, 200.0f);
+  for (float h : {0.3f, 0.7f, 1.0f}) {
+    const vec2 seed = (wind + h * shear) * (time_s + h * skew_s);
+    const vec2 offset = g::cloud_wind_offset(drift, wind, shear, time_s, skew_s, h);
+    EXPECT_NEAR(offset.x, seed.x, 1e-3f) << h;
+    EXPECT_NEAR(offset.y, seed.y, 1e-3f) << h;
+  }
+  // At time 0 only the lean remains: h x skew x wind (plus the shear over the lead).
+  const vec2 lean = g::cloud_wind_offset(vec2(0.0f), wind, shear, 0.0f, skew_s, 1.0f);
+  EXPECT_FLOAT_EQ(lean.x, (8.0f + 3.0f) * 60.0f);
+  // Without shear and skew every height moves together.
+  const vec2 rigid = g::cloud_wind_offset(drift, wind, vec2(0.0f), time_s, 0.0f, 0.8f);
+  EXPECT_EQ(rigid, drift);
+}
+
+// The flow map's two phases (seed 002): weights sum to 1 at every moment, each phase's weight
+// is 0 where its displacement jumps back to 0 (so the restart is invisible), and no phase is
+// displaced by more than one cycle's flow.
+TEST(Wind, FlowPhasesBlendToOneAndHideTheirRestart) {
+  for (int i = 0; i <= 100; ++i) {
+    const float phase = float(i) / 100.0f;
+    const vec2 a = g::cloud_flow_phase(phase, 0), b = g::cloud_flow_phase(phase, 1);
+    EXPECT_NEAR(a.x + b.x, 1.0f, 1e-6f) << phase;
+    EXPECT_GE(a.y, 0.0f);
+    EXPECT_LT(a.y, 1.0f);
+    EXPECT_NEAR(std::fmod(b.y - a.y + 1.0f, 1.0f), 0.5f, 1e-6f);  // half a cycle apart
+  }
+  EXPECT_NEAR(g::cloud_flow_phase(0.0f, 0).x, 0.0f, 1e-6f);   // phase 0 restarts here
+  EXPECT_NEAR(g::cloud_flow_phase(0.5f, 1).x, 0.0f, 1e-6f);   // phase 1 half a cycle later
+  EXPECT_NEAR(g::cloud_flow_phase(0.5f, 0).x, 1.0f, 1e-6f);
+  EXPECT_NEAR(g::cloud_flow_phase(0.999f, 0).x, 0.0f, 0.01f);  // fades out before it jumps
+}

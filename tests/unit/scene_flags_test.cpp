@@ -141,6 +141,19 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--ambient", "2"}, [](const Scene& s) { return s.clouds.ambient_strength == 2.0f; }},
       {{"--wind-mps", "-3,4"},
        [](const Scene& s) { return s.clouds.wind_mps == glm::vec2(-3.0f, 4.0f); }},
+      {{"--wind-shear-mps", "1,-2"},
+       [](const Scene& s) { return s.clouds.wind_shear_mps == glm::vec2(1.0f, -2.0f); }},
+      {{"--detail-drift-mps", "5,0,1.5"},
+       [](const Scene& s) { return s.clouds.detail_drift_mps == glm::vec3(5.0f, 0.0f, 1.5f); }},
+      {{"--flow-speed-mps", "2.5"}, [](const Scene& s) { return s.clouds.flow_speed_mps == 2.5f; }},
+      {{"--high-coverage", "0.4"}, [](const Scene& s) { return s.high_clouds.coverage == 0.4f; }},
+      {{"--high-cloud-type", "0.25"}, [](const Scene& s) { return s.high_clouds.type == 0.25f; }},
+      {{"--high-bottom-m", "6500"},
+       [](const Scene& s) { return s.high_clouds.bottom_altitude_m == 6500.0f; }},
+      {{"--high-top-m", "8000"},
+       [](const Scene& s) { return s.high_clouds.top_altitude_m == 8000.0f; }},
+      {{"--high-wind-mps", "20,-1"},
+       [](const Scene& s) { return s.high_clouds.wind_mps == glm::vec2(20.0f, -1.0f); }},
       {{"--time-s", "60"}, [](const Scene& s) { return s.time_s == 60.0f; }},
       {{"--time", "2026-06-21T18:30:00Z"},
        [](const Scene& s) { return s.time == "2026-06-21T18:30:00Z" && s.sun.from_time; }},
@@ -218,6 +231,15 @@ TEST(SceneFlags, ValidationErrorsNameTheFlag) {
             "--camera-altitude-m -1: must be >= 0 (the camera is below the ground)");
   EXPECT_EQ(resolve_error({"--cloud-bottom-m", "5000", "--cloud-top-m", "4000"}),
             "--cloud-bottom-m 5000: must be < --cloud-top-m (4000)");
+  // Layers may not overlap, and the cirrus sheet lies above the highest one.
+  EXPECT_EQ(resolve_error({"--high-coverage", "0.3", "--high-bottom-m", "3500"}),
+            "--high-bottom-m 3500: must be >= preset 'default': clouds.top_altitude_m (4000)");
+  EXPECT_EQ(resolve_error({"--high-coverage", "0.3", "--cirrus-coverage", "0.5",
+                           "--cirrus-altitude-m", "6500"}),
+            "preset 'default': high_clouds.top_altitude_m = 7000: must be < --cirrus-altitude-m "
+            "(6500)");
+  EXPECT_EQ(resolve_error({"--flow-speed-mps", "-1"}),
+            "--flow-speed-mps -1: must be a finite number >= 0");
   EXPECT_EQ(resolve_error({"--weather-map", "/nonexistent/nephele.png"}),
             "--weather-map /nonexistent/nephele.png: cannot read the file");
   EXPECT_EQ(resolve_error({"--camera-pos", "0,0,-3"}),

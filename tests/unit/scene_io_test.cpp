@@ -87,6 +87,19 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(ac.powder_strength, bc.powder_strength);
   EXPECT_EQ(ac.ambient_strength, bc.ambient_strength);
   EXPECT_EQ(ac.wind_mps, bc.wind_mps);
+  EXPECT_EQ(ac.wind_shear_mps, bc.wind_shear_mps);
+  EXPECT_EQ(ac.wind_skew_s, bc.wind_skew_s);
+  EXPECT_EQ(ac.detail_drift_mps, bc.detail_drift_mps);
+  EXPECT_EQ(ac.curl_distortion_m, bc.curl_distortion_m);
+  EXPECT_EQ(ac.flow_speed_mps, bc.flow_speed_mps);
+  EXPECT_EQ(ac.flow_cycle_s, bc.flow_cycle_s);
+  const HighCloudParams &ah = a.high_clouds, &bh = b.high_clouds;
+  EXPECT_EQ(ah.bottom_altitude_m, bh.bottom_altitude_m);
+  EXPECT_EQ(ah.top_altitude_m, bh.top_altitude_m);
+  EXPECT_EQ(ah.coverage, bh.coverage);
+  EXPECT_EQ(ah.type, bh.type);
+  EXPECT_EQ(ah.density, bh.density);
+  EXPECT_EQ(ah.wind_mps, bh.wind_mps);
   EXPECT_EQ(ac.base_noise_period_m, bc.base_noise_period_m);
   EXPECT_EQ(ac.detail_noise_period_m, bc.detail_noise_period_m);
   EXPECT_EQ(ac.detail_erosion, bc.detail_erosion);
@@ -134,12 +147,19 @@ Scene unusual_scene() {
               0.25f,
               1.9f,
               {-3.5f, 12.0f},
+              {1.5f, -0.25f},
+              75.5f,
+              {4.0f, -5.0f, 0.75f},
+              33.25f,
+              2.5f,
+              45.5f,
               7000.5f,
               850.0f,
               0.12f,
               35000.0f,
               1234.5f,
               "/maps/\"quoted\" \\ weather.png"};
+  s.high_clouds = {6100.5f, 7300.25f, 0.35f, 0.625f, 0.45f, {17.5f, -2.25f}};
   s.quality = {MarchMode::Baseline, 64, 4};
   s.output = {1920, 1080, 2.5f};
   s.time_s = 12.75f;
