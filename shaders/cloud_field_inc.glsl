@@ -75,13 +75,17 @@ vec2 cloud_density_pair(vec3 pos) {
   vec3 d = textureLod(detail_noise, detail_pos * frame.cloud_noise.y, 0.0f).rgb;
   if (h <= 0.0f || h >= 1.0f) return vec2(0.0f);
   // Cloud type (B, around the layer's type) and precipitation (the layer's, where the map has
-  // storm cells: G), which turns any cloud into cumulonimbus.
+  // storm cells: G), which turns the cells' cores into cumulonimbus and spreads an anvil over
+  // the cells.
+  vec2 cell = cloud_storm_cell(weather.g, layer.shape.w);
   vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, layer.shape.x),
-                                         saturate(layer.shape.z + weather.b - 0.5f),
-                                         saturate(layer.shape.w * 2.0f * weather.g));
+                                         saturate(layer.shape.z + weather.b - 0.5f), cell.x);
   float type = coverage_type.y;
   float cumulonimbus = cloud_cumulonimbus_share(type);
-  float coverage = cloud_anvil_coverage(coverage_type.x, h, cumulonimbus);
+  float coverage = coverage_type.x;
+  float anvil = cloud_anvil_coverage(h, cell.y);
+  // The anvil's density: the map's, as dense as a tower's top.
+  float anvil_density = weather.a * 2.0f * layer.shape.y;
   float top = cloud_type_top(type);
   float h_type = saturate(h / top);  // height fraction within the type's extent
   // The seed's gradient (thin bases, dense tops; over the type's extent); cumulonimbus fills
@@ -98,16 +102,18 @@ vec2 cloud_density_pair(vec3 pos) {
     // Seed: low-frequency noise 85% plus detail noise 15%, then coverage and height shape.
     float noise = base.r * 0.85f + d.r * 0.15f;
     float field = cloud_apply_coverage(noise * shape_gradient, coverage) * density_gradient;
-    return vec2(field);
+    return vec2(max(field, cloud_apply_coverage(noise, anvil) * anvil_density));
   }
   // Schneider: Worley fBm (GBA) carves the Perlin-Worley (R), the type's height gradient
   // shapes it, coverage cuts, detail erodes.
   float worley = base.g * 0.625f + base.b * 0.25f + base.a * 0.125f;
-  float shape = saturate(remap(base.r, worley - 1.0f, 1.0f, 0.0f, 1.0f));
-  shape = cloud_apply_coverage(shape * cloud_type_gradient(h, type), coverage);
-  float eroded = cloud_erode(shape, d.r * 0.625f + d.g * 0.25f + d.b * 0.125f, h,
-                             frame.cloud_noise.w);
-  return vec2(shape, shape > 0.0f ? eroded : 0.0f) * density_gradient;
+  float noise = saturate(remap(base.r, worley - 1.0f, 1.0f, 0.0f, 1.0f));
+  float detail = d.r * 0.625f + d.g * 0.25f + d.b * 0.125f;
+  float shape = cloud_apply_coverage(noise * cloud_type_gradient(h, type), coverage);
+  float eroded = cloud_erode(shape, detail, h, frame.cloud_noise.w);
+  // The anvil, smooth (not eroded): ice, spread thin by the wind.
+  float anvil_shape = cloud_apply_coverage(noise, anvil) * anvil_density;
+  return max(vec2(shape, shape > 0.0f ? eroded : 0.0f) * density_gradient, vec2(anvil_shape));
 }
 
 float cloud_density(vec3 pos, bool with_detail) {

@@ -22,9 +22,10 @@ void main() {
   float cells = worley_fbm(uv, 12, seed + 1u);
   float field = perlin_fbm01(uv, 6, 4, seed + 2u);
   float low = saturate(remap(field * 0.55f + cells * 0.65f, 0.45f, 1.0f, 0.0f, 1.0f));
-  // A few storm cells where the coverage field peaks; the type varies by +-0.1 around the
-  // layer's.
-  float storms = saturate(remap(perlin_fbm01(uv, 4, 3, seed + 3u) * low, 0.35f, 0.6f, 0.0f, 1.0f));
+  // A few storm cells, each some 10 km across (three lattice cells a tile: 13 km at the
+  // default 40 km), where precipitation grows cumulonimbus; the type varies by +-0.1 around
+  // the layer's.
+  float storms = smoothstep(0.52f, 0.72f, perlin_fbm01(uv, 3, 2, seed + 3u));
   float type = mix(0.4f, 0.6f, perlin_fbm01(uv, 8, 2, seed + 4u));
   float density = mix(0.6f, 1.0f, perlin_fbm01(uv, 5, 2, seed + 5u));
   imageStore(weather_out, id, vec4(low, storms, type, density));

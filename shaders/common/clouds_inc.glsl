@@ -69,16 +69,26 @@ float cloud_type_top(float type) {
 float cloud_cumulonimbus_share(float type) { return saturate(4.0f * type - 3.0f); }
 
 // Precipitation (seed 002, 积雨云渐变): the weather map's precipitation p in [0, 1] turns any
-// sky into cumulonimbus at 70% coverage or more. Returns (coverage, type).
+// sky into cumulonimbus at 70% coverage or more, rising to 95% where p is 1 (a storm cell's
+// core: a solid tower). Returns (coverage, type).
 vec2 cloud_precipitate(float coverage, float type, float p) {
-  return vec2(mix(coverage, max(coverage, 0.7f), p), mix(type, 1.0f, p));
+  return vec2(mix(coverage, max(coverage, 0.7f + 0.25f * p), p), mix(type, 1.0f, p));
 }
 
-// The anvil (seed 002, "shape bias"): cumulonimbus coverage rises towards the top of the layer,
-// doubling over its top third, so each cell's top spreads out (where there is no cloud there
-// is no anvil); `anvil` in [0, 1] is the share of cumulonimbus.
-float cloud_anvil_coverage(float coverage, float h, float anvil) {
-  return min(coverage * (1.0f + anvil * smoothstep(0.6f, 0.9f, h)), 1.0f);
+// A storm cell from the weather map's storm channel g and the layer's precipitation p (seed
+// 002, 积雨云渐变). Returns (x) how far the towers' core turns into cumulonimbus: from g = 0.2,
+// fully from 0.6; (y) the cell's extent, where its anvil spreads: wider than the core, fully
+// from g = 1/3.
+vec2 cloud_storm_cell(float g, float p) {
+  return vec2(saturate(p * (2.5f * g - 0.5f)), saturate(p * 3.0f * g));
+}
+
+// The anvil (seed 002, "shape bias": coverage rising with height): over a storm cell's extent
+// `cell` in [0, 1], a sheet of coverage 0.85 spreading at the top of the layer, from 62% of its
+// height, fullest between 75% and 90%. Nothing below, and nothing where there is no cell. The
+// wind's lean (cloud_wind_offset) streams it downwind.
+float cloud_anvil_coverage(float h, float cell) {
+  return 0.85f * cell * cloud_trapezoid(h, vec4(0.62f, 0.75f, 0.9f, 1.0f));
 }
 
 // Density height gradient of the default model over the height fraction h within the cloud

@@ -243,13 +243,22 @@ TEST(CloudTypes, PrecipitationMakesCumulonimbusWithAnAnvil) {
   EXPECT_FLOAT_EQ(dry.x, 0.3f);
   EXPECT_FLOAT_EQ(dry.y, 0.25f);
   const vec2 storm = g::cloud_precipitate(0.3f, 0.25f, 1.0f);
-  EXPECT_FLOAT_EQ(storm.x, 0.7f);
+  EXPECT_FLOAT_EQ(storm.x, 0.95f);  // a solid core
+  EXPECT_GE(g::cloud_precipitate(0.3f, 0.25f, 0.2f).x, 0.3f + 0.2f * (0.7f - 0.3f));
   EXPECT_FLOAT_EQ(storm.y, 1.0f);
-  EXPECT_FLOAT_EQ(g::cloud_precipitate(0.9f, 0.0f, 1.0f).x, 0.9f);  // never less cloud
-  EXPECT_FLOAT_EQ(g::cloud_anvil_coverage(0.5f, 0.95f, 0.0f), 0.5f);
-  EXPECT_FLOAT_EQ(g::cloud_anvil_coverage(0.5f, 0.3f, 1.0f), 0.5f);
-  EXPECT_FLOAT_EQ(g::cloud_anvil_coverage(0.4f, 0.95f, 1.0f), 0.8f);
-  EXPECT_EQ(g::cloud_anvil_coverage(0.0f, 0.95f, 1.0f), 0.0f);  // no cell, no anvil
+  EXPECT_FLOAT_EQ(g::cloud_precipitate(0.97f, 0.0f, 1.0f).x, 0.97f);  // never less cloud
+  // The anvil: a sheet at the top over the cell, nothing below it or outside the cell.
+  EXPECT_FLOAT_EQ(g::cloud_anvil_coverage(0.8f, 1.0f), 0.85f);
+  EXPECT_EQ(g::cloud_anvil_coverage(0.5f, 1.0f), 0.0f);
+  EXPECT_EQ(g::cloud_anvil_coverage(0.8f, 0.0f), 0.0f);  // no cell, no anvil
+  EXPECT_GT(g::cloud_anvil_coverage(0.7f, 1.0f), 0.0f);
+  EXPECT_LT(g::cloud_anvil_coverage(0.7f, 1.0f), 0.85f);
+  // The cell's core turns cumulonimbus only where the storm channel is strong; its anvil
+  // spreads over more of it.
+  EXPECT_EQ(g::cloud_storm_cell(0.2f, 1.0f).x, 0.0f);
+  EXPECT_GT(g::cloud_storm_cell(0.2f, 1.0f).y, 0.5f);
+  EXPECT_FLOAT_EQ(g::cloud_storm_cell(0.8f, 1.0f).x, 1.0f);
+  EXPECT_EQ(g::cloud_storm_cell(0.8f, 0.0f), vec2(0.0f));  // no precipitation, no storm
 }
 
 // The seed's wind: (wind + h shear) (time + h skew). The bottom moves with the wind alone; the
