@@ -51,7 +51,10 @@ float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   vec2 outer = ray_sphere(p, sun, frame.radii_m.w);
   if (inner.y <= 0.0f || outer.y <= inner.y) return 1.0f;
   vec3 base = p + sun * inner.y;  // where the sunlight leaves the cloud layer
-  bool covered = MARCH_MODE == 0 && light_volume_covers(base);
+  // The volume where its voxels are small against the distance (at most 2% of it: a few
+  // pixels); nearer, its coarse voxels would draw blocks, so the shadow is marched.
+  bool covered = MARCH_MODE == 0 && light_volume_covers(base) &&
+                 light_volume_voxel_at(base) < 0.02f * ground.x;
   float depth = covered ? light_volume_lookup(base) : 0.0f;
   // A loop with a per-lane trip count, not a branch: a CPU device executes both sides of a
   // branch, but ends a loop once no lane has iterations left.
