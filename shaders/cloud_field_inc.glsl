@@ -13,10 +13,15 @@
 
 const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 
-// The layer at `radius_m` (FrameParams::cloud_layers): the high one from its bottom up. A
-// select, not a branch.
-int cloud_layer_at(float radius_m) {
-  return radius_m >= frame.cloud_layers[1].radii_m.x ? 1 : 0;
+// The layer at `radius_m` (FrameParams::cloud_layers): the high one from its bottom up. Both
+// are read at constant indices and selected per lane: an index that differs between lanes
+// would make a CPU device gather every field lane by lane.
+CloudLayerGpu cloud_layer_at(float radius_m) {
+  bool high = radius_m >= frame.cloud_layers[1].radii_m.x;
+  CloudLayerGpu low_layer = frame.cloud_layers[0], high_layer = frame.cloud_layers[1];
+  return CloudLayerGpu(high ? high_layer.radii_m : low_layer.radii_m,
+                       high ? high_layer.shape : low_layer.shape,
+                       high ? high_layer.wind : low_layer.wind);
 }
 
 // Height fraction in the whole cloud shell (all layers): the light volume's vertical axis.
@@ -27,14 +32,21 @@ float altitude_fraction(vec3 pos) {
 // Height fraction in the layer at pos: 0 at its bottom, 1 at its top.
 float layer_fraction(vec3 pos) {
   float radius_m = length(pos);
-  vec4 radii = frame.cloud_layers[cloud_layer_at(radius_m)].radii_m;
+  vec4 radii = cloud_layer_at(radius_m).radii_m;
   return cloud_height_fraction(radius_m, radii.x, radii.y);
 }
 
 // The thickness of the layer at pos (m).
 float layer_thickness_m(vec3 pos) {
-  vec4 radii = frame.cloud_layers[cloud_layer_at(length(pos))].radii_m;
+  vec4 radii = cloud_layer_at(length(pos)).radii_m;
   return radii.y - radii.x;
+}
+
+// The base noise at ground_xy moved back along the flow by one of its phases (phase: weight,
+// progress; cloud_flow_phase), weighted.
+vec4 flowed_base_noise(vec2 ground_xy, float altitude_m, vec2 flow_m, vec2 phase) {
+  return phase.x * textureLod(base_noise, vec3(ground_xy - flow_m * phase.y, altitude_m) *
+                                              frame.cloud_noise.x, 0.0f);
 }
 
 // Cloud density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z.
@@ -43,7 +55,7 @@ float layer_thickness_m(vec3 pos) {
 // executes both sides of a branch, so the reads cost the same either way.
 vec2 cloud_density_pair(vec3 pos) {
   float radius_m = length(pos);
-  CloudLayerGpu layer = frame.cloud_layers[cloud_layer_at(radius_m)];
+  CloudLayerGpu layer = cloud_layer_at(radius_m);
   float h = cloud_height_fraction(radius_m, layer.radii_m.x, layer.radii_m.y);
   float h_wind = saturate(h);
   // The layer's wind, grown with height and leaning the tops downwind (seed 002).
@@ -59,14 +71,10 @@ vec2 cloud_density_pair(vec3 pos) {
   for (int k = 0; k < (flowing ? 1 : 0); ++k)
     flow_m = textureLod(curl_noise, ground_xy * frame.cloud_flow.w, 0.0f).xy *
              (frame.cloud_flow.x * frame.cloud_flow.y);
-  vec2 phase = flowing ? cloud_flow_phase(frame.cloud_flow.z, 0) : vec2(1.0f, 0.0f);
-  vec4 base = phase.x * textureLod(base_noise, vec3(ground_xy - flow_m * phase.y, altitude_m) *
-                                                   frame.cloud_noise.x, 0.0f);
-  for (int k = 0; k < (flowing ? 1 : 0); ++k) {
-    phase = cloud_flow_phase(frame.cloud_flow.z, 1);
-    base += phase.x * textureLod(base_noise, vec3(ground_xy - flow_m * phase.y, altitude_m) *
-                                                 frame.cloud_noise.x, 0.0f);
-  }
+  vec4 base = flowed_base_noise(ground_xy, altitude_m, flow_m,
+                                flowing ? cloud_flow_phase(frame.cloud_flow.z, 0) : vec2(1.0f, 0.0f));
+  for (int k = 0; k < (flowing ? 1 : 0); ++k)
+    base += flowed_base_noise(ground_xy, altitude_m, flow_m, cloud_flow_phase(frame.cloud_flow.z, 1));
   // The detail noise: its own wind relative to the shapes, and displaced by curl noise, most
   // at the bases (Schneider 2015), into swirls.
   vec2 curl = textureLod(curl_noise, ground_xy * (0.25f * frame.cloud_noise.y), 0.0f).xy;

@@ -165,15 +165,21 @@ void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) 
   check.in_range("atmosphere.turbidity", atmosphere.turbidity, 2.0f, 10.0f);
 }
 
+// The top of the highest volumetric layer that is there, and its key.
+struct LayerTop {
+  const char* key;
+  float altitude_m;
+};
+LayerTop highest_layer_top(const Scene& scene) {
+  if (scene.high_clouds.coverage > 0.0f)
+    return {"high_clouds.top_altitude_m", scene.high_clouds.top_altitude_m};
+  return {"clouds.top_altitude_m", scene.clouds.top_altitude_m};
+}
+
 void check_cirrus(const Checker& check, const CirrusParams& cirrus, const Scene& scene) {
-  if (cirrus.coverage > 0.0f) {  // a sheet that is there sits above the volumetric layers
-    if (scene.high_clouds.coverage > 0.0f)
-      check.less_than("high_clouds.top_altitude_m", scene.high_clouds.top_altitude_m,
-                      "cirrus.altitude_m", cirrus.altitude_m);
-    else
-      check.less_than("clouds.top_altitude_m", scene.clouds.top_altitude_m, "cirrus.altitude_m",
-                      cirrus.altitude_m);
-  }
+  const LayerTop top = highest_layer_top(scene);
+  if (cirrus.coverage > 0.0f)  // a sheet that is there sits above the volumetric layers
+    check.less_than(top.key, top.altitude_m, "cirrus.altitude_m", cirrus.altitude_m);
   check.in_range("cirrus.coverage", cirrus.coverage, 0.0f, 1.0f);
   check.in_range("cirrus.type", cirrus.type, 0.0f, 1.0f);
   check.in_range("cirrus.optical_depth", cirrus.optical_depth, 0.0f, 4.0f);
@@ -230,10 +236,9 @@ void check_clouds(const Checker& check, const CloudParams& clouds) {
 // The cloud layer must lie inside the atmosphere the sky is integrated over.
 void check_layers(const Checker& check, const Scene& scene) {
   float atmosphere_top_m = scene.atmosphere.atmosphere_height_km * 1000.0f;
-  const bool high = scene.high_clouds.coverage > 0.0f;
-  const float top_m = high ? scene.high_clouds.top_altitude_m : scene.clouds.top_altitude_m;
-  if (!(top_m < atmosphere_top_m))
-    check.fail(high ? "high_clouds.top_altitude_m" : "clouds.top_altitude_m", format_float(top_m),
+  const LayerTop top = highest_layer_top(scene);
+  if (!(top.altitude_m < atmosphere_top_m))
+    check.fail(top.key, format_float(top.altitude_m),
                "must be below the top of the atmosphere (atmosphere.atmosphere_height_km = " +
                    format_float(scene.atmosphere.atmosphere_height_km) + ", i.e. " +
                    format_float(atmosphere_top_m) + " m)");

@@ -62,15 +62,23 @@ double random_pair_difference(const Volume& v, int c) {
   return sum / 1000.0;
 }
 
+// Runs `passes` with the default scene's parameters.
+template <typename Passes>
+void run_passes(nephele::gpu::Context& ctx, nephele::GpuState& state, Passes passes) {
+  const nephele::gpu::FrameParams params = nephele::make_frame_params(nephele::Scene{}, 0);
+  std::memcpy(state.frame_params.data(), &params, sizeof(params));
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    state.timer.reset(cmd);
+    passes(cmd);
+  });
+}
+
 }  // namespace
 
 TEST(NoiseTextures, TileSeamlesslyAndCarryNoise) {
   nephele::gpu::Context ctx({"", true, false});
   nephele::GpuState state(ctx);
-  const nephele::gpu::FrameParams params = nephele::make_frame_params(nephele::Scene{}, 0);
-  std::memcpy(state.frame_params.data(), &params, sizeof(params));
-  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    state.timer.reset(cmd);
+  run_passes(ctx, state, [&](VkCommandBuffer cmd) {
     nephele::pass_noise_base(cmd, state);
     nephele::pass_noise_detail(cmd, state);
   });
@@ -100,12 +108,7 @@ TEST(NoiseTextures, TileSeamlesslyAndCarryNoise) {
 TEST(NoiseTextures, CurlNoiseIsDivergenceFreeUnitAndTiles) {
   nephele::gpu::Context ctx({"", true, false});
   nephele::GpuState state(ctx);
-  const nephele::gpu::FrameParams params = nephele::make_frame_params(nephele::Scene{}, 0);
-  std::memcpy(state.frame_params.data(), &params, sizeof(params));
-  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    state.timer.reset(cmd);
-    nephele::pass_noise_curl(cmd, state);
-  });
+  run_passes(ctx, state, [&](VkCommandBuffer cmd) { nephele::pass_noise_curl(cmd, state); });
   const int n = int(state.curl_noise.width());
   ASSERT_EQ(n, 128);
   std::vector<glm::vec4> texels(size_t(n) * n);
