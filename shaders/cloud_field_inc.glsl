@@ -154,25 +154,52 @@ float light_ray_length(vec3 pos, vec3 sun) {
 // Whether pos is inside the light volume's horizontal extent (and the volume is in use).
 bool light_volume_covers(vec3 pos) {
   vec2 offset = pos.xy - frame.wind_offset_m.xy - frame.light_volume.xy;
-  return frame.light_volume.w > 0.5f && max(abs(offset.x), abs(offset.y)) < frame.light_volume.z;
+  return frame.light_volume.w > 0.5f && length(offset) < frame.light_volume.z;
 }
 
 // The size of the light volume's voxels at pos (the largest of their three sides).
 float light_volume_voxel_at(vec3 pos) {
   vec2 offset = pos.xy - frame.wind_offset_m.xy - frame.light_volume.xy;
-  float half_m = frame.light_volume.z;
-  return max(max(light_volume_voxel_m(offset.x, half_m, LIGHT_VOLUME_XY),
-                 light_volume_voxel_m(offset.y, half_m, LIGHT_VOLUME_XY)),
+  return max(light_volume_voxel_m(length(offset), frame.light_volume.z, LIGHT_VOLUME_XY),
              (frame.radii_m.w - frame.radii_m.z) / float(LIGHT_VOLUME_Z));
 }
 
 // The light volume's optical depth at pos (trilinear).
 float light_volume_lookup(vec3 pos) {
   vec2 offset = pos.xy - frame.wind_offset_m.xy - frame.light_volume.xy;
-  float half_m = frame.light_volume.z;
-  vec3 coord = vec3(light_volume_coord(offset.x, half_m), light_volume_coord(offset.y, half_m),
-                    altitude_fraction(pos));
+  vec3 coord = vec3(light_volume_coord(offset, frame.light_volume.z), altitude_fraction(pos));
   return textureLod(light_volume, coord, 0.0f).r;
+}
+
+// Optical depth (density field x m) of the clouds towards the sun from `base`, a point at the
+// bottom of the cloud shell: from the light volume if `from_volume`, else `samples` samples of
+// the full density over the light ray (coarser sampling turns thin wisps into deep shadow). A
+// loop with a per-lane trip count, not a branch: a CPU device executes both sides of a
+// branch, but ends a loop once no lane has iterations left.
+float depth_towards_sun(vec3 base, vec3 sun, bool from_volume, int samples) {
+  float depth = from_volume ? light_volume_lookup(base) : 0.0f;
+  int n = from_volume ? 0 : samples;
+  float ds = light_ray_length(base, sun) / float(samples);
+  for (int i = 0; i < n; ++i) depth += cloud_density(base + sun * ((float(i) + 0.5f) * ds), true) * ds;
+  return depth;
+}
+
+// Share of the clear sky's light that the ground and the air below the clouds receive around
+// pos: the clouds' diffuse transmittance towards the sun, averaged over four points of the
+// shell's bottom `reach_m` from pos's foot (four samples each where the light volume does not
+// reach). A cloud sample looks as far as it is high (the middle of its cosine-weighted view of
+// the ground): under a storm's anvil or a deck the ground is in shadow and the bases go dark,
+// while a fair-weather cumulus still sees sunlit ground around its own shadow.
+float below_light_share(vec3 pos, float reach_m) {
+  vec3 foot = pos * (frame.radii_m.z / length(pos));
+  float share = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    vec2 axis = k < 2 ? vec2(k == 0 ? 1.0f : -1.0f, 0.0f) : vec2(0.0f, k == 2 ? 1.0f : -1.0f);
+    vec3 p = foot + vec3(axis * reach_m, 0.0f);
+    float depth = depth_towards_sun(p, frame.sun_dir.xyz, light_volume_covers(p), 4);
+    share += cloud_diffuse_transmittance(depth * frame.cloud_shape.z * frame.cloud_light.y);
+  }
+  return 0.25f * share;
 }
 
 // Optical depth towards the sun from pos as the seed marches it (listing B.2): three steps of

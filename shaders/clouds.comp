@@ -28,7 +28,10 @@ layout(local_size_x = 8, local_size_y = 8) in;
 const float FAR_M = 1.0e7f;  // distance written for rays that meet neither cloud nor ground
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
 const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance
-const float TAU_STEP_96 = 0.5f;     // optical depth per step in dense cloud at 96 primary steps
+const float TAU_STEP_96 = 0.5f;
+#ifndef DIFFUSE_K
+
+#endif     // optical depth per step in dense cloud at 96 primary steps
 
 // Transmittance of the air over `dist_m` from the eye to a cloud sample at altitude
 // `sample_alt_m`, with the extinction taken at the mean altitude (a simple aerial perspective;
@@ -39,10 +42,10 @@ vec3 air_transmittance(float eye_alt_m, float sample_alt_m, float dist_m) {
   return exp(-sigma_t * dist_m);
 }
 
-// Cloud shadow on the ground: transmittance from the ground point this ray hits towards the
-// sun through the cloud layer, 1 when the ray misses the ground. From the light volume where
-// it reaches, else 16 samples of the full density (coarser sampling turns thin wisps into deep
-// shadow).
+// Cloud shadow on the ground: the share of the sunlight that reaches the ground point this ray
+// hits through the cloud layer (direct and scattered forward), 1 when the ray misses the
+// ground. From the light volume where its voxels are small against the distance (at most 2%
+// of it: a few pixels), else 16 samples: nearer, its coarse voxels would draw blocks.
 // `ground` is ray_sphere(eye, dir, planet radius).
 float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   if (ground.x <= 0.0f) return 1.0f;
@@ -51,17 +54,10 @@ float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   vec2 outer = ray_sphere(p, sun, frame.radii_m.w);
   if (inner.y <= 0.0f || outer.y <= inner.y) return 1.0f;
   vec3 base = p + sun * inner.y;  // where the sunlight leaves the cloud layer
-  // The volume where its voxels are small against the distance (at most 2% of it: a few
-  // pixels); nearer, its coarse voxels would draw blocks, so the shadow is marched.
   bool covered = MARCH_MODE == 0 && light_volume_covers(base) &&
                  light_volume_voxel_at(base) < 0.02f * ground.x;
-  float depth = covered ? light_volume_lookup(base) : 0.0f;
-  // A loop with a per-lane trip count, not a branch: a CPU device executes both sides of a
-  // branch, but ends a loop once no lane has iterations left.
-  int n = covered ? 0 : 16;
-  float ds = (outer.y - inner.y) / 16.0f;
-  for (int i = 0; i < n; ++i) depth += cloud_density(base + sun * ((float(i) + 0.5f) * ds), true) * ds;
-  return exp(-depth * frame.cloud_shape.z * frame.cloud_light.y);
+  float depth = depth_towards_sun(base, sun, covered, 16);
+  return cloud_diffuse_transmittance(depth * frame.cloud_shape.z * frame.cloud_light.y);
 }
 
 // Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):
@@ -226,6 +222,7 @@ void main() {
     bool fine = false;
     int misses = 0;
     float fine_until = 0.0f;  // stay fine at least past the coarse sample that hit
+    float sampled_until = segment.x;  // fine steps have sampled the ray up to here
     int primary = 0;          // view-ray iterations so far
     int light_n = frame.steps.y;
     int light_k = 0;          // 0: next view-ray point; k > 0: light march step k of the sample
@@ -257,7 +254,16 @@ void main() {
         float tau_light = depth * sigma_scale * light_atten;
         float energy = multiple_scattering(tau_light, mu, powder, phases);
         float h = layer_fraction(lit_pos);
-        vec3 luminance = albedo * (sun_light * energy + mix(ambient_below, ambient_above, h));
+        // What the cloud between the sample and the light lets through: the sunlight it has
+        // scattered forward, no longer a beam but a diffuse flux (radiance = flux / pi, the
+        // flux through a horizontal deck mu_sun times the sun's), and the sky's light through
+        // the same cloud; from below, the light of the ground around, itself under the
+        // clouds' shadow, less the higher the sample is in the layer.
+        float t_d = cloud_diffuse_transmittance(tau_light);
+        float diffuse = (t_d - exp(-tau_light)) * max(dot(sun, normalize(lit_pos)), 0.0f) / PI;
+        vec3 luminance = albedo * (sun_light * (energy + diffuse) +
+                                   ambient_above * t_d +
+                                   ambient_below * ((1.0f - h) * below_light_share(lit_pos, length(lit_pos) - frame.radii_m.x)));
         float step_t = exp(-lit_sigma_t * lit_step_m);
         vec3 air = air_transmittance(eye_alt_m, length(lit_pos) - frame.radii_m.x, t);
         // Energy-conserving integration over the step (Hillaire 2016).
@@ -278,9 +284,13 @@ void main() {
         fine = true;
         misses = 0;
         fine_until = t;
-        t = max(t - coarse_step, segment.x);
+        // Step back over what the coarse step skipped, not into what fine steps have sampled:
+        // where the base shape fills space that erosion has emptied (a deck's thin base seen
+        // at a grazing angle) the march would otherwise crawl one fine step per return.
+        t = max(t - coarse_step, sampled_until);
         continue;
       }
+      sampled_until = t;
       if (field.y <= 0.0f) {
         if (++misses >= 6 && t > fine_until) fine = false;
         t += fine_step;

@@ -16,8 +16,7 @@ void main() {
   ivec3 v = ivec3(gl_GlobalInvocationID.xyz);
   if (v.x >= LIGHT_VOLUME_XY || v.y >= LIGHT_VOLUME_XY || v.z >= LIGHT_VOLUME_Z) return;
   float half_m = frame.light_volume.z;
-  vec2 offset = vec2(light_volume_offset_m((float(v.x) + 0.5f) / float(LIGHT_VOLUME_XY), half_m),
-                     light_volume_offset_m((float(v.y) + 0.5f) / float(LIGHT_VOLUME_XY), half_m));
+  vec2 offset = light_volume_offset_m((vec2(v.xy) + 0.5f) / float(LIGHT_VOLUME_XY), half_m);
   // Cloud space -> this frame's planet frame; the point at the voxel's altitude.
   vec2 xy = frame.light_volume.xy + offset + frame.wind_offset_m.xy;
   float h = (float(v.z) + 0.5f) / float(LIGHT_VOLUME_Z);

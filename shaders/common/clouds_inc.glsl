@@ -76,11 +76,11 @@ vec2 cloud_precipitate(float coverage, float type, float p) {
 }
 
 // A storm cell from the weather map's storm channel g and the layer's precipitation p (seed
-// 002, 积雨云渐变). Returns (x) how far the towers' core turns into cumulonimbus: from g = 0.2,
-// fully from 0.6; (y) the cell's extent, where its anvil spreads: wider than the core, fully
+// 002, 积雨云渐变). Returns (x) how far the towers' core turns into cumulonimbus: from g = 0.1,
+// fully from 0.5; (y) the cell's extent, where its anvil spreads: wider than the core, fully
 // from g = 1/3.
 vec2 cloud_storm_cell(float g, float p) {
-  return vec2(saturate(p * (2.5f * g - 0.5f)), saturate(p * 3.0f * g));
+  return vec2(saturate(p * (2.5f * g - 0.25f)), saturate(p * 3.0f * g));
 }
 
 // The anvil (seed 002, "shape bias": coverage rising with height): over a storm cell's extent
@@ -150,6 +150,17 @@ vec3 cirrus_genus_weights(float type) {
 // capped at 50x where the ray grazes the sheet.
 float cirrus_transmittance(float tau, float cos_zenith) {
   return exp(-tau / max(abs(cos_zenith), 0.02f));
+}
+
+// The asymmetry parameter of cloud droplets' Mie scattering at visible wavelengths.
+const float CLOUD_DROPLET_G = 0.85f;
+
+// Share of the light falling on a cloud that it transmits, direct and diffuse, at optical depth
+// tau: the two-stream result for a conservatively scattering slab, 1 / (1 + 3/4 (1 - g) tau)
+// (Bohren 1987). Thick cloud passes on far more than the direct beam's exp(-tau): forward
+// scattering carries light through (the grey light under an overcast).
+float cloud_diffuse_transmittance(float tau) {
+  return 1.0f / (1.0f + 0.75f * (1.0f - CLOUD_DROPLET_G) * max(tau, 0.0f));
 }
 
 // Light reaching a sample (listing B.2, formulas 1.7, 1.9, 1.10): Beer-Lambert exp(-tau) times
