@@ -161,6 +161,9 @@ void main() {
   vec3 ambient_above = frame.ambient_at_clouds.rgb * frame.cloud_light.w;
   vec3 ambient_below = frame.ambient_below_clouds.rgb * frame.cloud_light.w;
   vec3 ambient = 0.5f * (ambient_above + ambient_below);
+  // The ground light's share under the clouds, once per ray: where it enters the clouds.
+  vec3 entry = eye + dir * segment.x;
+  float below_share = below_light_share(entry, length(entry) - frame.radii_m.x);
   float g_f = frame.cloud_phase.x;
   float g_b = frame.cloud_phase.y;
   float lobe = frame.cloud_phase.z;
@@ -262,8 +265,7 @@ void main() {
         float t_d = cloud_diffuse_transmittance(tau_light);
         float diffuse = (t_d - exp(-tau_light)) * max(dot(sun, normalize(lit_pos)), 0.0f) / PI;
         vec3 luminance = albedo * (sun_light * (energy + diffuse) +
-                                   ambient_above * t_d +
-                                   ambient_below * ((1.0f - h) * below_light_share(lit_pos, length(lit_pos) - frame.radii_m.x)));
+                                   ambient_above * t_d + ambient_below * ((1.0f - h) * below_share));
         float step_t = exp(-lit_sigma_t * lit_step_m);
         vec3 air = air_transmittance(eye_alt_m, length(lit_pos) - frame.radii_m.x, t);
         // Energy-conserving integration over the step (Hillaire 2016).

@@ -19,8 +19,6 @@
 #include "cirrus_inc.glsl"
 
 layout(constant_id = 0) const int REFERENCE = 0;
-const int MARCH_MODE = 0;
-#include "cloud_field_inc.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // Solar disk radiance per unit illuminance, with limb darkening I(m)/I(1) = 1 - u (1 - m),
@@ -142,13 +140,6 @@ void main() {
   if (conditions != 0 && max(discs.r, max(discs.g, discs.b)) > 0.0f)  // dissolve into the sky
     discs = mix(discs, frame.conditions_disk_fog.rgb,
                 fog_ramp(elevation_deg, frame.conditions_fog_deg.z, frame.conditions_fog_deg.w));
-  // Under the clouds the ground's sky light (and the air's light in front of it; the sky-view
-  // LUT's, for a clear sky) comes through the clouds around it, as far out as the layer is
-  // high: a deck's shadow dims the ground.
-  vec3 eye = frame.camera_pos_m.xyz;
-  vec2 ground_hit = ray_sphere(eye, dir, frame.radii_m.x);
-  if (!above_horizon && ground_hit.x > 0.0f)
-    sky *= below_light_share(eye + dir * ground_hit.x, frame.radii_m.z - frame.radii_m.x);
   vec3 background = sky + ground_sun * ground_shadow + discs;
   if (conditions == 1) haze = 0.0f;  // the keyframes' fog stands for the aerial perspective
   vec3 illuminance = frame.sun_illuminance.rgb;
@@ -165,6 +156,7 @@ void main() {
   // in front of everything.
   // A loop of at most one trip rather than a branch: lavapipe runs both sides of a branch, so
   // a sky without cirrus would pay for its lookups.
+  vec3 eye = frame.camera_pos_m.xyz;
   float cirrus_m = cirrus_distance(eye, dir);
   vec4 cirrus = vec4(0.0f, 0.0f, 0.0f, 1.0f);
   bool cirrus_in_front = length(eye) > frame.cirrus.x;
