@@ -28,10 +28,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 const float FAR_M = 1.0e7f;  // distance written for rays that meet neither cloud nor ground
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
 const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance
-const float TAU_STEP_96 = 0.5f;
-#ifndef DIFFUSE_K
-
-#endif     // optical depth per step in dense cloud at 96 primary steps
+const float TAU_STEP_96 = 0.5f;     // optical depth per step in dense cloud at 96 primary steps
 
 // Transmittance of the air over `dist_m` from the eye to a cloud sample at altitude
 // `sample_alt_m`, with the extinction taken at the mean altitude (a simple aerial perspective;

@@ -1,9 +1,10 @@
 // The light volume (Kajiya and Von Herzen's two-pass idea, seed 004): the optical depth
 // towards the sun, computed once for a grid of points in cloud space (which moves with the
 // wind, so drifting clouds do not invalidate it) and looked up by every cloud sample instead
-// of a long light march. Horizontally the grid is warped radially (offset = s |s| * half extent,
-// s in the unit disk) so voxels are small near the camera and grow with distance; vertically it spans
-// the cloud layer evenly. Pure functions, compiled as C++ too (src/render/glsl.h).
+// of a long light march. Horizontally the grid is warped radially (offset = s |s| * half
+// extent, s in the unit disk) so voxels are small near the camera and grow with distance;
+// vertically it spans the cloud layer evenly. Pure functions, compiled as C++ too
+// (src/render/glsl.h).
 #ifndef NEPHELE_LIGHT_VOLUME_INC
 #define NEPHELE_LIGHT_VOLUME_INC
 
