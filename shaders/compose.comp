@@ -97,25 +97,27 @@ void main() {
   SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward);
   vec2 uv = sky_view_uv(sky_frame, dir);
   bool above_horizon = uv.y >= 0.5f;
-  vec3 sky, ground_sun;
+  vec3 sky;
+  vec4 ground_sun;  // rgb: the ground's sun-lit radiance; a: the air's transmittance to it
   if (REFERENCE == 1) {
     sky = texelFetch(reference_sky, pixel, 0).rgb;
-    ground_sun = texelFetch(reference_sky, ivec2(pixel.x, pixel.y + height), 0).rgb;
+    ground_sun = texelFetch(reference_sky, ivec2(pixel.x, pixel.y + height), 0);
   } else {
     float rows = float(textureSize(sky_view_lut, 0).y / 2);
     sky = textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 0.0f), 0.0f).rgb;
     ground_sun = above_horizon
-                     ? vec3(0.0f)
-                     : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f).rgb;
+                     ? vec4(0.0f)
+                     : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f);
   }
   int conditions = int(frame.conditions_sky.w);
+  float albedo = frame.sky_model.y;
   float elevation_deg = degrees(asin(clamp(dot(dir, sky_frame.up), -1.0f, 1.0f)));
   if (conditions == 1) {  // artist: the keyframes' sky, and the ground lit by their lights
-    float albedo = frame.sky_model.y;
     sky = above_horizon ? frame.conditions_sky.rgb : albedo * frame_ground_sky();
-    ground_sun = above_horizon ? vec3(0.0f)
-                               : albedo / PI * max(dot(sky_frame.up, sun), 0.0f) *
-                                     frame.conditions_light.rgb;
+    ground_sun = above_horizon ? vec4(0.0f)
+                               : vec4(albedo / PI * max(dot(sky_frame.up, sun), 0.0f) *
+                                          frame.conditions_light.rgb,
+                                      1.0f);
   }
   if (conditions != 0 && above_horizon)
     sky = mix(sky, frame.conditions_sky_fog.rgb,
@@ -131,6 +133,10 @@ void main() {
                        0.0f);
   vec3 haze_color = ap.rgb / max(1.0f - ap.a, 1e-6f);
   float ground_shadow = cloud_b.y;  // cloud transmittance towards the sun
+  // Under a cloud the sky's light reaches the ground through it as the sunlight does (the
+  // diffuse transmittance towards the sun stands for the one towards the sky): an overcast's
+  // ground is lit a dim grey, not by the clear blue sky. ground_shadow is 1 off the ground.
+  sky = max(sky - (1.0f - ground_shadow) * ground_sun.a * albedo * frame_ground_sky(), 0.0f);
   // The planet hides the part of the sun's disk below the horizon.
   vec3 sun_light = above_horizon
                        ? frame.sun_transmittance.rgb * sun_disk(dir, sun, frame.sun_dir.w)
@@ -140,7 +146,7 @@ void main() {
   if (conditions != 0 && max(discs.r, max(discs.g, discs.b)) > 0.0f)  // dissolve into the sky
     discs = mix(discs, frame.conditions_disk_fog.rgb,
                 fog_ramp(elevation_deg, frame.conditions_fog_deg.z, frame.conditions_fog_deg.w));
-  vec3 background = sky + ground_sun * ground_shadow + discs;
+  vec3 background = sky + ground_sun.rgb * ground_shadow + discs;
   if (conditions == 1) haze = 0.0f;  // the keyframes' fog stands for the aerial perspective
   vec3 illuminance = frame.sun_illuminance.rgb;
   // The air in front of a cloud scatters as the sky does along this direction.

@@ -42,5 +42,5 @@ void main() {
     result = sky_add_ground(a, transmittance_lut, true, result, ray.origin + dir * ray.length_m,
                             sun, albedo, frame_ground_sky());
   imageStore(reference_sky_out, pixel, vec4(result.radiance, 1.0f));
-  imageStore(reference_sky_out, ivec2(pixel.x, pixel.y + frame.size.y), vec4(result.ground_sun, 1.0f));
+  imageStore(reference_sky_out, ivec2(pixel.x, pixel.y + frame.size.y), vec4(result.ground_sun, result.ground_air_t));
 }

@@ -7,7 +7,8 @@
 // Both of the sky's lights (FrameParams sun_dir and second_light) are summed. With
 // atmosphere.model = preetham the sky above the horizon is Preetham's (seed 002) instead.
 // The image stacks two tables: the in-scattered radiance (with the ground's sky-lit part) and
-// the ground's sun-lit radiance, which compose multiplies by the clouds' shadow.
+// the ground's sun-lit radiance, which compose multiplies by the clouds' shadow; its alpha is
+// the air's transmittance to the ground, with which compose shadows the sky-lit part.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
@@ -52,5 +53,5 @@ void main() {
     sky.radiance = preetham_sky_radiance(frame.sky_model.w, dir, sun, sky_frame.up) * fade;
   }
   imageStore(sky_view_out, texel, vec4(sky.radiance, 1.0f));
-  imageStore(sky_view_out, ivec2(texel.x, texel.y + rows), vec4(sky.ground_sun, 1.0f));
+  imageStore(sky_view_out, ivec2(texel.x, texel.y + rows), vec4(sky.ground_sun, sky.ground_air_t));
 }

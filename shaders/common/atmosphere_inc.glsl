@@ -91,6 +91,8 @@ struct SkySample {
                        // ground's sky-lit part
   vec3 ground_sun;     // the ground's sun-lit radiance as seen (the caller may shadow it)
   vec3 transmittance;  // from the eye to the end of the ray (0 if the ground was hit)
+  float ground_air_t;  // the air's mean transmittance from the eye to the ground (0 if missed),
+                       // for a caller that shadows the ground's sky-lit part
 };
 
 // Nothing gathered yet: no radiance, full transmittance.
@@ -99,6 +101,7 @@ SkySample sky_sample_start() {
   s.radiance = vec3(0.0f);
   s.ground_sun = vec3(0.0f);
   s.transmittance = vec3(1.0f);
+  s.ground_air_t = 0.0f;
   return s;
 }
 
@@ -153,6 +156,7 @@ SkySample sky_single_scattering(Atmosphere a, vec3 eye, vec3 dir, vec3 sun, int 
     vec3 t_sun = atmosphere_transmittance_to_top(a, p, sun, light_samples);
     result.ground_sun = result.transmittance * ground_albedo / PI * t_sun * max(dot(n, sun), 0.0f);
     result.radiance += result.transmittance * ground_albedo * sky_ambient;
+    result.ground_air_t = dot(result.transmittance, vec3(1.0f / 3.0f));
     result.transmittance = vec3(0.0f);
   }
   return result;

@@ -226,6 +226,7 @@ SkySample sky_add_ground(Atmosphere a, sampler2D t_lut, bool exact, SkySample re
   vec3 t_sun = transmittance_to_light(a, t_lut, exact, nrm * (a.planet_radius_m + 1.0f), sun);
   result.ground_sun = result.transmittance * ground_albedo / PI * t_sun * max(dot(nrm, sun), 0.0f);
   result.radiance += result.transmittance * ground_albedo * sky_ambient;
+  result.ground_air_t = dot(result.transmittance, vec3(1.0f / 3.0f));
   result.transmittance = vec3(0.0f);
   return result;
 }

@@ -186,6 +186,35 @@ TEST_F(RenderTest, AboveTheLayerLookingDownSeesCloudTopsBrighterThanTheGround) {
   EXPECT_GT(cloud / n_cloud, 1.5 * ground / n_ground);
 }
 
+// Under a closed deck the ground is lit by what comes through the cloud, sunlight and skylight
+// alike: dim and neutral, not the clear sky's blue (which the deck hides).
+TEST_F(RenderTest, GroundUnderAClosedDeckIsDimAndGreyNotSkyBlue) {
+  Scene s = nephele::load_preset("overcast");
+  s.output.width = 64;
+  s.output.height = 40;
+  s.camera.position_m.z = 2.0f;
+  s.camera.view_dir = {0.0f, 1.0f, -1.0f};  // the ground in front, under the deck
+  const Frame overcast = render(s);
+  s.clouds.coverage = 0.0f;
+  s.high_clouds.coverage = 0.0f;
+  s.cirrus.coverage = 0.0f;
+  const Frame clear = render(s);
+  glm::dvec3 under(0.0), open(0.0);
+  for (size_t i = 0; i < overcast.color.pixels.size(); ++i) {
+    under += glm::dvec3(overcast.color.pixels[i]);
+    open += glm::dvec3(clear.color.pixels[i]);
+  }
+  const double blue_over_red_under = under.b / under.r;
+  const double blue_over_red_open = open.b / open.r;
+  // When the clear sky still lit it, the ground under the deck was 2.5x bluer than the clear
+  // day's (blue/red 2.20 against 0.88).
+  EXPECT_LT(blue_over_red_under, 1.3 * blue_over_red_open)
+      << "blue/red under the deck " << blue_over_red_under << ", clear " << blue_over_red_open;
+  // The deck's diffuse transmittance: a few percent to a few tens of percent of the clear day.
+  EXPECT_LT(under.g, 0.3 * open.g) << "green under the deck / clear: " << under.g / open.g;
+  EXPECT_GT(under.g, 0.01 * open.g) << "green under the deck / clear: " << under.g / open.g;
+}
+
 TEST_F(RenderTest, BaselineModeRendersTheSeedsMarch) {
   Scene s = small_scene();
   s.quality.mode = nephele::MarchMode::Baseline;
