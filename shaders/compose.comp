@@ -133,10 +133,12 @@ void main() {
                        0.0f);
   vec3 haze_color = ap.rgb / max(1.0f - ap.a, 1e-6f);
   float ground_shadow = cloud_b.y;  // cloud transmittance towards the sun
-  // Under a cloud the sky's light reaches the ground through it as the sunlight does (the
-  // diffuse transmittance towards the sun stands for the one towards the sky): an overcast's
-  // ground is lit a dim grey, not by the clear blue sky. ground_shadow is 1 off the ground.
-  sky = max(sky - (1.0f - ground_shadow) * ground_sun.a * albedo * frame_ground_sky(), 0.0f);
+  // Under clouds the ground's sky light comes through the gaps and through the clouds
+  // (cloud_ground_sky_share, ground_light.comp): an overcast's ground is a dim grey, not lit by
+  // the clear blue sky, and a broken field's shadows keep the gaps' blue light. Off the
+  // ground ground_sun.a is 0.
+  float sky_share = cloud_ground_sky_share(ground_shadow, texelFetch(ground_light, ivec2(0), 0).r);
+  sky = max(sky - (1.0f - sky_share) * ground_sun.a * albedo * frame_ground_sky(), 0.0f);
   // The planet hides the part of the sun's disk below the horizon.
   vec3 sun_light = above_horizon
                        ? frame.sun_transmittance.rgb * sun_disk(dir, sun, frame.sun_dir.w)

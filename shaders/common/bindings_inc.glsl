@@ -66,5 +66,9 @@ layout(set = 0, binding = 35) uniform sampler2D reference_sky;
 // Curl noise (noise_curl.comp): RG a divergence-free 2D field, tiling, 128^2.
 layout(set = 0, binding = 36, rgba32f) uniform writeonly image2D curl_noise_out;
 layout(set = 0, binding = 37) uniform sampler2D curl_noise;
+// The clouds' mean diffuse transmittance over the ground around the camera, one texel
+// (ground_light.comp; read by compose.comp).
+layout(set = 0, binding = 38, r32f) uniform writeonly image2D ground_light_out;
+layout(set = 0, binding = 39) uniform sampler2D ground_light;
 
 #endif

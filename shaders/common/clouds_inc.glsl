@@ -163,6 +163,16 @@ float cloud_diffuse_transmittance(float tau) {
   return 1.0f / (1.0f + 0.75f * (1.0f - CLOUD_DROPLET_G) * max(tau, 0.0f));
 }
 
+// Share of the clear sky's light that reaches a ground point under clouds: half of a horizontal
+// surface's sky light comes from within 45 deg of the zenith (cosine weighting), where the
+// cloud towards the sun (its diffuse transmittance `local_t`) stands for the cloud overhead;
+// the other half from further out, where the clouds' mean transmittance over the region
+// around (`mean_t`: 1 - cover + cover x T) counts. A closed deck passes T; a broken field's
+// shadow keeps the light of the gaps, blue as shadows under fair-weather cumulus are.
+float cloud_ground_sky_share(float local_t, float mean_t) {
+  return 0.5f * (local_t + mean_t);
+}
+
 // Light reaching a sample (listing B.2, formulas 1.7, 1.9, 1.10): Beer-Lambert exp(-tau) times
 // the powder term mix(2 (1 - exp(-2 tau)), 1, (mu + 1) / 2), with `powder` in [0, 1] blending
 // it in. tau is the optical depth towards the sun.

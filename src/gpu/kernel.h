@@ -52,6 +52,8 @@ enum Binding : uint32_t {
   kReferenceSky = 35,
   kCurlNoiseOut = 36,
   kCurlNoise = 37,
+  kGroundLightOut = 38,
+  kGroundLight = 39,
   kBindingCount
 };
 

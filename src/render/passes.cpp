@@ -30,6 +30,8 @@ GpuState::GpuState(gpu::Context& c)
       reference_psi_kernel(c, set, "sky_reference_psi.comp.spv"),
       reference_sky_kernel(c, set, "sky_reference.comp.spv"),
       cloud_profile_kernel(c, set, "cloud_profile.comp.spv"),
+      ground_light_default_kernel(c, set, "ground_light.comp.spv", {0}),
+      ground_light_baseline_kernel(c, set, "ground_light.comp.spv", {1}),
       timer(c, 12),
       frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
       stars(c, sizeof(gpu::StarGpu) * std::max<size_t>(star_catalogue().size(), 1),
@@ -45,6 +47,7 @@ GpuState::GpuState(gpu::Context& c)
                VK_SAMPLER_ADDRESS_MODE_REPEAT),
       light_volume(c, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
                    VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+      ground_light(c, 1, 1, 1, VK_FORMAT_R32_SFLOAT),
       transmittance_lut(c, glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1,
                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       ms_lut(c, glsl::MS_LUT_W, glsl::MS_LUT_H, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -62,6 +65,7 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_image(gpu::kMsLutOut, gpu::kMsLut, ms_lut);
   set.bind_image(gpu::kAerialPerspectiveOut, gpu::kAerialPerspective, aerial_perspective);
   set.bind_image(gpu::kLightVolumeOut, gpu::kLightVolume, light_volume);
+  set.bind_image(gpu::kGroundLightOut, gpu::kGroundLight, ground_light);
   set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   set.bind_buffer(gpu::kStars, stars, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   auto* star_data = static_cast<gpu::StarGpu*>(stars.data());
@@ -215,6 +219,13 @@ void pass_reference_sky(VkCommandBuffer cmd, GpuState& s) {
 void pass_stars(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.stars_kernel, s.set, s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1,
                 1);
+}
+
+void pass_ground_light(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
+  gpu::dispatch(cmd,
+                mode == MarchMode::Baseline ? s.ground_light_baseline_kernel
+                                            : s.ground_light_default_kernel,
+                s.set, s.timer, "ground_light", 16, 16, 1, 16, 16, 1);
 }
 
 void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model) {

@@ -42,11 +42,13 @@ struct GpuState {
   gpu::Kernel compose_kernel, compose_reference_kernel, light_volume_kernel, march_range_kernel;
   gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel, aerial_perspective_kernel;
   gpu::Kernel reference_psi_kernel, reference_sky_kernel, cloud_profile_kernel;
+  gpu::Kernel ground_light_default_kernel, ground_light_baseline_kernel;
   gpu::PassTimer timer;
   gpu::Buffer frame_params;
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
   int star_count = 0;
   gpu::Texture base_noise, detail_noise, curl_noise, weather_map, sky_view, light_volume;
+  gpu::Texture ground_light;
   // Hillaire's tables (atmosphere_lut_inc.glsl, sky_view_inc.glsl).
   gpu::Texture transmittance_lut, ms_lut, aerial_perspective;
   // The reference sky (bindings_inc.glsl): one tile's Psi_ms, and the sky per pixel (resized to
@@ -83,6 +85,8 @@ void pass_cloud_profile(VkCommandBuffer cmd, GpuState& s);
 void pass_march_range(VkCommandBuffer cmd, GpuState& s);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s);
+// The clouds' mean diffuse transmittance over the ground around the camera (one texel).
+void pass_ground_light(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
 void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model);
 // One tile (FrameParams::reference_tile) of the brute-force reference sky.
 void pass_reference_sky(VkCommandBuffer cmd, GpuState& s);

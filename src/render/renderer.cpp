@@ -394,6 +394,9 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
     pass_clouds(cmd, s, scene.quality.mode);
     pass_march_range(cmd, s);
     pass_resolve(cmd, s);
+    // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe).
+    if (build_light_volume || params.light_volume.w == 0.0f)
+      pass_ground_light(cmd, s, scene.quality.mode);
     pass_compose(cmd, s, scene.atmosphere.model);
     pass_stars(cmd, s);
   });

@@ -3,6 +3,7 @@
 // (seed 000, section 3.4) as assertions on rendered data.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <stb/stb_image_write.h>
@@ -213,6 +214,37 @@ TEST_F(RenderTest, GroundUnderAClosedDeckIsDimAndGreyNotSkyBlue) {
   // The deck's diffuse transmittance: a few percent to a few tens of percent of the clear day.
   EXPECT_LT(under.g, 0.3 * open.g) << "green under the deck / clear: " << under.g / open.g;
   EXPECT_GT(under.g, 0.01 * open.g) << "green under the deck / clear: " << under.g / open.g;
+}
+
+TEST_F(RenderTest, ShadowsOfABrokenFieldKeepTheGapsBlueSkyLight) {
+  // The ground in a fair-weather cumulus's shadow is lit by the sky through the gaps around,
+  // so it is bluer than the sunlit ground; under a closed deck it would be as grey as the
+  // light through the deck (GroundUnderAClosedDeckIsDimAndGreyNotSkyBlue). Lighting the
+  // shadows' sky part by the cloud towards the sun alone, as for a deck, gave 1.29x (the
+  // 300 m of air's blue alone); the gaps' light gives 1.53x.
+  Scene s = nephele::load_preset("broken");
+  s.output.width = 64;
+  s.output.height = 40;
+  s.camera.position_m.z = 300.0f;  // looking down on 1.0 x 0.7 km of ground
+  s.camera.view_dir = {0.0f, 0.001f, -1.0f};
+  s.camera.fov_deg = 120.0f;
+  const Frame f = render(s);
+  std::vector<glm::vec4> ground = f.color.pixels;
+  std::sort(ground.begin(), ground.end(), [](const glm::vec4& a, const glm::vec4& b) {
+    return nephele::luminance(a) < nephele::luminance(b);
+  });
+  const size_t quarter = ground.size() / 4;
+  glm::dvec3 shadow(0.0), sunlit(0.0);
+  for (size_t i = 0; i < quarter; ++i) {
+    shadow += glm::dvec3(ground[i]);
+    sunlit += glm::dvec3(ground[ground.size() - 1 - i]);
+  }
+  ASSERT_GT(nephele::luminance(glm::vec4(glm::vec3(sunlit), 1.0f)),
+            2.0f * nephele::luminance(glm::vec4(glm::vec3(shadow), 1.0f)))
+      << "the view should hold both shadowed and sunlit ground";
+  const double shadow_blue = shadow.b / shadow.r, sunlit_blue = sunlit.b / sunlit.r;
+  EXPECT_GT(shadow_blue, 1.4 * sunlit_blue)
+      << "blue/red in the shadows " << shadow_blue << ", in the sun " << sunlit_blue;
 }
 
 TEST_F(RenderTest, BaselineModeRendersTheSeedsMarch) {

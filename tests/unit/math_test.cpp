@@ -175,6 +175,16 @@ TEST(CloudModel, DiffuseTransmittanceFollowsTheTwoStreamSlab) {
   EXPECT_GT(g::cloud_diffuse_transmittance(3.0f), 10.0f * std::exp(-3.0f));
 }
 
+TEST(CloudModel, GroundSkyLightComesThroughTheGapsAndTheClouds) {
+  // Clear sky, and a closed deck passing 20% everywhere.
+  EXPECT_FLOAT_EQ(g::cloud_ground_sky_share(1.0f, 1.0f), 1.0f);
+  EXPECT_FLOAT_EQ(g::cloud_ground_sky_share(0.2f, 0.2f), 0.2f);
+  // In the shadow of a broken field (60% cover of T = 0.2: mean 0.52) the gaps' light comes in;
+  // a sunlit spot in it loses some sky to the clouds around.
+  EXPECT_NEAR(g::cloud_ground_sky_share(0.2f, 0.52f), 0.36f, 1e-6f);
+  EXPECT_NEAR(g::cloud_ground_sky_share(1.0f, 0.52f), 0.76f, 1e-6f);
+}
+
 TEST(Atmosphere, TransmittanceStraightUpMatchesTheClosedForm) {
   g::Atmosphere a{};  // zero: no ozone
   a.planet_radius_m = 6360e3f;
