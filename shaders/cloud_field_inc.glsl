@@ -80,7 +80,13 @@ vec2 cloud_density_pair(vec3 pos) {
   vec2 curl = textureLod(curl_noise, ground_xy * (0.25f * frame.cloud_noise.y), 0.0f).xy;
   vec3 detail_pos = vec3(ground_xy + curl * (frame.cloud_detail_wind.w * (1.0f - h_wind)), altitude_m) -
                     frame.cloud_detail_wind.xyz;
-  vec3 d = textureLod(detail_noise, detail_pos * frame.cloud_noise.y, 0.0f).rgb;
+  // Far away a pixel spans many of the detail noise's texels: the mip level that matches the
+  // pixel's footprint averages them, where the finest level aliased into speckle. The
+  // baseline samples the finest level, as the seed does.
+  float footprint_texels = distance(pos, frame.camera_pos_m.xyz) * frame.cloud_shape.x *
+                           frame.cloud_noise.y * float(textureSize(detail_noise, 0).x);
+  float detail_lod = MARCH_MODE == 1 ? 0.0f : log2(max(footprint_texels, 1e-6f));
+  vec3 d = textureLod(detail_noise, detail_pos * frame.cloud_noise.y, detail_lod).rgb;
   if (h <= 0.0f || h >= 1.0f) return vec2(0.0f);
   // Cloud type (B, around the layer's type) and precipitation (the layer's, where the map has
   // storm cells: G), which turns the cells' cores into cumulonimbus and spreads an anvil over

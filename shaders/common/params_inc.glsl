@@ -46,7 +46,9 @@ struct FrameParams {
   vec4 radii_m;             // x planet, y atmosphere top, z cloud bottom, w cloud top (m)
   vec4 rayleigh;            // rgb sigma_s at sea level (1/m); w scale height (m)
   vec4 mie;                 // x sigma_s (1/m), y sigma_t (1/m), z scale height (m), w g
-  vec4 cloud_shape;         // x, y unused; z sigma_t at density 1 (1/m), w albedo
+  vec4 cloud_shape;         // x the view's angle per cloud pixel (rad; 0: the detail noise's
+                            // finest level everywhere), y unused; z sigma_t at density 1
+                            // (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
   vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w unused
   vec4 cloud_weather;       // x, y unused; z the weather map's time (weather_time), w the

@@ -81,7 +81,9 @@ void DescriptorSet::bind_buffer(Binding binding, const Buffer& buffer, VkDescrip
 
 static void write_image(VkDevice device, VkDescriptorSet set, uint32_t binding,
                         VkDescriptorType type, const Texture& texture) {
-  VkDescriptorImageInfo info{texture.sampler(), texture.view(), VK_IMAGE_LAYOUT_GENERAL};
+  const bool storage = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  VkDescriptorImageInfo info{texture.sampler(), storage ? texture.storage_view() : texture.view(),
+                             VK_IMAGE_LAYOUT_GENERAL};
   write_descriptor(device, set, binding, type, nullptr, &info);
 }
 

@@ -1,5 +1,6 @@
 #include "gpu/resources.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "gpu/vk_check.h"
@@ -45,14 +46,15 @@ void Buffer::reset() {
 }
 
 Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
-                 VkSamplerAddressMode address)
-    : device_(ctx.device()), width_(width), height_(height), depth_(depth) {
+                 VkSamplerAddressMode address, uint32_t mip_levels)
+    : device_(ctx.device()), width_(width), height_(height), depth_(depth), levels_(mip_levels) {
   // Every texture is written by a compute pass and then sampled with linear filtering.
   VkFormatProperties props;
   vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &props);
-  const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT |
-                                      VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
-                                      VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  const VkFormatFeatureFlags needed =
+      VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+      VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
+      (mip_levels > 1 ? VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT : 0);
   if ((props.optimalTilingFeatures & needed) != needed)
     throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
                        " cannot be a filtered storage image on " + ctx.device_name());
@@ -61,7 +63,7 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
   info.imageType = is_3d ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   info.format = format;
   info.extent = {width, height, depth};
-  info.mipLevels = 1;
+  info.mipLevels = mip_levels;
   info.arrayLayers = 1;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -82,15 +84,18 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
   view.image = image_;
   view.viewType = is_3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
   view.format = format;
-  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, 1};
   NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &view_));
+  view.subresourceRange.levelCount = 1;
+  NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &storage_view_));
 
   VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sampler.magFilter = VK_FILTER_LINEAR;
   sampler.minFilter = VK_FILTER_LINEAR;
-  sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sampler.mipmapMode =
+      mip_levels > 1 ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
   sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = address;
-  sampler.maxLod = 0.0f;
+  sampler.maxLod = float(mip_levels - 1);
   NEPHELE_VK(vkCreateSampler(device_, &sampler, nullptr, &sampler_));
 
   // Move to GENERAL once; it stays there.
@@ -103,7 +108,7 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
     barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
     barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image_;
-    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, 1};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                          0, nullptr, 0, nullptr, 1, &barrier);
@@ -117,10 +122,12 @@ Texture& Texture::operator=(Texture&& other) noexcept {
     image_ = std::exchange(other.image_, VK_NULL_HANDLE);
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    storage_view_ = std::exchange(other.storage_view_, VK_NULL_HANDLE);
     sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
     width_ = other.width_;
     height_ = other.height_;
     depth_ = other.depth_;
+    levels_ = other.levels_;
   }
   return *this;
 }
@@ -129,6 +136,7 @@ void Texture::reset() {
   if (!device_) return;
   vkDestroySampler(device_, sampler_, nullptr);
   vkDestroyImageView(device_, view_, nullptr);
+  vkDestroyImageView(device_, storage_view_, nullptr);
   vkDestroyImage(device_, image_, nullptr);
   vkFreeMemory(device_, memory_, nullptr);
   device_ = VK_NULL_HANDLE;
@@ -191,6 +199,44 @@ void compute_barrier(VkCommandBuffer cmd) {
                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
                            VK_PIPELINE_STAGE_HOST_BIT,
                        0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+
+void Texture::record_mipmaps(VkCommandBuffer cmd) const {
+  // Levels `level - 1` and `level` from `from` to `to` (the source first, then the target).
+  const auto transition = [&](uint32_t level, const VkImageLayout (&from)[2],
+                              const VkImageLayout (&to)[2]) {
+    VkImageMemoryBarrier barriers[2];
+    for (uint32_t i = 0; i < 2; ++i) {
+      barriers[i] = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+      barriers[i].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+      barriers[i].dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                                  VK_ACCESS_TRANSFER_WRITE_BIT;
+      barriers[i].oldLayout = from[i];
+      barriers[i].newLayout = to[i];
+      barriers[i].srcQueueFamilyIndex = barriers[i].dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      barriers[i].image = image_;
+      barriers[i].subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1 + i, 1, 0, 1};
+    }
+    const VkPipelineStageFlags stages =
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    vkCmdPipelineBarrier(cmd, stages, stages, 0, 0, nullptr, 0, nullptr, 2, barriers);
+  };
+  const VkImageLayout general[2] = {VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL};
+  const VkImageLayout transfer[2] = {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+  const auto size = [](uint32_t n, uint32_t level) { return int32_t(std::max(n >> level, 1u)); };
+  for (uint32_t level = 1; level < levels_; ++level) {
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 1};
+    blit.srcOffsets[1] = {size(width_, level - 1), size(height_, level - 1),
+                          size(depth_, level - 1)};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+    blit.dstOffsets[1] = {size(width_, level), size(height_, level), size(depth_, level)};
+    transition(level, general, transfer);
+    vkCmdBlitImage(cmd, image_, transfer[0], image_, transfer[1], 1, &blit, VK_FILTER_LINEAR);
+    transition(level, transfer, general);
+  }
 }
 
 }  // namespace nephele::gpu

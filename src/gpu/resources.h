@@ -38,15 +38,18 @@ class Texture {
   Texture() = default;
   // depth == 1 makes a 2D image. Sampled with trilinear filtering and `address` on every axis
   // (repeat for tiling noise and weather, clamp-to-edge for look-up tables). Throws if the
-  // device cannot use `format` as a storage image and sample it with linear filtering.
+  // device cannot use `format` as a storage image and sample it with linear filtering (and,
+  // with mip levels, blit it with linear filtering). Passes write level 0 (storage_view);
+  // record_mipmaps fills the others.
   Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
-          VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT);
+          VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT, uint32_t mip_levels = 1);
   ~Texture() { reset(); }
   Texture(Texture&& other) noexcept { *this = std::move(other); }
   Texture& operator=(Texture&& other) noexcept;
 
   VkImage image() const { return image_; }
-  VkImageView view() const { return view_; }
+  VkImageView view() const { return view_; }  // every mip level, for sampling
+  VkImageView storage_view() const { return storage_view_; }  // level 0
   VkSampler sampler() const { return sampler_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
@@ -58,6 +61,8 @@ class Texture {
   void record_download(VkCommandBuffer cmd, const Buffer& staging) const;
   // Sets every texel to zero (recorded into `cmd`).
   void record_clear(VkCommandBuffer cmd) const;
+  // Box-filters each mip level from the one above it (recorded into `cmd`).
+  void record_mipmaps(VkCommandBuffer cmd) const;
 
  private:
   void reset();
@@ -65,8 +70,9 @@ class Texture {
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
+  VkImageView storage_view_ = VK_NULL_HANDLE;
   VkSampler sampler_ = VK_NULL_HANDLE;
-  uint32_t width_ = 0, height_ = 0, depth_ = 0;
+  uint32_t width_ = 0, height_ = 0, depth_ = 0, levels_ = 1;
 };
 
 // A full memory barrier between compute/transfer work (shader writes -> reads).

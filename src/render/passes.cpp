@@ -38,7 +38,7 @@ GpuState::GpuState(gpu::Context& c)
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
       base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
-                   VK_FORMAT_R8G8B8A8_UNORM),
+                   VK_FORMAT_R8G8B8A8_UNORM, VK_SAMPLER_ADDRESS_MODE_REPEAT, kDetailNoiseLevels),
       curl_noise(c, kCurlNoiseSize, kCurlNoiseSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT),
       weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM),
       // Half floats hold radiance to 0.05%. Both tables wrap in azimuth (u); v and w are kept
@@ -144,6 +144,7 @@ void pass_noise_base(VkCommandBuffer cmd, GpuState& s) {
 void pass_noise_detail(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.noise_detail_kernel, s.set, s.timer, "noise_detail", kDetailNoiseSize,
                 kDetailNoiseSize, kDetailNoiseSize, 4, 4, 4);
+  s.detail_noise.record_mipmaps(cmd);
 }
 
 void pass_noise_curl(VkCommandBuffer cmd, GpuState& s) {

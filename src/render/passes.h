@@ -12,6 +12,7 @@ namespace nephele {
 
 constexpr uint32_t kBaseNoiseSize = 128;    // seed 000, 2.2.2: base shape noise 128^3
 constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
+constexpr uint32_t kDetailNoiseLevels = 6;  // and its mip levels down to 1^3 (far clouds)
 constexpr uint32_t kWeatherMapSize = 512;   // procedural weather map 512^2
 constexpr uint32_t kCurlNoiseSize = 128;    // curl noise 128^2
 // Sky-view LUT (Hillaire 2020, 5.3): azimuth x elevation texels per table; the image stacks two

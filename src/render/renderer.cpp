@@ -278,6 +278,7 @@ bool Renderer::Impl::plan_light_volume(const Scene& scene, const std::string& ke
 
 double Renderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms) {
   params.steps.w = gpu::PROJECTION_SKY_DOME;
+  params.cloud_shape.x = 0.0f;  // the detail noise's finest level, as an observer sees it
   params.cloud_grid = glm::ivec4(kSkyDomeSize, kSkyDomeSize, 1, 0);
   params.march_offset = glm::ivec4(0, 0, 0, 1);
   std::memcpy(state.frame_params.data(), &params, sizeof(params));
@@ -370,6 +371,7 @@ Frame Renderer::Impl::render_frame(const Scene& scene, bool still, bool read_bac
   if (history) set_previous_frame(params, scene, *previous);
   const glm::ivec2 offset = march_offset(stride, frame_counter);
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
+  params.cloud_shape.x = 2.0f * params.camera_pos_m.w / float(cloud_h);  // detail noise's LOD
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
   const bool build_light_volume = plan_light_volume(scene, key + weather_key(scene), params);
   // The sky-view LUT depends on the sun, the camera's position and the atmosphere only: a

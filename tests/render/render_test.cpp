@@ -247,6 +247,26 @@ TEST_F(RenderTest, ShadowsOfABrokenFieldKeepTheGapsBlueSkyLight) {
       << "blue/red in the shadows " << shadow_blue << ", in the sun " << sunlit_blue;
 }
 
+TEST_F(RenderTest, DistantCloudsAreNotSpeckled) {
+  // A band of broken cumulus 10 to 60 km away, above the horizon: a pixel there spans many of
+  // the detail noise's texels, and sampling its finest level turned the band into speckle.
+  // Roughness: the mean luminance step between neighbouring pixels over the mean luminance.
+  Scene s = nephele::load_preset("broken");
+  s.output.width = 400;
+  s.output.height = 250;
+  const Frame f = render(s);
+  double step = 0.0, sum = 0.0;
+  for (int y = 150; y < 190; ++y)
+    for (int x = 0; x + 1 < 400; ++x) {
+      const float l = nephele::luminance(f.color.pixels[size_t(y) * 400 + size_t(x)]);
+      step += std::abs(nephele::luminance(f.color.pixels[size_t(y) * 400 + size_t(x) + 1]) - l);
+      sum += l;
+    }
+  const double roughness = step / sum;
+  // The finest level everywhere gave 0.214; mip levels by footprint, 0.153.
+  EXPECT_LT(roughness, 0.18) << "far-field roughness " << roughness;
+}
+
 TEST_F(RenderTest, BaselineModeRendersTheSeedsMarch) {
   Scene s = small_scene();
   s.quality.mode = nephele::MarchMode::Baseline;
