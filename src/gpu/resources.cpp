@@ -201,7 +201,6 @@ void compute_barrier(VkCommandBuffer cmd) {
                        0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
-
 void Texture::record_mipmaps(VkCommandBuffer cmd) const {
   // Levels `level - 1` and `level` from `from` to `to` (the source first, then the target).
   const auto transition = [&](uint32_t level, const VkImageLayout (&from)[2],
