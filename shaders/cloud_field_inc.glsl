@@ -24,6 +24,9 @@ CloudLayerGpu cloud_layer_at(float radius_m) {
                        high ? high_layer.wind : low_layer.wind);
 }
 
+// The point at radius r (m) above horizontal position xy (planet frame).
+vec3 point_at_radius(vec2 xy, float r) { return vec3(xy, sqrt(max(r * r - dot(xy, xy), 0.0f))); }
+
 // Height fraction in the whole cloud shell (all layers): the light volume's vertical axis.
 float altitude_fraction(vec3 pos) {
   return cloud_height_fraction(length(pos), frame.radii_m.z, frame.radii_m.w);
@@ -150,6 +153,12 @@ float march_light(vec3 pos, vec3 sun, float t0, float t1, int n) {
   return depth;
 }
 
+// The clouds' diffuse transmittance (cloud_diffuse_transmittance) for an optical depth of the
+// density field (density x m) along the light.
+float light_transmittance(float depth) {
+  return cloud_diffuse_transmittance(depth * frame.cloud_shape.z * frame.cloud_light.y);
+}
+
 // How far along the sun the light is traced: to the top of the layer, at most two layer
 // thicknesses (for a low sun, so a sample near the base still sees the dense tops above it).
 float light_ray_length(vec3 pos, vec3 sun) {
@@ -203,7 +212,7 @@ float below_light_share(vec3 pos, float reach_m) {
     vec2 axis = k < 2 ? vec2(k == 0 ? 1.0f : -1.0f, 0.0f) : vec2(0.0f, k == 2 ? 1.0f : -1.0f);
     vec3 p = foot + vec3(axis * reach_m, 0.0f);
     float depth = depth_towards_sun(p, frame.sun_dir.xyz, light_volume_covers(p), 4);
-    share += cloud_diffuse_transmittance(depth * frame.cloud_shape.z * frame.cloud_light.y);
+    share += light_transmittance(depth);
   }
   return 0.25f * share;
 }

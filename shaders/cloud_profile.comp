@@ -25,7 +25,7 @@ void main() {
   vec4 sums = vec4(0.0f);
   for (int i = 0; i < PROFILE_SIZE; ++i) {
     vec2 xy = row_start + vec2(cell_m * float(i), 0.0f);
-    vec2 field = cloud_density_pair(vec3(xy, sqrt(r * r - dot(xy, xy))));
+    vec2 field = cloud_density_pair(point_at_radius(xy, r));
     sums += vec4(field.y, field.x, field.y > 0.0f ? 1.0f : 0.0f, 1.0f);
   }
   imageStore(march_a_out, id, sums);

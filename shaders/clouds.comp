@@ -54,7 +54,7 @@ float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   bool covered = MARCH_MODE == 0 && light_volume_covers(base) &&
                  light_volume_voxel_at(base) < 0.02f * ground.x;
   float depth = depth_towards_sun(base, sun, covered, 16);
-  return cloud_diffuse_transmittance(depth * frame.cloud_shape.z * frame.cloud_light.y);
+  return light_transmittance(depth);
 }
 
 // Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):

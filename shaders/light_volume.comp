@@ -21,7 +21,7 @@ void main() {
   vec2 xy = frame.light_volume.xy + offset + frame.wind_offset_m.xy;
   float h = (float(v.z) + 0.5f) / float(LIGHT_VOLUME_Z);
   float r = mix(frame.radii_m.z, frame.radii_m.w, h);
-  vec3 pos = vec3(xy, sqrt(max(r * r - dot(xy, xy), 0.0f)));
+  vec3 pos = point_at_radius(xy, r);
   vec3 sun = frame.sun_dir.xyz;
   float depth = march_light(pos, sun, 0.0f, light_ray_length(pos, sun), VOLUME_LIGHT_STEPS);
   imageStore(light_volume_out, v, vec4(depth));
