@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "nephele/error.h"
+#include "nephele/output_file.h"
 #include "nephele/renderer.h"
 #include "bench_realtime.h"
 #include "plot.h"
@@ -109,7 +110,7 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
                "only the real-time figures (still and flying camera, error, speed-up)");
   cmd.add_option("--json", options.json,
                  "write the real-time figures (static_fps, moving_fps, speedup_vs_baseline, "
-                 "static_error, moving_error, device) to this file");
+                 "static_error, moving_error, device) to this file, or to standard output with -");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
 }
 
@@ -187,13 +188,16 @@ int run_bench(const BenchOptions& options) {
   const std::string csv = (fs::path(options.out_dir) / "bench.csv").string();
   const std::string json = (fs::path(options.out_dir) / "bench.json").string();
   const std::string png = (fs::path(options.out_dir) / "bench.png").string();
+  if (!options.json.empty()) check_output_file(options.json, "--json", true);
   if (!options.realtime_only) {
     std::error_code ec;
     fs::create_directories(options.out_dir, ec);
-    for (const std::string& p : {csv, json}) check_writable_file(p, "--out-dir");
+    for (const std::string& p : {csv, json}) check_output_file(p, "--out-dir");
     check_output_path(png, "--out-dir");
+    if (!options.json.empty())
+      check_distinct_outputs({{"--out-dir", csv}, {"--out-dir", json}, {"--out-dir", png},
+                              {"--json", options.json}});
   }
-  if (!options.json.empty()) check_writable_file(options.json, "--json");
 
   const RendererOptions renderer_options{options.device, options.validation, options.verbose};
   Renderer renderer(renderer_options);
@@ -205,14 +209,14 @@ int run_bench(const BenchOptions& options) {
   if (options.quick) settings.static_frames = settings.moving_frames = 16;
   const nlohmann::json realtime = measure_realtime(renderer, renderer_options, base, settings);
   print_realtime(realtime);
-  if (!options.json.empty()) write_text_file(options.json, realtime.dump(2) + "\n");
+  if (!options.json.empty()) write_text_output(options.json, realtime.dump(2) + "\n");
   if (options.realtime_only) return 0;
 
   const std::vector<Sample> samples = run_sweeps(renderer, base, options);
   nlohmann::json summary = realtime;
   summary["frames_per_point"] = options.frames;
-  write_text_file(csv, to_csv(samples));
-  write_text_file(json, summary.dump(2) + "\n");
+  write_text_output(csv, to_csv(samples));
+  write_text_output(json, summary.dump(2) + "\n");
   write_plot_grid_png({panel(samples, "density", "FPS vs cloud density", "density"),
                        panel(samples, "coverage", "FPS vs coverage", "coverage"),
                        panel(samples, "resolution", "FPS vs resolution", "megapixels")},

@@ -73,6 +73,8 @@ OktaRange gallery_okta_range(const std::string& preset) {
 void add_gallery_flags(CLI::App& cmd, GalleryOptions& options) {
   cmd.add_option("-o,--output", options.output, "image to write: .png or .exr")
       ->capture_default_str();
+  cmd.add_flag("--exr-float", options.exr_float,
+               "write EXR as 32-bit floats; the default half floats clamp at 65504");
   cmd.add_option("--tile-width", options.tile_width, "width of each preset's tile (pixels), [16, 4096]")
       ->capture_default_str();
   cmd.add_option("--tile-height", options.tile_height, "height of each tile (pixels), [16, 4096]")
@@ -131,7 +133,8 @@ int run_gallery(const GalleryOptions& options) {
     std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
     return 1;
   }
-  write_image(gallery, options.output, 1.0f);
+  write_image(gallery, options.output, 1.0f,
+              options.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf);
   std::cout << options.output << "\n";
   return 0;
 }

@@ -23,6 +23,7 @@ OktaRange gallery_okta_range(const std::string& preset);
 
 struct GalleryOptions {
   std::string output = "gallery.png";
+  bool exr_float = false;  // EXR as 32-bit floats
   int tile_width = 400, tile_height = 250, columns = 3;
   std::string device;
   bool verbose = false;

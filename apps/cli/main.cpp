@@ -7,8 +7,23 @@
 #include "bench.h"
 #include "gallery.h"
 #include "nephele/error.h"
+#include "nephele/output_file.h"
 #include "nephele/scene_io.h"
 #include "render_command.h"
+
+namespace {
+
+// Errors are one line: each part of a message is already short (shorten_for_message), but a
+// message from a library (CLI11's echo a value whole) may not be.
+void print_error(const char* kind, const std::string& message, const char* suffix = "") {
+  constexpr size_t kMaxChars = 1000;
+  std::string line = message.size() > kMaxChars ? message.substr(0, kMaxChars - 3) + "..." : message;
+  for (char& c : line)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  std::fprintf(stderr, "nephele: %s: %s%s\n", kind, line.c_str(), suffix);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"nephele: physically based skies and volumetric clouds, rendered with Vulkan"};
@@ -40,10 +55,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "nephele: error: %s (see nephele --help)\n", e.what());
+    print_error("error", e.what(), " (see nephele --help)");
     return 2;
   }
 
+  // An interrupted write leaves no temporary file behind.
+  nephele::install_temporary_file_cleanup();
   try {
     if (render_cmd->parsed()) return nephele::cli::run_render(render);
     if (bench_cmd->parsed()) return nephele::cli::run_bench(bench);
@@ -53,10 +70,10 @@ int main(int argc, char** argv) {
       return 0;
     }
   } catch (const nephele::InputError& e) {
-    std::fprintf(stderr, "nephele: error: %s\n", e.what());
+    print_error("error", e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "nephele: failed: %s\n", e.what());
+    print_error("failed", e.what());
     return 1;
   }
   return 0;

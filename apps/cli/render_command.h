@@ -15,7 +15,8 @@ namespace nephele::cli {
 struct RenderOptions {
   SceneFlags scene;
   std::string output = "nephele.png";
-  std::string stats_json;  // empty: none
+  std::string stats_json;  // empty: none; "-": standard output, instead of the image paths
+  bool exr_float = false;  // EXR as 32-bit floats (default half, clamped to 65504)
   int frames = 1;          // a sequence: frame i at time_s + i step_s, files numbered _0000 ...
   float step_s = 1.0f;
   std::string device;      // substring of the Vulkan device name
@@ -33,15 +34,12 @@ int run_render(const RenderOptions& options);
 // Flags every command that renders shares: --device, --verbose, --validation.
 void add_device_flags(CLI::App& cmd, std::string& device, bool& verbose, bool& validation);
 
-// Throws InputError naming `parameter` if a file cannot be created at `path` (missing or
-// unwritable folder, or a folder by that name). Writes nothing.
-void check_writable_file(const std::string& path, const std::string& parameter);
+// Writes `text` to standard output when `path` is "-", else atomically to the file.
+void write_text_output(const std::string& path, const std::string& text);
 
-// Writes `text` to `path` through a temporary file and a rename: all or nothing.
-void write_text_file(const std::string& path, const std::string& text);
-
-// The stats of a frame as JSON (device, width, height, frame_ms, mean_luminance,
-// cloud_cover_fraction, sky_cover_fraction and oktas for still images, wall_ms, passes).
-std::string stats_to_json(const FrameStats& stats);
+// The stats of a frame as JSON (image: the image written, device, width, height, frame_ms,
+// mean_luminance, cloud_cover_fraction, sky_cover_fraction and oktas for still images,
+// wall_ms, passes).
+std::string stats_to_json(const FrameStats& stats, const std::string& image_path);
 
 }  // namespace nephele::cli

@@ -185,7 +185,7 @@ const std::vector<FlagSpec>& flag_specs() {
 #undef TO
 
 [[noreturn]] void fail(const std::string& flag, const std::string& text, const std::string& what) {
-  throw InputError(flag + " " + text + ": " + what);
+  throw InputError(flag + " " + shorten_for_message(text) + ": " + what);
 }
 
 // The whole of `text` as a number ("1.5", "-2", "1e-3", "nan"); a leading '+' is allowed.

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace nephele {
 
@@ -18,5 +19,11 @@ class RuntimeError : public std::runtime_error {
  public:
   explicit RuntimeError(const std::string& message) : std::runtime_error(message) {}
 };
+
+// A value as an error message may echo it: control characters as '?', and at most
+// kMaxEchoedChars characters (longer text keeps its start and ends in "..."), so that a
+// message stays one short line whatever was typed or read.
+constexpr size_t kMaxEchoedChars = 80;
+std::string shorten_for_message(std::string_view text);
 
 }  // namespace nephele

@@ -34,20 +34,26 @@ std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure);
 constexpr double kDayMeanLuminance = 0.4;
 float auto_exposure(float exposure, double mean_luminance);
 
+// What an EXR stores: half floats (the default; values beyond the largest half, 65504, are
+// clamped to it, so the sun's disk does not become inf) or 32-bit floats (the true values).
+enum class ExrPixels { kHalf, kFloat };
+
 // Writes by extension, case-insensitive: .png (tone-mapped 8-bit sRGB, alpha 255) or .exr
-// (linear half float RGBA, ZIP; `exposure` applies to PNG only, an EXR keeps the values as
-// they are). Writes to a temporary file beside the target and renames, so a failed write
-// leaves nothing behind. Throws InputError for an unsupported extension or an empty image,
-// RuntimeError naming the path on I/O failure.
-void write_image(const Image& image, const std::string& path, float exposure = 1.0f);
+// (linear RGBA, ZIP, as `exr` says; `exposure` applies to PNG only, an EXR keeps the values
+// as they are). Never writes NaN or inf: NaN is stored as 0, infinities as the largest
+// value. Writes atomically (write_file_atomically), so a failed write leaves nothing
+// behind. Throws InputError for an unsupported extension or an empty image, RuntimeError
+// naming the path on I/O failure.
+void write_image(const Image& image, const std::string& path, float exposure = 1.0f,
+                 ExrPixels exr = ExrPixels::kHalf);
 
 // Throws InputError naming `parameter` if `path` cannot be written as an image (unknown
-// extension, an existing directory, its directory missing or not writable). Writes nothing.
+// extension, or any reason of check_output_file in output_file.h). Writes nothing.
 // The message reads e.g. "--output 'x.jpg': unsupported image format (allowed: .png, .exr)".
 void check_output_path(const std::string& path, const std::string& parameter);
 
 // Reads a PNG (8-bit values as stored, scaled to [0, 1], no sRGB decode; always RGBA) or an
-// EXR (linear; missing alpha reads as 1), recognised by content, not by name.
+// EXR (linear, half or float; missing alpha reads as 1), recognised by content, not by name.
 // Throws InputError naming the path if it cannot be read.
 Image read_image(const std::string& path);
 

@@ -5,7 +5,8 @@
 
 const float PI = 3.14159265358979f;
 
-float saturate(float x) { return clamp(x, 0.0f, 1.0f); }
+// NaN gives 0 (clamp leaves NaN undefined): a table lookup never reads with a NaN coordinate.
+float saturate(float x) { return x >= 0.0f ? min(x, 1.0f) : 0.0f; }
 
 // Linear map of v from [lo, hi] to [new_lo, new_hi] (seed 000, listing B.1); not clamped.
 float remap(float v, float lo, float hi, float new_lo, float new_hi) {

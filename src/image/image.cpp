@@ -1,23 +1,23 @@
 // nephele — image tone mapping, writers (PNG, EXR) and readers.
 //
-// Both writers encode into memory first and then go through one routine that writes the
-// bytes to a temporary file beside the target and renames it over the target. That keeps
-// every I/O error in one place, where it is checked (OpenEXR's file destructor swallows
-// errors, and stbi_write_png ignores fwrite failures), and means that a failure never
-// leaves a partial image or a temporary file behind.
+// Both writers encode into memory first and then go through write_file_atomically (a
+// temporary file beside the target, renamed over it). That keeps every I/O error in one
+// place, where it is checked (OpenEXR's file destructor swallows errors, and stbi_write_png
+// ignores fwrite failures), and means that a failure never leaves a partial image or a
+// temporary file behind.
 #include "nephele/image.h"
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <ImfIO.h>
-#include <ImfRgba.h>
-#include <ImfRgbaFile.h>
-#include <fcntl.h>
+#include <ImfOutputFile.h>
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -25,6 +25,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -33,6 +34,7 @@
 #include <vector>
 
 #include "nephele/error.h"
+#include "nephele/output_file.h"
 
 namespace nephele {
 namespace {
@@ -55,12 +57,6 @@ ImageFormat format_of(const std::string& path) {
 
 std::string quoted(const std::string& s) {
   return "'" + s + "'";
-}
-
-// The directory a file would be created in ("." for a bare file name).
-fs::path directory_of(const std::string& path) {
-  fs::path dir = fs::path(path).parent_path();
-  return dir.empty() ? fs::path(".") : dir;
 }
 
 // Narkowicz 2015 fit of the ACES filmic curve; input must be finite and >= 0.
@@ -127,94 +123,45 @@ class MemoryOStream : public Imf::OStream {
   size_t pos_ = 0;
 };
 
-// Linear half-float RGBA, ZIP-compressed (the Header default). Exposure is not applied:
-// an EXR keeps the radiance as rendered.
-std::vector<unsigned char> encode_exr(const Image& image) {
-  std::vector<Imf::Rgba> halves(image.pixels.size());
-  for (size_t i = 0; i < halves.size(); ++i) {
-    const glm::vec4& p = image.pixels[i];
-    halves[i] = Imf::Rgba(p.r, p.g, p.b, p.a);
+// A value an EXR may hold: NaN as 0, and no further from 0 than `largest` (inf included).
+float storable(float v, float largest) {
+  return std::isnan(v) ? 0.0f : std::clamp(v, -largest, largest);
+}
+
+// Linear RGBA, ZIP-compressed (the Header default), half or float. Exposure is not applied:
+// an EXR keeps the radiance as rendered (half clamped to its largest value, 65504).
+std::vector<unsigned char> encode_exr(const Image& image, ExrPixels pixels) {
+  const bool as_half = pixels == ExrPixels::kHalf;
+  const float largest = as_half ? float(HALF_MAX) : std::numeric_limits<float>::max();
+  std::vector<float> channels[4];
+  for (std::vector<float>& c : channels) c.resize(image.pixels.size());
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c) channels[c][i] = storable(image.pixels[i][c], largest);
+  Imf::Header header(image.width, image.height);
+  const Imf::PixelType type = as_half ? Imf::HALF : Imf::FLOAT;
+  static const char* const kNames[4] = {"R", "G", "B", "A"};
+  for (const char* name : kNames) header.channels().insert(name, Imf::Channel(type));
+  std::vector<Imath::half> halves[4];
+  Imf::FrameBuffer frame;
+  for (int c = 0; c < 4; ++c) {
+    if (as_half) {
+      halves[c].assign(channels[c].begin(), channels[c].end());
+      frame.insert(kNames[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves[c].data()),
+                                         sizeof(Imath::half),
+                                         sizeof(Imath::half) * size_t(image.width)));
+    } else {
+      frame.insert(kNames[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(channels[c].data()),
+                                         sizeof(float), sizeof(float) * size_t(image.width)));
+    }
   }
   MemoryOStream stream;
   {
     // The line offset table is written when the file object is destroyed.
-    Imf::RgbaOutputFile file(stream, Imf::Header(image.width, image.height), Imf::WRITE_RGBA);
-    file.setFrameBuffer(halves.data(), 1, size_t(image.width));
+    Imf::OutputFile file(stream, header);
+    file.setFrameBuffer(frame);
     file.writePixels(image.height);
   }
   return stream.take();
-}
-
-// --- atomic file replacement -------------------------------------------------------------
-
-// Removes the temporary file unless released (after a successful rename).
-class TempFile {
- public:
-  explicit TempFile(std::string path) : path_(std::move(path)) {}
-  ~TempFile() {
-    if (!path_.empty()) ::unlink(path_.c_str());
-  }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-  const std::string& path() const { return path_; }
-  void release() { path_.clear(); }
-
- private:
-  std::string path_;
-};
-
-[[noreturn]] void throw_io_error(const std::string& path, const std::string& what, int err) {
-  throw RuntimeError("cannot write image " + quoted(path) + ": " + what + ": " +
-                     std::strerror(err));
-}
-
-// Creates a new, uniquely named file beside `path` (".<name>.tmp-<pid>-<n>"), open for
-// writing. Mode 0666 before the umask, as for any file the program creates.
-int create_temp_beside(const std::string& path, std::string& temp_path) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path dir = directory_of(path);
-  const std::string name = fs::path(path).filename().string();
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    temp_path = (dir / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-" +
-                        std::to_string(counter++)))
-                    .string();
-    const int fd = ::open(temp_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0 || errno != EEXIST) return fd;
-  }
-  errno = EEXIST;
-  return -1;
-}
-
-void write_all(int fd, const std::vector<unsigned char>& bytes, const std::string& path) {
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw_io_error(path, "write failed", errno);
-    if (n == 0) throw_io_error(path, "write failed", ENOSPC);
-    done += size_t(n);
-  }
-}
-
-void replace_file(const std::string& path, const std::vector<unsigned char>& bytes) {
-  std::string temp_path;
-  const int fd = create_temp_beside(path, temp_path);
-  if (fd < 0) {
-    const int err = errno;  // before building the message can touch it
-    throw_io_error(path, "cannot create a file in " + quoted(directory_of(path).string()), err);
-  }
-  TempFile temp(temp_path);
-  try {
-    write_all(fd, bytes, path);
-  } catch (...) {
-    ::close(fd);
-    throw;
-  }
-  if (::close(fd) != 0) throw_io_error(path, "write failed", errno);
-  if (::rename(temp.path().c_str(), path.c_str()) != 0) {
-    throw_io_error(path, "cannot replace the file", errno);
-  }
-  temp.release();
 }
 
 // --- decoders ----------------------------------------------------------------------------
@@ -241,22 +188,25 @@ Image decode_png(const std::string& path) {
   return image;
 }
 
+// Read as 32-bit floats whatever the file stores (half or float), so float32 values beyond
+// the half range come back as written; a missing alpha reads as 1.
 Image decode_exr(const std::string& path) {
   try {
-    Imf::RgbaInputFile file(path.c_str());
-    const Imath::Box2i window = file.dataWindow();
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
     const int w = window.max.x - window.min.x + 1;
     const int h = window.max.y - window.min.y + 1;
-    std::vector<Imf::Rgba> halves(size_t(w) * size_t(h));
-    // The frame buffer is addressed by absolute pixel coordinates of the data window.
-    Imf::Rgba* origin = halves.data() - window.min.x - ptrdiff_t(window.min.y) * w;
-    file.setFrameBuffer(origin, 1, size_t(w));
-    file.readPixels(window.min.y, window.max.y);
     Image image(w, h);
-    for (size_t i = 0; i < halves.size(); ++i) {
-      const Imf::Rgba& p = halves[i];
-      image.pixels[i] = glm::vec4(float(p.r), float(p.g), float(p.b), float(p.a));
-    }
+    // The frame buffer is addressed by absolute pixel coordinates of the data window.
+    char* origin = reinterpret_cast<char*>(image.pixels.data() - window.min.x -
+                                           ptrdiff_t(window.min.y) * w);
+    Imf::FrameBuffer frame;
+    const char* const names[4] = {"R", "G", "B", "A"};
+    for (int c = 0; c < 4; ++c)
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), sizeof(glm::vec4),
+                                        sizeof(glm::vec4) * size_t(w), 1, 1, c == 3 ? 1.0 : 0.0));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
     return image;
   } catch (const std::exception& e) {
     throw_read_error(path, std::string("cannot decode EXR: ") + e.what());
@@ -303,7 +253,7 @@ float auto_exposure(float exposure, double mean_luminance) {
   return float(exposure * std::min(gain, 1e7));
 }
 
-void write_image(const Image& image, const std::string& path, float exposure) {
+void write_image(const Image& image, const std::string& path, float exposure, ExrPixels exr) {
   const ImageFormat format = format_of(path);
   if (format == ImageFormat::kUnsupported) {
     throw InputError("image path " + quoted(path) + ": unsupported image format " +
@@ -312,32 +262,19 @@ void write_image(const Image& image, const std::string& path, float exposure) {
   check_writable_image(image, path);
   std::vector<unsigned char> bytes;
   try {
-    bytes = format == ImageFormat::kPng ? encode_png(image, exposure) : encode_exr(image);
+    bytes = format == ImageFormat::kPng ? encode_png(image, exposure) : encode_exr(image, exr);
   } catch (const std::exception& e) {
     throw RuntimeError("cannot encode image " + quoted(path) + ": " + e.what());
   }
   if (bytes.empty()) throw RuntimeError("cannot encode image " + quoted(path));
-  replace_file(path, bytes);
+  write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 void check_output_path(const std::string& path, const std::string& parameter) {
-  const std::string prefix = parameter + " " + quoted(path) + ": ";
-  if (format_of(path) == ImageFormat::kUnsupported) {
-    throw InputError(prefix + "unsupported image format " + kAllowedFormats);
-  }
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(prefix + "is a directory");
-  const fs::path dir = directory_of(path);
-  if (!fs::exists(dir, ec)) {
-    throw InputError(prefix + "directory " + quoted(dir.string()) + " does not exist");
-  }
-  if (!fs::is_directory(dir, ec)) {
-    throw InputError(prefix + quoted(dir.string()) + " is not a directory");
-  }
-  // Creating the temporary file and renaming it needs write and search permission.
-  if (::access(dir.c_str(), W_OK | X_OK) != 0) {
-    throw InputError(prefix + "directory " + quoted(dir.string()) + " is not writable");
-  }
+  if (format_of(path) == ImageFormat::kUnsupported)
+    throw InputError(parameter + " " + quoted(path) + ": unsupported image format " +
+                     kAllowedFormats);
+  check_output_file(path, parameter);
 }
 
 Image read_image(const std::string& path) {

@@ -3,6 +3,8 @@
 // forms, so the shaders and their tests share one definition.
 #pragma once
 
+#include <algorithm>
+
 #include <glm/glm.hpp>
 
 // The functions get internal linkage (unnamed namespace): each file that includes this one
@@ -21,9 +23,15 @@ struct sampler2D {
   int height = 0;
 };
 
+// Any float is safe: NaN reads the first texel, as the clamped edges do beyond the table.
+inline float texel_coordinate(float u, int size) {
+  const float x = u * float(size) - 0.5f;
+  return x >= 0.0f ? std::min(x, float(size - 1)) : 0.0f;  // NaN fails x >= 0
+}
+
 inline vec4 textureLod(const sampler2D& s, vec2 uv, float /*lod*/) {
-  const float x = clamp(uv.x * float(s.width) - 0.5f, 0.0f, float(s.width - 1));
-  const float y = clamp(uv.y * float(s.height) - 0.5f, 0.0f, float(s.height - 1));
+  const float x = texel_coordinate(uv.x, s.width);
+  const float y = texel_coordinate(uv.y, s.height);
   const int x0 = int(x), y0 = int(y);
   const int x1 = min(x0 + 1, s.width - 1), y1 = min(y0 + 1, s.height - 1);
   const float fx = x - float(x0), fy = y - float(y0);

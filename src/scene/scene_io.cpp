@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -30,6 +31,86 @@ using scene_detail::Section;
 
 // A preset may start from another preset; this bounds the chain (and breaks cycles).
 constexpr int kMaxPresetDepth = 8;
+
+// Scene files are small; anything larger is not one (and /dev/zero never ends).
+constexpr std::uintmax_t kMaxSceneFileBytes = 1u << 20;
+
+// toml++ builds and destroys nested tables recursively, so a dotted key of 50,000 parts
+// overflows the stack. nephele's deepest key has 4 parts (conditions.good.night.hour); a
+// line whose keys have more than this many parts is refused before parsing. (Nested arrays
+// and inline tables are bounded by toml++ itself, at 256.)
+constexpr int kMaxKeyParts = 32;
+
+// The first line on which keys have more than kMaxKeyParts dotted parts, 0 when none. Keys
+// never span lines in TOML. Dots in strings and comments are not key dots, nor is the first
+// dot between two digits of a word (1.5, 18:30:00.5); a key of digits (1.2.3) counts the rest.
+int line_of_too_deep_key(std::string_view text) {
+  enum class State { kPlain, kBasic, kLiteral, kMultiBasic, kMultiLiteral, kComment };
+  State state = State::kPlain;
+  const auto at = [&](size_t i, std::string_view what) { return text.substr(i, what.size()) == what; };
+  const auto digit = [&](size_t i) {
+    return i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]));
+  };
+  const auto word_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '+' ||
+           c == ':' || c == '.';
+  };
+  int line = 1, dots = 0;
+  bool decimal_point_seen = false;  // in the current word
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (!word_char(c)) decimal_point_seen = false;
+    if (c == '\n') {
+      ++line;
+      dots = 0;
+      if (state == State::kBasic || state == State::kLiteral || state == State::kComment)
+        state = State::kPlain;
+      continue;
+    }
+    switch (state) {
+      case State::kPlain:
+        if (c == '#') {
+          state = State::kComment;
+        } else if (at(i, "\"\"\"")) {
+          state = State::kMultiBasic;
+          i += 2;
+        } else if (at(i, "'''")) {
+          state = State::kMultiLiteral;
+          i += 2;
+        } else if (c == '"') {
+          state = State::kBasic;
+        } else if (c == '\'') {
+          state = State::kLiteral;
+        } else if (c == '.') {
+          const bool decimal = !decimal_point_seen && i > 0 && digit(i - 1) && digit(i + 1);
+          decimal_point_seen = decimal_point_seen || decimal;
+          if (!decimal && ++dots >= kMaxKeyParts) return line;
+        }
+        break;
+      case State::kBasic:
+      case State::kMultiBasic:
+        if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
+          ++i;  // an escaped character, perhaps a quote
+        } else if (state == State::kBasic ? c == '"' : at(i, "\"\"\"")) {
+          i += state == State::kBasic ? 0 : 2;
+          state = State::kPlain;
+        }
+        break;
+      case State::kLiteral:
+        if (c == '\'') state = State::kPlain;
+        break;
+      case State::kMultiLiteral:
+        if (at(i, "'''")) {
+          state = State::kPlain;
+          i += 2;
+        }
+        break;
+      case State::kComment:
+        break;
+    }
+  }
+  return 0;
+}
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -100,6 +181,9 @@ class SceneReader {
       : source_(std::move(source)), base_dir_(std::move(base_dir)), depth_(depth) {}
 
   Scene read(std::string_view text) const {
+    if (int line = line_of_too_deep_key(text))
+      throw InputError(source_ + ":" + std::to_string(line) + ": a key with more than " +
+                       std::to_string(kMaxKeyParts) + " dotted parts (nephele's keys have at most 4)");
     toml::table root;
     try {
       root = toml::parse(text, source_);
@@ -350,16 +434,23 @@ Scene parse_scene_toml(std::string_view text, const std::string& source_name,
 }
 
 Scene load_scene_file(const std::string& path) {
+  const std::string cannot = path + ": cannot read the scene file: ";
   std::error_code error;
-  if (std::filesystem::is_directory(path, error))
-    throw InputError(path + ": cannot read the scene file: it is a directory");
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status)) throw InputError(cannot + "it is a directory");
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(cannot + "it is not a regular file (a device, a pipe or a socket)");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the scene file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read the scene file: read error");
+  if (!in) throw InputError(cannot + std::strerror(errno));
+  // Read at most one byte more than allowed: the file may grow after the check.
+  std::string text(kMaxSceneFileBytes + 1, '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  if (in.bad()) throw InputError(cannot + "read error");
+  text.resize(size_t(in.gcount()));
+  if (text.size() > kMaxSceneFileBytes)
+    throw InputError(cannot + "it is larger than 1 MiB (scene files are a few KB)");
   std::string base_dir = std::filesystem::path(path).parent_path().string();
-  return parse_scene_toml(text.str(), path, base_dir);
+  return parse_scene_toml(text, path, base_dir);
 }
 
 Scene load_preset(const std::string& name) {

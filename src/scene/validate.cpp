@@ -13,6 +13,18 @@ namespace {
 
 using scene_detail::format_float;
 
+// The ranges in which a scene renders finite, meaningful pixels (scene.h documents each).
+constexpr float kMaxCameraDistanceM = 1.0e9f;   // 2.6 times the Moon's distance
+constexpr float kMaxAltitudeM = 1.0e6f;         // cloud layers and cirrus (and below the top)
+constexpr float kMinDirectionLength = 1.0e-6f;  // directions are normalised in float
+constexpr float kMaxDirectionLength = 1.0e6f;
+constexpr float kMaxLight = 1.0e6f;              // sun.illuminance, output.exposure
+constexpr float kMaxFactor = 100.0f;             // extinction and light multipliers on clouds
+constexpr float kMaxAirCoefficientPerM = 0.01f;  // 100 m of air has optical depth 1
+constexpr float kMaxWindMps = 200.0f;
+// Animation time: winds of kMaxWindMps carry the clouds 2e8 m, where float keeps ~16 m steps.
+constexpr float kMaxTimeS = 1.0e6f;
+
 // Throws InputError naming a parameter the way the caller wants it named (scene key or flag).
 class Checker {
  public:
@@ -34,18 +46,13 @@ class Checker {
            "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
   }
 
-  void positive(const std::string& key, float value) const {
-    if (!(std::isfinite(value) && value > 0.0f))
-      fail(key, format_float(value), "must be a finite number > 0");
-  }
-
-  void non_negative(const std::string& key, float value) const {
-    if (!(std::isfinite(value) && value >= 0.0f))
-      fail(key, format_float(value), "must be a finite number >= 0");
-  }
-
-  void finite(const std::string& key, float value) const {
-    if (!std::isfinite(value)) fail(key, format_float(value), "must be finite");
+  // Every component in [min, max].
+  template <typename Vector>
+  void in_range(const std::string& key, const Vector& v, float min, float max) const {
+    for (int i = 0; i < Vector::length(); ++i)
+      if (!(v[i] >= min && v[i] <= max))
+        fail(key, vector_text(key, v),
+             "every component must be in [" + format_float(min) + ", " + format_float(max) + "]");
   }
 
   template <typename Vector>
@@ -54,33 +61,36 @@ class Checker {
       if (!std::isfinite(v[i])) fail(key, vector_text(key, v), "must be finite");
   }
 
+  // A wind velocity (m/s): every component in [-kMaxWindMps, kMaxWindMps].
   template <typename Vector>
-  void non_negative(const std::string& key, const Vector& v) const {
-    for (int i = 0; i < Vector::length(); ++i)
-      if (!(std::isfinite(v[i]) && v[i] >= 0.0f))
-        fail(key, vector_text(key, v), "must be finite and >= 0 in every component");
+  void wind(const std::string& key, const Vector& v) const {
+    in_range(key, v, -kMaxWindMps, kMaxWindMps);
   }
 
+  // A direction is normalised in float on the CPU and the GPU: its length must be such that
+  // its squared length neither underflows nor overflows.
   void direction(const std::string& key, const glm::vec3& v) const {
-    bool finite = std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-    if (!finite || (v.x == 0.0f && v.y == 0.0f && v.z == 0.0f))
-      fail(key, vector_text(key, v), "must be a finite, non-zero vector");
+    const double length = std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
+    if (!(length >= kMinDirectionLength && length <= kMaxDirectionLength))
+      fail(key, vector_text(key, v),
+           "must be a finite vector of length in [" + format_float(kMinDirectionLength) + ", " +
+               format_float(kMaxDirectionLength) + "]");
   }
 
-  // `value` must be < `other` (another parameter, named in the message).
-  void less_than(const std::string& key, float value, const std::string& other_key,
-                 float other) const {
+  // `value` must be below `other` (an altitude, named in the message).
+  void below(const std::string& key, float value, const std::string& other_key,
+             float other) const {
     if (!(value < other))
       fail(key, format_float(value),
-           "must be < " + display(other_key).name + " (" + format_float(other) + ")");
+           "must be below " + other_name(other_key) + " (" + format_float(other) + ")");
   }
 
-  // `value` must be >= `other` (another parameter, named in the message).
-  void at_least(const std::string& key, float value, const std::string& other_key,
-                float other) const {
+  // `value` must be at or above `other` (an altitude, named in the message).
+  void at_or_above(const std::string& key, float value, const std::string& other_key,
+                   float other) const {
     if (!(value >= other))
       fail(key, format_float(value),
-           "must be >= " + display(other_key).name + " (" + format_float(other) + ")");
+           "must be at or above " + other_name(other_key) + " (" + format_float(other) + ")");
   }
 
   void readable_file(const std::string& key, const std::string& path) const {
@@ -95,7 +105,18 @@ class Checker {
   [[noreturn]] void fail(const std::string& key, const std::string& value,
                          const std::string& what) const {
     Display shown = display(key);
-    throw InputError(shown.name + (shown.flag ? " " : " = ") + value + ": " + what);
+    throw InputError(shown.name + (shown.flag ? " " : " = ") + shorten_for_message(value) + ": " +
+                     what);
+  }
+
+  // "(0, 1, 0.25)" for a scene key, "0,1,0.25" for a flag (as it would be typed).
+  template <typename Vector>
+  std::string vector_text(const std::string& key, const Vector& v) const {
+    bool flag = is_flag(key);
+    std::string text = flag ? "" : "(";
+    for (int i = 0; i < Vector::length(); ++i)
+      text += (i == 0 ? "" : (flag ? "," : ", ")) + format_float(v[i]);
+    return flag ? text : text + ")";
   }
 
  private:
@@ -110,14 +131,11 @@ class Checker {
     return {name, name.starts_with("--")};
   }
 
-  // "(0, 1, 0.25)" for a scene key, "0,1,0.25" for a flag (as it would be typed).
-  template <typename Vector>
-  std::string vector_text(const std::string& key, const Vector& v) const {
-    bool flag = is_flag(key);
-    std::string text = flag ? "" : "(";
-    for (int i = 0; i < Vector::length(); ++i)
-      text += (i == 0 ? "" : (flag ? "," : ", ")) + format_float(v[i]);
-    return flag ? text : text + ")";
+  // Another parameter named inside a message: its flag when a flag set it, else its key (the
+  // message already says which file it is about).
+  std::string other_name(const std::string& key) const {
+    Display shown = display(key);
+    return shown.flag ? shown.name : key;
   }
 
   const ParamNamer& namer_;
@@ -125,42 +143,55 @@ class Checker {
 
 void check_camera(const Checker& check, const CameraParams& camera) {
   check.finite("camera.position_m", camera.position_m);
+  const glm::vec3 p = camera.position_m;
+  if (!(std::abs(p.x) <= kMaxCameraDistanceM && std::abs(p.y) <= kMaxCameraDistanceM))
+    check.fail("camera.position_m", check.vector_text("camera.position_m", p),
+               "east and north must be in [-" + format_float(kMaxCameraDistanceM) + ", " +
+                   format_float(kMaxCameraDistanceM) + "] m");
   if (!(camera.position_m.z >= 0.0f))
     check.fail("camera.altitude_m", format_float(camera.position_m.z),
                "must be >= 0 (the camera is below the ground)");
+  check.in_range("camera.altitude_m", camera.position_m.z, 0.0f, kMaxCameraDistanceM);
   check.direction("camera.view_dir", camera.view_dir);
-  check.in_range("camera.fov_deg", camera.fov_deg, 0.0f, 180.0f, true, true);
+  check.in_range("camera.fov_deg", camera.fov_deg, 0.01f, 180.0f, false, true);
 }
 
 void check_sun(const Checker& check, const SunParams& sun) {
   check.direction("sun.direction", sun.direction);
-  check.non_negative("sun.illuminance", sun.illuminance);
-  check.in_range("sun.disk_angular_radius_deg", sun.disk_angular_radius_deg, 0.0f, 90.0f, false,
-                 true);
+  check.in_range("sun.illuminance", sun.illuminance, 0.0f, kMaxLight);
+  check.in_range("sun.disk_angular_radius_deg", sun.disk_angular_radius_deg, 0.0f, 20.0f);
 }
 
 void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) {
-  check.positive("atmosphere.planet_radius_km", atmosphere.planet_radius_km);
-  check.positive("atmosphere.atmosphere_height_km", atmosphere.atmosphere_height_km);
-  check.non_negative("atmosphere.rayleigh_scattering_per_m", atmosphere.rayleigh_scattering_per_m);
-  check.positive("atmosphere.rayleigh_scale_height_m", atmosphere.rayleigh_scale_height_m);
-  check.non_negative("atmosphere.mie_scattering_per_m", atmosphere.mie_scattering_per_m);
-  check.non_negative("atmosphere.mie_extinction_per_m", atmosphere.mie_extinction_per_m);
+  check.in_range("atmosphere.planet_radius_km", atmosphere.planet_radius_km, 1000.0f, 10000.0f);
+  check.in_range("atmosphere.atmosphere_height_km", atmosphere.atmosphere_height_km, 1.0f,
+                 1000.0f);
+  check.in_range("atmosphere.rayleigh_scattering_per_m", atmosphere.rayleigh_scattering_per_m,
+                 0.0f, kMaxAirCoefficientPerM);
+  check.in_range("atmosphere.rayleigh_scale_height_m", atmosphere.rayleigh_scale_height_m, 100.0f,
+                 100000.0f);
+  check.in_range("atmosphere.mie_scattering_per_m", atmosphere.mie_scattering_per_m, 0.0f,
+                 kMaxAirCoefficientPerM);
+  check.in_range("atmosphere.mie_extinction_per_m", atmosphere.mie_extinction_per_m, 0.0f,
+                 kMaxAirCoefficientPerM);
   // Extinction is scattering plus absorption, so it cannot be smaller.
   if (!(atmosphere.mie_extinction_per_m >= atmosphere.mie_scattering_per_m))
     check.fail("atmosphere.mie_extinction_per_m", format_float(atmosphere.mie_extinction_per_m),
                "must be >= atmosphere.mie_scattering_per_m (" +
                    format_float(atmosphere.mie_scattering_per_m) + ")");
-  check.positive("atmosphere.mie_scale_height_m", atmosphere.mie_scale_height_m);
-  check.in_range("atmosphere.mie_g", atmosphere.mie_g, 0.0f, 1.0f, false, true);
+  check.in_range("atmosphere.mie_scale_height_m", atmosphere.mie_scale_height_m, 100.0f,
+                 100000.0f);
+  check.in_range("atmosphere.mie_g", atmosphere.mie_g, 0.0f, 0.999f);
   check.in_range("atmosphere.view_samples", atmosphere.view_samples, 1, 256);
   if (atmosphere.model != SkyModel::Hillaire && atmosphere.model != SkyModel::Preetham &&
       atmosphere.model != SkyModel::Reference)
     check.fail("atmosphere.model", std::to_string(static_cast<int>(atmosphere.model)),
                "must be hillaire, preetham or reference");
-  check.non_negative("atmosphere.ozone_absorption_per_m", atmosphere.ozone_absorption_per_m);
-  check.non_negative("atmosphere.ozone_peak_altitude_m", atmosphere.ozone_peak_altitude_m);
-  check.non_negative("atmosphere.ozone_half_width_m", atmosphere.ozone_half_width_m);
+  check.in_range("atmosphere.ozone_absorption_per_m", atmosphere.ozone_absorption_per_m, 0.0f,
+                 kMaxAirCoefficientPerM);
+  check.in_range("atmosphere.ozone_peak_altitude_m", atmosphere.ozone_peak_altitude_m, 0.0f,
+                 1.0e6f);
+  check.in_range("atmosphere.ozone_half_width_m", atmosphere.ozone_half_width_m, 0.0f, 1.0e6f);
   check.in_range("atmosphere.ground_albedo", atmosphere.ground_albedo, 0.0f, 1.0f);
   check.in_range("atmosphere.turbidity", atmosphere.turbidity, 2.0f, 10.0f);
 }
@@ -177,13 +208,14 @@ LayerTop highest_layer_top(const Scene& scene) {
 }
 
 void check_cirrus(const Checker& check, const CirrusParams& cirrus, const Scene& scene) {
+  check.in_range("cirrus.altitude_m", cirrus.altitude_m, 0.0f, kMaxAltitudeM);
   const LayerTop top = highest_layer_top(scene);
   if (cirrus.coverage > 0.0f)  // a sheet that is there sits above the volumetric layers
-    check.less_than(top.key, top.altitude_m, "cirrus.altitude_m", cirrus.altitude_m);
+    check.below(top.key, top.altitude_m, "cirrus.altitude_m", cirrus.altitude_m);
   check.in_range("cirrus.coverage", cirrus.coverage, 0.0f, 1.0f);
   check.in_range("cirrus.type", cirrus.type, 0.0f, 1.0f);
   check.in_range("cirrus.optical_depth", cirrus.optical_depth, 0.0f, 4.0f);
-  check.finite("cirrus.wind_mps", cirrus.wind_mps);
+  check.wind("cirrus.wind_mps", cirrus.wind_mps);
 }
 
 void check_high_clouds(const Checker& check, const HighCloudParams& high,
@@ -191,45 +223,48 @@ void check_high_clouds(const Checker& check, const HighCloudParams& high,
   check.in_range("high_clouds.coverage", high.coverage, 0.0f, 1.0f);
   check.in_range("high_clouds.type", high.type, 0.0f, 1.0f);
   check.in_range("high_clouds.density", high.density, 0.0f, 1.0f);
-  check.finite("high_clouds.wind_mps", high.wind_mps);
-  check.finite("high_clouds.bottom_altitude_m", high.bottom_altitude_m);
-  check.less_than("high_clouds.bottom_altitude_m", high.bottom_altitude_m,
-                  "high_clouds.top_altitude_m", high.top_altitude_m);
+  check.wind("high_clouds.wind_mps", high.wind_mps);
+  check.in_range("high_clouds.bottom_altitude_m", high.bottom_altitude_m, 0.0f, kMaxAltitudeM);
+  check.in_range("high_clouds.top_altitude_m", high.top_altitude_m, 0.0f, kMaxAltitudeM);
+  check.below("high_clouds.bottom_altitude_m", high.bottom_altitude_m,
+              "high_clouds.top_altitude_m", high.top_altitude_m);
   if (high.coverage > 0.0f)  // a layer that is there lies wholly above the low one
-    check.at_least("high_clouds.bottom_altitude_m", high.bottom_altitude_m,
-                   "clouds.top_altitude_m", clouds.top_altitude_m);
+    check.at_or_above("high_clouds.bottom_altitude_m", high.bottom_altitude_m,
+                      "clouds.top_altitude_m", clouds.top_altitude_m);
 }
 
 void check_clouds(const Checker& check, const CloudParams& clouds) {
-  check.non_negative("clouds.bottom_altitude_m", clouds.bottom_altitude_m);
-  check.finite("clouds.top_altitude_m", clouds.top_altitude_m);
-  check.less_than("clouds.bottom_altitude_m", clouds.bottom_altitude_m, "clouds.top_altitude_m",
-                  clouds.top_altitude_m);
+  check.in_range("clouds.bottom_altitude_m", clouds.bottom_altitude_m, 0.0f, kMaxAltitudeM);
+  check.in_range("clouds.top_altitude_m", clouds.top_altitude_m, 0.0f, kMaxAltitudeM);
+  check.below("clouds.bottom_altitude_m", clouds.bottom_altitude_m, "clouds.top_altitude_m",
+              clouds.top_altitude_m);
   check.in_range("clouds.coverage", clouds.coverage, 0.0f, 1.0f);
   check.in_range("clouds.type", clouds.type, 0.0f, 1.0f);
   check.in_range("clouds.precipitation", clouds.precipitation, 0.0f, 1.0f);
-  check.non_negative("clouds.weather_evolution_s", clouds.weather_evolution_s);
+  // 0 (a static map) or long enough that time / evolution stays finite.
+  if (clouds.weather_evolution_s != 0.0f)
+    check.in_range("clouds.weather_evolution_s", clouds.weather_evolution_s, 1.0f, 1.0e7f);
   check.in_range("clouds.density", clouds.density, 0.0f, 1.0f);
-  check.positive("clouds.extinction_per_m", clouds.extinction_per_m);
-  check.non_negative("clouds.attenuation", clouds.attenuation);
-  check.non_negative("clouds.light_attenuation", clouds.light_attenuation);
+  check.in_range("clouds.extinction_per_m", clouds.extinction_per_m, 0.0f, kMaxFactor, true);
+  check.in_range("clouds.attenuation", clouds.attenuation, 0.0f, kMaxFactor);
+  check.in_range("clouds.light_attenuation", clouds.light_attenuation, 0.0f, kMaxFactor);
   check.in_range("clouds.albedo", clouds.albedo, 0.0f, 1.0f);
   check.in_range("clouds.phase_g_forward", clouds.phase_g_forward, 0.0f, 1.0f, false, true);
   check.in_range("clouds.phase_g_backward", clouds.phase_g_backward, -1.0f, 0.0f, true, false);
   check.in_range("clouds.phase_lobe_weight", clouds.phase_lobe_weight, 0.0f, 1.0f);
   check.in_range("clouds.powder_strength", clouds.powder_strength, 0.0f, 1.0f);
-  check.non_negative("clouds.ambient_strength", clouds.ambient_strength);
-  check.finite("clouds.wind_mps", clouds.wind_mps);
-  check.finite("clouds.wind_shear_mps", clouds.wind_shear_mps);
-  check.non_negative("clouds.wind_skew_s", clouds.wind_skew_s);
-  check.finite("clouds.detail_drift_mps", clouds.detail_drift_mps);
-  check.non_negative("clouds.curl_distortion_m", clouds.curl_distortion_m);
-  check.non_negative("clouds.flow_speed_mps", clouds.flow_speed_mps);
-  check.positive("clouds.flow_cycle_s", clouds.flow_cycle_s);
-  check.positive("clouds.base_noise_period_m", clouds.base_noise_period_m);
-  check.positive("clouds.detail_noise_period_m", clouds.detail_noise_period_m);
+  check.in_range("clouds.ambient_strength", clouds.ambient_strength, 0.0f, kMaxFactor);
+  check.wind("clouds.wind_mps", clouds.wind_mps);
+  check.wind("clouds.wind_shear_mps", clouds.wind_shear_mps);
+  check.in_range("clouds.wind_skew_s", clouds.wind_skew_s, 0.0f, 3600.0f);
+  check.wind("clouds.detail_drift_mps", clouds.detail_drift_mps);
+  check.in_range("clouds.curl_distortion_m", clouds.curl_distortion_m, 0.0f, 10000.0f);
+  check.in_range("clouds.flow_speed_mps", clouds.flow_speed_mps, 0.0f, kMaxWindMps);
+  check.in_range("clouds.flow_cycle_s", clouds.flow_cycle_s, 1.0f, 86400.0f);
+  check.in_range("clouds.base_noise_period_m", clouds.base_noise_period_m, 10.0f, 1.0e6f);
+  check.in_range("clouds.detail_noise_period_m", clouds.detail_noise_period_m, 1.0f, 1.0e5f);
   check.in_range("clouds.detail_erosion", clouds.detail_erosion, 0.0f, 1.0f);
-  check.positive("clouds.weather_period_m", clouds.weather_period_m);
+  check.in_range("clouds.weather_period_m", clouds.weather_period_m, 1000.0f, 1.0e7f);
   if (!clouds.weather_map.empty()) check.readable_file("clouds.weather_map", clouds.weather_map);
 }
 
@@ -259,7 +294,7 @@ void check_quality(const Checker& check, const QualityParams& quality) {
 void check_output(const Checker& check, const OutputParams& output) {
   check.in_range("output.width", output.width, 1, 16384);
   check.in_range("output.height", output.height, 1, 16384);
-  check.positive("output.exposure", output.exposure);
+  check.in_range("output.exposure", output.exposure, 0.0f, kMaxLight, true);
 }
 
 void check_conditions(const Checker& check, const Scene& scene) {
@@ -279,11 +314,15 @@ void check_conditions(const Checker& check, const Scene& scene) {
 
 // The date, the place, and the sun placed by them.
 void check_time(const Checker& check, const Scene& scene) {
+  const std::string time_text =
+      check.is_flag("time") ? scene.time : scene_detail::toml_quote(scene.time);
   if (!scene.time.empty() && !julian_day_from_iso8601(scene.time))
-    check.fail("time", check.is_flag("time") ? scene.time : scene_detail::toml_quote(scene.time),
+    check.fail("time", time_text,
                "must be an ISO 8601 date and time with a zone, like 2026-06-21T18:30:00Z");
   if (scene.sun.from_time && scene.time.empty())
-    check.fail("sun.from_time", "true", "needs a time (time = \"2026-06-21T18:30:00Z\")");
+    check.fail("time", time_text,
+               "the sun is placed by the date (sun.from_time = true): give a date and time "
+               "like 2026-06-21T18:30:00Z, or a sun direction");
   check.in_range("location.lat_deg", scene.location.lat_deg, -90.0f, 90.0f);
   check.in_range("location.lon_deg", scene.location.lon_deg, -180.0f, 360.0f);
   check.in_range("location.altitude_m", scene.location.altitude_m, -500.0f, 9000.0f);
@@ -303,7 +342,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_quality(check, scene.quality);
   check_output(check, scene.output);
   check_conditions(check, scene);
-  check.finite("time_s", scene.time_s);
+  check.in_range("time_s", scene.time_s, -kMaxTimeS, kMaxTimeS);
   check_time(check, scene);
 }
 

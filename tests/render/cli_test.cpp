@@ -5,12 +5,15 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <stb/stb_image.h>
+
+#include "nephele/image.h"
 
 namespace fs = std::filesystem;
 
@@ -169,6 +172,71 @@ TEST_F(CliTest, RejectsAnOutputPathThatCannotBeWritten) {
                          path("nodir/s.json"));
   EXPECT_EQ(r3.status, 2) << r3.output;
   EXPECT_FALSE(fs::exists(path("x.png")));
+}
+
+// Reproducers of issue 18: each crashed, rendered garbage or destroyed a file.
+TEST_F(CliTest, RejectsValuesOutsideTheRangesThatRenderFinitePixels) {
+  expect_rejected("--camera-pos 1e30,0,2", {"--camera-pos", "east and north must be in"});
+  expect_rejected("--camera-altitude-m 1e38", {"--camera-altitude-m", "[0, 1e+09]"});
+  expect_rejected("--view-dir 1e-25,0,0", {"--view-dir", "length in [1e-06, 1e+06]"});
+  expect_rejected("--view-dir 1e20,1e20,1e20", {"--view-dir", "length in"});
+  expect_rejected("--sun-illuminance 1e9", {"--sun-illuminance", "[0, 1e+06]"});
+  expect_rejected("--ambient 1e9", {"--ambient", "[0, 100]"});
+  expect_rejected("--scene /dev/zero", {"/dev/zero", "not a regular file"});
+  std::string deep;
+  for (int i = 0; i < 50000; ++i) deep += "k.";
+  expect_rejected("--scene " + write_scene(deep + "x = 1\n"), {"scene.toml:1", "dotted parts"});
+}
+
+TEST_F(CliTest, OutputsAreRegularFilesOfTheirOwnCheckedBeforeRendering) {
+  expect_rejected("--stats-json /dev/null", {"--stats-json", "not a regular file"});
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  // The same file for the image and the stats.
+  const CliRun same = run_cli("render --width 8 --height 8 -o " + path("x.exr") +
+                              " --stats-json " + path("x.exr"));
+  EXPECT_EQ(same.status, 2) << same.output;
+  EXPECT_NE(same.output.find("is the same file as --output"), std::string::npos) << same.output;
+  EXPECT_FALSE(fs::exists(path("x.exr")));
+  // A name too long for the file system, before any rendering (which would take seconds).
+  const CliRun long_name =
+      run_cli("render --frames 2 -o " + path(std::string(300, 'n') + ".png"));
+  EXPECT_EQ(long_name.status, 2) << long_name.output;
+  EXPECT_NE(long_name.output.find("the file name is 309 characters long"), std::string::npos)
+      << long_name.output;
+  // A sequence whose last frame's time is out of range writes no frame at all.
+  const CliRun sequence = run_cli("render --width 8 --height 8 --frames 3 --step 3e38 -o " +
+                                  path("seq.png"));
+  EXPECT_EQ(sequence.status, 2) << sequence.output;
+  EXPECT_NE(sequence.output.find("--frames 3 --step 3e+38: the last frame's time_s"),
+            std::string::npos)
+      << sequence.output;
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(CliTest, StatsGoToStandardOutputWithADash) {
+  const CliRun r = run_cli("render --width 8 --height 8 -o " + path("x.png") + " --stats-json -");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["image"].get<std::string>(), path("x.png"));
+  EXPECT_EQ(j["width"].get<int>(), 8);
+}
+
+TEST_F(CliTest, ExrHoldsNoInfWhereTheSunIs) {
+  // 2 deg around the setting sun of the sunset preset: its disk is far beyond the largest
+  // half float (65504), which made +inf in half EXR.
+  const std::string view =
+      "render --preset sunset --width 24 --height 24 --fov-deg 2 --view-dir -0.99756,0,0.069756 ";
+  ASSERT_EQ(run_cli(view + "-o " + path("half.exr")).status, 0);
+  ASSERT_EQ(run_cli(view + "--exr-float -o " + path("float.exr")).status, 0);
+  float half_max = 0.0f, float_max = 0.0f;
+  for (const auto& [file, max] : {std::pair{"half.exr", &half_max}, {"float.exr", &float_max}})
+    for (const glm::vec4& p : nephele::read_image(path(file)).pixels)
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_TRUE(std::isfinite(p[c])) << file;
+        *max = std::max(*max, p[c]);
+      }
+  EXPECT_EQ(half_max, 65504.0f);    // clamped to the largest half, and the README says so
+  EXPECT_GT(float_max, 65504.0f);   // the sun's true radiance
 }
 
 TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {

@@ -163,6 +163,31 @@ TEST_F(ImageIo, ExrRoundTripWithinHalfPrecision) {
   }
 }
 
+TEST_F(ImageIo, ExrNeverHoldsInfOrNaN) {
+  // The sun's disk is brighter than the largest half (65504): half EXR clamps it there, float
+  // EXR keeps it; NaN is stored as 0 and inf as the largest value in both.
+  Image image = uniform(3, 1, glm::vec4(1.0f));
+  image.at(0, 0) = glm::vec4(3.0e5f, 7.0e4f, 1.0f, 1.0f);
+  image.at(1, 0) = glm::vec4(kNaN, kInf, -kInf, 1.0f);
+  write_image(image, path("half.exr"));
+  write_image(image, path("float.exr"), 1.0f, ExrPixels::kFloat);
+  const Image half = read_image(path("half.exr"));
+  const Image full = read_image(path("float.exr"));
+  for (const Image* back : {&half, &full})
+    for (const glm::vec4& p : back->pixels)
+      for (int c = 0; c < 4; ++c) EXPECT_TRUE(std::isfinite(p[c])) << c;
+  EXPECT_EQ(half.at(0, 0).r, 65504.0f);
+  EXPECT_EQ(half.at(0, 0).g, 65504.0f);
+  EXPECT_EQ(full.at(0, 0).r, 3.0e5f);
+  EXPECT_EQ(full.at(0, 0).g, 7.0e4f);
+  EXPECT_EQ(half.at(1, 0).r, 0.0f);
+  EXPECT_EQ(full.at(1, 0).r, 0.0f);
+  EXPECT_EQ(half.at(1, 0).g, 65504.0f);
+  EXPECT_EQ(half.at(1, 0).b, -65504.0f);
+  EXPECT_EQ(full.at(1, 0).g, std::numeric_limits<float>::max());
+  EXPECT_EQ(full.at(2, 0), glm::vec4(1.0f));
+}
+
 TEST_F(ImageIo, ExtensionIsCaseInsensitive) {
   const Image image = test_pattern(3, 2);
   write_image(image, path("a.PNG"));

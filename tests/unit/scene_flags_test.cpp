@@ -217,29 +217,29 @@ TEST(SceneFlags, ValidationErrorsNameTheFlag) {
   EXPECT_EQ(resolve_error({"--lat-deg", "-91"}), "--lat-deg -91: must be in [-90, 90]");
   EXPECT_EQ(resolve_error({"--coverage", "1.5"}), "--coverage 1.5: must be in [0, 1]");
   EXPECT_EQ(resolve_error({"--view-dir", "0,0,0"}),
-            "--view-dir 0,0,0: must be a finite, non-zero vector");
+            "--view-dir 0,0,0: must be a finite vector of length in [1e-06, 1e+06]");
   EXPECT_EQ(resolve_error({"--sun-dir", "0,0,0"}),
-            "--sun-dir 0,0,0: must be a finite, non-zero vector");
+            "--sun-dir 0,0,0: must be a finite vector of length in [1e-06, 1e+06]");
   EXPECT_EQ(resolve_error({"--width", "0"}), "--width 0: must be in [1, 16384]");
   EXPECT_EQ(resolve_error({"--steps", "2000"}), "--steps 2000: must be in [1, 1024]");
   EXPECT_EQ(resolve_error({"--light-steps", "65"}), "--light-steps 65: must be in [1, 64]");
   EXPECT_EQ(resolve_error({"--march-stride", "3"}), "--march-stride 3: must be 1, 2 or 4");
-  EXPECT_EQ(resolve_error({"--fov-deg", "180"}), "--fov-deg 180: must be in (0, 180)");
+  EXPECT_EQ(resolve_error({"--fov-deg", "180"}), "--fov-deg 180: must be in [0.01, 180)");
   EXPECT_EQ(resolve_error({"--g-backward", "0.5"}), "--g-backward 0.5: must be in (-1, 0]");
-  EXPECT_EQ(resolve_error({"--exposure", "nan"}), "--exposure nan: must be a finite number > 0");
+  EXPECT_EQ(resolve_error({"--exposure", "nan"}), "--exposure nan: must be in (0, 1e+06]");
   EXPECT_EQ(resolve_error({"--camera-altitude-m", "-1"}),
             "--camera-altitude-m -1: must be >= 0 (the camera is below the ground)");
   EXPECT_EQ(resolve_error({"--cloud-bottom-m", "5000", "--cloud-top-m", "4000"}),
-            "--cloud-bottom-m 5000: must be < --cloud-top-m (4000)");
+            "--cloud-bottom-m 5000: must be below --cloud-top-m (4000)");
   // Layers may not overlap, and the cirrus sheet lies above the highest one.
   EXPECT_EQ(resolve_error({"--high-coverage", "0.3", "--high-bottom-m", "3500"}),
-            "--high-bottom-m 3500: must be >= preset 'default': clouds.top_altitude_m (4000)");
+            "--high-bottom-m 3500: must be at or above clouds.top_altitude_m (4000)");
   EXPECT_EQ(resolve_error({"--high-coverage", "0.3", "--cirrus-coverage", "0.5",
                            "--cirrus-altitude-m", "6500"}),
-            "preset 'default': high_clouds.top_altitude_m = 7000: must be < --cirrus-altitude-m "
+            "preset 'default': high_clouds.top_altitude_m = 7000: must be below --cirrus-altitude-m "
             "(6500)");
   EXPECT_EQ(resolve_error({"--flow-speed-mps", "-1"}),
-            "--flow-speed-mps -1: must be a finite number >= 0");
+            "--flow-speed-mps -1: must be in [0, 200]");
   EXPECT_EQ(resolve_error({"--weather-map", "/nonexistent/nephele.png"}),
             "--weather-map /nonexistent/nephele.png: cannot read the file");
   EXPECT_EQ(resolve_error({"--camera-pos", "0,0,-3"}),
@@ -250,7 +250,7 @@ TEST(SceneFlags, ValuesNotFromFlagsNameTheirOrigin) {
   // The preset's cloud bottom is fine; lowering the top below it blames the bottom, which
   // came from the preset, and the flag that made it wrong.
   EXPECT_EQ(resolve_error({"--cloud-top-m", "1000"}),
-            "preset 'default': clouds.bottom_altitude_m = 1500: must be < --cloud-top-m (1000)");
+            "preset 'default': clouds.bottom_altitude_m = 1500: must be below --cloud-top-m (1000)");
 }
 
 TEST(SceneFlags, MalformedValuesNameTheFlag) {

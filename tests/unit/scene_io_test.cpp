@@ -483,6 +483,65 @@ TEST_F(SceneFile, MissingFileOrDirectoryIsAnInputError) {
   EXPECT_NE(message.find("directory"), std::string::npos) << message;
 }
 
+TEST_F(SceneFile, OnlyRegularFilesOfAtMostOneMebibyteAreRead) {
+  // A device would be read without end (/dev/zero), a pipe would block.
+  std::string message = input_error([] { load_scene_file("/dev/zero"); });
+  EXPECT_EQ(message, "/dev/zero: cannot read the scene file: it is not a regular file (a device, "
+                     "a pipe or a socket)");
+  const std::string big = (dir_ / "big.toml").string();
+  write(big, "# " + std::string(1u << 20, 'x') + "\n");
+  message = input_error([&] { load_scene_file(big); });
+  EXPECT_NE(message.find("larger than 1 MiB"), std::string::npos) << message;
+  // Just under the limit is read.
+  write(big, "# " + std::string((1u << 20) - 40, 'x') + "\n[clouds]\ncoverage = 0.3\n");
+  EXPECT_LE(fs::file_size(big), 1u << 20);
+  EXPECT_EQ(load_scene_file(big).clouds.coverage, 0.3f);
+}
+
+TEST(SceneParse, DeeplyNestedKeysAreRefusedBeforeParsing) {
+  // 50,000 levels overflowed the stack inside the TOML library.
+  std::string deep = "[clouds]\ncoverage = 0.5\n";
+  for (int i = 0; i < 50000; ++i) deep += "a.";
+  deep += "b = 1\n";
+  EXPECT_EQ(parse_error(deep),
+            "scene.toml:3: a key with more than 32 dotted parts (nephele's keys have at most 4)");
+  std::string header = "[";
+  for (int i = 0; i < 40; ++i) header += "\"q\" . ";
+  EXPECT_NE(parse_error(header + "x]\n").find("scene.toml:1: a key with more than 32"),
+            std::string::npos);
+  std::string digits = "1";
+  for (int i = 0; i < 40; ++i) digits += ".1";
+  EXPECT_NE(parse_error(digits + " = 2\n").find("more than 32 dotted parts"), std::string::npos);
+  // Dots in values, strings and comments are not key dots.
+  std::string fine = "time = \"" + std::string(100, '.') + "\" # " + std::string(100, '.') +
+                     "\n[clouds]\nwind_mps = [1.5, 2.25]\n";
+  EXPECT_NO_THROW(parse_scene_toml(fine, "scene.toml"));
+  EXPECT_EQ(parse_scene_toml("[camera]\nposition_m = [1.5, 2.5, 3.5]\n# a.b.c.d.e.f.g.h.i.j.k."
+                             "l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h\n",
+                             "scene.toml")
+                .camera.position_m.y,
+            2.5f);
+}
+
+TEST(SceneParse, LongValuesAreShortenedInMessages) {
+  const std::string huge(1u << 20, '7');
+  const std::string message = parse_error("[clouds]\ncoverage = \"" + huge + "\"\n");
+  EXPECT_LT(message.size(), 200u) << message.substr(0, 300);
+  EXPECT_NE(message.find("clouds.coverage = \"777"), std::string::npos) << message;
+  Scene scene;
+  scene.time = huge;
+  const std::string time_message = input_error([&] { validate_scene(scene); });
+  EXPECT_LT(time_message.size(), 200u);
+  EXPECT_EQ(time_message.rfind("time = \"777", 0), 0u) << time_message;
+  EXPECT_NE(time_message.find("...: must be an ISO 8601 date"), std::string::npos);
+}
+
+TEST(SceneParse, AnEmptyTimeThatPlacesTheSunIsBlamedOnTheTime) {
+  EXPECT_EQ(input_error([] { validate_scene(parse_scene_toml("time = \"\"\n", "s.toml")); }),
+            "time = \"\": the sun is placed by the date (sun.from_time = true): give a date and "
+            "time like 2026-06-21T18:30:00Z, or a sun direction");
+}
+
 // ---------------------------------------------------------------- validation
 
 struct BadValue {
@@ -544,9 +603,9 @@ const BadValue kBadValues[] = {
     {"clouds.top_altitude_m = 4000: must be below the top of the atmosphere",
      [](Scene& s) { s.atmosphere.atmosphere_height_km = 3.0f; }},
     {"clouds.bottom_altitude_m = -1", [](Scene& s) { s.clouds.bottom_altitude_m = -1.0f; }},
-    {"clouds.bottom_altitude_m = 4000: must be < clouds.top_altitude_m (4000)",
+    {"clouds.bottom_altitude_m = 4000: must be below clouds.top_altitude_m (4000)",
      [](Scene& s) { s.clouds.bottom_altitude_m = 4000.0f; }},
-    {"clouds.bottom_altitude_m = 1500: must be < clouds.top_altitude_m (1000)",
+    {"clouds.bottom_altitude_m = 1500: must be below clouds.top_altitude_m (1000)",
      [](Scene& s) { s.clouds.top_altitude_m = 1000.0f; }},
     {"clouds.top_altitude_m = inf", [](Scene& s) { s.clouds.top_altitude_m = kInf; }},
     {"clouds.coverage = 1.5: must be in [0, 1]", [](Scene& s) { s.clouds.coverage = 1.5f; }},
@@ -595,11 +654,44 @@ const BadValue kBadValues[] = {
     {"time = \"2026-06-21 18:30\": must be an ISO 8601 date and time with a zone, like "
      "2026-06-21T18:30:00Z",
      [](Scene& s) { s.time = "2026-06-21 18:30"; }},
-    {"sun.from_time = true: needs a time", [](Scene& s) { s.sun.from_time = true; }},
+    {"time = \"\": the sun is placed by the date (sun.from_time = true)",
+     [](Scene& s) { s.sun.from_time = true; }},
     {"location.lat_deg = 91: must be in [-90, 90]", [](Scene& s) { s.location.lat_deg = 91.0f; }},
     {"location.lon_deg = -181: must be in [-180, 360]",
      [](Scene& s) { s.location.lon_deg = -181.0f; }},
     {"location.altitude_m = nan", [](Scene& s) { s.location.altitude_m = kNaN; }},
+    // Upper bounds: each of these rendered NaN, inf, a wrong view or crashed when accepted.
+    {"camera.position_m = (1e+30, 0, 2): east and north must be in [-1e+09, 1e+09] m",
+     [](Scene& s) { s.camera.position_m.x = 1e30f; }},
+    {"camera.position_m = (0, -1e+20, 2)", [](Scene& s) { s.camera.position_m.y = -1e20f; }},
+    {"camera.altitude_m = 1e+38: must be in [0, 1e+09]",
+     [](Scene& s) { s.camera.position_m.z = 1e38f; }},
+    {"camera.view_dir = (1e-25, 0, 0): must be a finite vector of length in [1e-06, 1e+06]",
+     [](Scene& s) { s.camera.view_dir = {1e-25f, 0.0f, 0.0f}; }},
+    {"camera.view_dir = (1e+20, 1e+20, 1e+20)",
+     [](Scene& s) { s.camera.view_dir = glm::vec3(1e20f); }},
+    {"camera.fov_deg = 0.001: must be in [0.01, 180)", [](Scene& s) { s.camera.fov_deg = 1e-3f; }},
+    {"sun.direction = (0, 0, 1e-07)", [](Scene& s) { s.sun.direction = {0.0f, 0.0f, 1e-7f}; }},
+    {"sun.illuminance = 1e+09: must be in [0, 1e+06]", [](Scene& s) { s.sun.illuminance = 1e9f; }},
+    {"atmosphere.planet_radius_km = 1e+30", [](Scene& s) { s.atmosphere.planet_radius_km = 1e30f; }},
+    {"atmosphere.atmosphere_height_km = 1e+08",
+     [](Scene& s) { s.atmosphere.atmosphere_height_km = 1e8f; }},
+    {"atmosphere.mie_extinction_per_m = 3e+38: must be in [0, 0.01]",
+     [](Scene& s) { s.atmosphere.mie_extinction_per_m = 3e38f; }},
+    {"atmosphere.rayleigh_scattering_per_m = (1, 0, 0): every component must be in [0, 0.01]",
+     [](Scene& s) { s.atmosphere.rayleigh_scattering_per_m = {1.0f, 0.0f, 0.0f}; }},
+    {"clouds.ambient_strength = 1e+09: must be in [0, 100]",
+     [](Scene& s) { s.clouds.ambient_strength = 1e9f; }},
+    {"clouds.extinction_per_m = 1e+30", [](Scene& s) { s.clouds.extinction_per_m = 1e30f; }},
+    {"clouds.wind_mps = (1e+30, 2): every component must be in [-200, 200]",
+     [](Scene& s) { s.clouds.wind_mps.x = 1e30f; }},
+    {"clouds.flow_cycle_s = 1e-30: must be in [1, 86400]",
+     [](Scene& s) { s.clouds.flow_cycle_s = 1e-30f; }},
+    {"clouds.weather_evolution_s = 1e-30: must be in [1, 1e+07]",
+     [](Scene& s) { s.clouds.weather_evolution_s = 1e-30f; }},
+    {"cirrus.altitude_m = 1e+38: must be in [0, 1e+06]", [](Scene& s) { s.cirrus.altitude_m = 1e38f; }},
+    {"output.exposure = 1e+38", [](Scene& s) { s.output.exposure = 1e38f; }},
+    {"time_s = 3e+38: must be in [-1e+06, 1e+06]", [](Scene& s) { s.time_s = 3e38f; }},
 };
 
 // Test names from the expected message: "clouds.coverage = 1.5" -> "3_clouds_coverage_1_5".
@@ -617,9 +709,9 @@ TEST(SceneValidateExact, MessagesAreOneCompleteLine) {
   EXPECT_EQ(validate_error([](Scene& s) { s.clouds.coverage = 1.5f; }),
             "clouds.coverage = 1.5: must be in [0, 1]");
   EXPECT_EQ(validate_error([](Scene& s) { s.camera.view_dir = glm::vec3(0.0f); }),
-            "camera.view_dir = (0, 0, 0): must be a finite, non-zero vector");
+            "camera.view_dir = (0, 0, 0): must be a finite vector of length in [1e-06, 1e+06]");
   EXPECT_EQ(validate_error([](Scene& s) { s.output.exposure = -2.0f; }),
-            "output.exposure = -2: must be a finite number > 0");
+            "output.exposure = -2: must be in (0, 1e+06]");
 }
 
 TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
@@ -649,6 +741,18 @@ TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
       [](Scene& s) { s.atmosphere.view_samples = 256; },
       [](Scene& s) { s.sun.illuminance = 0.0f; },
       [](Scene& s) { s.time_s = -5.0f; },
+      // The far ends of the documented ranges.
+      [](Scene& s) { s.camera.position_m = {-1e9f, 1e9f, 1e9f}; },
+      [](Scene& s) { s.camera.view_dir = {1e-6f, 0.0f, 0.0f}; },
+      [](Scene& s) { s.camera.view_dir = {0.0f, 1e6f, 0.0f}; },
+      [](Scene& s) { s.camera.fov_deg = 0.01f; },
+      [](Scene& s) { s.sun.illuminance = 1e6f; },
+      [](Scene& s) { s.atmosphere.mie_scattering_per_m = s.atmosphere.mie_extinction_per_m = 0.01f; },
+      [](Scene& s) { s.clouds.ambient_strength = 100.0f; },
+      [](Scene& s) { s.clouds.wind_mps = {-200.0f, 200.0f}; },
+      [](Scene& s) { s.clouds.weather_evolution_s = 0.0f; },
+      [](Scene& s) { s.time_s = 1e6f; },
+      [](Scene& s) { s.output.exposure = 1e6f; },
   };
   for (size_t i = 0; i < fine.size(); ++i) {
     Scene scene;
@@ -674,9 +778,9 @@ TEST(SceneValidateExact, NamerCanShowFlags) {
   EXPECT_EQ(error_with([](Scene& s) { s.clouds.coverage = 1.5f; }),
             "--coverage 1.5: must be in [0, 1]");
   EXPECT_EQ(error_with([](Scene& s) { s.camera.view_dir = glm::vec3(0.0f); }),
-            "--view-dir 0,0,0: must be a finite, non-zero vector");
+            "--view-dir 0,0,0: must be a finite vector of length in [1e-06, 1e+06]");
   EXPECT_EQ(error_with([](Scene& s) { s.clouds.top_altitude_m = 1000.0f; }),
-            "clouds.bottom_altitude_m = 1500: must be < --cloud-top-m (1000)");
+            "clouds.bottom_altitude_m = 1500: must be below --cloud-top-m (1000)");
   EXPECT_EQ(error_with([](Scene& s) { s.clouds.weather_map = "/nonexistent/w.png"; }),
             "--weather-map /nonexistent/w.png: cannot read the file");
   EXPECT_EQ(error_with([](Scene& s) { s.output.width = 0; }),

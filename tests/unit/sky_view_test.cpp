@@ -190,3 +190,28 @@ TEST(SkyView, TexcoordsStayOnTheirSideOfTheHorizonAndInTheirTable) {
       EXPECT_LE(row, hi + 1e-3f) << "v " << v << " table " << table;
     }
 }
+
+namespace {
+
+// The CPU's table lookups are safe for any float: a NaN coordinate (from a NaN position or
+// direction) read past the table and crashed (issue 18); it reads the first texel instead, and
+// coordinates beyond the table the edge texels.
+TEST(TableLookup, AnyFloatCoordinateReadsATexelOfTheTable) {
+  const std::vector<glm::vec4> texels = {glm::vec4(1.0f), glm::vec4(2.0f), glm::vec4(3.0f),
+                                         glm::vec4(4.0f)};
+  const g::sampler2D table{texels.data(), 2, 2};
+  const float nan = std::nanf(""), inf = INFINITY;
+  EXPECT_EQ(g::textureLod(table, vec2(nan, nan), 0.0f), glm::vec4(1.0f));
+  EXPECT_EQ(g::textureLod(table, vec2(inf, -inf), 0.0f), glm::vec4(2.0f));
+  EXPECT_EQ(g::textureLod(table, vec2(-1e30f, 1e30f), 0.0f), glm::vec4(3.0f));
+  EXPECT_EQ(g::textureLod(table, vec2(0.75f, 0.75f), 0.0f), glm::vec4(4.0f));
+  // Through the atmosphere's lookups: a camera 1e30 m away gives NaN coordinates.
+  std::vector<glm::vec4> lut(size_t(g::TRANSMITTANCE_LUT_W) * g::TRANSMITTANCE_LUT_H, glm::vec4(0.5f));
+  const g::sampler2D t_lut{lut.data(), g::TRANSMITTANCE_LUT_W, g::TRANSMITTANCE_LUT_H};
+  const vec3 t = g::transmittance_to_light(kEarth, t_lut, false, vec3(1e30f, 0.0f, 6.36e6f),
+                                           vec3(0.0f, 0.0f, 1.0f));
+  for (int c = 0; c < 3; ++c) EXPECT_TRUE(t[c] == 0.5f || t[c] == 1.0f || t[c] == 0.0f) << t[c];
+  EXPECT_EQ(g::saturate(nan), 0.0f);
+}
+
+}  // namespace
