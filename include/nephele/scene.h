@@ -2,8 +2,12 @@
 //
 // Frame: local east-north-up (ENU). x east, y north, z up, metres; the origin
 // is on the ground (altitude 0) below the start position. Azimuths are degrees
-// from north through east. Directions need not be normalised but must be
-// finite and non-zero.
+// from north through east. Directions need not be normalised but must have a
+// length in [1e-6, 1e6].
+//
+// Every parameter has a range (in its comment; validate_scene enforces it) in which the
+// scene renders finite, meaningful pixels; anything outside it is refused with one line
+// naming the parameter, the value and the range.
 #pragma once
 
 #include <cstdint>
@@ -17,15 +21,16 @@
 namespace nephele {
 
 struct CameraParams {
-  glm::vec3 position_m{0.0f, 0.0f, 2.0f};  // ENU, metres
+  // ENU, metres: east and north in [-1e9, 1e9], up in [0, 1e9] (2.6 times the Moon's distance)
+  glm::vec3 position_m{0.0f, 0.0f, 2.0f};
   glm::vec3 view_dir{0.0f, 1.0f, 0.25f};   // ENU, looking direction
-  float fov_deg = 70.0f;                   // vertical field of view, (0, 180)
+  float fov_deg = 70.0f;                   // vertical field of view, [0.01, 180)
 };
 
 struct SunParams {
   glm::vec3 direction{0.0f, 0.7f, 0.35f};  // ENU, towards the sun
-  float illuminance = 20.0f;               // radiance scale of sunlight at the top of the atmosphere
-  float disk_angular_radius_deg = 0.2666f;  // apparent radius of the sun disk
+  float illuminance = 20.0f;  // radiance scale of sunlight at the top of the atmosphere, [0, 1e6]
+  float disk_angular_radius_deg = 0.2666f;  // apparent radius of the sun disk, [0, 20]
   // Place the sun by the ephemeris for Scene::time and Scene::location instead of direction.
   // Set by a scene file or flags that give a time without a sun direction.
   bool from_time = false;
@@ -44,24 +49,26 @@ enum class SkyModel {
 // scattering falling off exponentially with altitude, Mie absorption, an ozone layer.
 struct AtmosphereParams {
   SkyModel model = SkyModel::Hillaire;
-  float planet_radius_km = 6360.0f;
-  float atmosphere_height_km = 100.0f;             // top of the atmosphere above ground
+  // Coefficients (1/m) in [0, 0.01] each: at 0.01, 100 m of air has optical depth 1.
+  float planet_radius_km = 6360.0f;                // [1000, 10000]
+  float atmosphere_height_km = 100.0f;             // top of the atmosphere above ground, [1, 1000]
   glm::vec3 rayleigh_scattering_per_m{5.802e-6f, 13.558e-6f, 33.1e-6f};  // sigma_s at sea level
-  float rayleigh_scale_height_m = 8000.0f;
+  float rayleigh_scale_height_m = 8000.0f;         // [100, 1e5]
   float mie_scattering_per_m = 3.996e-6f;          // sigma_s at sea level
   float mie_extinction_per_m = 4.44e-6f;           // sigma_t at sea level (absorption included)
-  float mie_scale_height_m = 1200.0f;
-  float mie_g = 0.8f;                               // Cornette-Shanks asymmetry, [0, 1)
+  float mie_scale_height_m = 1200.0f;              // [100, 1e5]
+  float mie_g = 0.8f;                               // Cornette-Shanks asymmetry, [0, 0.999]
   glm::vec3 ozone_absorption_per_m{0.650e-6f, 1.881e-6f, 0.085e-6f};  // sigma_a at the peak
-  float ozone_peak_altitude_m = 25000.0f;           // the layer's density peaks here ...
-  float ozone_half_width_m = 15000.0f;              // ... and falls linearly to 0 this far away
+  float ozone_peak_altitude_m = 25000.0f;           // the layer's density peaks here ... [0, 1e6]
+  float ozone_half_width_m = 15000.0f;  // ... and falls linearly to 0 this far away, [0, 1e6]
   float ground_albedo = 0.1f;                       // Lambertian ground, [0, 1]
   float turbidity = 2.5f;                           // Preetham's haze, [2, 10]
   int view_samples = 32;                            // samples along each sky-view LUT ray
   bool operator==(const AtmosphereParams&) const = default;
 };
 
-// One volumetric cloud layer between two spheres (seed 000, section 2.2).
+// One volumetric cloud layer between two spheres (seed 000, section 2.2). Altitudes in
+// [0, 1e6] m and below the top of the atmosphere; winds (m/s) in [-200, 200] per component.
 struct CloudParams {
   float bottom_altitude_m = 1500.0f;  // cloud layer bottom above ground
   float top_altitude_m = 4000.0f;     // cloud layer top above ground, > bottom
@@ -73,44 +80,46 @@ struct CloudParams {
   // cumulonimbus at 70% coverage or more (local precipitation = this x 2G, at most 1).
   float precipitation = 0.0f;
   float density = 0.5f;               // [0, 1]; scales the cloud density field (seed u_density)
-  float extinction_per_m = 1.0f;      // sigma_t at density field value 1 (1/m), > 0
-  float attenuation = 1.0f;           // multiplier on sigma_t along view rays (seed u_attenuation)
-  float light_attenuation = 1.0f;     // multiplier on sigma_t along light rays (seed u_attenuation2)
+  float extinction_per_m = 1.0f;      // sigma_t at density field value 1 (1/m), (0, 100]
+  float attenuation = 1.0f;           // multiplier on sigma_t along view rays (seed u_attenuation), [0, 100]
+  float light_attenuation = 1.0f;     // ... along light rays (seed u_attenuation2), [0, 100]
   float albedo = 0.99f;               // single-scattering albedo sigma_s / sigma_t, [0, 1]
   float phase_g_forward = 0.8f;       // forward Henyey-Greenstein lobe, [0, 1)
   float phase_g_backward = -0.3f;     // backward lobe, (-1, 0]
   float phase_lobe_weight = 0.7f;     // weight of the forward lobe, [0, 1] (seed DUAL_LOBE_WEIGHT)
   float powder_strength = 1.0f;       // [0, 1]; 0 disables the powder term (seed 1.9)
-  float ambient_strength = 1.0f;      // >= 0; scales sky ambient light on clouds
+  float ambient_strength = 1.0f;      // [0, 100]; scales sky ambient light on clouds
   // Wind (seed 002, 体积云的流动效果). The shape wind moves the clouds' bodies and the weather
   // map; it grows with height by wind_shear_mps at the layer's top, and a sample at height
   // fraction h sits where the wind had carried it h x wind_skew_s longer, so tops lean and
-  // anvils stream downwind: displacement = (wind + h shear) (time + h skew).
+  // anvils stream downwind: displacement = (wind + h shear) (time + h skew), the shear acting
+  // over at most a cloud's lifetime (shear_time_s in clouds_inc.glsl).
   glm::vec2 wind_mps{8.0f, 2.0f};        // east, north wind speed at the layer's bottom (m/s)
   // East, north: the wind's growth up to the top (m/s). Each height drifts at its own speed,
   // so over time tops slide away from their bases (an hour at 1 m/s: 3.6 km at the top).
   glm::vec2 wind_shear_mps{1.0f, 0.5f};
-  float wind_skew_s = 60.0f;             // >= 0; the seed uses 200
+  float wind_skew_s = 60.0f;             // [0, 3600]; the seed uses 200
   // The detail noise's own motion relative to the clouds' bodies (east, north, up; m/s; the
   // seed's second, detail wind is wind_mps + this): the wisps move over the bodies and, with
   // the up component, roll up their sides.
   glm::vec3 detail_drift_mps{2.0f, 0.0f, 1.0f};
   // Curl noise (seed 002, Schneider 2015) displaces the detail noise by up to this (m), most at
   // the bases, into swirls and wisps. >= 0; 0 = none.
-  float curl_distortion_m = 120.0f;
+  float curl_distortion_m = 120.0f;  // [0, 1e4]
   // A flow map of local swirls (seed 002, 局部流动效果): a divergence-free field of eddies a
   // few km across moves the shape noise at up to flow_speed_mps. The noise restarts every
   // flow_cycle_s in two phases half a cycle apart, blended, so it is never stretched further
   // than speed x cycle. 0 = none (and it costs nothing).
-  float flow_speed_mps = 0.0f;  // >= 0
-  float flow_cycle_s = 120.0f;  // > 0
-  float base_noise_period_m = 4500.0f;    // horizontal period of the base 128^3 noise tile, > 0
-  float detail_noise_period_m = 400.0f;   // period of the detail 32^3 noise tile, > 0
+  float flow_speed_mps = 0.0f;  // [0, 200]
+  float flow_cycle_s = 120.0f;  // [1, 86400]
+  float base_noise_period_m = 4500.0f;    // horizontal period of the base 128^3 noise tile, [10, 1e6]
+  float detail_noise_period_m = 400.0f;   // period of the detail 32^3 noise tile, [1, 1e5]
   float detail_erosion = 0.8f;            // [0, 1]; how much detail noise erodes the base shape
-  float weather_period_m = 40000.0f;      // size of one weather-map tile on the ground, > 0
+  float weather_period_m = 40000.0f;      // size of one weather-map tile on the ground, [1e3, 1e7]
   // The procedural weather map evolves with time_s: its cloud clusters form, drift and
   // dissipate over about this time (s); the smallest cells change 8x faster. 0 = a static map.
   // Deterministic: the same seed and time give the same sky; it repeats after 6x this time.
+  // 0 or [1, 1e7].
   float weather_evolution_s = 3600.0f;
   std::string weather_map;                // PNG path (RGBA as in seed 2.2.2); empty = procedural
 };
@@ -137,7 +146,7 @@ enum class MarchMode {
 // drawn in compose (shaders/cirrus_inc.glsl) behind the volumetric clouds when the camera is
 // below it and in front of everything when above, lit by the same sun and sky.
 struct CirrusParams {
-  float altitude_m = 9000.0f;  // above ground, above the volumetric layers when coverage > 0
+  float altitude_m = 9000.0f;  // above ground, [0, 1e6], above the volumetric layers when coverage > 0
   float coverage = 0.0f;       // [0, 1]; 0 = no cirrus
   // [0, 1]: 0 cirrus (fibrous streaks along the wind), 0.5 cirrostratus (a thin veil),
   // 1 cirrocumulus (rows of small cells), blended in between.
@@ -166,7 +175,7 @@ struct QualityParams {
 struct OutputParams {
   int width = 900;    // pixels, [1, 16384]
   int height = 600;   // pixels, [1, 16384]
-  float exposure = 0.5f;  // linear scale before tone mapping, > 0
+  float exposure = 0.5f;  // linear scale before tone mapping, (0, 1e6]
   // Scale the exposure with the frame's brightness (auto_exposure()), so that a day-to-night
   // sequence shows the night, darker than the day as the eye sees it.
   bool auto_exposure = false;
@@ -211,7 +220,7 @@ struct Scene {
   // Date and time (ISO 8601, UTC or with an offset: "2026-06-21T18:30:00Z"); empty = none (no
   // moon, and the sun from sun.direction). The sky's clock is time + time_s.
   std::string time;
-  float time_s = 0.0f;       // animation time (s): moves clouds with the wind
+  float time_s = 0.0f;       // animation time (s): moves clouds with the wind, [-1e6, 1e6]
   uint32_t noise_seed = 1;   // seeds the noise textures and the procedural weather map
 };
 

@@ -119,13 +119,21 @@ float cloud_erode(float base, float detail_fbm, float h, float erosion) {
   return saturate(remap(base, detail * erosion, 1.0f, 0.0f, 1.0f));
 }
 
+// The shear's tops run ahead of their bases only while a cloud lives (about an hour): the time
+// the shear has acted, t_s tanh(t / t_s), is t for the first minutes and never more than t_s.
+// In the seed it is t itself, so over hours each height drifts over unrelated weather (after a
+// day at 1 m/s, tops 90 km from their bases) and the layer turns into a uniform sheet.
+const float SHEAR_LIFETIME_S = 3600.0f;
+float shear_time_s(float time_s) { return SHEAR_LIFETIME_S * tanh(time_s / SHEAR_LIFETIME_S); }
+
 // Wind displacement (seed 002, 全局流动效果) of a sample at height fraction h in [0, 1] of its
-// layer: the seed's (wind + h shear) (time + h skew). The wind grows with height (shear: its
-// growth up to the top, m/s), and the sample sits where the wind had carried it h x skew
-// seconds longer, so tops lean downwind. drift_m = wind x time, computed on the host.
+// layer: the seed's (wind + h shear) (time + h skew), with the shear acting over
+// shear_time_s(time). The wind grows with height (shear: its growth up to the top, m/s), and
+// the sample sits where the wind had carried it h x skew seconds longer, so tops lean
+// downwind. drift_m = wind x time, computed on the host.
 vec2 cloud_wind_offset(vec2 drift_m, vec2 wind_mps, vec2 shear_mps, float time_s, float skew_s,
                        float h) {
-  return drift_m + h * (wind_mps * skew_s + shear_mps * (time_s + h * skew_s));
+  return drift_m + h * (wind_mps * skew_s + shear_mps * (shear_time_s(time_s) + h * skew_s));
 }
 
 // The flow map's two phases (seed 002, 局部流动效果): phase k in {0, 1} of a cycle at

@@ -282,7 +282,8 @@ TEST(CloudTypes, PrecipitationMakesCumulonimbusWithAnAnvil) {
 }
 
 // The seed's wind: (wind + h shear) (time + h skew). The bottom moves with the wind alone; the
-// top with the sheared wind and a lead of `skew` seconds, so tops lean downwind.
+// top with the sheared wind and a lead of `skew` seconds, so tops lean downwind. Over a
+// cloud's lifetime the shear's lead stops growing (shear_time_s).
 TEST(Wind, GrowsWithHeightAndLeansTheTopsDownwind) {
   const vec2 wind(8.0f, 2.0f), shear(3.0f, 1.0f);
   const float time_s = 100.0f, skew_s = 60.0f;
@@ -293,8 +294,17 @@ TEST(Wind, GrowsWithHeightAndLeansTheTopsDownwind) {
   for (float h : {0.3f, 0.7f, 1.0f}) {
     const vec2 seed = (wind + h * shear) * (time_s + h * skew_s);
     const vec2 offset = g::cloud_wind_offset(drift, wind, shear, time_s, skew_s, h);
-    EXPECT_NEAR(offset.x, seed.x, 1e-3f) << h;
-    EXPECT_NEAR(offset.y, seed.y, 1e-3f) << h;
+    // 100 s into a lifetime of 3600 s the shear has acted 99.97 s: the seed's within 0.1 m.
+    EXPECT_NEAR(offset.x, seed.x, 0.1f) << h;
+    EXPECT_NEAR(offset.y, seed.y, 0.1f) << h;
+  }
+  // A day later the tops lead their bases by at most the lifetime's shear (not 86 km).
+  for (float t : {86400.0f, -86400.0f, 1e6f}) {
+    const vec2 lead = g::cloud_wind_offset(wind * t, wind, shear, t, skew_s, 1.0f) - wind * t;
+    EXPECT_LE(glm::length(lead - (wind + shear) * skew_s),
+              glm::length(shear) * g::SHEAR_LIFETIME_S * 1.0001f) << t;
+    EXPECT_GT(glm::length(lead - (wind + shear) * skew_s),
+              0.99f * glm::length(shear) * g::SHEAR_LIFETIME_S) << t;
   }
   // At time 0 only the lean remains: h x skew x wind (plus the shear over the lead).
   const vec2 lean = g::cloud_wind_offset(vec2(0.0f), wind, shear, 0.0f, skew_s, 1.0f);
