@@ -13,14 +13,16 @@
 
 namespace {
 
-// Errors are one line: each part of a message is already short (shorten_for_message), but a
-// message from a library (CLI11's echo a value whole) may not be.
-void print_error(const char* kind, const std::string& message, const char* suffix = "") {
-  constexpr size_t kMaxChars = 1000;
-  std::string line = message.size() > kMaxChars ? message.substr(0, kMaxChars - 3) + "..." : message;
-  for (char& c : line)
+// Errors are one line of at most kMaxLineChars: each part of a message is already short
+// (shorten_for_message), but a message from a library (CLI11's echo values whole) may not be.
+void print_error(const std::string& kind, const std::string& message, const std::string& suffix = "") {
+  constexpr size_t kMaxLineChars = 1000;
+  const std::string prefix = "nephele: " + kind + ": ";
+  const size_t room = kMaxLineChars - prefix.size() - suffix.size();
+  std::string text = message.size() > room ? message.substr(0, room - 3) + "..." : message;
+  for (char& c : text)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
-  std::fprintf(stderr, "nephele: %s: %s%s\n", kind, line.c_str(), suffix);
+  std::fprintf(stderr, "%s%s%s\n", prefix.c_str(), text.c_str(), suffix.c_str());
 }
 
 }  // namespace

@@ -299,7 +299,8 @@ Scene load_base(const SceneFlags& flags) {
   std::string name = flags.preset.value_or("default");
   std::vector<std::string> names = preset_names();
   if (std::find(names.begin(), names.end(), name) == names.end())
-    throw InputError("--preset '" + name + "': unknown preset (available: " + join(names) + ")");
+    throw InputError("--preset '" + shorten_for_message(name) + "': unknown preset (available: " +
+                     join(names) + ")");
   return load_preset(name);
 }
 

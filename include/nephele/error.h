@@ -26,4 +26,9 @@ class RuntimeError : public std::runtime_error {
 constexpr size_t kMaxEchoedChars = 80;
 std::string shorten_for_message(std::string_view text);
 
+// A path as an error message may echo it: as shorten_for_message, but at most kMaxPathChars
+// and a long path keeps its end (the file's name): ".../scenes/storm.toml".
+constexpr size_t kMaxPathChars = 200;
+std::string shorten_path_for_message(std::string_view path);
+
 }  // namespace nephele

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 std::string quoted(const std::string& s) {
   std::string out = "'";
-  out += s;
+  out += shorten_path_for_message(s);
   return out += "'";
 }
 

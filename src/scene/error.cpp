@@ -2,18 +2,33 @@
 #include "nephele/error.h"
 
 namespace nephele {
+namespace {
 
-std::string shorten_for_message(std::string_view text) {
-  const bool long_text = text.size() > kMaxEchoedChars;
-  if (long_text) {
-    size_t cut = kMaxEchoedChars - 3;
-    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xc0) == 0x80) --cut;  // UTF-8
-    text = text.substr(0, cut);
-  }
+bool utf8_continuation(char c) {
+  return (static_cast<unsigned char>(c) & 0xc0) == 0x80;
+}
+
+std::string printable(std::string_view text) {
   std::string out(text);
   for (char& c : out)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  return long_text ? out + "..." : out;
+  return out;
+}
+
+}  // namespace
+
+std::string shorten_for_message(std::string_view text) {
+  if (text.size() <= kMaxEchoedChars) return printable(text);
+  size_t cut = kMaxEchoedChars - 3;
+  while (cut > 0 && utf8_continuation(text[cut])) --cut;  // not inside a UTF-8 character
+  return printable(text.substr(0, cut)) + "...";
+}
+
+std::string shorten_path_for_message(std::string_view path) {
+  if (path.size() <= kMaxPathChars) return printable(path);
+  size_t start = path.size() - (kMaxPathChars - 3);
+  while (start < path.size() && utf8_continuation(path[start])) ++start;
+  return "..." + printable(path.substr(start));
 }
 
 }  // namespace nephele

@@ -178,7 +178,9 @@ Scene parse_preset(const EmbeddedFile& file, int depth);
 class SceneReader {
  public:
   SceneReader(std::string source, std::string base_dir, int depth)
-      : source_(std::move(source)), base_dir_(std::move(base_dir)), depth_(depth) {}
+      : source_(shorten_path_for_message(source)),
+        base_dir_(std::move(base_dir)),
+        depth_(depth) {}
 
   Scene read(std::string_view text) const {
     if (int line = line_of_too_deep_key(text))
@@ -205,7 +207,7 @@ class SceneReader {
       const Section* section = find_table(name);
       if (!section)
         fail(key.source(),
-             "unknown key '" + name + "' (allowed at the top level: " + allowed_keys(top) + ")");
+             "unknown key '" + shorten_for_message(name) + "' (allowed at the top level: " + allowed_keys(top) + ")");
       const toml::table* table = node.as_table();
       if (!table) fail_value(node, name, "expected a table [" + name + "]");
       read_table(*section, *table, scene);
@@ -247,7 +249,7 @@ class SceneReader {
       if (is_extra_key(section, name)) continue;  // read below, after the plain fields
       const Field* field = find_field(section, name);
       if (!field)
-        fail(key.source(), "unknown key '" + full_key + "' (allowed in [" +
+        fail(key.source(), "unknown key '" + shorten_for_message(full_key) + "' (allowed in [" +
                                std::string(section.name) + "]: " + allowed_keys(section) + ")");
       assign(*field, full_key, node, scene);
     }
@@ -434,7 +436,8 @@ Scene parse_scene_toml(std::string_view text, const std::string& source_name,
 }
 
 Scene load_scene_file(const std::string& path) {
-  const std::string cannot = path + ": cannot read the scene file: ";
+  const std::string cannot =
+      shorten_path_for_message(path) + ": cannot read the scene file: ";
   std::error_code error;
   const std::filesystem::file_status status = std::filesystem::status(path, error);
   if (std::filesystem::is_directory(status)) throw InputError(cannot + "it is a directory");
@@ -456,7 +459,7 @@ Scene load_scene_file(const std::string& path) {
 Scene load_preset(const std::string& name) {
   const EmbeddedFile* file = find_preset_file(name);
   if (!file)
-    throw InputError("preset '" + name + "': unknown preset (available: " + join(preset_names()) +
+    throw InputError("preset '" + shorten_for_message(name) + "': unknown preset (available: " + join(preset_names()) +
                      ")");
   return parse_preset(*file, 0);
 }

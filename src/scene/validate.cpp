@@ -93,11 +93,14 @@ class Checker {
            "must be at or above " + other_name(other_key) + " (" + format_float(other) + ")");
   }
 
+  // A regular file that opens (a pipe would block the open, a device be read without end).
   void readable_file(const std::string& key, const std::string& path) const {
-    std::ifstream file(path, std::ios::binary);
     std::error_code error;
-    if (!file || std::filesystem::is_directory(path, error))
-      fail(key, is_flag(key) ? path : scene_detail::toml_quote(path), "cannot read the file");
+    const bool regular = std::filesystem::is_regular_file(path, error);
+    if (!regular || !std::ifstream(path, std::ios::binary))
+      fail(key, is_flag(key) ? path : scene_detail::toml_quote(path),
+           regular || !std::filesystem::exists(path, error) ? "cannot read the file"
+                                                            : "is not a regular file");
   }
 
   bool is_flag(const std::string& key) const { return display(key).flag; }
