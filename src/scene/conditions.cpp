@@ -68,10 +68,11 @@ class TableChecker {
     if (error_.empty()) error_ = key + " = " + value + ": " + allowed;
   }
 
+  // HDR colours, on the scale of the sun's radiance scale (sun.illuminance, at most 1e6).
   void colour(int index, const char* field, const glm::vec3& v) {
     for (int c = 0; c < 3; ++c)
-      if (!(std::isfinite(v[c]) && v[c] >= 0.0f)) {
-        fail(key(index, field), vector_text(v), "must be finite and >= 0 in every component");
+      if (!(v[c] >= 0.0f && v[c] <= 1.0e6f)) {
+        fail(key(index, field), vector_text(v), "every component must be in [0, 1e+06]");
         return;
       }
   }
