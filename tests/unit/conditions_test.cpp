@@ -368,8 +368,11 @@ TEST(ConditionsValidate, ColoursMustBeFiniteAndNonNegative) {
   ConditionTable t = default_bad_weather();
   t.keys[kDay].set.sky_zenith_rgb.g = -0.1f;
   EXPECT_EQ(validate_table(t, "conditions.bad"),
-            "conditions.bad.day.sky_zenith_rgb = (0.3, -0.1, 0.34): must be finite and >= 0 in "
-            "every component");
+            "conditions.bad.day.sky_zenith_rgb = (0.3, -0.1, 0.34): every component must be in "
+            "[0, 1e+06]");
+  t = default_bad_weather();
+  t.keys[kDay].set.sun_light_rgb.r = 1e9f;  // beyond any light the sky can have
+  EXPECT_NE(validate_table(t).find("conditions.day.sun_light_rgb = (1e+09"), std::string::npos);
   t = default_bad_weather();
   t.keys[kMorning].set.ambient_rgb.r = INFINITY;
   EXPECT_NE(validate_table(t, "conditions.bad").find("conditions.bad.morning.ambient_rgb"),
