@@ -1442,27 +1442,52 @@ std::string check_cli(const std::string& label, const std::vector<std::string>& 
 // --- edge scenes ------------------------------------------------------------------------------
 
 // Scenes with one number at the edge of what validation accepts: for every number and vector key
-// outside the keyframe tables, on the default preset, the first accepted of 3e38, 1e30, 1e20,
-// 1e9, and 1e-45 (a vector gets it in every component). (Their negatives found nothing more
-// and would cost a third more renders.)
+// outside the keyframe tables, on the default preset, the largest accepted value (the top of
+// its documented range, found by bisection) and 1e-45 (a vector gets the value in every
+// component). (Negative ends found nothing more and would cost a third more renders.)
 std::vector<RenderJob> edge_jobs() {
   std::vector<RenderJob> jobs;
-  auto try_value = [&](const std::string& section, const std::string& key, size_t components,
-                       const std::string& number) {
-    std::string value = number;
+  auto scene_text = [](const std::string& section, const std::string& key, size_t components,
+                       double number) {
+    char digits[32];
+    std::snprintf(digits, sizeof digits, "%.9g", number);
+    std::string value = digits;
     if (components > 1) {
-      value = "[" + number;
-      for (size_t i = 1; i < components; ++i) value += ", " + number;
+      value = "[" + value;
+      for (size_t i = 1; i < components; ++i) value += ", " + std::string(digits);
       value += "]";
     }
-    const std::string text = "preset = \"default\"\n" +
-                             (section.empty() ? "" : "[" + section + "]\n") + key + " = " + value +
-                             "\n";
+    return "preset = \"default\"\n" + (section.empty() ? "" : "[" + section + "]\n") + key +
+           " = " + value + "\n";
+  };
+  auto try_value = [&](const std::string& section, const std::string& key, size_t components,
+                       double number) {
+    const std::string text = scene_text(section, key, components, number);
     Outcome outcome = check_scene_text(text);
     if (outcome.verdict != Outcome::kAccepted) return false;
-    jobs.push_back({"edge " + (section.empty() ? "" : section + ".") + key + " = " + value,
-                    "scene file:\n" + text, outcome.scene});
+    jobs.push_back({"edge " + text.substr(text.find('\n') + 1), "scene file:\n" + text,
+                    outcome.scene});
     return true;
+  };
+  // The largest accepted value: from the first accepted of a few rising values, bisected in
+  // log10 up to the first rejected one above it (3e38 when all are).
+  auto largest_accepted = [&](const std::string& section, const std::string& key,
+                              size_t components) -> std::optional<double> {
+    auto accepted = [&](double v) {
+      return check_scene_text(scene_text(section, key, components, v)).verdict ==
+             Outcome::kAccepted;
+    };
+    if (accepted(3e38)) return 3e38;
+    double lo = std::nan("");
+    for (double v : {1e-45, 1e-6, 1.0, 1e3, 1e6})
+      if (accepted(v)) lo = std::log10(v);
+    if (std::isnan(lo)) return std::nullopt;
+    double hi = std::log10(3e38);
+    for (int i = 0; i < 48; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (accepted(std::pow(10.0, mid)) ? lo : hi) = mid;
+    }
+    return std::pow(10.0, lo);
   };
   for (const Section& section : scene_sections()) {
     if (is_keyframe_table(section.name)) continue;
@@ -1477,9 +1502,9 @@ std::vector<RenderJob> edge_jobs() {
       if (kind_of(section.name, extra) == Kind::Float) keys.emplace_back(extra, 1);
     for (const auto& [key, components] : keys) {
       const std::string s(section.name);
-      for (const char* v : {"3e38", "1e30", "1e20", "1e9"})
-        if (try_value(s, key, components, v)) break;
-      try_value(s, key, components, "1e-45");
+      if (const std::optional<double> top = largest_accepted(s, key, components))
+        try_value(s, key, components, *top);
+      try_value(s, key, components, 1e-45);
     }
   }
   return jobs;
