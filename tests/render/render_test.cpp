@@ -13,6 +13,8 @@
 #include "nephele/scene_io.h"
 #include "render_fixture.h"
 
+#include <glm/trigonometric.hpp>
+
 using nephele::Frame;
 using nephele::Scene;
 
@@ -318,4 +320,33 @@ TEST_F(RenderTest, WeatherMapFromPngControlsWhereCloudsAre) {
 TEST_F(RenderTest, DefaultModeShadowDeepensWithDensity) {
   using nephele::MarchMode;
   EXPECT_LT(shadow_ratio(1.0f, MarchMode::Default), shadow_ratio(0.02f, MarchMode::Default) - 0.3);
+}
+
+// The camera's range reaches 1e9 m (2.6 times the Moon's distance): from there, and from the
+// Moon's distance, the planet is a lit disk of the size geometry gives, every pixel finite.
+// (A camera that far, looking away from the planet, sees black space: no date, no stars.)
+TEST_F(RenderTest, FromBeyondTheMoonThePlanetIsADiskOfTheRightSize) {
+  for (float altitude_m : {3.844e8f, 1e9f}) {
+    SCOPED_TRACE(altitude_m);
+    Scene s;
+    s.output.width = s.output.height = 64;
+    s.camera.position_m = {0.0f, 0.0f, altitude_m};
+    s.camera.view_dir = {0.0f, 1e-3f, -1.0f};
+    s.sun.direction = {0.0f, 0.3f, 1.0f};  // the near side lit
+    const double top_m = (s.atmosphere.planet_radius_km + s.atmosphere.atmosphere_height_km) * 1e3;
+    const double distance_m = s.atmosphere.planet_radius_km * 1e3 + altitude_m;
+    const double disk_rad = std::asin(top_m / distance_m);
+    s.camera.fov_deg = float(glm::degrees(4.0 * disk_rad));  // the disk spans half the frame
+    const Frame f = render(s);
+    int lit = 0;
+    for (const glm::vec4& p : f.color.pixels) {
+      for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(p[c]));
+      if (nephele::luminance(p) > 0.01f) ++lit;
+    }
+    const double radius_px = std::tan(disk_rad) / std::tan(glm::radians(s.camera.fov_deg) / 2.0) * 32.0;
+    const double expected = 3.14159265 * radius_px * radius_px;
+    EXPECT_NEAR(lit, expected, 0.12 * expected) << "radius " << radius_px << " px";
+    // Space around it stays black.
+    EXPECT_EQ(nephele::luminance(f.color.at(0, 0)), 0.0f);
+  }
 }
