@@ -128,12 +128,12 @@ float shear_time_s(float time_s) { return SHEAR_LIFETIME_S * tanh(time_s / SHEAR
 
 // Wind displacement (seed 002, 全局流动效果) of a sample at height fraction h in [0, 1] of its
 // layer: the seed's (wind + h shear) (time + h skew), with the shear acting over
-// shear_time_s(time). The wind grows with height (shear: its growth up to the top, m/s), and
-// the sample sits where the wind had carried it h x skew seconds longer, so tops lean
-// downwind. drift_m = wind x time, computed on the host.
-vec2 cloud_wind_offset(vec2 drift_m, vec2 wind_mps, vec2 shear_mps, float time_s, float skew_s,
+// shear_time = shear_time_s(time). The wind grows with height (shear: its growth up to the
+// top, m/s), and the sample sits where the wind had carried it h x skew seconds longer, so tops
+// lean downwind. drift_m = wind x time and shear_time are computed on the host, once a frame.
+vec2 cloud_wind_offset(vec2 drift_m, vec2 wind_mps, vec2 shear_mps, float shear_time, float skew_s,
                        float h) {
-  return drift_m + h * (wind_mps * skew_s + shear_mps * (shear_time_s(time_s) + h * skew_s));
+  return drift_m + h * (wind_mps * skew_s + shear_mps * (shear_time + h * skew_s));
 }
 
 // The flow map's two phases (seed 002, 局部流动效果): phase k in {0, 1} of a cycle at

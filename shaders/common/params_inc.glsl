@@ -55,7 +55,8 @@ struct FrameParams {
                             // cloud profile's half extent (m; cloud_profile.comp)
   CloudLayerGpu cloud_layers[CLOUD_LAYERS];
   // The wind (seed 002; common/clouds_inc.glsl, cloud_wind_offset): xy its growth from a
-  // layer's bottom to its top (m/s), z skew (s), w time (s)
+  // layer's bottom to its top (m/s), z skew (s), w the time the shear has acted
+  // (shear_time_s(time_s), s)
   vec4 cloud_wind;
   vec4 cloud_detail_wind;   // xyz the detail noise's displacement relative to the shapes (m);
                             // w curl distortion (m)

@@ -382,7 +382,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
                                   high ? hi.top_altitude_m : off_m + 1.0f, hi.coverage,
                                   hi.density, hi.type, 0.0f, hi.wind_mps, scene.time_s,
                                   glm::vec2(0.37f, 0.61f));
-  f.cloud_wind = glm::vec4(c.wind_shear_mps, c.wind_skew_s, scene.time_s);
+  f.cloud_wind = glm::vec4(c.wind_shear_mps, c.wind_skew_s, glsl::shear_time_s(scene.time_s));
   f.cloud_detail_wind = glm::vec4(c.detail_drift_mps * scene.time_s, c.curl_distortion_m);
   // The flow map: the curl noise stretched over kFlowMapPeriodM.
   const double flow_phase = std::fmod(double(scene.time_s) / c.flow_cycle_s, 1.0);

@@ -288,19 +288,21 @@ TEST(Wind, GrowsWithHeightAndLeansTheTopsDownwind) {
   const vec2 wind(8.0f, 2.0f), shear(3.0f, 1.0f);
   const float time_s = 100.0f, skew_s = 60.0f;
   const vec2 drift = wind * time_s;
-  const vec2 bottom = g::cloud_wind_offset(drift, wind, shear, time_s, skew_s, 0.0f);
+  const float shear_time_s = g::shear_time_s(time_s);
+  const vec2 bottom = g::cloud_wind_offset(drift, wind, shear, shear_time_s, skew_s, 0.0f);
   EXPECT_FLOAT_EQ(bottom.x, 800.0f);
   EXPECT_FLOAT_EQ(bottom.y, 200.0f);
   for (float h : {0.3f, 0.7f, 1.0f}) {
     const vec2 seed = (wind + h * shear) * (time_s + h * skew_s);
-    const vec2 offset = g::cloud_wind_offset(drift, wind, shear, time_s, skew_s, h);
+    const vec2 offset = g::cloud_wind_offset(drift, wind, shear, shear_time_s, skew_s, h);
     // 100 s into a lifetime of 3600 s the shear has acted 99.97 s: the seed's within 0.1 m.
     EXPECT_NEAR(offset.x, seed.x, 0.1f) << h;
     EXPECT_NEAR(offset.y, seed.y, 0.1f) << h;
   }
   // A day later the tops lead their bases by at most the lifetime's shear (not 86 km).
   for (float t : {86400.0f, -86400.0f, 1e6f}) {
-    const vec2 lead = g::cloud_wind_offset(wind * t, wind, shear, t, skew_s, 1.0f) - wind * t;
+    const vec2 lead =
+        g::cloud_wind_offset(wind * t, wind, shear, g::shear_time_s(t), skew_s, 1.0f) - wind * t;
     EXPECT_LE(glm::length(lead - (wind + shear) * skew_s),
               glm::length(shear) * g::SHEAR_LIFETIME_S * 1.0001f) << t;
     EXPECT_GT(glm::length(lead - (wind + shear) * skew_s),
@@ -310,7 +312,7 @@ TEST(Wind, GrowsWithHeightAndLeansTheTopsDownwind) {
   const vec2 lean = g::cloud_wind_offset(vec2(0.0f), wind, shear, 0.0f, skew_s, 1.0f);
   EXPECT_FLOAT_EQ(lean.x, (8.0f + 3.0f) * 60.0f);
   // Without shear and skew every height moves together.
-  const vec2 rigid = g::cloud_wind_offset(drift, wind, vec2(0.0f), time_s, 0.0f, 0.8f);
+  const vec2 rigid = g::cloud_wind_offset(drift, wind, vec2(0.0f), shear_time_s, 0.0f, 0.8f);
   EXPECT_EQ(rigid, drift);
 }
 
