@@ -1,0 +1,111 @@
+// nephele — the frame API, for hosts that own Vulkan (engines, simulators, nephele-view).
+//
+// The one public header that speaks Vulkan. A host creates a FrameRenderer on its own device
+// (or lets nephele make one), and each frame asks it to *record* the frame's passes into a
+// command buffer the host owns and submits. Nothing inside record_frame() waits for the device
+// except the rare one-off work listed there; with frames in flight the host prepares frame N+1
+// on the CPU while the device still renders frame N.
+//
+//   nephele::FrameRenderer sky(host);                 // host: a HostVulkan of the engine
+//   ...every frame, slot = frame % sky.frames_in_flight():
+//   wait for fence[slot]; vkResetFences; vkBeginCommandBuffer(cmd[slot], ...);
+//   nephele::FrameImages out = sky.record_frame(cmd[slot], scene);
+//   ...blit or sample out.display (or out.hdr) into the engine's frame...
+//   vkEndCommandBuffer(cmd[slot]); vkQueueSubmit(queue, ..., fence[slot]);
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <memory>
+#include <optional>
+
+#include "nephele/renderer.h"
+#include "nephele/scene.h"
+
+namespace nephele {
+
+// The host's Vulkan objects; they must outlive the FrameRenderer. The device must support
+// Vulkan 1.2 and `queue_family` compute and transfer work. nephele submits its own one-off
+// work (start-up noise, table rebuilds, uploads) to `queue` from the thread that calls it, and
+// waits for it: the host must not use `queue` from another thread during a FrameRenderer call.
+struct HostVulkan {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queue_family = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+};
+
+struct FrameOptions {
+  // true: every cloud pixel is marched at full resolution (as Renderer::render); false: one
+  // pixel of each quality.march_stride^2 block, the others reprojected from the history (as
+  // Renderer::render_next).
+  bool still = false;
+};
+
+// The images a recorded frame leaves, quality.* and output.* of its scene applied.
+// Both stay in VK_IMAGE_LAYOUT_GENERAL. The last command record_frame() records is a memory
+// barrier from the compute shader's writes (VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+// VK_ACCESS_SHADER_WRITE_BIT) to the host's reads (VK_PIPELINE_STAGE_TRANSFER_BIT |
+// VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+// VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT), so commands the host records after
+// it in the same command buffer (or submits later on the same queue) may read them. They are
+// valid until record_frame() is called again for the same slot (frames_in_flight() calls
+// later); a change of the output size may replace them.
+struct FrameImages {
+  int slot = 0;             // which of the frames in flight this was
+  uint32_t width = 0, height = 0;
+  VkImage hdr = VK_NULL_HANDLE;  // linear HDR radiance, VK_FORMAT_R32G32B32A32_SFLOAT, a = 1
+  VkImageView hdr_view = VK_NULL_HANDLE;
+  // Exposed (output.exposure), tone-mapped (ACES fit) and sRGB-encoded, as the PNG writer does:
+  // VK_FORMAT_R8G8B8A8_UNORM holding sRGB code values, a = 1. Blit it to a *_UNORM swapchain
+  // image, or sample it and write the values unchanged.
+  VkImage display = VK_NULL_HANDLE;
+  VkImageView display_view = VK_NULL_HANDLE;
+};
+
+class FrameRenderer {
+ public:
+  // On nephele's own headless Vulkan context (RendererOptions picks the device).
+  explicit FrameRenderer(const RendererOptions& options = {});
+  // On the host's device. options.device is ignored; options.validation only counts messages
+  // of an instance the host created with a debug messenger of its own (it is not added).
+  FrameRenderer(const HostVulkan& host, const RendererOptions& options = {});
+  // The host must have waited for every command buffer recorded by this renderer.
+  ~FrameRenderer();
+  FrameRenderer(const FrameRenderer&) = delete;
+  FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+  // How many frames may be in flight at once (2): record_frame() call k uses slot
+  // k % frames_in_flight(), and before it the host must have waited for the command buffer
+  // recorded frames_in_flight() calls earlier (its fence).
+  int frames_in_flight() const;
+
+  // Validates `scene` (throws InputError and records nothing when it is invalid, so the host can
+  // keep the last valid scene) and records the frame into `cmd`, a primary command buffer in
+  // the recording state for a queue of the host's queue family. The host submits it.
+  // The only host waits inside: the first frame (noise textures, about a second on a CPU), a
+  // change of the atmosphere (its tables), of the weather map file, or of the output size.
+  // Everything else that is expensive (light volume, evolving weather) is spread over frames.
+  FrameImages record_frame(VkCommandBuffer cmd, const Scene& scene, const FrameOptions& options = {});
+
+  // Timings and sky positions of the most recent frame whose results have been collected: the
+  // frame recorded frames_in_flight() calls before the last one (collected when its slot is
+  // reused). Empty before that. FrameStats::wall_ms is the host time of its record_frame().
+  const std::optional<FrameStats>& completed_stats() const;
+
+  // Waits until the device is idle and reads the last recorded frame back (linear HDR colour
+  // and the cloud buffer, as Renderer::render returns them): for screenshots, not every frame.
+  // The host must have submitted the command buffer of the last record_frame().
+  Frame read_back();
+
+  const std::string& device_name() const;
+  int validation_messages() const;
+
+ private:
+  friend class Renderer;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace nephele
