@@ -1,5 +1,7 @@
 #version 450
-// Pass 1c: procedural weather map, evolving with time (FrameParams::cloud_weather.z) (seed 000, 2.2.2; channels as in seed 002 and Schneider 2015),
+// Pass 1c: procedural weather map, evolving with time (seed 000, 2.2.2; channels as in seed
+// 002 and Schneider 2015): the states of the weather at steps of its time scale
+// (FrameParams::weather_build, render/modules/weather.h), a band of rows of each,
 // 2D RGBA, tiles: R coverage, G storm cells (where precipitation doubles), B cloud type around
 // the layer's (B - 0.5 is added to clouds.type), A density.
 #extension GL_GOOGLE_include_directive : require
@@ -10,13 +12,18 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 void main() {
-  ivec2 size = imageSize(weather_out);
-  ivec2 id = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(id, size))) return;
+  ivec2 size = imageSize(weather_states).xy;
+  ivec2 id = ivec2(gl_GlobalInvocationID.x, frame.weather_build.z + int(gl_GlobalInvocationID.y));
+  int step = frame.weather_build.x + int(gl_GlobalInvocationID.z);
+  if (id.x >= size.x || id.y >= size.y || int(gl_GlobalInvocationID.y) >= frame.weather_build.w ||
+      int(gl_GlobalInvocationID.z) >= frame.weather_build.y)
+    return;
+  // The step's time in units of the weather's time scale, as doubles would give it.
+  float time = float(step / WEATHER_STEPS) + float(step % WEATHER_STEPS) / float(WEATHER_STEPS);
   // The map evolves along the noise's third axis: the coverage field (period 6) moves one
   // lattice cell per weather_evolution_s. That axis wraps like the others, so the weather
   // repeats after 6 weather_evolution_s (6 hours at the default hour).
-  vec3 uv = vec3((vec2(id) + 0.5f) / vec2(size), frame.cloud_weather.z / 6.0f);
+  vec3 uv = vec3((vec2(id) + 0.5f) / vec2(size), time / 6.0f);
   uint seed = uint(frame.size.w) * 101u + 13u;
   // Clusters of cumulus cells: Perlin fBm modulated by Worley cells, contrast-stretched.
   float cells = worley_fbm(uv, 12, seed + 1u);
@@ -28,5 +35,5 @@ void main() {
   float storms = smoothstep(0.52f, 0.72f, perlin_fbm01(uv, 3, 2, seed + 3u));
   float type = mix(0.4f, 0.6f, perlin_fbm01(uv, 8, 2, seed + 4u));
   float density = mix(0.6f, 1.0f, perlin_fbm01(uv, 5, 2, seed + 5u));
-  imageStore(weather_out, id, vec4(low, storms, type, density));
+  imageStore(weather_states, ivec3(id, ((step % 3) + 3) % 3), vec4(low, storms, type, density));
 }

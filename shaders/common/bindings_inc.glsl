@@ -8,7 +8,9 @@
 layout(std140, set = 0, binding = 0) uniform FrameBlock { FrameParams frame; };
 layout(set = 0, binding = 1, rgba8) uniform writeonly image3D base_noise_out;
 layout(set = 0, binding = 2, rgba8) uniform writeonly image3D detail_noise_out;
-layout(set = 0, binding = 3, rgba8) uniform writeonly image2D weather_out;
+// The evolving weather's states (render/modules/weather.h), one a layer, written by
+// weather.comp and read by weather_blend.comp.
+layout(set = 0, binding = 3, rgba8) uniform image3D weather_states;
 layout(set = 0, binding = 4) uniform sampler3D base_noise;
 layout(set = 0, binding = 5) uniform sampler3D detail_noise;
 layout(set = 0, binding = 6) uniform sampler2D weather_map;
@@ -72,5 +74,7 @@ layout(set = 0, binding = 38, r32f) uniform writeonly image2D ground_light_out;
 layout(set = 0, binding = 39) uniform sampler2D ground_light;
 // The display image (tonemap.comp): exposed, tone-mapped, sRGB code values, 8 bits.
 layout(set = 0, binding = 40, rgba8) uniform writeonly image2D display_out;
+// The weather map the clouds sample (binding 6), as weather_blend.comp writes it.
+layout(set = 0, binding = 41, rgba8) uniform writeonly image2D weather_map_out;
 
 #endif

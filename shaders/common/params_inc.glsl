@@ -114,7 +114,23 @@ struct FrameParams {
   vec4 conditions_fog;       // rgb fog on clouds and ground; w fog far (m)
   vec4 conditions_light;     // rgb the key light on the ground (artist mode); w unused
   vec4 display;              // x exposure (linear scale before the tone map, tonemap.comp)
+  // The light volume being built (light_volume.comp), a band of its rows each frame while the
+  // clouds pass reads the last one completed (light_volume): xy its centre in cloud space (m),
+  // z half extent (m); light_volume_rows x its first row, y the rows this frame (a row is one
+  // line of LIGHT_VOLUME_XY voxels; row = z LIGHT_VOLUME_XY + y).
+  vec4 light_volume_build;
+  ivec4 light_volume_rows;
+  // The evolving weather (render/modules/weather.h): states at steps of the weather's time
+  // scale / WEATHER_STEPS, step s in layer s mod 3. weather_build: x the first step computed
+  // this frame, y how many (consecutive), z the first row, w the rows (weather.comp);
+  // weather_blend: x the share of the later state in the map, y, z the layers of the earlier
+  // and the later state (weather_blend.comp).
+  ivec4 weather_build;
+  vec4 weather_blend;
 };
+
+// Steps of the evolving weather per clouds.weather_evolution_s (2 s at an hour).
+const int WEATHER_STEPS = 1800;
 
 // FrameParams::steps.w: how the clouds pass turns its pixels into rays.
 const int PROJECTION_CAMERA = 0;    // the camera's perspective

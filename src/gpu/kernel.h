@@ -17,7 +17,7 @@ enum Binding : uint32_t {
   kFrameParams = 0,
   kBaseNoiseOut = 1,
   kDetailNoiseOut = 2,
-  kWeatherOut = 3,
+  kWeatherStates = 3,
   kBaseNoise = 4,
   kDetailNoise = 5,
   kWeatherMap = 6,
@@ -55,6 +55,7 @@ enum Binding : uint32_t {
   kGroundLightOut = 38,
   kGroundLight = 39,
   kDisplayOut = 40,
+  kWeatherMapOut = 41,
   kBindingCount
 };
 

@@ -22,13 +22,6 @@ namespace nephele {
 
 namespace {
 
-// The weather map's inputs: a file, or the seed and the weather's time (weather_time).
-std::string weather_key(const Scene& scene) {
-  return scene.clouds.weather_map.empty() ? "procedural:" + std::to_string(scene.noise_seed) +
-                                                "@" + std::to_string(weather_time(scene))
-                                          : "file:" + scene.clouds.weather_map;
-}
-
 // Reads an RGBA image of 32-bit (or, with `half`, 16-bit) float texels back to the host.
 Image download(gpu::Context& ctx, const gpu::Texture& texture, bool half) {
   Image image(int(texture.width()), int(texture.height()));
@@ -124,30 +117,6 @@ double cloud_cover_fraction(const Scene& scene, const Image& clouds) {
 
 }  // namespace
 
-// A PNG weather map of another size replaces the texture (and its descriptors), once the
-// frames in flight that read the old one have completed.
-void FrameRenderer::Impl::resize_weather_map(uint32_t width, uint32_t height) {
-  if (state.weather_map.width() == width && state.weather_map.height() == height) return;
-  ctx.wait_queue_idle();
-  state.weather_map = gpu::Texture(ctx, width, height, 1, VK_FORMAT_R8G8B8A8_UNORM);
-  state.set.bind_image(gpu::kWeatherOut, gpu::kWeatherMap, state.weather_map);
-}
-
-void FrameRenderer::Impl::upload_weather_png(const std::string& path) {
-  Image png = read_image(path);
-  resize_weather_map(uint32_t(png.width), uint32_t(png.height));
-  gpu::Buffer staging(ctx, VkDeviceSize(png.pixels.size()) * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-  auto* bytes = static_cast<unsigned char*>(staging.data());
-  for (size_t i = 0; i < png.pixels.size(); ++i)
-    for (int c = 0; c < 4; ++c)
-      bytes[4 * i + c] =
-          static_cast<unsigned char>(glm::clamp(png.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
-  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    gpu::full_barrier(cmd);  // after the frames in flight that read the map
-    state.weather_map.record_upload(cmd, staging);
-  });
-}
-
 void FrameRenderer::Impl::print_timings(const std::vector<std::pair<std::string, double>>& results,
                                         const char* note) const {
   if (verbose)
@@ -155,28 +124,16 @@ void FrameRenderer::Impl::print_timings(const std::vector<std::pair<std::string,
       std::fprintf(stderr, "nephele: pass %-12s %8.2f ms%s\n", name.c_str(), ms, note);
 }
 
-void FrameRenderer::Impl::update_textures(const Scene& scene, const gpu::FrameParams& params) {
-  const std::string key = weather_key(scene);
-  const bool noise_stale = noise_seed_built != scene.noise_seed;
-  if (!scene.clouds.weather_map.empty() && weather_built != key) {
-    upload_weather_png(scene.clouds.weather_map);
-    weather_built = key;
-  }
-  const bool weather_stale = weather_built != key;
-  if (!noise_stale && !weather_stale) return;
-  if (weather_stale) resize_weather_map(kWeatherMapSize, kWeatherMapSize);
+void FrameRenderer::Impl::update_noise(const Scene& scene, const gpu::FrameParams& params) {
+  if (noise_seed_built == scene.noise_seed) return;
   print_timings(state.run_once(params,
                                [&](VkCommandBuffer cmd) {
-                                 if (noise_stale) {
-                                   pass_noise_base(cmd, state);
-                                   pass_noise_detail(cmd, state);
-                                   pass_noise_curl(cmd, state);
-                                 }
-                                 if (weather_stale) pass_weather(cmd, state);
+                                 pass_noise_base(cmd, state);
+                                 pass_noise_detail(cmd, state);
+                                 pass_noise_curl(cmd, state);
                                }),
-                " (cached until its parameters change)");
+                " (made once for its seed)");
   noise_seed_built = scene.noise_seed;
-  weather_built = key;
 }
 
 void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
@@ -207,30 +164,6 @@ void FrameRenderer::Impl::render_reference_sky(gpu::FrameParams params) {
   if (verbose) std::fprintf(stderr, "nephele: pass %-12s %8.2f ms\n", "reference", ms);
 }
 
-bool FrameRenderer::Impl::plan_light_volume(const Scene& scene, const std::string& key,
-                                            gpu::FrameParams& params) {
-  const float half_m = float(scene.quality.light_volume_km) * 1000.0f;
-  if (half_m <= 0.0f || scene.quality.mode == MarchMode::Baseline) {
-    params.light_volume = glm::vec4(0.0f);
-    return false;
-  }
-  const glm::vec3 sun(params.sun_dir);  // the key light
-  const glm::vec2 camera_cloud_m = glm::vec2(scene.camera.position_m) - glm::vec2(params.wind_offset_m);
-  const LightVolumeKey* built = light_volume_built ? &*light_volume_built : nullptr;
-  // Rebuilt when the clouds or the sun (by 0.25 deg) change, when the camera has moved 1/20 of
-  // the half extent from the centre in cloud space (where the voxels are finest), or when the
-  // clouds' features have moved 100 m against the volume's frame (shear, detail wind, the high
-  // layer's wind, the flow).
-  const float drift_m = cloud_relative_drift_m(scene);
-  const bool stale = !built || built->clouds != key ||
-                     glm::dot(built->sun, sun) < std::cos(glm::radians(0.25f)) ||
-                     glm::distance(built->centre_m, camera_cloud_m) > 0.05f * half_m ||
-                     std::abs(drift_m - built->drift_m) > 100.0f;
-  if (stale) light_volume_built = LightVolumeKey{key, sun, camera_cloud_m, drift_m};
-  params.light_volume = glm::vec4(light_volume_built->centre_m, half_m, 1.0f);
-  return stale;
-}
-
 double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode mode,
                                               double& ms) {
   params.steps.w = gpu::PROJECTION_SKY_DOME;
@@ -254,9 +187,13 @@ CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
   update_atmosphere_luts(scene);
   gpu::FrameParams params = make_frame_params(scene, 0, sky_lights(scene), tables);
   params.cloud_weather.w = 0.5f * scene.clouds.weather_period_m;
-  update_textures(scene, params);
+  update_noise(scene, params);
+  weather.prepare(scene, params);
   state.bind_march(true);
-  state.run_once(params, [&](VkCommandBuffer cmd) { pass_cloud_profile(cmd, state); });
+  state.run_once(params, [&](VkCommandBuffer cmd) {
+    weather.record(cmd, *state.timer);
+    pass_cloud_profile(cmd, state);
+  });
   state.bind_march(false);
   const Image sums = download(ctx, state.dome_a, false);
   const glm::vec2 shell_m = cloud_shell_m(scene);
@@ -272,15 +209,20 @@ CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
 }
 
 FrameRenderer::Impl::Impl(const RendererOptions& options)
-    : ctx({options.device, options.validation, options.verbose}), state(ctx),
-      verbose(options.verbose) {}
+    : ctx({options.device, options.validation, options.verbose}),
+      state(ctx),
+      verbose(options.verbose),
+      weather(ctx, state.set),
+      light_volume(ctx, state.set) {}
 
 FrameRenderer::Impl::Impl(const HostVulkan& host, const RendererOptions& options)
     : ctx(gpu::HostDevice{host.instance, host.physical_device, host.device, host.queue_family,
                           host.queue},
           options.verbose),
       state(ctx),
-      verbose(options.verbose) {}
+      verbose(options.verbose),
+      weather(ctx, state.set),
+      light_volume(ctx, state.set) {}
 
 FrameRenderer::FrameRenderer(const RendererOptions& options)
     : impl_(std::make_unique<Impl>(options)) {}
@@ -384,7 +326,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
   params.cloud_shape.x = 2.0f * params.camera_pos_m.w / float(cloud_h);  // detail noise's LOD
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
-  const bool build_light_volume = plan_light_volume(scene, key + weather_key(scene), params);
+  light_volume.prepare(scene, key, WeatherModule::weather_time(scene), still, params);
   // The sky-view LUT depends on the sun, the camera's position and the atmosphere only: a
   // camera turning or clouds changing reuse it, and so does a camera that moved a little
   // (sky_view_reusable), sampled in the frame the LUT was built in.
@@ -395,17 +337,19 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     params.sky_view_forward = sky_view_built->forward;
   }
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
-  update_textures(scene, params);
+  update_noise(scene, params);
+  weather.prepare(scene, params);
   s.swap_history();
 
   s.begin(cmd, slot, params);
+  weather.record(cmd, *s.timer);
   if (sky_stale) pass_sky_view(cmd, s);
-  if (build_light_volume) pass_light_volume(cmd, s);
+  light_volume.record(cmd, *s.timer);
   pass_clouds(cmd, s, scene.quality.mode);
   pass_march_range(cmd, s);
   pass_resolve(cmd, s);
   // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe).
-  if (build_light_volume || params.light_volume.w == 0.0f)
+  if (light_volume.completed() || params.light_volume.w == 0.0f)
     pass_ground_light(cmd, s, scene.quality.mode);
   pass_compose(cmd, s, scene.atmosphere.model);
   pass_stars(cmd, s);

@@ -8,6 +8,8 @@
 
 #include "nephele/frame.h"
 #include "render/frame_params.h"
+#include "render/modules/light_volume.h"
+#include "render/modules/weather.h"
 #include "render/passes.h"
 
 namespace nephele {
@@ -20,7 +22,6 @@ struct FrameRenderer::Impl {
   GpuState state;
   bool verbose = false;
   std::optional<uint32_t> noise_seed_built;  // noise textures are valid for this seed
-  std::optional<std::string> weather_built;  // key of the weather map in the texture
   std::optional<Scene> previous;             // the scene of the last frame recorded
   std::string previous_key;                  // its history_key()
   glm::vec3 previous_light_dir{0.0f};        // its key light (sky_lights)
@@ -31,16 +32,8 @@ struct FrameRenderer::Impl {
   std::optional<FrameStats> pending[gpu::kFramesInFlight];
   std::optional<FrameStats> completed;
 
-  // The light volume in the buffer: what it was built for.
-  struct LightVolumeKey {
-    std::string clouds;    // history_key() of the scene
-    glm::vec3 sun{0.0f};
-    glm::vec2 centre_m{0.0f};  // in cloud space
-    float drift_m = 0.0f;      // cloud_relative_drift_m
-  };
-  std::optional<LightVolumeKey> light_volume_built;
-  // Sets params.light_volume; true when the volume must be rebuilt this frame.
-  bool plan_light_volume(const Scene& scene, const std::string& key, gpu::FrameParams& params);
+  WeatherModule weather;
+  LightVolumeModule light_volume;
 
   // Inputs of the sky-view LUT in the texture and the LUT frame it was built in.
   struct SkyViewBuilt {
@@ -68,9 +61,7 @@ struct FrameRenderer::Impl {
   CloudProfile cloud_profile(const Scene& scene);
   gpu::FrameParams last_params{};  // of the last frame recorded
 
-  void update_textures(const Scene& scene, const gpu::FrameParams& params);
-  void upload_weather_png(const std::string& path);
-  void resize_weather_map(uint32_t width, uint32_t height);
+  void update_noise(const Scene& scene, const gpu::FrameParams& params);
   void print_timings(const std::vector<std::pair<std::string, double>>& results,
                      const char* note) const;
 };

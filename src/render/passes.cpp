@@ -15,14 +15,12 @@ GpuState::GpuState(gpu::Context& c)
       noise_base_kernel(c, set, "noise_base.comp.spv"),
       noise_detail_kernel(c, set, "noise_detail.comp.spv"),
       noise_curl_kernel(c, set, "noise_curl.comp.spv"),
-      weather_kernel(c, set, "weather.comp.spv"),
       sky_view_kernel(c, set, "sky_view.comp.spv"),
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
       resolve_kernel(c, set, "resolve.comp.spv"),
       compose_kernel(c, set, "compose.comp.spv", {0}),
       compose_reference_kernel(c, set, "compose.comp.spv", {1}),
-      light_volume_kernel(c, set, "light_volume.comp.spv"),
       march_range_kernel(c, set, "march_range.comp.spv"),
       stars_kernel(c, set, "stars.comp.spv"),
       transmittance_lut_kernel(c, set, "transmittance_lut.comp.spv"),
@@ -40,13 +38,10 @@ GpuState::GpuState(gpu::Context& c)
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
                    VK_FORMAT_R8G8B8A8_UNORM, VK_SAMPLER_ADDRESS_MODE_REPEAT, kDetailNoiseLevels),
       curl_noise(c, kCurlNoiseSize, kCurlNoiseSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT),
-      weather_map(c, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM),
       // Half floats hold radiance to 0.05%. Both tables wrap in azimuth (u); v and w are kept
       // half a texel inside by the shaders (sky_view_inc.glsl), so repeating there reads nothing.
       sky_view(c, kSkyViewWidth, 2 * kSkyViewHeight, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
                VK_SAMPLER_ADDRESS_MODE_REPEAT),
-      light_volume(c, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
-                   VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       ground_light(c, 1, 1, 1, VK_FORMAT_R32_SFLOAT),
       transmittance_lut(c, glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1,
                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
@@ -64,7 +59,6 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_image(gpu::kTransmittanceLutOut, gpu::kTransmittanceLut, transmittance_lut);
   set.bind_image(gpu::kMsLutOut, gpu::kMsLut, ms_lut);
   set.bind_image(gpu::kAerialPerspectiveOut, gpu::kAerialPerspective, aerial_perspective);
-  set.bind_image(gpu::kLightVolumeOut, gpu::kLightVolume, light_volume);
   set.bind_image(gpu::kGroundLightOut, gpu::kGroundLight, ground_light);
   for (int i = 0; i < kSlots; ++i) {
     timers[i] = std::make_unique<gpu::PassTimer>(c, 16);
@@ -78,7 +72,6 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_image(gpu::kBaseNoiseOut, gpu::kBaseNoise, base_noise);
   set.bind_image(gpu::kDetailNoiseOut, gpu::kDetailNoise, detail_noise);
   set.bind_image(gpu::kCurlNoiseOut, gpu::kCurlNoise, curl_noise);
-  set.bind_image(gpu::kWeatherOut, gpu::kWeatherMap, weather_map);
   set.bind_image(gpu::kSkyViewOut, gpu::kSkyView, sky_view);
   resize(1, 1, 1, 1);
 }
@@ -172,11 +165,6 @@ void pass_noise_curl(VkCommandBuffer cmd, GpuState& s) {
                 kCurlNoiseSize, 1, 8, 8, 1);
 }
 
-void pass_weather(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.weather_kernel, s.set, *s.timer, "weather", kWeatherMapSize, kWeatherMapSize,
-                1, 8, 8, 1);
-}
-
 void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.transmittance_lut_kernel, s.set, *s.timer, "transmittance",
                 glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1, 8, 8, 1);
@@ -223,11 +211,6 @@ void pass_march_range(VkCommandBuffer cmd, GpuState& s) {
 void pass_resolve(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.resolve_kernel, s.set, *s.timer, "resolve", uint32_t(s.cloud_width),
                 uint32_t(s.cloud_height), 1, 8, 8, 1);
-}
-
-void pass_light_volume(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.light_volume_kernel, s.set, *s.timer, "light_volume", gpu::LIGHT_VOLUME_XY,
-                gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z, 4, 4, 4);
 }
 
 void pass_reference_sky(VkCommandBuffer cmd, GpuState& s) {

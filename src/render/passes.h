@@ -17,7 +17,6 @@ namespace nephele {
 constexpr uint32_t kBaseNoiseSize = 128;    // seed 000, 2.2.2: base shape noise 128^3
 constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
 constexpr uint32_t kDetailNoiseLevels = 6;  // and its mip levels down to 1^3 (far clouds)
-constexpr uint32_t kWeatherMapSize = 512;   // procedural weather map 512^2
 constexpr uint32_t kCurlNoiseSize = 128;    // curl noise 128^2
 // Sky-view LUT (Hillaire 2020, 5.3): azimuth x elevation texels per table; the image stacks two
 // tables (radiance, sun-lit ground), so it is kSkyViewWidth x 2 kSkyViewHeight.
@@ -60,9 +59,9 @@ struct GpuState {
 
   gpu::Context& ctx;
   gpu::DescriptorSet set;
-  gpu::Kernel noise_base_kernel, noise_detail_kernel, noise_curl_kernel, weather_kernel;
+  gpu::Kernel noise_base_kernel, noise_detail_kernel, noise_curl_kernel;
   gpu::Kernel sky_view_kernel, clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
-  gpu::Kernel compose_kernel, compose_reference_kernel, light_volume_kernel, march_range_kernel;
+  gpu::Kernel compose_kernel, compose_reference_kernel, march_range_kernel;
   gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel, aerial_perspective_kernel;
   gpu::Kernel reference_psi_kernel, reference_sky_kernel, cloud_profile_kernel;
   gpu::Kernel ground_light_default_kernel, ground_light_baseline_kernel, tonemap_kernel;
@@ -72,7 +71,7 @@ struct GpuState {
   int slot = kOneOff;               // since begin()
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
   int star_count = 0;
-  gpu::Texture base_noise, detail_noise, curl_noise, weather_map, sky_view, light_volume;
+  gpu::Texture base_noise, detail_noise, curl_noise, sky_view;
   gpu::Texture ground_light;
   // Hillaire's tables (atmosphere_lut_inc.glsl, sky_view_inc.glsl).
   gpu::Texture transmittance_lut, ms_lut, aerial_perspective;
@@ -96,7 +95,6 @@ struct GpuState {
 void pass_noise_base(VkCommandBuffer cmd, GpuState& s);
 void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
 void pass_noise_curl(VkCommandBuffer cmd, GpuState& s);
-void pass_weather(VkCommandBuffer cmd, GpuState& s);
 // Only when the atmosphere changes: the transmittance LUT, then the multiple-scattering LUT.
 void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s);
 // Only when its inputs change (the renderer caches it by sky_view_key): the sky-view LUT and
@@ -111,7 +109,6 @@ void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
 void pass_cloud_profile(VkCommandBuffer cmd, GpuState& s);
 void pass_march_range(VkCommandBuffer cmd, GpuState& s);
 void pass_resolve(VkCommandBuffer cmd, GpuState& s);
-void pass_light_volume(VkCommandBuffer cmd, GpuState& s);
 // The clouds' mean diffuse transmittance over the ground around the camera (one texel).
 void pass_ground_light(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
 void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model);

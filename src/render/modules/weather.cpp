@@ -1,0 +1,124 @@
+#include "render/modules/weather.h"
+
+#include <cmath>
+
+#include <glm/common.hpp>
+
+#include "nephele/image.h"
+
+namespace nephele {
+
+namespace {
+constexpr int kRowsPerFrame = int(kWeatherMapSize) / kWeatherBuildFrames;
+int layer_of(long long step) { return int(((step % 3) + 3) % 3); }
+}  // namespace
+
+WeatherModule::WeatherModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : ctx_(ctx),
+      set_(set),
+      build_kernel_(ctx, set, "weather.comp.spv"),
+      blend_kernel_(ctx, set, "weather_blend.comp.spv"),
+      states_(ctx, kWeatherMapSize, kWeatherMapSize, 3, VK_FORMAT_R8G8B8A8_UNORM),
+      map_(ctx, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM) {
+  set_.bind_storage_image(gpu::kWeatherStates, states_);
+  set_.bind_image(gpu::kWeatherMapOut, gpu::kWeatherMap, map_);
+}
+
+double WeatherModule::weather_time(const Scene& scene) {
+  const float evolution_s = scene.clouds.weather_evolution_s;
+  if (evolution_s <= 0.0f || !scene.clouds.weather_map.empty()) return 0.0;
+  return double(scene.time_s) / double(evolution_s);
+}
+
+// A PNG of another size replaces the map texture, once the frames in flight that read the old
+// one have completed.
+void WeatherModule::upload_png(const std::string& path) {
+  const Image png = read_image(path);
+  if (map_.width() != uint32_t(png.width) || map_.height() != uint32_t(png.height)) {
+    ctx_.wait_queue_idle();
+    map_ = gpu::Texture(ctx_, uint32_t(png.width), uint32_t(png.height), 1,
+                        VK_FORMAT_R8G8B8A8_UNORM);
+    set_.bind_image(gpu::kWeatherMapOut, gpu::kWeatherMap, map_);
+  }
+  gpu::Buffer staging(ctx_, VkDeviceSize(png.pixels.size()) * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  auto* bytes = static_cast<unsigned char*>(staging.data());
+  for (size_t i = 0; i < png.pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c)
+      bytes[4 * i + c] =
+          static_cast<unsigned char>(glm::clamp(png.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
+    gpu::full_barrier(cmd);  // after the frames in flight that read the map
+    map_.record_upload(cmd, staging);
+  });
+}
+
+void WeatherModule::prepare(const Scene& scene, gpu::FrameParams& params) {
+  build_steps_ = build_rows_ = 0;
+  blend_ = false;
+  if (!scene.clouds.weather_map.empty()) {
+    const std::string key = "file:" + scene.clouds.weather_map;
+    if (map_key_ != key) upload_png(scene.clouds.weather_map);
+    map_key_ = key;
+    return;
+  }
+  if (map_.width() != kWeatherMapSize || map_.height() != kWeatherMapSize) {
+    ctx_.wait_queue_idle();
+    map_ = gpu::Texture(ctx_, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM);
+    set_.bind_image(gpu::kWeatherMapOut, gpu::kWeatherMap, map_);
+    map_key_.clear();
+  }
+  if (seed_ != scene.noise_seed) {
+    for (auto& s : step_in_layer_) s.reset();
+    building_step_ = -1;
+    seed_ = scene.noise_seed;
+  }
+  const double steps = weather_time(scene) * gpu::WEATHER_STEPS;
+  const long long k = (long long)std::floor(steps);
+  const float f = float(steps - double(k));
+  const auto have = [&](long long step) { return step_in_layer_[layer_of(step)] == step; };
+  // The two states blended must be complete now: computed whole in this frame when they are
+  // not (the first frame, a jump in time). Then the next one, a band a frame.
+  if (!have(k) || !have(k + 1)) {
+    const long long first = have(k) ? k + 1 : k;
+    build_first_step_ = int(first);
+    build_steps_ = int(k + 2 - first);
+    build_first_row_ = 0;
+    build_rows_ = int(kWeatherMapSize);
+    for (long long s = first; s <= k + 1; ++s) step_in_layer_[layer_of(s)] = s;
+    building_step_ = -1;  // its layer may be one of these
+  } else if (scene.clouds.weather_evolution_s > 0.0f && !have(k + 2)) {
+    if (building_step_ != k + 2) {
+      building_step_ = k + 2;
+      next_row_ = 0;
+      step_in_layer_[layer_of(k + 2)].reset();
+    }
+    build_first_step_ = int(k + 2);
+    build_steps_ = 1;
+    build_first_row_ = next_row_;
+    build_rows_ = std::min(kRowsPerFrame, int(kWeatherMapSize) - next_row_);
+    next_row_ += build_rows_;
+    if (next_row_ >= int(kWeatherMapSize)) {
+      step_in_layer_[layer_of(k + 2)] = k + 2;
+      building_step_ = -1;
+    }
+  }
+  params.weather_build =
+      glm::ivec4(build_first_step_, build_steps_, build_first_row_, build_rows_);
+  params.weather_blend = glm::vec4(f, float(layer_of(k)), float(layer_of(k + 1)), 0.0f);
+  // The map is blended again when its inputs change.
+  const std::string key = "blend:" + std::to_string(scene.noise_seed) + ":" + std::to_string(k) +
+                          ":" + std::to_string(f);
+  blend_ = map_key_ != key || build_steps_ > 0;
+  map_key_ = key;
+}
+
+void WeatherModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  if (build_steps_ > 0)
+    gpu::dispatch(cmd, build_kernel_, set_, timer, "weather", kWeatherMapSize,
+                  uint32_t(build_rows_), uint32_t(build_steps_), 8, 8, 1);
+  if (blend_)
+    gpu::dispatch(cmd, blend_kernel_, set_, timer, "weather_blend", kWeatherMapSize,
+                  kWeatherMapSize, 1, 8, 8, 1);
+}
+
+}  // namespace nephele

@@ -1,0 +1,51 @@
+// The weather module: the weather map the clouds read (binding kWeatherMap). A PNG file is
+// uploaded once. The procedural map evolves with time without a hitch: states of the weather
+// at steps of clouds.weather_evolution_s / kWeatherSteps are computed ahead (weather.comp, the
+// next one a band of rows a frame) and the map is blended between the two around the scene's
+// time (weather_blend.comp), so it changes smoothly and never all at once.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "gpu/kernel.h"
+#include "nephele/scene.h"
+#include "render/gpu_params.h"
+
+namespace nephele {
+
+constexpr uint32_t kWeatherMapSize = 512;  // procedural weather map 512^2
+// Frames over which the next state of the evolving weather is computed.
+constexpr int kWeatherBuildFrames = 16;
+
+class WeatherModule {
+ public:
+  WeatherModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+
+  // Decides this frame's work, sets params.weather_build and the bindings; uploads a PNG map
+  // (a host wait) when the file changes.
+  void prepare(const Scene& scene, gpu::FrameParams& params);
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  // The weather's time in units of clouds.weather_evolution_s (0 for a static map).
+  static double weather_time(const Scene& scene);
+
+ private:
+  void upload_png(const std::string& path);
+
+  gpu::Context& ctx_;
+  gpu::DescriptorSet& set_;
+  gpu::Kernel build_kernel_, blend_kernel_;
+  // Three states: steps k, k + 1 (blended) and k + 2 (being computed), at layer step mod 3.
+  gpu::Texture states_;
+  gpu::Texture map_;  // the blended (or uploaded) map
+  std::optional<long long> step_in_layer_[3];  // which step each layer holds, when complete
+  std::optional<uint32_t> seed_;                // the noise seed of the states
+  std::string map_key_;                         // what the map holds: a file, or a blend
+  long long building_step_ = -1;                // the state being computed in bands
+  int next_row_ = 0;
+  // This frame's work.
+  int build_first_step_ = 0, build_steps_ = 0, build_first_row_ = 0, build_rows_ = 0;
+  bool blend_ = false;
+};
+
+}  // namespace nephele
