@@ -178,15 +178,22 @@ void Renderer::Impl::resize_weather_map(uint32_t width, uint32_t height) {
   state.set.bind_image(gpu::kWeatherOut, gpu::kWeatherMap, state.weather_map);
 }
 
+// The texture's v grows northward (cloud_field_inc.glsl reads it at ground y / period), so
+// texture row 0 is the southern edge; an image's row 0 is its top, north as maps are drawn
+// (scene.h): the rows go up in reverse order. The procedural map is written in texture
+// space and needs no flip.
 void Renderer::Impl::upload_weather_png(const std::string& path) {
   Image png = read_image(path);
   resize_weather_map(uint32_t(png.width), uint32_t(png.height));
   gpu::Buffer staging(ctx, VkDeviceSize(png.pixels.size()) * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   auto* bytes = static_cast<unsigned char*>(staging.data());
-  for (size_t i = 0; i < png.pixels.size(); ++i)
-    for (int c = 0; c < 4; ++c)
-      bytes[4 * i + c] =
-          static_cast<unsigned char>(glm::clamp(png.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
+  for (int row = 0; row < png.height; ++row)
+    for (int x = 0; x < png.width; ++x) {
+      const glm::vec4& p = png.at(x, png.height - 1 - row);
+      unsigned char* texel = bytes + 4 * (size_t(row) * size_t(png.width) + size_t(x));
+      for (int c = 0; c < 4; ++c)
+        texel[c] = static_cast<unsigned char>(glm::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f);
+    }
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { state.weather_map.record_upload(cmd, staging); });
 }
 
