@@ -11,7 +11,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 #include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
 
 #include "nephele/image.h"
 
@@ -237,6 +239,19 @@ TEST_F(CliTest, ExrHoldsNoInfWhereTheSunIs) {
       }
   EXPECT_EQ(half_max, 65504.0f);    // clamped to the largest half, and the README says so
   EXPECT_GT(float_max, 65504.0f);   // the sun's true radiance
+}
+
+// A weather map that is not RGBA is refused when the scene is checked: exit 2, one line, no
+// image (see SceneWeatherMap in scene_io_test.cpp for each kind).
+TEST_F(CliTest, RejectsAGreyWeatherMap) {
+  const std::string grey = path("grey.png");
+  const std::vector<unsigned char> pixels(8 * 8, 128);
+  ASSERT_TRUE(stbi_write_png(grey.c_str(), 8, 8, 1, pixels.data(), 8));
+  expect_rejected("--width 16 --height 16 --weather-map " + grey,
+                  {"--weather-map " + grey +
+                   ": has 1 channel (grey); a weather map needs 4 "
+                   "channels (RGBA: R coverage, G storm cells, B cloud type around clouds.type, "
+                   "A density)"});
 }
 
 TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
