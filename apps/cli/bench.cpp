@@ -1,7 +1,8 @@
 // `nephele bench`: seed 000's frame-rate study (section 4) — frames per second against cloud
 // density and coverage over their whole ranges and against resolution 640x360 ... 3840x2160 —
 // for the default march and the seed's algorithm as written (`baseline`), in one run, so
-// speed-ups are ratios measured on the same machine at the same time.
+// speed-ups are ratios measured on the same machine at the same time. The data goes to
+// bench.csv and bench.json; scripts/plot_bench.py draws the figures from bench.json.
 #include "bench.h"
 
 #include <CLI/CLI.hpp>
@@ -14,8 +15,8 @@
 #include "nephele/error.h"
 #include "nephele/output_file.h"
 #include "nephele/renderer.h"
+#include "bench_plot.h"
 #include "bench_realtime.h"
-#include "plot.h"
 #include "render_command.h"
 
 namespace nephele::cli {
@@ -73,34 +74,47 @@ std::string to_csv(const std::vector<Sample>& samples) {
   return out.str();
 }
 
-PlotSpec panel(const std::vector<Sample>& samples, const std::string& sweep,
-               const std::string& title, const std::string& x_label) {
-  PlotSpec spec;
-  spec.title = title;
-  spec.x_label = x_label;
-  spec.y_label = "frames per second";
-  spec.log_y = true;
-  spec.width = 640;
-  spec.height = 440;
-  for (MarchMode mode : {MarchMode::Default, MarchMode::Baseline}) {
-    PlotSeries series{to_string(mode), {}, {}};
-    for (const Sample& s : samples) {
-      if (s.sweep != sweep || s.mode != mode) continue;
-      series.x.push_back(sweep == "density"    ? s.density
-                         : sweep == "coverage" ? s.coverage
-                                               : s.width * s.height * 1e-6);
-      series.y.push_back(s.fps());
-    }
-    spec.series.push_back(series);
-  }
-  return spec;
+// The CSV's rows as JSON objects (bench.json's "sweeps"), so that the JSON alone holds
+// every figure scripts/plot_bench.py draws.
+nlohmann::json to_json(const std::vector<Sample>& samples) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const Sample& s : samples)
+    rows.push_back({{"sweep", s.sweep},
+                    {"mode", to_string(s.mode)},
+                    {"density", s.density},
+                    {"coverage", s.coverage},
+                    {"width", s.width},
+                    {"height", s.height},
+                    {"gpu_ms", s.gpu_ms},
+                    {"fps", s.fps()},
+                    {"wall_ms", s.wall_ms}});
+  return rows;
+}
+
+// Draws the figures from bench.json. A missing interpreter or matplotlib, or a failing
+// script, is reported in one line and does not fail the benchmark: its data is written.
+void draw_plots(const std::string& json, const std::string& out_dir) {
+  const BenchPlots plots = draw_bench_plots(json, out_dir);
+  for (const std::string& file : plots.files) std::printf("%s\n", file.c_str());
+  if (plots.outcome == BenchPlots::Outcome::kSkipped)
+    std::fprintf(stderr,
+                 "nephele: plot skipped: %s; draw it later with %s scripts/plot_bench.py %s %s "
+                 "(from nephele's source tree)\n",
+                 plots.reason.c_str(), kPlotPython, json.c_str(), out_dir.c_str());
+  else if (plots.outcome == BenchPlots::Outcome::kFailed)
+    std::fprintf(stderr, "nephele: plot not drawn: %s; the data is in %s\n", plots.reason.c_str(),
+                 json.c_str());
+  std::fflush(stdout);
 }
 
 }  // namespace
 
 void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
   add_scene_flags(cmd, options.scene);
-  cmd.add_option("--out-dir", options.out_dir, "folder for bench.csv, bench.json, bench.png")
+  cmd.add_option("--out-dir", options.out_dir,
+                 "folder for bench.csv, bench.json and the plots bench.png, "
+                 "bench_frame_times.png (drawn by scripts/plot_bench.py when /usr/bin/python3 "
+                 "has matplotlib)")
       ->capture_default_str();
   cmd.add_option("--frames", options.frames, "timed frames per configuration")
       ->check(CLI::Range(1, 1000))
@@ -187,15 +201,21 @@ int run_bench(const BenchOptions& options) {
   namespace fs = std::filesystem;
   const std::string csv = (fs::path(options.out_dir) / "bench.csv").string();
   const std::string json = (fs::path(options.out_dir) / "bench.json").string();
+  // The figures scripts/plot_bench.py draws; removed before it runs, so that those left
+  // match bench.json (a trace is drawn only when the JSON has frame times).
   const std::string png = (fs::path(options.out_dir) / "bench.png").string();
+  const std::string trace_png = (fs::path(options.out_dir) / "bench_frame_times.png").string();
   if (!options.json.empty()) check_output_file(options.json, "--json", true);
   if (!options.realtime_only) {
     std::error_code ec;
     fs::create_directories(options.out_dir, ec);
     for (const std::string& p : {csv, json}) check_output_file(p, "--out-dir");
-    check_output_path(png, "--out-dir");
+    for (const std::string& p : {png, trace_png}) check_output_path(p, "--out-dir");
     if (!options.json.empty())
-      check_distinct_outputs({{"--out-dir", csv}, {"--out-dir", json}, {"--out-dir", png},
+      check_distinct_outputs({{"--out-dir", csv},
+                              {"--out-dir", json},
+                              {"--out-dir", png},
+                              {"--out-dir", trace_png},
                               {"--json", options.json}});
   }
 
@@ -215,13 +235,13 @@ int run_bench(const BenchOptions& options) {
   const std::vector<Sample> samples = run_sweeps(renderer, base, options);
   nlohmann::json summary = realtime;
   summary["frames_per_point"] = options.frames;
+  summary["sweeps"] = to_json(samples);
   write_text_output(csv, to_csv(samples));
   write_text_output(json, summary.dump(2) + "\n");
-  write_plot_grid_png({panel(samples, "density", "FPS vs cloud density", "density"),
-                       panel(samples, "coverage", "FPS vs coverage", "coverage"),
-                       panel(samples, "resolution", "FPS vs resolution", "megapixels")},
-                      3, png);
-  std::printf("%s\n%s\n%s\n", csv.c_str(), json.c_str(), png.c_str());
+  std::printf("%s\n%s\n", csv.c_str(), json.c_str());
+  std::error_code ec;
+  for (const std::string& p : {png, trace_png}) fs::remove(p, ec);
+  draw_plots(json, options.out_dir);
   return 0;
 }
 

@@ -115,13 +115,36 @@ struct CloudParams {
   float base_noise_period_m = 4500.0f;    // horizontal period of the base 128^3 noise tile, [10, 1e6]
   float detail_noise_period_m = 400.0f;   // period of the detail 32^3 noise tile, [1, 1e5]
   float detail_erosion = 0.8f;            // [0, 1]; how much detail noise erodes the base shape
-  float weather_period_m = 40000.0f;      // size of one weather-map tile on the ground, [1e3, 1e7]
+  // Side of one weather-map tile on the ground (m), [1e3, 1e7]: the map (procedural or a PNG)
+  // covers this square and repeats in both directions.
+  float weather_period_m = 40000.0f;
   // The procedural weather map evolves with time_s: its cloud clusters form, drift and
   // dissipate over about this time (s); the smallest cells change 8x faster. 0 = a static map.
   // Deterministic: the same seed and time give the same sky; it repeats after 6x this time.
   // 0 or [1, 1e7].
   float weather_evolution_s = 3600.0f;
-  std::string weather_map;                // PNG path (RGBA as in seed 2.2.2); empty = procedural
+  // A weather map from a PNG file (path; in a scene file relative to it); empty = procedural.
+  // Channels (seed 000, 2.2.2 lays out RGBA as low coverage, high coverage, top height,
+  // density; nephele gives G and B the meanings of seed 002 and Schneider 2015), values as
+  // stored (no sRGB decode) in [0, 1]:
+  //   R coverage: the local coverage is R + 2 coverage - 1, so at coverage 0.5 R is it;
+  //   G storm cells: with precipitation > 0, G from 0.1 turns the towers into cumulonimbus
+  //     (fully from 0.5) and spreads an anvil over G > 0 (fully from 1/3); nothing otherwise;
+  //   B cloud type around the layer's: the local type is type + B - 0.5 (0.5 keeps `type`;
+  //     the type sets how high the clouds reach, the seed's B);
+  //   A density: scales `density` by 2 A (0.5 keeps it, 1 doubles it).
+  // RGBA only, 8 or 16 bits per channel (16-bit values are cut to the texture's 8 bits);
+  // validate_scene refuses grey, grey and alpha, and RGB, whose channels would mean something
+  // else. (An EXR is read too, as RGBA with a missing alpha of 1.)
+  // Orientation: the image lies on the ground as a map is drawn, row 0 (its top) north and
+  // columns from west to east; it spans weather_period_m x weather_period_m (a non-square
+  // image is stretched) and repeats in both directions, read with bilinear filtering. Its
+  // centre lies at the origin (east 0, north 0) at time_s = 0 and moves with the wind: at
+  // time t it is at wind_mps x t (east, north; m) at the layer's bottom, and higher in the
+  // layer further downwind by the shear and skew (wind_shear_mps, wind_skew_s), as the
+  // clouds lean. high_clouds, moving with its own wind, reads at each point the map 0.37 tiles
+  // east and 0.61 tiles north of it, so its clouds do not stack over the low ones.
+  std::string weather_map;
 };
 
 // A second, higher volumetric layer (altocumulus by default) with its own altitude range,

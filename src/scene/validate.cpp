@@ -1,5 +1,8 @@
 // nephele — range checks on a resolved scene.
+#include <stb/stb_image.h>
+
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -24,6 +27,10 @@ constexpr float kMaxAirCoefficientPerM = 0.01f;  // 100 m of air has optical dep
 constexpr float kMaxWindMps = 200.0f;
 // Animation time: winds of kMaxWindMps carry the clouds 2e8 m, where float keeps ~16 m steps.
 constexpr float kMaxTimeS = 1.0e6f;
+// What a weather map's channels mean (scene.h, CloudParams::weather_map), for messages.
+constexpr const char* kWeatherMapNeeds =
+    "a weather map needs 4 channels (RGBA: R coverage, G storm cells, B cloud type around "
+    "clouds.type, A density)";
 
 // Throws InputError naming a parameter the way the caller wants it named (scene key or flag).
 class Checker {
@@ -101,6 +108,34 @@ class Checker {
       fail(key, is_flag(key) ? path : scene_detail::toml_quote(path),
            regular || !std::filesystem::exists(path, error) ? "cannot read the file"
                                                             : "is not a regular file");
+  }
+
+  // A weather map (CloudParams::weather_map): a readable PNG with four channels, told by its
+  // header without decoding it, or an EXR (read as RGBA whatever it holds).
+  void weather_map(const std::string& key, const std::string& path) const {
+    readable_file(key, path);
+    const std::string value = is_flag(key) ? path : scene_detail::toml_quote(path);
+    unsigned char magic[8] = {};
+    std::ifstream(path, std::ios::binary).read(reinterpret_cast<char*>(magic), sizeof magic);
+    static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    static const unsigned char kExr[4] = {0x76, 0x2f, 0x31, 0x01};
+    if (std::memcmp(magic, kExr, sizeof kExr) == 0) return;
+    if (std::memcmp(magic, kPng, sizeof kPng) != 0)
+      fail(key, value, "is neither a PNG nor an EXR file");
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info(path.c_str(), &width, &height, &channels)) {
+      const char* reason = stbi_failure_reason();
+      fail(key, value,
+           std::string("cannot read the PNG header (") + (reason ? reason : "unknown error") + ")");
+    }
+    if (channels != 4) {
+      static const char* const kLayouts[] = {"", "grey", "grey and alpha", "RGB"};
+      fail(key, value,
+           "has " + std::to_string(channels) + (channels == 1 ? " channel" : " channels") +
+               (channels >= 1 && channels <= 3 ? std::string(" (") + kLayouts[channels] + ")"
+                                               : std::string()) +
+               "; " + kWeatherMapNeeds);
+    }
   }
 
   bool is_flag(const std::string& key) const { return display(key).flag; }
@@ -268,7 +303,7 @@ void check_clouds(const Checker& check, const CloudParams& clouds) {
   check.in_range("clouds.detail_noise_period_m", clouds.detail_noise_period_m, 1.0f, 1.0e5f);
   check.in_range("clouds.detail_erosion", clouds.detail_erosion, 0.0f, 1.0f);
   check.in_range("clouds.weather_period_m", clouds.weather_period_m, 1000.0f, 1.0e7f);
-  if (!clouds.weather_map.empty()) check.readable_file("clouds.weather_map", clouds.weather_map);
+  if (!clouds.weather_map.empty()) check.weather_map("clouds.weather_map", clouds.weather_map);
 }
 
 // The cloud layer must lie inside the atmosphere the sky is integrated over.

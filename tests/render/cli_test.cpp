@@ -7,11 +7,14 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 #include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
 
 #include "nephele/image.h"
 
@@ -239,12 +242,28 @@ TEST_F(CliTest, ExrHoldsNoInfWhereTheSunIs) {
   EXPECT_GT(float_max, 65504.0f);   // the sun's true radiance
 }
 
+// A weather map that is not RGBA is refused when the scene is checked: exit 2, one line, no
+// image (see SceneWeatherMap in scene_io_test.cpp for each kind).
+TEST_F(CliTest, RejectsAGreyWeatherMap) {
+  const std::string grey = path("grey.png");
+  const std::vector<unsigned char> pixels(8 * 8, 128);
+  ASSERT_TRUE(stbi_write_png(grey.c_str(), 8, 8, 1, pixels.data(), 8));
+  expect_rejected("--width 16 --height 16 --weather-map " + grey,
+                  {"--weather-map " + grey +
+                   ": has 1 channel (grey); a weather map needs 4 "
+                   "channels (RGBA: R coverage, G storm cells, B cloud type around clouds.type, "
+                   "A density)"});
+}
+
 TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
   expect_rejected("--coverag 0.5", {"--coverag"});
   expect_rejected("--coverage abc", {"--coverage", "abc"});
   expect_rejected("--view-dir 1,2", {"--view-dir", "1,2"});
 }
 
+// bench.json holds every row of bench.csv ("sweeps"), from which scripts/plot_bench.py draws
+// bench.png where /usr/bin/python3 has matplotlib; elsewhere one line says the plot was
+// skipped, and the benchmark still succeeds.
 TEST_F(CliTest, BenchQuickWritesCsvJsonAndPlot) {
   const CliRun r = run_cli("bench --quick --frames 1 --width 48 --height 32 --out-dir " +
                            path("bench"));
@@ -265,7 +284,23 @@ TEST_F(CliTest, BenchQuickWritesCsvJsonAndPlot) {
     EXPECT_LT(j[key].get<double>(), 0.5) << key;
   }
   EXPECT_FALSE(j["device"].get<std::string>().empty());
-  EXPECT_GT(fs::file_size(path("bench/bench.png")), 1000u);
+  ASSERT_EQ(j["sweeps"].size(), size_t(rows));
+  for (const nlohmann::json& row : j["sweeps"])
+    for (const char* key :
+         {"sweep", "mode", "density", "coverage", "width", "height", "gpu_ms", "fps", "wall_ms"})
+      EXPECT_TRUE(row.contains(key)) << key;
+  EXPECT_GT(j["sweeps"][0]["fps"].get<double>(), 0.0);
+  const bool matplotlib =
+      std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
+  if (matplotlib) {
+    EXPECT_GT(fs::file_size(path("bench/bench.png")), 1000u);
+    EXPECT_NE(r.output.find(path("bench/bench.png")), std::string::npos) << r.output;
+  } else {
+    EXPECT_FALSE(fs::exists(path("bench/bench.png")));
+    EXPECT_NE(r.output.find("nephele: plot skipped: "), std::string::npos) << r.output;
+  }
+  // No frame times in the JSON (yet): no trace.
+  EXPECT_EQ(fs::exists(path("bench/bench_frame_times.png")), j.contains("frame_times_ms"));
 }
 
 TEST_F(CliTest, BenchRealtimeOnlyWritesTheJsonFile) {

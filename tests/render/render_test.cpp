@@ -295,10 +295,10 @@ TEST_F(RenderTest, WeatherMapFromPngControlsWhereCloudsAre) {
   std::filesystem::create_directories(NEPHELE_TEST_OUTPUT_DIR);
   std::vector<unsigned char> rgba(64 * 64 * 4);
   for (int i = 0; i < 64 * 64; ++i) {
-    rgba[4 * i + 0] = (i % 64) >= 32 ? 255 : 0;  // R: low-altitude coverage
-    rgba[4 * i + 1] = 0;                         // G: high-altitude coverage
-    rgba[4 * i + 2] = 255;                       // B: maximum height
-    rgba[4 * i + 3] = 255;                       // A: density
+    rgba[4 * i + 0] = (i % 64) >= 32 ? 255 : 0;  // R: coverage
+    rgba[4 * i + 1] = 0;                         // G: no storm cells
+    rgba[4 * i + 2] = 255;                       // B: type + 0.5
+    rgba[4 * i + 3] = 255;                       // A: twice the density
   }
   ASSERT_TRUE(stbi_write_png(path.c_str(), 64, 64, 4, rgba.data(), 64 * 4));
   Scene s = small_scene();

@@ -1,6 +1,13 @@
 // Weather that evolves (clouds.weather_evolution_s): deterministic in the seed and the time,
-// smooth from second to second, a different sky ten minutes on.
+// smooth from second to second, a different sky ten minutes on. A weather map from a PNG lies
+// on the ground as a map is drawn: row 0 north, columns west to east (scene.h).
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include "nephele/image_compare.h"
 #include "nephele/renderer.h"
@@ -34,6 +41,14 @@ double opacity_difference(const Frame& a, const Frame& b) {
   return sum / double(a.clouds.pixels.size());
 }
 
+// Mean cloud opacity (1 - transmittance) over the pixels [x0, x1) x [y0, y1).
+double mean_opacity(const Frame& f, int x0, int x1, int y0, int y1) {
+  double sum = 0.0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) sum += 1.0 - double(f.clouds.at(x, y).a);
+  return sum / double((x1 - x0) * (y1 - y0));
+}
+
 class WeatherTest : public RenderTest {};
 
 }  // namespace
@@ -64,4 +79,53 @@ TEST_F(WeatherTest, OneSecondChangesLittleTenMinutesChangeTheSky) {
   Scene frozen = still_air(1800.0f), frozen_later = still_air(2400.0f);
   frozen.clouds.weather_evolution_s = frozen_later.clouds.weather_evolution_s = 0.0f;
   EXPECT_EQ(render(frozen).color.pixels, render(frozen_later).color.pixels);
+}
+
+// A 64x64 map with cloud only in its north-east quadrant (image rows 0-31, columns 32-63),
+// seen from 10 km straight down: looking down, the image's top is north and its right east
+// (camera_basis), and the map's centre lies below the camera (no wind, time 0), so the cloud
+// must fill the frame's top-right quadrant and nothing else. Before the fix (the image's row
+// 0 uploaded as the texture's southern edge) it filled the bottom-right one.
+TEST_F(WeatherTest, PngWeatherMapLiesNorthUpAndWestToEast) {
+  const std::string path = std::string(NEPHELE_TEST_OUTPUT_DIR) + "/weather_north_east.png";
+  std::filesystem::create_directories(NEPHELE_TEST_OUTPUT_DIR);
+  constexpr int kMapSize = 64;
+  std::vector<unsigned char> rgba(size_t(kMapSize) * kMapSize * 4);
+  for (int row = 0; row < kMapSize; ++row)
+    for (int column = 0; column < kMapSize; ++column) {
+      unsigned char* p = &rgba[4 * (size_t(row) * kMapSize + column)];
+      const bool north_east = row < kMapSize / 2 && column >= kMapSize / 2;
+      p[0] = north_east ? 255 : 0;  // R: coverage
+      p[1] = 0;                     // G: no storm cells
+      p[2] = 128;                   // B: the layer's type
+      p[3] = 255;                   // A: twice the layer's density
+    }
+  ASSERT_TRUE(stbi_write_png(path.c_str(), kMapSize, kMapSize, 4, rgba.data(), kMapSize * 4));
+
+  Scene s = nephele::load_preset("default");
+  s.clouds.weather_map = path;
+  s.clouds.coverage = 0.5f;  // the local coverage is R
+  s.clouds.weather_period_m = 8000.0f;
+  s.clouds.wind_mps = {0.0f, 0.0f};  // the map's centre stays at the origin, at every height
+  s.clouds.wind_shear_mps = {0.0f, 0.0f};
+  s.camera.position_m = {0.0f, 0.0f, 10000.0f};
+  s.camera.view_dir = {0.0f, 0.0f, -1.0f};
+  // 40 degrees: the layer's bottom, 8.5 km below, is seen 3.1 km around the centre, inside
+  // the tile's half-width of 4 km.
+  s.camera.fov_deg = 40.0f;
+  s.output.width = s.output.height = 64;
+  const Frame f = render(s);
+
+  // The quadrants, leaving out 4 pixels either side of the centre lines (the map's edges are
+  // filtered over a texel, 125 m).
+  const double north_east = mean_opacity(f, 36, 64, 0, 28);
+  const double north_west = mean_opacity(f, 0, 28, 0, 28);
+  const double south_east = mean_opacity(f, 36, 64, 36, 64);
+  const double south_west = mean_opacity(f, 0, 28, 36, 64);
+  std::printf("cloud opacity: north-east %.3f, north-west %.3f, south-east %.3f, south-west %.3f\n",
+              north_east, north_west, south_east, south_west);
+  EXPECT_GT(north_east, 0.3);
+  EXPECT_LT(north_west, 0.01);
+  EXPECT_LT(south_east, 0.01);
+  EXPECT_LT(south_west, 0.01);
 }

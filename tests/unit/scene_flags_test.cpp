@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
+#include <stb/stb_image_write.h>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -336,7 +337,8 @@ TEST_F(SceneFlagsFile, MissingSceneFile) {
 
 TEST_F(SceneFlagsFile, WeatherMapFlagIsTakenAsGiven) {
   std::string path = (dir_ / "w.png").string();
-  std::ofstream(path) << "png";
+  const unsigned char rgba[2 * 2 * 4] = {};
+  ASSERT_TRUE(stbi_write_png(path.c_str(), 2, 2, 4, rgba, 2 * 4));
   EXPECT_EQ(resolve({"--weather-map", path}).clouds.weather_map, path);
 }
 

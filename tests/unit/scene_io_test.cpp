@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cstdint>
 
 #include <algorithm>
 #include <bit>
@@ -12,10 +13,15 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "nephele/error.h"
+#include "nephele/image.h"
 #include "nephele/sky.h"
 #include <glm/geometric.hpp>
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
 
 namespace nephele {
 namespace {
@@ -460,7 +466,8 @@ class SceneFile : public ::testing::Test {
 };
 
 TEST_F(SceneFile, LoadResolvesWeatherMapNextToTheFile) {
-  write(dir_ / "maps" / "w.png", "not really a png");
+  const unsigned char rgba[2 * 2 * 4] = {};
+  ASSERT_TRUE(stbi_write_png((dir_ / "maps" / "w.png").c_str(), 2, 2, 4, rgba, 2 * 4));
   write(dir_ / "scene.toml", "[clouds]\nweather_map = \"maps/w.png\"\ncoverage = 0.7\n");
   Scene scene = load_scene_file((dir_ / "scene.toml").string());
   EXPECT_EQ(scene.clouds.coverage, 0.7f);
@@ -785,6 +792,140 @@ TEST(SceneValidateExact, NamerCanShowFlags) {
             "--weather-map /nonexistent/w.png: cannot read the file");
   EXPECT_EQ(error_with([](Scene& s) { s.output.width = 0; }),
             "my.toml: output.width = 0: must be in [1, 16384]");
+}
+
+// ---------------------------------------------------------------- weather-map files
+
+// Big-endian bytes of a 32-bit value.
+void append_u32(std::string& out, uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out += char((v >> shift) & 0xff);
+}
+
+// A PNG chunk: length, type, data, CRC-32 of type and data.
+void append_png_chunk(std::string& out, const std::string& type, const std::string& data) {
+  append_u32(out, uint32_t(data.size()));
+  const std::string body = type + data;
+  uint32_t crc = 0xffffffffu;
+  for (unsigned char byte : body) {
+    crc ^= byte;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  out += body;
+  append_u32(out, crc ^ 0xffffffffu);
+}
+
+// A 16-bit RGBA PNG (stb cannot write one): samples row by row, 4 a pixel; the image data
+// in stored (uncompressed) deflate blocks.
+std::string png16_rgba(int width, int height, const std::vector<uint16_t>& samples) {
+  std::string rows;
+  for (int y = 0; y < height; ++y) {
+    rows += char(0);  // filter: none
+    for (int i = 0; i < width * 4; ++i) {
+      const uint16_t v = samples[size_t(y) * size_t(width) * 4 + size_t(i)];
+      rows += char(v >> 8);
+      rows += char(v & 0xff);
+    }
+  }
+  std::string zlib = "\x78\x01";
+  for (size_t at = 0; at < rows.size(); at += 65535) {
+    const size_t n = std::min<size_t>(65535, rows.size() - at);
+    zlib += char(at + n == rows.size() ? 1 : 0);  // BFINAL, stored
+    zlib += char(n & 0xff);
+    zlib += char(n >> 8);
+    zlib += char(~n & 0xff);
+    zlib += char((~n >> 8) & 0xff);
+    zlib += rows.substr(at, n);
+  }
+  uint32_t a = 1, b = 0;  // Adler-32
+  for (unsigned char byte : rows) {
+    a = (a + byte) % 65521;
+    b = (b + a) % 65521;
+  }
+  append_u32(zlib, (b << 16) | a);
+  std::string header;
+  append_u32(header, uint32_t(width));
+  append_u32(header, uint32_t(height));
+  header += std::string("\x10\x06\x00\x00\x00", 5);  // 16 bits, RGBA, deflate, no interlace
+  std::string png = "\x89PNG\r\n\x1a\n";
+  append_png_chunk(png, "IHDR", header);
+  append_png_chunk(png, "IDAT", zlib);
+  append_png_chunk(png, "IEND", "");
+  return png;
+}
+
+class SceneWeatherMap : public SceneFile {
+ protected:
+  // An 8-bit PNG of 4x4 pixels with `channels` channels; returns its path.
+  std::string png8(const std::string& name, int channels) {
+    const std::vector<unsigned char> pixels(4 * 4 * size_t(channels), 200);
+    const std::string path = (dir_ / name).string();
+    EXPECT_TRUE(stbi_write_png(path.c_str(), 4, 4, channels, pixels.data(), 4 * channels));
+    return path;
+  }
+  std::string error_for(const std::string& path) {
+    return validate_error([&](Scene& s) { s.clouds.weather_map = path; });
+  }
+};
+
+// A grey, grey-and-alpha or RGB PNG would be read as RGBA with other meanings (stb fills the
+// missing channels: storm cells and cloud type from the grey, alpha 1 doubling the density):
+// refused with one line that names the file, what it holds and what a weather map needs.
+TEST_F(SceneWeatherMap, PngsWithoutFourChannelsAreRefused) {
+  const std::string needs =
+      "a weather map needs 4 channels (RGBA: R coverage, G storm cells, B cloud type around "
+      "clouds.type, A density)";
+  const std::string grey = png8("grey.png", 1), grey_alpha = png8("grey_alpha.png", 2),
+                    rgb = png8("rgb.png", 3);
+  EXPECT_EQ(error_for(grey),
+            "clouds.weather_map = \"" + grey + "\": has 1 channel (grey); " + needs);
+  EXPECT_EQ(error_for(grey_alpha), "clouds.weather_map = \"" + grey_alpha +
+                                       "\": has 2 channels (grey and alpha); " + needs);
+  EXPECT_EQ(error_for(rgb), "clouds.weather_map = \"" + rgb + "\": has 3 channels (RGB); " + needs);
+  // As a flag the path is shown as typed.
+  Scene scene;
+  scene.clouds.weather_map = grey;
+  EXPECT_EQ(input_error([&] {
+              validate_scene(scene, [](const std::string& key) {
+                return key == "clouds.weather_map" ? std::string("--weather-map") : std::string();
+              });
+            }),
+            "--weather-map " + grey + ": has 1 channel (grey); " + needs);
+}
+
+TEST_F(SceneWeatherMap, RgbaPngsAreAccepted) {
+  Scene scene;
+  scene.clouds.weather_map = png8("rgba.png", 4);
+  EXPECT_NO_THROW(validate_scene(scene));
+}
+
+// Neither a PNG nor an EXR: refused before anything is rendered, not when the map is uploaded.
+TEST_F(SceneWeatherMap, OtherFilesAreRefused) {
+  const std::string text = (dir_ / "map.png").string();
+  write(text, "not an image\n");
+  EXPECT_EQ(error_for(text),
+            "clouds.weather_map = \"" + text + "\": is neither a PNG nor an EXR file");
+}
+
+// 16 bits per channel: accepted, each value cut to the texture's 8 bits (stb keeps the high
+// byte), so 0xc8ff reads as 200 / 255.
+TEST_F(SceneWeatherMap, SixteenBitRgbaPngsAreAcceptedAtEightBits) {
+  std::vector<uint16_t> samples(4 * 4 * 4);
+  for (size_t i = 0; i < samples.size(); ++i) samples[i] = uint16_t(0x0100 * (i % 256) + 0xff);
+  const std::string path = (dir_ / "rgba16.png").string();
+  write(path, png16_rgba(4, 4, samples));
+  int w = 0, h = 0, channels = 0;
+  ASSERT_TRUE(stbi_info(path.c_str(), &w, &h, &channels));
+  ASSERT_TRUE(stbi_is_16_bit(path.c_str()));
+  ASSERT_EQ(channels, 4);
+  Scene scene;
+  scene.clouds.weather_map = path;
+  EXPECT_NO_THROW(validate_scene(scene));
+  const Image image = read_image(path);
+  ASSERT_EQ(image.width, 4);
+  ASSERT_EQ(image.height, 4);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_EQ(image.pixels[i][c], float((4 * i + size_t(c)) % 256) / 255.0f) << i << " " << c;
 }
 
 // ---------------------------------------------------------------- date, time and place

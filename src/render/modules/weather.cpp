@@ -31,7 +31,10 @@ double WeatherModule::weather_time(const Scene& scene) {
 }
 
 // A PNG of another size replaces the map texture, once the frames in flight that read the old
-// one have completed.
+// one have completed. The texture's v grows northward (cloud_field_inc.glsl reads it at ground
+// y / period), so texture row 0 is the southern edge; an image's row 0 is its top, north as
+// maps are drawn (scene.h): the rows go up in reverse order. The procedural map is written in
+// texture space and needs no flip.
 void WeatherModule::upload_png(const std::string& path) {
   const Image png = read_image(path);
   if (map_.width() != uint32_t(png.width) || map_.height() != uint32_t(png.height)) {
@@ -42,10 +45,13 @@ void WeatherModule::upload_png(const std::string& path) {
   }
   gpu::Buffer staging(ctx_, VkDeviceSize(png.pixels.size()) * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   auto* bytes = static_cast<unsigned char*>(staging.data());
-  for (size_t i = 0; i < png.pixels.size(); ++i)
-    for (int c = 0; c < 4; ++c)
-      bytes[4 * i + c] =
-          static_cast<unsigned char>(glm::clamp(png.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
+  for (int row = 0; row < png.height; ++row)
+    for (int x = 0; x < png.width; ++x) {
+      const glm::vec4& p = png.at(x, png.height - 1 - row);
+      unsigned char* texel = bytes + 4 * (size_t(row) * size_t(png.width) + size_t(x));
+      for (int c = 0; c < 4; ++c)
+        texel[c] = static_cast<unsigned char>(glm::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f);
+    }
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
     gpu::full_barrier(cmd);  // after the frames in flight that read the map
     map_.record_upload(cmd, staging);
