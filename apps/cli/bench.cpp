@@ -123,8 +123,10 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
   cmd.add_flag("--realtime-only", options.realtime_only,
                "only the real-time figures (still and flying camera, error, speed-up)");
   cmd.add_option("--json", options.json,
-                 "write the real-time figures (static_fps, moving_fps, speedup_vs_baseline, "
-                 "static_error, moving_error, device) to this file, or to standard output with -");
+                 "write the real-time figures (static_fps, moving_fps, static_p99_ms, "
+                 "moving_p99_ms, moving_max_ms, speedup_vs_baseline, static_error, "
+                 "moving_error, frame_times_ms, device, ...) to this file, or to standard "
+                 "output with -");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
 }
 
@@ -142,18 +144,24 @@ std::string pass_list(const nlohmann::json& passes) {
 }
 
 void print_realtime(const nlohmann::json& r) {
-  std::printf(
-      "real time %dx%d on %s (median frame times)\n"
-      "  still camera:  %7.1f ms  %6.1f fps  error %.2f%%\n"
-      "  flying camera: %7.1f ms  %6.1f fps  error %.2f%% (%g m/s, %g deg/s)\n"
-      "  seed's algorithm: %.1f ms (%.2f fps); speed-up %.1fx\n",
-      r["width"].get<int>(), r["height"].get<int>(), r["device"].get<std::string>().c_str(),
-      r["static_ms"].get<double>(), r["static_fps"].get<double>(),
-      100.0 * r["static_error"].get<double>(), r["moving_ms"].get<double>(),
-      r["moving_fps"].get<double>(), 100.0 * r["moving_error"].get<double>(),
-      r["flight"]["speed_mps"].get<double>(), r["flight"]["turn_deg_s"].get<double>(),
-      r["baseline_ms"].get<double>(), r["baseline_fps"].get<double>(),
-      r["speedup_vs_baseline"].get<double>());
+  std::printf("real time %dx%d on %s (host wall time per frame, weather evolving)\n"
+              "  %-14s %8s %8s %8s %8s %7s %7s  %s\n",
+              r["width"].get<int>(), r["height"].get<int>(),
+              r["device"].get<std::string>().c_str(), "", "median", "p95", "p99", "max",
+              "fps", "error", "rebuild frames (light volume, weather)");
+  for (const char* series : {"static", "moving"}) {
+    const std::string p = series;
+    std::printf("  %-14s %8.1f %8.1f %8.1f %8.1f %7.2f %6.2f%%  %d, %d of %d\n",
+                p == "static" ? "still camera" : "flying camera", r[p + "_ms"].get<double>(),
+                r[p + "_p95_ms"].get<double>(), r[p + "_p99_ms"].get<double>(),
+                r[p + "_max_ms"].get<double>(), r[p + "_fps"].get<double>(),
+                100.0 * r[p + "_error"].get<double>(), r[p + "_light_volume_frames"].get<int>(),
+                r[p + "_weather_frames"].get<int>(), r[p + "_frames"].get<int>());
+  }
+  std::printf("  flight %g m/s, %g deg/s; seed's algorithm: %.1f ms (%.2f fps); speed-up %.1fx\n",
+              r["flight"]["speed_mps"].get<double>(), r["flight"]["turn_deg_s"].get<double>(),
+              r["baseline_ms"].get<double>(), r["baseline_fps"].get<double>(),
+              r["speedup_vs_baseline"].get<double>());
   std::printf("  passes, still (ms):  %s\n  passes, flying (ms): %s\n",
               pass_list(r["static_passes_ms"]).c_str(), pass_list(r["moving_passes_ms"]).c_str());
   std::fflush(stdout);

@@ -22,9 +22,18 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// The q-quantile (0 < q <= 1) of `v` by the nearest-rank method: the smallest value with at
+// least a share q of the values at or below it (q = 1: the maximum).
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t rank = size_t(std::ceil(q * double(v.size())));
+  return v[std::clamp<size_t>(rank, 1, v.size()) - 1];
+}
+
 // Host wall time (ms) of the frames, each submitted and waited for, no read-back, and the
-// device time of each pass. Medians: on a shared machine a few frames stall for reasons of
-// their own, and the median is what the renderer does; the mean is kept beside it.
+// device time of each pass. Real time means every frame: the median, p95, p99 and the worst
+// frame, and every frame's time for the trace.
 struct Timing {
   std::vector<double> wall_ms, gpu_ms;
   std::map<std::string, std::vector<double>> pass_ms;
@@ -39,6 +48,26 @@ struct Timing {
                            : std::accumulate(wall_ms.begin(), wall_ms.end(), 0.0) / wall_ms.size();
   }
   double median_gpu() const { return median(gpu_ms); }
+  // Frames in which `pass` ran (a rebuild spread over frames runs in many).
+  int frames_with(const std::string& pass) const {
+    const auto it = pass_ms.find(pass);
+    return it == pass_ms.end() ? 0 : int(it->second.size());
+  }
+  void write(nlohmann::json& out, const std::string& prefix) const {
+    out[prefix + "_ms"] = median_wall();
+    out[prefix + "_mean_ms"] = mean_wall();
+    out[prefix + "_p50_ms"] = percentile(wall_ms, 0.50);
+    out[prefix + "_p95_ms"] = percentile(wall_ms, 0.95);
+    out[prefix + "_p99_ms"] = percentile(wall_ms, 0.99);
+    out[prefix + "_max_ms"] = percentile(wall_ms, 1.0);
+    out[prefix + "_gpu_ms"] = median_gpu();
+    out[prefix + "_passes_ms"] = passes();
+    out[prefix + "_fps"] = 1000.0 / median_wall();
+    out[prefix + "_frames"] = int(wall_ms.size());
+    out[prefix + "_light_volume_frames"] = frames_with("light_volume");
+    out[prefix + "_weather_frames"] = frames_with("weather");
+    out["frame_times_ms"][prefix] = wall_ms;
+  }
   // Each pass's device time per frame: the median over the frames where it ran, times the
   // share of frames where it ran (passes such as the sky-view LUT run only now and then).
   nlohmann::json passes() const {
@@ -148,16 +177,8 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   out["device"] = renderer.device_name();
   out["width"] = base.output.width;
   out["height"] = base.output.height;
-  out["static_ms"] = still.median_wall();
-  out["static_mean_ms"] = still.mean_wall();
-  out["static_gpu_ms"] = still.median_gpu();
-  out["static_passes_ms"] = still.passes();
-  out["static_fps"] = 1000.0 / still.median_wall();
-  out["moving_ms"] = moving.median_wall();
-  out["moving_mean_ms"] = moving.mean_wall();
-  out["moving_gpu_ms"] = moving.median_gpu();
-  out["moving_passes_ms"] = moving.passes();
-  out["moving_fps"] = 1000.0 / moving.median_wall();
+  still.write(out, "static");
+  moving.write(out, "moving");
   out["baseline_ms"] = seed.median_wall();
   out["baseline_fps"] = 1000.0 / seed.median_wall();
   out["speedup_vs_baseline"] = seed.median_wall() / still.median_wall();

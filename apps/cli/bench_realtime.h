@@ -10,8 +10,11 @@
 namespace nephele::cli {
 
 struct RealtimeSettings {
-  int static_frames = 48;    // timed frames with a still camera (after two march cycles)
-  int moving_frames = 48;    // timed frames of the flight
+  // Timed frames with a still camera (after two march cycles) and of the flight: 10 s of
+  // animation, long enough for the weather to move on five states and the light volume to be
+  // rebuilt, so that the percentiles see them.
+  int static_frames = 200;
+  int moving_frames = 200;
   int error_frames = 3;      // flight frames compared with a reference
   float speed_mps = 100.0f;  // flight speed along the view's heading
   float turn_deg_s = 20.0f;  // yaw rate
