@@ -23,14 +23,9 @@ void print_error(const std::string& kind, const std::string& message) {
 
 // "1280x800" -> width, height in [1, 16384].
 void parse_size(const std::string& text, int& width, int& height) {
-  unsigned w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
-      w < 1 || h < 1 || w > 16384 || h > 16384)
+  if (!nephele::view::parse_window_size(text, width, height))
     throw nephele::InputError("--size " + nephele::shorten_for_message(text) +
                               ": expected WxH, each in [1, 16384], e.g. 1280x800");
-  width = int(w);
-  height = int(h);
 }
 
 }  // namespace
@@ -63,7 +58,7 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
   app.add_option("--script", script_path,
                  "timed commands, one a line: frame N set KEY VALUE | preset NAME | load FILE | "
-                 "screenshot FILE | window-screenshot FILE | quit")
+                 "screenshot FILE | window-screenshot FILE | resize WxH | quit")
       ->type_name("FILE");
   app.add_option("--target-ms", options.target_ms,
                  "frame time the dynamic resolution holds (default 33)")

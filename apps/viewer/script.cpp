@@ -46,6 +46,7 @@ constexpr ActionName kActions[] = {
     {"camera-path", ScriptAction::kCameraPath},
     {"screenshot", ScriptAction::kScreenshot},
     {"window-screenshot", ScriptAction::kWindowScreenshot},
+    {"resize", ScriptAction::kResize},
     {"quit", ScriptAction::kQuit},
 };
 
@@ -64,6 +65,17 @@ std::string action_list() {
 }
 
 }  // namespace
+
+bool parse_window_size(std::string_view text, int& width, int& height) {
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string_view::npos) return false;
+  const auto number = [](std::string_view digits, int& out) {
+    const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), out);
+    return !digits.empty() && r.ec == std::errc() && r.ptr == digits.data() + digits.size() &&
+           out >= 1 && out <= 16384;
+  };
+  return number(text.substr(0, x), width) && number(text.substr(x + 1), height);
+}
 
 Script parse_script(const std::string& text, const std::string& source) {
   Script script;
@@ -117,6 +129,10 @@ Script parse_script(const std::string& text, const std::string& source) {
       case ScriptAction::kQuit:
         if (!argument.empty())
           throw bad("quit: takes nothing, got " + quoted(argument));
+        break;
+      case ScriptAction::kResize:
+        if (!parse_window_size(argument, command.width, command.height))
+          throw bad("resize " + quoted(argument) + ": expected WxH, each in [1, 16384]");
         break;
       case ScriptAction::kCameraPath:
         // TODO(camera-path): run the path once include/nephele/camera_path.h lands on main.

@@ -7,6 +7,7 @@
 //   frame 30 camera-path path.toml        (refused until the camera-path module lands)
 //   frame 40 screenshot out.png           still-quality render of the scene (.png or .exr)
 //   frame 45 window-screenshot win.png    the window as shown, panel included (.png)
+//   frame 48 resize 640x400               resize the window (the swapchain follows)
 //   frame 50 quit
 //
 // Commands of one frame run in the order of their lines. A line that cannot be a command
@@ -21,7 +22,16 @@
 
 namespace nephele::view {
 
-enum class ScriptAction { kSet, kPreset, kLoad, kCameraPath, kScreenshot, kWindowScreenshot, kQuit };
+enum class ScriptAction {
+  kSet,
+  kPreset,
+  kLoad,
+  kCameraPath,
+  kScreenshot,
+  kWindowScreenshot,
+  kResize,
+  kQuit
+};
 
 struct ScriptCommand {
   int line = 0;           // 1-based line in the script
@@ -29,7 +39,11 @@ struct ScriptCommand {
   ScriptAction action = ScriptAction::kQuit;
   std::string key;        // kSet: "clouds.coverage"
   std::string argument;   // kSet: the value's TOML text; others: the name or path
+  int width = 0, height = 0;  // kResize
 };
+
+// "640x400" -> width and height in [1, 16384]; false when it is not one.
+bool parse_window_size(std::string_view text, int& width, int& height);
 
 struct Script {
   std::string source;                  // the file's name, for messages

@@ -158,6 +158,7 @@ class Viewer {
   size_t script_next_ = 0;
   bool quit_ = false;
   bool swapchain_stale_ = true;
+  int swapchain_for_width_ = -1, swapchain_for_height_ = -1;  // the framebuffer's size then
   int exit_status_ = 0;
 
   bool playing_ = false;
@@ -246,7 +247,13 @@ void Viewer::init_imgui() {
 }
 
 bool Viewer::ensure_swapchain() {
+  // A resize need not make the swapchain out of date (X11 may scale): compare sizes too.
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(glfw_.window, &width, &height);
+  if (width != swapchain_for_width_ || height != swapchain_for_height_) swapchain_stale_ = true;
   if (!swapchain_stale_ && vk_.has_swapchain()) return true;
+  swapchain_for_width_ = width;
+  swapchain_for_height_ = height;
   if (!vk_.recreate_swapchain()) return false;  // minimised
   swapchain_stale_ = false;
   if (follow_window_) {
@@ -295,6 +302,9 @@ void Viewer::run_script_commands() {
         break;
       case ScriptAction::kWindowScreenshot:
         break;  // draw_frame captures this frame
+      case ScriptAction::kResize:
+        glfwSetWindowSize(glfw_.window, c.width, c.height);
+        break;
       case ScriptAction::kCameraPath:
         error = "camera-path: not available in this build";  // refused when read
         break;

@@ -144,6 +144,23 @@ TEST_F(ViewerTest, InvalidScriptValueIsReportedAndThePreviousSceneKeepsRendering
   EXPECT_TRUE(same.pass) << same.summary;
 }
 
+TEST_F(ViewerTest, ResizingTheWindowRecreatesTheSwapchain) {
+  const std::string script = write("script.txt",
+                                   "frame 2 resize 200x150\n"
+                                   "frame 4 window-screenshot " + path("large.png") + "\n"
+                                   "frame 5 resize 120x90\n"
+                                   "frame 8 window-screenshot " + path("small.png") + "\n"
+                                   "frame 9 quit\n");
+  const ProcessRun r = view("--preset default --script " + script);
+  expect_clean(r);
+  const nephele::Image large = nephele::read_image(path("large.png"));
+  const nephele::Image small = nephele::read_image(path("small.png"));
+  EXPECT_EQ(large.width, 200);
+  EXPECT_EQ(large.height, 150);
+  EXPECT_EQ(small.width, 120);
+  EXPECT_EQ(small.height, 90);
+}
+
 TEST_F(ViewerTest, BadFlagsAndScriptLinesAreOneLineAndExitTwo) {
   const struct {
     std::string args, expected;
@@ -154,7 +171,9 @@ TEST_F(ViewerTest, BadFlagsAndScriptLinesAreOneLineAndExitTwo) {
       {"--screenshot out.png", "need --frames N"},
       {"--script " + write("bad1.txt", "frame 1 jump\n"),
        "bad1.txt:1: unknown command 'jump' (allowed: set, preset, load, camera-path, screenshot, "
-       "window-screenshot, quit)"},
+       "window-screenshot, resize, quit)"},
+      {"--script " + write("bad5.txt", "frame 1 resize 0x10\n"),
+       "bad5.txt:1: resize '0x10': expected WxH, each in [1, 16384]"},
       {"--script " + write("bad2.txt", "\nframe x set clouds.coverage 1\n"),
        "bad2.txt:2: frame 'x': expected an integer in [0, 16000000]"},
       {"--script " + write("bad3.txt", "frame 1 set clouds.cover 1\n"),

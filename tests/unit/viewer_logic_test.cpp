@@ -38,9 +38,13 @@ TEST(ViewerScript, ReadsCommandsInFrameOrder) {
       "  frame 10   set camera.position_m [1, 2, 3]  \n"
       "frame 12 preset overcast\n"
       "frame 13 window-screenshot win.png\n"
-      "frame 50 quit\n",
+      "frame 50 quit\n"
+      "frame 45 resize 640x400\n",
       "s.txt");
-  ASSERT_EQ(s.commands.size(), 6u);
+  ASSERT_EQ(s.commands.size(), 7u);
+  EXPECT_EQ(s.commands[5].action, ScriptAction::kResize);
+  EXPECT_EQ(s.commands[5].width, 640);
+  EXPECT_EQ(s.commands[5].height, 400);
   EXPECT_EQ(s.commands[0].frame, 10);
   EXPECT_EQ(s.commands[0].line, 4);
   EXPECT_EQ(s.commands[0].action, ScriptAction::kSet);
@@ -53,7 +57,7 @@ TEST(ViewerScript, ReadsCommandsInFrameOrder) {
   EXPECT_EQ(s.commands[3].action, ScriptAction::kWindowScreenshot);
   EXPECT_EQ(s.commands[4].action, ScriptAction::kScreenshot);
   EXPECT_EQ(s.commands[4].argument, "out.png");
-  EXPECT_EQ(s.commands[5].action, ScriptAction::kQuit);
+  EXPECT_EQ(s.commands[6].action, ScriptAction::kQuit);
 }
 
 TEST(ViewerScript, BadLinesAreOneLineWithTheLineNumber) {
@@ -66,7 +70,10 @@ TEST(ViewerScript, BadLinesAreOneLineWithTheLineNumber) {
   EXPECT_EQ(error("frame 1x quit\n"), "s.txt:1: frame '1x': expected an integer in [0, 16000000]");
   EXPECT_EQ(error("frame 1\n"),
             "s.txt:1: unknown command '' (allowed: set, preset, load, camera-path, screenshot, "
-            "window-screenshot, quit)");
+            "window-screenshot, resize, quit)");
+  EXPECT_EQ(error("frame 1 resize 640\n"), "s.txt:1: resize '640': expected WxH, each in [1, 16384]");
+  EXPECT_EQ(error("frame 1 resize 640x0\n"),
+            "s.txt:1: resize '640x0': expected WxH, each in [1, 16384]");
   EXPECT_EQ(error("frame 1 set clouds.coverage\n"),
             "s.txt:1: set: expected 'set KEY VALUE', e.g. 'set clouds.coverage 0.9'");
   EXPECT_EQ(error("frame 1 set clouds.cover 1\n").rfind(
