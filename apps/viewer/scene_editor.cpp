@@ -1,6 +1,7 @@
 // nephele-view — the scene being viewed and its edits.
 #include "scene_editor.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -72,6 +73,12 @@ const std::vector<ParameterGroup>& parameter_groups() {
             break;
           }
       if (!placed) out.back().keys.push_back(p.key);  // a new key still gets a widget
+    }
+    // A group's own table first, then the top-level keys it shows (clouds, then noise_seed).
+    for (size_t g = 0; g < out.size(); ++g) {
+      const std::string& first = layout[g].second.front();
+      std::stable_partition(out[g].keys.begin(), out[g].keys.end(),
+                            [&](const std::string& key) { return key.starts_with(first); });
     }
     return out;
   }();

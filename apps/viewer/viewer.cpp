@@ -603,8 +603,10 @@ void Viewer::draw_ui() {
       ImGui::SetTooltip("off: output.width/height below set the full-quality size");
   }
 
-  for (const ParameterGroup& group : parameter_groups())
-    if (ImGui::CollapsingHeader(group.title.c_str())) draw_parameter_group(group, editor_);
+  for (const ParameterGroup& group : parameter_groups()) {
+    const ImGuiTreeNodeFlags open = group.title == "Clouds" ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+    if (ImGui::CollapsingHeader(group.title.c_str(), open)) draw_parameter_group(group, editor_);
+  }
   ImGui::PopItemWidth();
   ImGui::End();
 }

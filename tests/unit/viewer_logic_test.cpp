@@ -146,6 +146,8 @@ TEST(ViewerPanel, EveryParameterIsInExactlyOneGroupInTheFilesOrder) {
   EXPECT_EQ(parameter_groups()[0].keys,
             (std::vector<std::string>{"time", "time_s", "location.lat_deg", "location.lon_deg",
                                       "location.altitude_m"}));
+  EXPECT_EQ(parameter_groups()[4].keys.front(), "clouds.bottom_altitude_m");
+  EXPECT_EQ(parameter_groups()[4].keys.back(), "noise_seed");
 }
 
 TEST(ViewerPanel, WidgetTextsAreSceneLiterals) {
