@@ -27,7 +27,9 @@
 #include "nephele/sky.h"
 #include "panel.h"
 #include "scene_editor.h"
+#if !NEPHELE_VIEW_FRAME_RENDERER
 #include "stand_in_renderer.h"
+#endif
 #include "vulkan_window.h"
 
 #define STB_IMAGE_WRITE_STATIC
@@ -37,8 +39,12 @@
 namespace nephele::view {
 namespace {
 
-// TODO(frame API): nephele::FrameRenderer once src/render/frame_renderer.cpp lands on main.
+#if NEPHELE_VIEW_FRAME_RENDERER
+using SkyRenderer = FrameRenderer;
+#else
+// TODO(frame API): a stand-in that clears the image until FrameRenderer lands on main.
 using SkyRenderer = StandInRenderer;
+#endif
 
 constexpr int kGraphFrames = 200;
 constexpr std::array<int, 5> kTimeSpeeds = {1, 10, 60, 600, 3600};
@@ -188,6 +194,11 @@ Viewer::Viewer(const ViewerOptions& options)
       vk_(glfw_.window, VulkanWindowOptions{options.validation, options.device}),
       editor_(options.scene),
       follow_window_(options.follow_window) {
+#if !NEPHELE_VIEW_FRAME_RENDERER
+  std::fprintf(stderr,
+               "nephele-view: stand-in renderer: this build has no FrameRenderer yet; the image "
+               "is cleared, not rendered\n");
+#endif
   RendererOptions renderer_options;
   renderer_options.validation = options.validation;
   renderer_ = std::make_unique<SkyRenderer>(vk_.host(), renderer_options);
