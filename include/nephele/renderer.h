@@ -92,6 +92,7 @@ class Renderer {
   int validation_messages() const;
 
  private:
+  Frame render_frame(const Scene& scene, bool still, bool read_back);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

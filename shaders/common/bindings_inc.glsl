@@ -70,5 +70,7 @@ layout(set = 0, binding = 37) uniform sampler2D curl_noise;
 // (ground_light.comp; read by compose.comp).
 layout(set = 0, binding = 38, r32f) uniform writeonly image2D ground_light_out;
 layout(set = 0, binding = 39) uniform sampler2D ground_light;
+// The display image (tonemap.comp): exposed, tone-mapped, sRGB code values, 8 bits.
+layout(set = 0, binding = 40, rgba8) uniform writeonly image2D display_out;
 
 #endif

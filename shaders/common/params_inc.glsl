@@ -113,6 +113,7 @@ struct FrameParams {
   vec4 conditions_disk_fog;  // rgb fog on the sun and moon discs; w fog near (m)
   vec4 conditions_fog;       // rgb fog on clouds and ground; w fog far (m)
   vec4 conditions_light;     // rgb the key light on the ground (artist mode); w unused
+  vec4 display;              // x exposure (linear scale before the tone map, tonemap.comp)
 };
 
 // FrameParams::steps.w: how the clouds pass turns its pixels into rays.

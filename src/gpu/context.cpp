@@ -125,17 +125,44 @@ Context::Context(const ContextOptions& options) {
   NEPHELE_VK(vkCreateDevice(physical_, &device_info, nullptr, &device_));
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 
+  create_pool_and_fence(options.verbose);
+}
+
+Context::Context(const HostDevice& host, bool verbose) : owns_device_(false) {
+  if (!host.instance || !host.physical_device || !host.device || !host.queue)
+    throw InputError(
+        "HostVulkan: instance, physical_device, device and queue must all be set (a null handle "
+        "was given)");
+  instance_ = host.instance;
+  physical_ = host.physical_device;
+  device_ = host.device;
+  queue_ = host.queue;
+  queue_family_ = host.queue_family;
+  uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &count, families.data());
+  if (queue_family_ >= count || !(families[queue_family_].queueFlags & VK_QUEUE_COMPUTE_BIT))
+    throw InputError("HostVulkan.queue_family = " + std::to_string(queue_family_) +
+                     ": must be a queue family with compute (the device has " +
+                     std::to_string(count) + " families)");
+  read_device_properties();
+  create_pool_and_fence(verbose);
+}
+
+void Context::create_pool_and_fence(bool verbose) {
   VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pool_info.queueFamilyIndex = queue_family_;
   NEPHELE_VK(vkCreateCommandPool(device_, &pool_info, nullptr, &pool_));
   VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   NEPHELE_VK(vkCreateFence(device_, &fence_info, nullptr, &fence_));
-
-  if (options.verbose)
-    std::fprintf(stderr, "nephele: device: %s%s\n", device_name_.c_str(),
-                 is_cpu_ ? " (CPU, Mesa lavapipe)" : "");
+  if (verbose)
+    std::fprintf(stderr, "nephele: device: %s%s%s\n", device_name_.c_str(),
+                 is_cpu_ ? " (CPU, Mesa lavapipe)" : "", owns_device_ ? "" : " (the host's)");
 }
+
+void Context::wait_queue_idle() const { NEPHELE_VK(vkQueueWaitIdle(queue_)); }
 
 void Context::pick_physical_device(const std::string& wanted) {
   uint32_t count = 0;
@@ -165,22 +192,32 @@ void Context::pick_physical_device(const std::string& wanted) {
     throw InputError("--device '" + wanted + "': no such Vulkan device with compute (available: " +
                      names + ")");
 
+  queue_family_ = uint32_t(compute_family(physical_));
+  read_device_properties();
+}
+
+void Context::read_device_properties() {
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(physical_, &props);
   device_name_ = props.deviceName;
   is_cpu_ = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  queue_family_ = uint32_t(compute_family(physical_));
   timestamp_period_ns_ = props.limits.timestampPeriod;
 
   uint32_t family_count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical_, &family_count, nullptr);
   std::vector<VkQueueFamilyProperties> families(family_count);
   vkGetPhysicalDeviceQueueFamilyProperties(physical_, &family_count, families.data());
+  has_graphics_ = (families[queue_family_].queueFlags & VK_QUEUE_GRAPHICS_BIT) != 0;
   has_timestamps_ = families[queue_family_].timestampValidBits > 0 &&
                     props.limits.timestampComputeAndGraphics;
 }
 
 Context::~Context() {
+  if (!owns_device_) {  // the host has waited for what it submitted; ours was waited for
+    vkDestroyFence(device_, fence_, nullptr);
+    vkDestroyCommandPool(device_, pool_, nullptr);
+    return;
+  }
   if (device_) {
     vkDeviceWaitIdle(device_);
     vkDestroyFence(device_, fence_, nullptr);
@@ -214,6 +251,11 @@ VkCommandBuffer Context::begin_commands() {
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   NEPHELE_VK(vkBeginCommandBuffer(cmd, &begin));
   return cmd;
+}
+
+void Context::discard(VkCommandBuffer cmd) {
+  vkEndCommandBuffer(cmd);
+  vkFreeCommandBuffers(device_, pool_, 1, &cmd);
 }
 
 void Context::end_and_wait(VkCommandBuffer cmd) {

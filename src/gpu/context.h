@@ -9,6 +9,15 @@
 
 namespace nephele::gpu {
 
+// A device the host created (nephele::HostVulkan): used, never destroyed.
+struct HostDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queue_family = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+};
+
 struct ContextOptions {
   std::string device;       // substring of the device name; empty = best by type
   bool validation = false;  // VK_LAYER_KHRONOS_validation + debug messenger
@@ -18,6 +27,8 @@ struct ContextOptions {
 class Context {
  public:
   explicit Context(const ContextOptions& options);
+  // On the host's device: only a command pool and a fence of its own.
+  Context(const HostDevice& host, bool verbose);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -29,24 +40,38 @@ class Context {
   VkCommandPool command_pool() const { return pool_; }
   const std::string& device_name() const { return device_name_; }
   bool is_cpu() const { return is_cpu_; }
+  bool has_graphics() const { return has_graphics_; }  // the queue family's
   double timestamp_period_ns() const { return timestamp_period_ns_; }
   bool has_timestamps() const { return has_timestamps_; }
   int validation_messages() const { return validation_messages_.load(); }
 
+  // Waits until the queue has finished everything submitted to it (before freeing resources
+  // that frames in flight may still use).
+  void wait_queue_idle() const;
+
   uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;
 
   // Records with `record`, submits, and waits for completion.
+  // When `record` throws, the command buffer is freed unsubmitted and the exception goes on.
   template <typename F>
   void submit_and_wait(F&& record) {
     VkCommandBuffer cmd = begin_commands();
-    record(cmd);
+    try {
+      record(cmd);
+    } catch (...) {
+      discard(cmd);
+      throw;
+    }
     end_and_wait(cmd);
   }
 
  private:
   VkCommandBuffer begin_commands();
   void end_and_wait(VkCommandBuffer cmd);
+  void discard(VkCommandBuffer cmd);
   void pick_physical_device(const std::string& wanted);
+  void read_device_properties();
+  void create_pool_and_fence(bool verbose);
   static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation(VkDebugUtilsMessageSeverityFlagBitsEXT,
                                                       VkDebugUtilsMessageTypeFlagsEXT,
                                                       const VkDebugUtilsMessengerCallbackDataEXT*,
@@ -60,8 +85,10 @@ class Context {
   VkCommandPool pool_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   uint32_t queue_family_ = 0;
+  bool owns_device_ = true;
   std::string device_name_;
   bool is_cpu_ = false;
+  bool has_graphics_ = false;
   bool has_timestamps_ = false;
   double timestamp_period_ns_ = 1.0;
   std::atomic<int> validation_messages_{0};

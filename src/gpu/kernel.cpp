@@ -1,5 +1,9 @@
 #include "gpu/kernel.h"
 
+#include <algorithm>
+#include <iterator>
+#include <vector>
+
 #include "gpu/vk_check.h"
 #include "nephele_embedded.h"
 
@@ -20,7 +24,8 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       kSampled, kStorage, kSampled, kStorage, kStorage, kSampled, kSampled, kStorage,
       kStorage, kSampled, kSampled, kSampled, kSampled, kStorage, kStorage, kStorage,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kStorage, kSampled, kStorage, kSampled, kStorage,
-      kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled};
+      kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled,
+      kStorage};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
   static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];
@@ -47,11 +52,12 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
   pool_info.poolSizeCount = uint32_t(sizes.size());
   pool_info.pPoolSizes = sizes.data();
   NEPHELE_VK(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_));
+  std::vector<VkDescriptorSetLayout> layouts(std::size(sets_), layout_);
   VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   alloc.descriptorPool = pool_;
-  alloc.descriptorSetCount = 1;
-  alloc.pSetLayouts = &layout_;
-  NEPHELE_VK(vkAllocateDescriptorSets(device_, &alloc, &set_));
+  alloc.descriptorSetCount = uint32_t(std::size(sets_));
+  alloc.pSetLayouts = layouts.data();
+  NEPHELE_VK(vkAllocateDescriptorSets(device_, &alloc, sets_));
 }
 
 DescriptorSet::~DescriptorSet() {
@@ -60,35 +66,45 @@ DescriptorSet::~DescriptorSet() {
   vkDestroyDescriptorSetLayout(device_, layout_, nullptr);
 }
 
-// One descriptor write of `type` at `binding`, from a buffer or an image info.
-static void write_descriptor(VkDevice device, VkDescriptorSet set, uint32_t binding,
-                             VkDescriptorType type, const VkDescriptorBufferInfo* buffer,
-                             const VkDescriptorImageInfo* image) {
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set;
-  write.dstBinding = binding;
-  write.descriptorCount = 1;
-  write.descriptorType = type;
-  write.pBufferInfo = buffer;
-  write.pImageInfo = image;
-  vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+void DescriptorSet::set_entry(Binding binding, VkDescriptorType type,
+                              const VkDescriptorBufferInfo* buffer,
+                              const VkDescriptorImageInfo* image) {
+  Entry& e = table_[binding];
+  e.type = type;
+  e.buffer = buffer ? *buffer : VkDescriptorBufferInfo{};
+  e.image = image ? *image : VkDescriptorImageInfo{};
+  e.bound = true;
+}
+
+void DescriptorSet::use(int index) {
+  current_ = index;
+  VkWriteDescriptorSet writes[kBindingCount];
+  uint32_t n = 0;
+  for (uint32_t b = 0; b < kBindingCount; ++b) {
+    const Entry& e = table_[b];
+    if (!e.bound) continue;
+    VkWriteDescriptorSet& w = writes[n++];
+    w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = sets_[index];
+    w.dstBinding = b;
+    w.descriptorCount = 1;
+    w.descriptorType = e.type;
+    const bool is_buffer = e.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ||
+                           e.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = is_buffer ? &e.buffer : nullptr;
+    w.pImageInfo = is_buffer ? nullptr : &e.image;
+  }
+  vkUpdateDescriptorSets(device_, n, writes, 0, nullptr);
 }
 
 void DescriptorSet::bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type) {
   VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
-  write_descriptor(device_, set_, binding, type, &info, nullptr);
-}
-
-static void write_image(VkDevice device, VkDescriptorSet set, uint32_t binding,
-                        VkDescriptorType type, const Texture& texture) {
-  const bool storage = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  VkDescriptorImageInfo info{texture.sampler(), storage ? texture.storage_view() : texture.view(),
-                             VK_IMAGE_LAYOUT_GENERAL};
-  write_descriptor(device, set, binding, type, nullptr, &info);
+  set_entry(binding, type, &info, nullptr);
 }
 
 void DescriptorSet::bind_storage_image(Binding binding, const Texture& texture) {
-  write_image(device_, set_, binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, texture);
+  VkDescriptorImageInfo info{texture.sampler(), texture.storage_view(), VK_IMAGE_LAYOUT_GENERAL};
+  set_entry(binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &info);
 }
 
 void DescriptorSet::bind_image(Binding written, Binding read, const Texture& texture) {
@@ -97,7 +113,8 @@ void DescriptorSet::bind_image(Binding written, Binding read, const Texture& tex
 }
 
 void DescriptorSet::bind_sampled_image(Binding binding, const Texture& texture) {
-  write_image(device_, set_, binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, texture);
+  VkDescriptorImageInfo info{texture.sampler(), texture.view(), VK_IMAGE_LAYOUT_GENERAL};
+  set_entry(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &info);
 }
 
 Kernel::Kernel(Context& ctx, const DescriptorSet& set, const std::string& spv_name,
@@ -168,10 +185,12 @@ std::vector<std::pair<std::string, double>> PassTimer::results() const {
   std::vector<std::pair<std::string, double>> out;
   if (!pool_ || names_.empty()) return out;
   std::vector<uint64_t> stamps(2 * names_.size());
-  NEPHELE_VK(vkGetQueryPoolResults(ctx_.device(), pool_, 0, uint32_t(stamps.size()),
-                                   stamps.size() * sizeof(uint64_t), stamps.data(),
-                                   sizeof(uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  // No wait: a frame the host recorded and never submitted has no timings (VK_NOT_READY).
+  const VkResult result = vkGetQueryPoolResults(
+      ctx_.device(), pool_, 0, uint32_t(stamps.size()), stamps.size() * sizeof(uint64_t),
+      stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+  if (result == VK_NOT_READY) return out;
+  NEPHELE_VK(result);
   for (size_t i = 0; i < names_.size(); ++i)
     out.emplace_back(names_[i],
                      double(stamps[2 * i + 1] - stamps[2 * i]) * ctx_.timestamp_period_ns() * 1e-6);

@@ -54,18 +54,32 @@ enum Binding : uint32_t {
   kCurlNoise = 37,
   kGroundLightOut = 38,
   kGroundLight = 39,
+  kDisplayOut = 40,
   kBindingCount
 };
 
+// How many frames may be in flight at once (nephele::FrameRenderer): each has its own
+// descriptor set, frame parameters, timestamps and output images.
+constexpr int kFramesInFlight = 2;
+
+// The bindings of every pass, kept as a table on the host and written into one of
+// kFramesInFlight + 1 Vulkan descriptor sets when a command buffer starts (use()): a set is
+// never updated while a command buffer that uses it may be pending. The last set is for
+// one-off work that is submitted and waited for.
 class DescriptorSet {
  public:
+  static constexpr int kOneOff = kFramesInFlight;
   explicit DescriptorSet(Context& ctx);
   ~DescriptorSet();
   DescriptorSet(const DescriptorSet&) = delete;
   DescriptorSet& operator=(const DescriptorSet&) = delete;
 
   VkPipelineLayout pipeline_layout() const { return pipeline_layout_; }
-  VkDescriptorSet set() const { return set_; }
+  // The set that dispatches bind: the one of the last use().
+  VkDescriptorSet set() const { return sets_[current_]; }
+  // Writes the table into set `index` (a frame's slot, or kOneOff) and makes it current.
+  // The command buffers that used it before must have completed.
+  void use(int index);
   void bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type);
   void bind_storage_image(Binding binding, const Texture& texture);
   void bind_sampled_image(Binding binding, const Texture& texture);
@@ -77,7 +91,17 @@ class DescriptorSet {
   VkDescriptorSetLayout layout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkDescriptorSet sets_[kFramesInFlight + 1] = {};
+  int current_ = kOneOff;
+  struct Entry {
+    VkDescriptorType type{};
+    VkDescriptorBufferInfo buffer{};
+    VkDescriptorImageInfo image{};
+    bool bound = false;
+  };
+  Entry table_[kBindingCount];
+  void set_entry(Binding binding, VkDescriptorType type, const VkDescriptorBufferInfo* buffer,
+                 const VkDescriptorImageInfo* image);
 };
 
 // A compute pipeline from the embedded SPIR-V file `spv_name` (e.g. "clouds.comp.spv"),
@@ -106,7 +130,8 @@ class PassTimer {
   void reset(VkCommandBuffer cmd);
   void begin(VkCommandBuffer cmd, const std::string& name);
   void end(VkCommandBuffer cmd);
-  // After the command buffer completed: (name, milliseconds) per pass.
+  // After the command buffer completed: (name, milliseconds) per pass; empty when the results
+  // are not available (a command buffer not submitted, or not yet complete).
   std::vector<std::pair<std::string, double>> results() const;
 
  private:

@@ -77,5 +77,12 @@ class Texture {
 
 // A full memory barrier between compute/transfer work (shader writes -> reads).
 void compute_barrier(VkCommandBuffer cmd);
+// Everything submitted before (any stage, any write) before the compute and transfer work
+// that follows: the first command of every frame and one-off submission.
+void full_barrier(VkCommandBuffer cmd);
+// The end of a frame: its compute writes made visible to the host's transfers, fragment and
+// compute shaders (nephele/frame.h, FrameImages); fragment shaders only where the queue has
+// graphics.
+void frame_end_barrier(VkCommandBuffer cmd, bool graphics);
 
 }  // namespace nephele::gpu

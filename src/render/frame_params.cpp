@@ -406,6 +406,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
                       int(scene.noise_seed & 0x7fffffff));
   f.steps = glm::ivec4(scene.quality.primary_steps, scene.quality.light_steps,
                        scene.atmosphere.view_samples, 0);
+  f.display = glm::vec4(scene.output.exposure, 0.0f, 0.0f, 0.0f);
   return f;
 }
 

@@ -1,6 +1,7 @@
 #include "render/passes.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "render/glsl.h"
 #include "render/gpu_params.h"
@@ -32,8 +33,7 @@ GpuState::GpuState(gpu::Context& c)
       cloud_profile_kernel(c, set, "cloud_profile.comp.spv"),
       ground_light_default_kernel(c, set, "ground_light.comp.spv", {0}),
       ground_light_baseline_kernel(c, set, "ground_light.comp.spv", {1}),
-      timer(c, 12),
-      frame_params(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
+      tonemap_kernel(c, set, "tonemap.comp.spv"),
       stars(c, sizeof(gpu::StarGpu) * std::max<size_t>(star_catalogue().size(), 1),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
       base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
@@ -66,7 +66,10 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_image(gpu::kAerialPerspectiveOut, gpu::kAerialPerspective, aerial_perspective);
   set.bind_image(gpu::kLightVolumeOut, gpu::kLightVolume, light_volume);
   set.bind_image(gpu::kGroundLightOut, gpu::kGroundLight, ground_light);
-  set.bind_buffer(gpu::kFrameParams, frame_params, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  for (int i = 0; i < kSlots; ++i) {
+    timers[i] = std::make_unique<gpu::PassTimer>(c, 16);
+    frame_params[i] = gpu::Buffer(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  }
   set.bind_buffer(gpu::kStars, stars, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   auto* star_data = static_cast<gpu::StarGpu*>(stars.data());
   for (const Star& star : star_catalogue())
@@ -95,17 +98,20 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
     clouds_a[i] = cloud_image();
     clouds_b[i] = cloud_image();
   }
-  color = gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-                       VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  for (int i = 0; i < gpu::kFramesInFlight; ++i) {
+    color[i] = gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                            VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    display[i] = gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R8G8B8A8_UNORM,
+                              VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  }
   bind_march(false);
   set.bind_storage_image(gpu::kRangeLo, range_lo);
   set.bind_storage_image(gpu::kRangeHi, range_hi);
-  set.bind_storage_image(gpu::kColorOut, color);
-  set.bind_storage_image(gpu::kColor, color);
   // Defined contents: filters read neighbours of the texels a frame writes.
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     for (const gpu::Texture* t : {&march_a, &march_b, &range_lo, &range_hi, &clouds_a[0],
-                                  &clouds_a[1], &clouds_b[0], &clouds_b[1], &color})
+                                  &clouds_a[1], &clouds_b[0], &clouds_b[1], &color[0], &color[1],
+                                  &display[0], &display[1]})
       t->record_clear(cmd);
   });
   current = 1;
@@ -114,6 +120,20 @@ void GpuState::resize(int w, int h, int cloud_w, int cloud_h) {
   height = h;
   cloud_width = cloud_w;
   cloud_height = cloud_h;
+}
+
+void GpuState::begin(VkCommandBuffer cmd, int index, const gpu::FrameParams& params) {
+  slot = index;
+  std::memcpy(frame_params[slot].data(), &params, sizeof(params));
+  set.bind_buffer(gpu::kFrameParams, frame_params[slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  const int image = slot == kOneOff ? 0 : slot;  // one-off work writes no final image
+  set.bind_storage_image(gpu::kColorOut, color[image]);
+  set.bind_storage_image(gpu::kColor, color[image]);
+  set.bind_storage_image(gpu::kDisplayOut, display[image]);
+  set.use(slot);
+  timer = timers[slot].get();
+  timer->reset(cmd);
+  gpu::full_barrier(cmd);
 }
 
 void GpuState::bind_march(bool sky_dome) {
@@ -137,37 +157,37 @@ void GpuState::swap_history() {
 }
 
 void pass_noise_base(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.noise_base_kernel, s.set, s.timer, "noise_base", kBaseNoiseSize,
+  gpu::dispatch(cmd, s.noise_base_kernel, s.set, *s.timer, "noise_base", kBaseNoiseSize,
                 kBaseNoiseSize, kBaseNoiseSize, 4, 4, 4);
 }
 
 void pass_noise_detail(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.noise_detail_kernel, s.set, s.timer, "noise_detail", kDetailNoiseSize,
+  gpu::dispatch(cmd, s.noise_detail_kernel, s.set, *s.timer, "noise_detail", kDetailNoiseSize,
                 kDetailNoiseSize, kDetailNoiseSize, 4, 4, 4);
   s.detail_noise.record_mipmaps(cmd);
 }
 
 void pass_noise_curl(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.noise_curl_kernel, s.set, s.timer, "noise_curl", kCurlNoiseSize,
+  gpu::dispatch(cmd, s.noise_curl_kernel, s.set, *s.timer, "noise_curl", kCurlNoiseSize,
                 kCurlNoiseSize, 1, 8, 8, 1);
 }
 
 void pass_weather(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.weather_kernel, s.set, s.timer, "weather", kWeatherMapSize, kWeatherMapSize,
+  gpu::dispatch(cmd, s.weather_kernel, s.set, *s.timer, "weather", kWeatherMapSize, kWeatherMapSize,
                 1, 8, 8, 1);
 }
 
 void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.transmittance_lut_kernel, s.set, s.timer, "transmittance",
+  gpu::dispatch(cmd, s.transmittance_lut_kernel, s.set, *s.timer, "transmittance",
                 glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1, 8, 8, 1);
-  gpu::dispatch(cmd, s.ms_lut_kernel, s.set, s.timer, "multiscatter", glsl::MS_LUT_W,
+  gpu::dispatch(cmd, s.ms_lut_kernel, s.set, *s.timer, "multiscatter", glsl::MS_LUT_W,
                 glsl::MS_LUT_H, 1, 8, 8, 1);
 }
 
 void pass_sky_view(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.sky_view_kernel, s.set, s.timer, "sky_view", kSkyViewWidth, kSkyViewHeight,
+  gpu::dispatch(cmd, s.sky_view_kernel, s.set, *s.timer, "sky_view", kSkyViewWidth, kSkyViewHeight,
                 1, 8, 8, 1);
-  gpu::dispatch(cmd, s.aerial_perspective_kernel, s.set, s.timer, "aerial_persp", glsl::AP_SIZE_U,
+  gpu::dispatch(cmd, s.aerial_perspective_kernel, s.set, *s.timer, "aerial_persp", glsl::AP_SIZE_U,
                 glsl::AP_SIZE_V, 1, 8, 8, 1);
 }
 
@@ -180,45 +200,45 @@ const gpu::Kernel& clouds_kernel(const GpuState& s, MarchMode mode) {
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
   const gpu::Kernel& kernel = clouds_kernel(s, mode);
   const auto blocks = [&](int n) { return uint32_t((n + s.stride - 1) / s.stride); };
-  gpu::dispatch(cmd, kernel, s.set, s.timer, "clouds", blocks(s.cloud_width),
+  gpu::dispatch(cmd, kernel, s.set, *s.timer, "clouds", blocks(s.cloud_width),
                 blocks(s.cloud_height), 1, 8, 8, 1);
 }
 
 void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
-  gpu::dispatch(cmd, clouds_kernel(s, mode), s.set, s.timer, "sky_dome", kSkyDomeSize,
+  gpu::dispatch(cmd, clouds_kernel(s, mode), s.set, *s.timer, "sky_dome", kSkyDomeSize,
                 kSkyDomeSize, 1, 8, 8, 1);
 }
 
 void pass_cloud_profile(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.cloud_profile_kernel, s.set, s.timer, "cloud_profile", kCloudProfileSize,
+  gpu::dispatch(cmd, s.cloud_profile_kernel, s.set, *s.timer, "cloud_profile", kCloudProfileSize,
                 kCloudProfileSize, 1, 8, 8, 1);
 }
 
 void pass_march_range(VkCommandBuffer cmd, GpuState& s) {
   const auto blocks = [&](int n) { return uint32_t((n + s.stride - 1) / s.stride); };
-  gpu::dispatch(cmd, s.march_range_kernel, s.set, s.timer, "march_range", blocks(s.cloud_width),
+  gpu::dispatch(cmd, s.march_range_kernel, s.set, *s.timer, "march_range", blocks(s.cloud_width),
                 blocks(s.cloud_height), 1, 8, 8, 1);
 }
 
 void pass_resolve(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.resolve_kernel, s.set, s.timer, "resolve", uint32_t(s.cloud_width),
+  gpu::dispatch(cmd, s.resolve_kernel, s.set, *s.timer, "resolve", uint32_t(s.cloud_width),
                 uint32_t(s.cloud_height), 1, 8, 8, 1);
 }
 
 void pass_light_volume(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.light_volume_kernel, s.set, s.timer, "light_volume", gpu::LIGHT_VOLUME_XY,
+  gpu::dispatch(cmd, s.light_volume_kernel, s.set, *s.timer, "light_volume", gpu::LIGHT_VOLUME_XY,
                 gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z, 4, 4, 4);
 }
 
 void pass_reference_sky(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.reference_psi_kernel, s.set, s.timer, "reference_psi", gpu::REFERENCE_TILE,
+  gpu::dispatch(cmd, s.reference_psi_kernel, s.set, *s.timer, "reference_psi", gpu::REFERENCE_TILE,
                 gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES, 4, 4, 4);
-  gpu::dispatch(cmd, s.reference_sky_kernel, s.set, s.timer, "reference_sky", gpu::REFERENCE_TILE,
+  gpu::dispatch(cmd, s.reference_sky_kernel, s.set, *s.timer, "reference_sky", gpu::REFERENCE_TILE,
                 gpu::REFERENCE_TILE, 1, 8, 8, 1);
 }
 
 void pass_stars(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.stars_kernel, s.set, s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1,
+  gpu::dispatch(cmd, s.stars_kernel, s.set, *s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1,
                 1);
 }
 
@@ -226,12 +246,17 @@ void pass_ground_light(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
   gpu::dispatch(cmd,
                 mode == MarchMode::Baseline ? s.ground_light_baseline_kernel
                                             : s.ground_light_default_kernel,
-                s.set, s.timer, "ground_light", 16, 16, 1, 16, 16, 1);
+                s.set, *s.timer, "ground_light", 16, 16, 1, 16, 16, 1);
+}
+
+void pass_tonemap(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.tonemap_kernel, s.set, *s.timer, "tonemap", uint32_t(s.width),
+                uint32_t(s.height), 1, 8, 8, 1);
 }
 
 void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model) {
   gpu::dispatch(cmd, model == SkyModel::Reference ? s.compose_reference_kernel : s.compose_kernel,
-                s.set, s.timer, "compose", uint32_t(s.width), uint32_t(s.height), 1, 8, 8, 1);
+                s.set, *s.timer, "compose", uint32_t(s.width), uint32_t(s.height), 1, 8, 8, 1);
 }
 
 }  // namespace nephele

@@ -2,11 +2,15 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "gpu/context.h"
 #include "gpu/kernel.h"
 #include "gpu/resources.h"
 #include "nephele/scene.h"
+#include "render/gpu_params.h"
 
 namespace nephele {
 
@@ -28,7 +32,25 @@ constexpr uint32_t kCloudProfileSize = kSkyDomeSize;
 
 // Everything the passes read and write.
 struct GpuState {
+  // Per frame in flight (slots 0 .. kFramesInFlight - 1), and one more for one-off work.
+  static constexpr int kOneOff = gpu::DescriptorSet::kOneOff;
+  static constexpr int kSlots = gpu::kFramesInFlight + 1;
+
   explicit GpuState(gpu::Context& ctx);
+  // Starts recording a frame of `slot` into `cmd`: its parameters, bindings and timestamps
+  // (the command buffers that used the slot before must have completed), and a barrier after
+  // everything submitted before.
+  void begin(VkCommandBuffer cmd, int slot, const gpu::FrameParams& params);
+  // One-off work: records `record` after begin(kOneOff, params), submits it, waits, and
+  // returns the passes' timings.
+  template <typename F>
+  std::vector<std::pair<std::string, double>> run_once(const gpu::FrameParams& params, F&& record) {
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+      begin(cmd, kOneOff, params);
+      record(cmd);
+    });
+    return timers[kOneOff]->results();
+  }
   // (Re)allocates the per-pixel buffers: the image, the cloud buffer and the marched samples.
   void resize(int width, int height, int cloud_width, int cloud_height);
   // The cloud buffer just written becomes the history of the next frame.
@@ -43,9 +65,11 @@ struct GpuState {
   gpu::Kernel compose_kernel, compose_reference_kernel, light_volume_kernel, march_range_kernel;
   gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel, aerial_perspective_kernel;
   gpu::Kernel reference_psi_kernel, reference_sky_kernel, cloud_profile_kernel;
-  gpu::Kernel ground_light_default_kernel, ground_light_baseline_kernel;
-  gpu::PassTimer timer;
-  gpu::Buffer frame_params;
+  gpu::Kernel ground_light_default_kernel, ground_light_baseline_kernel, tonemap_kernel;
+  std::unique_ptr<gpu::PassTimer> timers[kSlots];
+  gpu::PassTimer* timer = nullptr;  // the slot's, since begin()
+  gpu::Buffer frame_params[kSlots];
+  int slot = kOneOff;               // since begin()
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
   int star_count = 0;
   gpu::Texture base_noise, detail_noise, curl_noise, weather_map, sky_view, light_volume;
@@ -61,7 +85,9 @@ struct GpuState {
   gpu::Texture march_a, march_b, range_lo, range_hi;
   gpu::Texture dome_a, dome_b;  // the clouds pass over the sky dome (bind_march)
   gpu::Texture clouds_a[2], clouds_b[2];
-  gpu::Texture color;
+  // The final images of each frame in flight (index: slot; kOneOff's are unused): linear HDR,
+  // and the display image (tonemap.comp).
+  gpu::Texture color[kSlots], display[kSlots];
   int current = 0;  // index of this frame's cloud buffer
   int width = 0, height = 0, cloud_width = 0, cloud_height = 0;
   int stride = 1;  // this frame's march stride
@@ -92,5 +118,7 @@ void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model);
 // One tile (FrameParams::reference_tile) of the brute-force reference sky.
 void pass_reference_sky(VkCommandBuffer cmd, GpuState& s);
 void pass_stars(VkCommandBuffer cmd, GpuState& s);
+// The display image from the final one: exposure, ACES fit, sRGB.
+void pass_tonemap(VkCommandBuffer cmd, GpuState& s);
 
 }  // namespace nephele

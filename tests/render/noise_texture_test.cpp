@@ -64,13 +64,8 @@ double random_pair_difference(const Volume& v, int c) {
 
 // Runs `passes` with the default scene's parameters.
 template <typename Passes>
-void run_passes(nephele::gpu::Context& ctx, nephele::GpuState& state, Passes passes) {
-  const nephele::gpu::FrameParams params = nephele::make_frame_params(nephele::Scene{}, 0);
-  std::memcpy(state.frame_params.data(), &params, sizeof(params));
-  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    state.timer.reset(cmd);
-    passes(cmd);
-  });
+void run_passes(nephele::gpu::Context&, nephele::GpuState& state, Passes passes) {
+  state.run_once(nephele::make_frame_params(nephele::Scene{}, 0), passes);
 }
 
 }  // namespace

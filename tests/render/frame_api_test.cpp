@@ -1,0 +1,264 @@
+// The frame API (nephele/frame.h) as a host uses it: the test owns the Vulkan instance, device,
+// queue, command buffers and fences, with validation and synchronisation validation on, and
+// keeps two frames in flight.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "nephele/error.h"
+#include "nephele/frame.h"
+#include "nephele/image.h"
+#include "nephele/scene_io.h"
+
+namespace {
+
+// A host's Vulkan: instance with the validation layer (synchronisation validation too) and a
+// counting messenger, the first device, a queue of its first compute family.
+class Host {
+ public:
+  Host() {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.apiVersion = VK_API_VERSION_1_2;
+    const char* layer = "VK_LAYER_KHRONOS_validation";
+    const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    VkValidationFeatureEnableEXT enables[] = {
+        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = enables;
+    VkDebugUtilsMessengerCreateInfoEXT messenger{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
+    messenger.pfnUserCallback = &Host::on_message;
+    messenger.pUserData = this;
+    features.pNext = &messenger;
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pNext = &features;
+    info.pApplicationInfo = &app;
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = &layer;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &extension;
+    if (vkCreateInstance(&info, nullptr, &vk.instance) != VK_SUCCESS) return;
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(vk.instance, "vkCreateDebugUtilsMessengerEXT"));
+    create(vk.instance, &messenger, nullptr, &messenger_);
+
+    uint32_t count = 1;
+    vkEnumeratePhysicalDevices(vk.instance, &count, &vk.physical_device);
+    uint32_t families = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(vk.physical_device, &families, nullptr);
+    std::vector<VkQueueFamilyProperties> props(families);
+    vkGetPhysicalDeviceQueueFamilyProperties(vk.physical_device, &families, props.data());
+    for (uint32_t i = 0; i < families; ++i)
+      if (props[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+        vk.queue_family = i;
+        break;
+      }
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queue.queueFamilyIndex = vk.queue_family;
+    queue.queueCount = 1;
+    queue.pQueuePriorities = &priority;
+    VkDeviceCreateInfo device{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    device.queueCreateInfoCount = 1;
+    device.pQueueCreateInfos = &queue;
+    vkCreateDevice(vk.physical_device, &device, nullptr, &vk.device);
+    vkGetDeviceQueue(vk.device, vk.queue_family, 0, &vk.queue);
+
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool_info.queueFamilyIndex = vk.queue_family;
+    vkCreateCommandPool(vk.device, &pool_info, nullptr, &pool);
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = pool;
+    alloc.commandBufferCount = 2;
+    vkAllocateCommandBuffers(vk.device, &alloc, cmd);
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    fence_info.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+    for (VkFence& f : fence) vkCreateFence(vk.device, &fence_info, nullptr, &f);
+  }
+  ~Host() {
+    if (vk.device) {
+      vkDeviceWaitIdle(vk.device);
+      for (VkFence f : fence) vkDestroyFence(vk.device, f, nullptr);
+      vkDestroyCommandPool(vk.device, pool, nullptr);
+      vkDestroyDevice(vk.device, nullptr);
+    }
+    if (messenger_) {
+      auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+          vkGetInstanceProcAddr(vk.instance, "vkDestroyDebugUtilsMessengerEXT"));
+      destroy(vk.instance, messenger_, nullptr);
+    }
+    if (vk.instance) vkDestroyInstance(vk.instance, nullptr);
+  }
+
+  // Waits for the slot's previous frame, begins its command buffer.
+  VkCommandBuffer begin(int slot) {
+    vkWaitForFences(vk.device, 1, &fence[slot], VK_TRUE, UINT64_MAX);
+    vkResetFences(vk.device, 1, &fence[slot]);
+    vkResetCommandBuffer(cmd[slot], 0);
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkBeginCommandBuffer(cmd[slot], &begin);
+    return cmd[slot];
+  }
+  void submit(int slot) {
+    vkEndCommandBuffer(cmd[slot]);
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd[slot];
+    vkQueueSubmit(vk.queue, 1, &submit, fence[slot]);
+  }
+
+  nephele::HostVulkan vk;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkCommandBuffer cmd[2] = {};
+  VkFence fence[2] = {};
+  int messages = 0;
+
+ private:
+  static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void* user) {
+    static_cast<Host*>(user)->messages++;
+    std::fprintf(stderr, "validation: %s\n", data->pMessage);
+    return VK_FALSE;
+  }
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+};
+
+// A host-visible buffer the display image is copied into.
+struct Readback {
+  Readback(const nephele::HostVulkan& vk, VkDeviceSize size) : device(vk.device) {
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = size;
+    info.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    vkCreateBuffer(device, &info, nullptr, &buffer);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(device, buffer, &req);
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(vk.physical_device, &props);
+    const VkMemoryPropertyFlags want =
+        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
+      if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & want) == want) {
+        alloc.memoryTypeIndex = i;
+        break;
+      }
+    vkAllocateMemory(device, &alloc, nullptr, &memory);
+    vkBindBufferMemory(device, buffer, memory, 0);
+    vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped);
+  }
+  ~Readback() {
+    vkDestroyBuffer(device, buffer, nullptr);
+    vkFreeMemory(device, memory, nullptr);
+  }
+  VkDevice device;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* mapped = nullptr;
+};
+
+nephele::Scene small_scene() {
+  nephele::Scene scene = nephele::load_preset("default");
+  scene.output.width = 40;
+  scene.output.height = 28;
+  return scene;
+}
+
+TEST(FrameApi, TwoFramesInFlightOnTheHostsDeviceWithSynchronisationValidation) {
+  Host host;
+  ASSERT_NE(host.vk.device, VK_NULL_HANDLE) << "no Vulkan device with validation";
+  nephele::Scene scene = small_scene();
+  const int frames = 6;
+  nephele::FrameImages last;
+  VkDeviceSize bytes = VkDeviceSize(scene.output.width) * scene.output.height * 4;
+  Readback display(host.vk, bytes);
+  {
+    nephele::FrameRenderer sky(host.vk);
+    ASSERT_EQ(sky.frames_in_flight(), 2);
+    EXPECT_FALSE(sky.completed_stats().has_value());
+    for (int i = 0; i < frames; ++i) {
+      const int slot = i % sky.frames_in_flight();
+      VkCommandBuffer cmd = host.begin(slot);
+      scene.time_s += 0.1f;
+      scene.camera.position_m.x += 5.0f;
+      last = sky.record_frame(cmd, scene);
+      EXPECT_EQ(last.slot, slot);
+      if (i == frames - 1) {  // the host copies the display image after the frame's barrier
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {last.width, last.height, 1};
+        vkCmdCopyImageToBuffer(cmd, last.display, VK_IMAGE_LAYOUT_GENERAL, display.buffer, 1,
+                               &region);
+        VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0,
+                             1, &to_host, 0, nullptr, 0, nullptr);
+      }
+      host.submit(slot);
+      if (i >= 2) {  // the slot reused: the frame two before is collected
+        ASSERT_TRUE(sky.completed_stats().has_value()) << "frame " << i;
+        EXPECT_GT(sky.completed_stats()->passes.size(), 4u);
+        EXPECT_EQ(sky.completed_stats()->width, scene.output.width);
+      }
+    }
+    vkWaitForFences(host.vk.device, 2, host.fence, VK_TRUE, UINT64_MAX);
+
+    // The display image the host copied is the HDR image as the PNG writer encodes it.
+    const nephele::Frame frame = sky.read_back();
+    ASSERT_EQ(frame.color.width, scene.output.width);
+    const std::vector<unsigned char> expected =
+        nephele::tonemap_srgb8(frame.color, scene.output.exposure);
+    const auto* got = static_cast<const unsigned char*>(display.mapped);
+    int worst = 0;
+    for (size_t i = 0; i < expected.size(); ++i)
+      worst = std::max(worst, std::abs(int(got[i]) - int(expected[i])));
+    EXPECT_LE(worst, 1) << "display image against tonemap_srgb8 of the HDR image";
+
+    // An invalid scene records nothing and throws; the last valid one keeps rendering.
+    nephele::Scene bad = scene;
+    bad.clouds.coverage = 1.5f;
+    VkCommandBuffer cmd = host.begin(0);
+    EXPECT_THROW(sky.record_frame(cmd, bad), nephele::InputError);
+    sky.record_frame(cmd, scene);
+    host.submit(0);
+    vkDeviceWaitIdle(host.vk.device);
+  }
+  EXPECT_EQ(host.messages, 0);
+}
+
+// The check above can fail: the same host reports a hazard of its own (two writes to one
+// buffer with no barrier between them).
+TEST(FrameApi, SynchronisationValidationSeesAHazard) {
+  Host host;
+  ASSERT_NE(host.vk.device, VK_NULL_HANDLE);
+  Readback target(host.vk, 256);
+  VkCommandBuffer cmd = host.begin(0);
+  vkCmdFillBuffer(cmd, target.buffer, 0, 256, 1u);
+  vkCmdFillBuffer(cmd, target.buffer, 0, 256, 2u);
+  host.submit(0);
+  vkDeviceWaitIdle(host.vk.device);
+  EXPECT_GT(host.messages, 0);
+}
+
+TEST(FrameApi, RefusesNullHandlesAndCommandBuffers) {
+  nephele::HostVulkan none;
+  try {
+    nephele::FrameRenderer sky(none);
+    FAIL() << "null handles accepted";
+  } catch (const nephele::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("HostVulkan"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
