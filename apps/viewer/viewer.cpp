@@ -27,9 +27,6 @@
 #include "nephele/sky.h"
 #include "panel.h"
 #include "scene_editor.h"
-#if !NEPHELE_VIEW_FRAME_RENDERER
-#include "stand_in_renderer.h"
-#endif
 #include "vulkan_window.h"
 
 #define STB_IMAGE_WRITE_STATIC
@@ -39,12 +36,6 @@
 namespace nephele::view {
 namespace {
 
-#if NEPHELE_VIEW_FRAME_RENDERER
-using SkyRenderer = FrameRenderer;
-#else
-// TODO(frame API): a stand-in that clears the image until FrameRenderer lands on main.
-using SkyRenderer = StandInRenderer;
-#endif
 
 constexpr int kGraphFrames = 200;
 constexpr std::array<int, 5> kTimeSpeeds = {1, 10, 60, 600, 3600};
@@ -149,7 +140,7 @@ class Viewer {
   ViewerOptions options_;
   GlfwWindow glfw_;
   VulkanWindow vk_;
-  std::unique_ptr<SkyRenderer> renderer_;
+  std::unique_ptr<FrameRenderer> renderer_;
   VkDescriptorPool imgui_pool_ = VK_NULL_HANDLE;
   bool imgui_ready_ = false;
 
@@ -194,14 +185,9 @@ Viewer::Viewer(const ViewerOptions& options)
       vk_(glfw_.window, VulkanWindowOptions{options.validation, options.device}),
       editor_(options.scene),
       follow_window_(options.follow_window) {
-#if !NEPHELE_VIEW_FRAME_RENDERER
-  std::fprintf(stderr,
-               "nephele-view: stand-in renderer: this build has no FrameRenderer yet; the image "
-               "is cleared, not rendered\n");
-#endif
   RendererOptions renderer_options;
   renderer_options.validation = options.validation;
-  renderer_ = std::make_unique<SkyRenderer>(vk_.host(), renderer_options);
+  renderer_ = std::make_unique<FrameRenderer>(vk_.host(), renderer_options);
   camera_.sync_from(editor_.scene().camera);
   applied_camera_ = editor_.scene().camera;
   dynres_.set_target_ms(options.target_ms);
