@@ -286,9 +286,10 @@ void Viewer::run_script_commands() {
         try {
           Scene next = c.action == ScriptAction::kPreset ? load_preset(c.argument)
                                                           : load_scene_file(c.argument);
-          if (follow_window_) next.output = {editor_.scene().output.width,
-                                             editor_.scene().output.height, next.output.exposure,
-                                             next.output.auto_exposure};
+          if (follow_window_) {  // the render size stays the window's
+            next.output.width = editor_.scene().output.width;
+            next.output.height = editor_.scene().output.height;
+          }
           error = editor_.replace(next, c.argument);
         } catch (const InputError& e) {
           error = e.what();
