@@ -46,6 +46,45 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name = {});
 // The whole scene as TOML; parse_scene_toml(scene_to_toml(s), ...) gives back s exactly.
 std::string scene_to_toml(const Scene& scene);
 
+// --- one parameter at a time (a viewer's panel, a script, a host's own UI) -----------------
+// Every key of scene_to_toml, by its dotted name: "clouds.coverage", "time",
+// "conditions.good.night.hour". Values are TOML literal text, as a scene file writes them.
+
+// What a parameter holds; the TOML literal it takes.
+enum class SceneValueKind {
+  kFloat,   // 0.9 (an integer literal is accepted too)
+  kInt,     // 64
+  kUint,    // 1, [0, 4294967295]
+  kVec2,    // [8.0, 2.0]
+  kVec3,    // [0.0, 1.0, 0.25]
+  kString,  // "file.png"
+  kEnum,    // "hillaire": one of SceneParameter::allowed, quoted
+  kBool,    // true
+};
+
+struct SceneParameter {
+  std::string key;                   // "clouds.coverage"
+  SceneValueKind kind = SceneValueKind::kFloat;
+  std::vector<std::string> allowed;  // kEnum only: the allowed values, unquoted
+  std::string note;                  // units and range, as scene_to_toml's comment; may be empty
+};
+
+// In scene_to_toml's order: time, time_s, noise_seed, then [location], [camera], [sun], ...
+const std::vector<SceneParameter>& scene_parameters();
+
+// The parameter's value as TOML literal text ("0.45", "[8.0, 2.0]", "\"hillaire\"", "true");
+// set_scene_value(scene, key, get_scene_value(scene, key)) changes nothing. Throws InputError
+// for an unknown key.
+std::string get_scene_value(const Scene& scene, std::string_view key);
+
+// Sets one parameter from TOML literal text (`0.9`, `[1, 2, 3]`, `"file.png"`) with the scene
+// file's type rules; nothing else of the scene changes (unlike a file, a time does not move
+// the sun to the ephemeris: set sun.from_time too). Checks the type, not the range: call
+// validate_scene on the result. Throws InputError naming the key for an unknown key, a value
+// that is not one TOML literal or one of the wrong type (`clouds.coverage = "x": expected a
+// number`); the scene is unchanged then.
+void set_scene_value(Scene& scene, std::string_view key, std::string_view value);
+
 // "default" / "baseline" (the inverse of to_string(MarchMode)); nullopt for anything else.
 std::optional<MarchMode> parse_march_mode(std::string_view text);
 // "hillaire" / "preetham" / "reference" (the inverse of to_string(SkyModel)).

@@ -35,6 +35,17 @@ struct Section {
 // Every field of Scene, in the order scene_to_toml writes them; the top level comes first.
 const std::vector<Section>& scene_sections();
 
+// The field of a dotted key ("clouds.coverage", "time"), nullptr when there is none.
+const Field* find_field(std::string_view key);
+
+// The field's value as TOML literal text (scene_writer.cpp).
+std::string field_value_text(const Scene& scene, const Field& field);
+
+// Reads TOML literal text into the field with the scene file's type rules (scene_io.cpp);
+// throws InputError "key = value: what is allowed" and leaves the scene unchanged.
+void read_field_value(Scene& scene, const Field& field, const std::string& key,
+                      std::string_view text);
+
 // Shortest text that reads back as the same value: "1.5", "5.802e-06", "nan", "-inf".
 std::string format_float(float value);
 std::string format_double(double value);

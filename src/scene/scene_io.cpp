@@ -216,9 +216,17 @@ class SceneReader {
     return scene;
   }
 
+  // One value into one field (set_scene_value); with no source name the messages have no
+  // "file:line:column: " prefix.
+  void assign_value(const Field& field, const std::string& key, const toml::node& node,
+                    Scene& scene) const {
+    assign(field, key, node, scene);
+  }
+
  private:
   // "file:line:column: message"; the position is left out when toml++ has none.
   [[noreturn]] void fail(const toml::source_region& where, const std::string& message) const {
+    if (source_.empty()) throw InputError(message);
     std::string position;
     if (where.begin.line > 0)
       position = ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column);
@@ -433,6 +441,29 @@ double cos_deg(double degrees) {
 Scene parse_scene_toml(std::string_view text, const std::string& source_name,
                        const std::string& base_dir) {
   return SceneReader(source_name, base_dir, 0).read(text);
+}
+
+void scene_detail::read_field_value(Scene& scene, const Field& field, const std::string& key,
+                                    std::string_view text) {
+  const auto not_a_value = [&](const std::string& why) {
+    return InputError(key + " = " + shorten_for_message(text) + ": " + why);
+  };
+  // One literal on one line: "0.9\nclouds.density = 1" is two assignments, not a value.
+  if (text.find_first_of("\n\r") != std::string_view::npos)
+    throw not_a_value("expected one TOML value on one line");
+  toml::table root;
+  try {
+    root = toml::parse("value = " + std::string(text));
+  } catch (const toml::parse_error& error) {
+    std::string description(error.description());
+    std::replace(description.begin(), description.end(), '\n', ' ');
+    throw not_a_value("not a TOML value (" + description + ")");
+  }
+  const toml::node* node = root.get("value");
+  if (!node || root.size() != 1) throw not_a_value("expected one TOML value");
+  Scene changed = scene;  // unchanged when the value is refused
+  SceneReader("", "", 0).assign_value(field, key, *node, changed);
+  scene = std::move(changed);
 }
 
 Scene load_scene_file(const std::string& path) {

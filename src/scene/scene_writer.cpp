@@ -52,6 +52,13 @@ std::string sun_angles_note(const glm::vec3& direction) {
 
 }  // namespace
 
+std::string scene_detail::field_value_text(const Scene& scene, const scene_detail::Field& field) {
+  Scene copy = scene;  // the field table hands out mutable references
+  std::string text;
+  std::visit([&](auto access) { text = toml_value(access(copy)); }, field.access);
+  return text;
+}
+
 std::string scene_to_toml(const Scene& scene) {
   Scene copy = scene;  // the field table hands out mutable references
   std::string out = "# nephele scene, fully resolved\n";

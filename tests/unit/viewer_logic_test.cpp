@@ -1,0 +1,314 @@
+// nephele-view's logic without a window: scripts, the scene editor, the panel's groups and
+// value texts, dynamic resolution, the camera and its place on the planet.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <set>
+
+#include <glm/geometric.hpp>
+
+#include "camera_control.h"
+#include "dynamic_resolution.h"
+#include "nephele/error.h"
+#include "nephele/scene_io.h"
+#include "scene_editor.h"
+#include "script.h"
+
+namespace nephele::view {
+namespace {
+
+std::string input_error(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no InputError thrown";
+  return "";
+}
+
+TEST(ViewerScript, ReadsCommandsInFrameOrder) {
+  const Script s = parse_script(
+      "# a comment\n"
+      "\n"
+      "frame 40 screenshot out.png\n"
+      "frame 10 set clouds.coverage 0.9\n"
+      "  frame 10   set camera.position_m [1, 2, 3]  \n"
+      "frame 12 preset overcast\n"
+      "frame 13 window-screenshot win.png\n"
+      "frame 50 quit\n"
+      "frame 45 resize 640x400\n",
+      "s.txt");
+  ASSERT_EQ(s.commands.size(), 7u);
+  EXPECT_EQ(s.commands[5].action, ScriptAction::kResize);
+  EXPECT_EQ(s.commands[5].width, 640);
+  EXPECT_EQ(s.commands[5].height, 400);
+  EXPECT_EQ(s.commands[0].frame, 10);
+  EXPECT_EQ(s.commands[0].line, 4);
+  EXPECT_EQ(s.commands[0].action, ScriptAction::kSet);
+  EXPECT_EQ(s.commands[0].key, "clouds.coverage");
+  EXPECT_EQ(s.commands[0].argument, "0.9");
+  EXPECT_EQ(s.commands[1].key, "camera.position_m");
+  EXPECT_EQ(s.commands[1].argument, "[1, 2, 3]");
+  EXPECT_EQ(s.commands[2].action, ScriptAction::kPreset);
+  EXPECT_EQ(s.commands[2].argument, "overcast");
+  EXPECT_EQ(s.commands[3].action, ScriptAction::kWindowScreenshot);
+  EXPECT_EQ(s.commands[4].action, ScriptAction::kScreenshot);
+  EXPECT_EQ(s.commands[4].argument, "out.png");
+  EXPECT_EQ(s.commands[6].action, ScriptAction::kQuit);
+}
+
+TEST(ViewerScript, BadLinesAreOneLineWithTheLineNumber) {
+  const auto error = [](const std::string& text) {
+    return input_error([&] { parse_script(text, "s.txt"); });
+  };
+  EXPECT_EQ(error("set clouds.coverage 1\n"),
+            "s.txt:1: 'set clouds.coverage 1': expected 'frame N COMMAND ...'");
+  EXPECT_EQ(error("\nframe -1 quit\n"), "s.txt:2: frame '-1': expected an integer in [0, 16000000]");
+  EXPECT_EQ(error("frame 1x quit\n"), "s.txt:1: frame '1x': expected an integer in [0, 16000000]");
+  EXPECT_EQ(error("frame 1\n"),
+            "s.txt:1: unknown command '' (allowed: set, preset, load, camera-path, screenshot, "
+            "window-screenshot, resize, quit)");
+  EXPECT_EQ(error("frame 1 resize 640\n"), "s.txt:1: resize '640': expected WxH, each in [1, 16384]");
+  EXPECT_EQ(error("frame 1 resize 640x0\n"),
+            "s.txt:1: resize '640x0': expected WxH, each in [1, 16384]");
+  EXPECT_EQ(error("frame 1 set clouds.coverage\n"),
+            "s.txt:1: set: expected 'set KEY VALUE', e.g. 'set clouds.coverage 0.9'");
+  EXPECT_EQ(error("frame 1 set clouds.cover 1\n").rfind(
+                "s.txt:1: set: unknown scene key 'clouds.cover' (allowed in [clouds]:", 0),
+            0u);
+  EXPECT_EQ(error("frame 1 screenshot out.jpg\n"),
+            "s.txt:1: screenshot 'out.jpg': unsupported image format (allowed: .png, .exr)");
+  EXPECT_EQ(error("frame 1 window-screenshot out.exr\n"),
+            "s.txt:1: window-screenshot 'out.exr': unsupported image format (allowed: .png)");
+  EXPECT_EQ(error("frame 1 screenshot\n"), "s.txt:1: screenshot: expected a file name");
+  EXPECT_EQ(error("frame 1 quit now\n"), "s.txt:1: quit: takes nothing, got 'now'");
+  EXPECT_EQ(error("frame 1 preset fog\n").rfind(
+                "s.txt:1: preset 'fog': unknown preset (available: above-clouds, ", 0),
+            0u);
+  EXPECT_EQ(error("frame 1 camera-path p.toml\n").rfind("s.txt:1: camera-path: camera paths are "
+                                                        "not available in this build",
+                                                        0),
+            0u);
+}
+
+TEST(ViewerSceneEditor, AcceptsValidEditsAndKeepsTheLastValidScene) {
+  SceneEditor editor{Scene{}};
+  const long start = editor.revision();
+  EXPECT_EQ(editor.set("clouds.coverage", "0.9"), "");
+  EXPECT_EQ(editor.scene().clouds.coverage, 0.9f);
+  EXPECT_EQ(editor.revision(), start + 1);
+
+  EXPECT_EQ(editor.set("clouds.coverage", "1.5"), "clouds.coverage = 1.5: must be in [0, 1]");
+  EXPECT_EQ(editor.error_key(), "clouds.coverage");
+  EXPECT_EQ(editor.scene().clouds.coverage, 0.9f);  // still rendering the last valid one
+  EXPECT_EQ(editor.revision(), start + 1);
+
+  EXPECT_EQ(editor.set("clouds.density", "\"thick\""),
+            "clouds.density = \"thick\": expected a number");
+  EXPECT_EQ(editor.set("clouds.cover", "1").rfind("unknown scene key 'clouds.cover'", 0), 0u);
+
+  // A value valid alone is judged with the rest of the scene, as in a file.
+  // (the message names the other end: "clouds.bottom_altitude_m = 1500: must be below ...").
+  EXPECT_NE(editor.set("clouds.top_altitude_m", "100").find("clouds.top_altitude_m"),
+            std::string::npos);
+  EXPECT_EQ(editor.error_key(), "clouds.top_altitude_m");
+  EXPECT_EQ(editor.scene().clouds.top_altitude_m, 4000.0f);
+
+  EXPECT_EQ(editor.set("clouds.density", "0.25"), "");
+  EXPECT_EQ(editor.error(), "");
+  EXPECT_EQ(editor.scene().clouds.density, 0.25f);
+
+  Scene bad;
+  bad.output.width = 0;
+  EXPECT_EQ(editor.replace(bad, "scene.toml"), "scene.toml: output.width = 0: must be in [1, 16384]");
+  EXPECT_EQ(editor.error_key(), "");
+  EXPECT_EQ(editor.scene().output.width, 900);
+  EXPECT_EQ(editor.change([](Scene& s) { s.time_s = 2e6f; }).find("time_s = 2e+06"), 0u);
+  EXPECT_EQ(editor.change([](Scene& s) { s.time_s = 5.0f; }), "");
+  EXPECT_EQ(editor.scene().time_s, 5.0f);
+}
+
+TEST(ViewerPanel, EveryParameterIsInExactlyOneGroupInTheFilesOrder) {
+  std::multiset<std::string> shown;
+  std::vector<std::string> titles;
+  for (const ParameterGroup& g : parameter_groups()) {
+    titles.push_back(g.title);
+    shown.insert(g.keys.begin(), g.keys.end());
+  }
+  EXPECT_EQ(titles, (std::vector<std::string>{"Location and time", "Camera", "Sun and moon",
+                                               "Atmosphere and sky model", "Clouds", "High clouds",
+                                               "Cirrus", "Conditions", "Quality", "Output"}));
+  EXPECT_EQ(shown.size(), scene_parameters().size());
+  for (const SceneParameter& p : scene_parameters()) EXPECT_EQ(shown.count(p.key), 1u) << p.key;
+  EXPECT_EQ(parameter_groups()[0].keys,
+            (std::vector<std::string>{"time", "time_s", "location.lat_deg", "location.lon_deg",
+                                      "location.altitude_m"}));
+  EXPECT_EQ(parameter_groups()[4].keys.front(), "clouds.bottom_altitude_m");
+  EXPECT_EQ(parameter_groups()[4].keys.back(), "noise_seed");
+}
+
+TEST(ViewerPanel, WidgetTextsAreSceneLiterals) {
+  EXPECT_EQ(float_literal(0.45f), "0.45");
+  EXPECT_EQ(float_literal(1e6f), "1e+06");
+  EXPECT_EQ(float_literal(-INFINITY), "-inf");
+  const float v[3] = {1.0f, -2.5f, 5.8e-6f};
+  EXPECT_EQ(vector_literal(v, 3), "[1, -2.5, 5.8e-06]");
+  Scene scene;
+  set_scene_value(scene, "atmosphere.rayleigh_scattering_per_m", vector_literal(v, 3));
+  EXPECT_EQ(scene.atmosphere.rayleigh_scattering_per_m, glm::vec3(1.0f, -2.5f, 5.8e-6f));
+  EXPECT_EQ(parse_numbers("[8.0, 2.0]"), (std::vector<double>{8.0, 2.0}));
+  EXPECT_EQ(parse_numbers("1_000.5"), (std::vector<double>{1000.5}));
+  EXPECT_TRUE(std::isnan(parse_numbers("nan")[0]));
+  const std::string odd = "maps/a \"b\" \\ c\td.png";
+  EXPECT_EQ(unquote_string(quote_string(odd)), odd);
+  set_scene_value(scene, "clouds.weather_map", quote_string(odd));
+  EXPECT_EQ(scene.clouds.weather_map, odd);
+  EXPECT_EQ(unquote_string(get_scene_value(scene, "clouds.weather_map")), odd);
+  EXPECT_EQ(unquote_string("\"hillaire\""), "hillaire");
+}
+
+TEST(ViewerDynamicResolution, StepsDownWhenSlowAtMostOnceASecond) {
+  DynamicResolution d;
+  d.set_target_ms(33.0);
+  double t = 0.0;
+  EXPECT_FALSE(d.update(t, 1000.0, false));  // the first frame is ignored
+  int changes = 0;
+  for (int i = 0; i < 8; ++i) changes += d.update(t += 0.125, 100.0, false);  // 1 s of 100 ms
+  EXPECT_EQ(changes, 1);
+  // 100 ms against 33: sqrt(0.33) = 0.57 of the size, in steps of 1/8 below it.
+  EXPECT_FLOAT_EQ(d.scale(), 0.5f);
+  EXPECT_EQ(d.scaled(160), 80);
+  for (int i = 0; i < 24; ++i) d.update(t += 0.125, 100.0, false);
+  EXPECT_FLOAT_EQ(d.scale(), DynamicResolution::kMinScale);
+  EXPECT_EQ(d.scaled(2), 1);  // never 0
+}
+
+TEST(ViewerDynamicResolution, StepsUpOneStepWhenThereIsRoomAndHoldsNearTheTarget) {
+  DynamicResolution d;
+  double t = 0.0;
+  d.update(t, 0.0, false);
+  for (int i = 0; i < 32; ++i) d.update(t += 0.125, 200.0, false);
+  ASSERT_FLOAT_EQ(d.scale(), 0.25f);
+  // 10 ms frames at 0.25: 0.375 is predicted at 22.5 ms, under 0.85 x 33 ms.
+  for (int i = 0; i < 8; ++i) d.update(t += 0.125, 10.0, false);
+  EXPECT_FLOAT_EQ(d.scale(), 0.375f);
+  // 30 ms frames: within 10% of the target, and larger would be too slow: it holds.
+  for (int i = 0; i < 40; ++i) d.update(t += 0.125, 30.0, false);
+  EXPECT_FLOAT_EQ(d.scale(), 0.375f);
+}
+
+TEST(ViewerDynamicResolution, StillViewConvergesToFullSizeAfterASecond) {
+  DynamicResolution d;
+  double t = 0.0;
+  d.update(t, 0.0, false);
+  for (int i = 0; i < 32; ++i) d.update(t += 0.125, 200.0, false);
+  ASSERT_LT(d.scale(), 1.0f);
+  for (int i = 0; i < 8; ++i) d.update(t += 0.125, 200.0, true);  // still for 7/8 s
+  EXPECT_LT(d.scale(), 1.0f);
+  d.update(t += 0.125, 200.0, true);
+  EXPECT_FLOAT_EQ(d.scale(), 1.0f);
+  d.set_enabled(false);
+  EXPECT_FALSE(d.update(t += 5.0, 1000.0, false));
+  EXPECT_FLOAT_EQ(d.scale(), 1.0f);
+}
+
+TEST(ViewerCamera, TakesAndGivesTheScenesPose) {
+  CameraParams camera;
+  camera.position_m = {10.0f, 20.0f, 300.0f};
+  camera.view_dir = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f));
+  CameraControl c;
+  c.sync_from(camera);
+  EXPECT_NEAR(c.yaw_deg(), 45.0f, 1e-4f);
+  EXPECT_NEAR(c.pitch_deg(), 0.0f, 1e-4f);
+  CameraParams out;
+  c.apply_to(out);
+  EXPECT_EQ(out.position_m, camera.position_m);
+  EXPECT_NEAR(glm::length(out.view_dir - camera.view_dir), 0.0f, 1e-6f);
+}
+
+TEST(ViewerCamera, FliesAtItsSpeedAndLooksWithTheMouse) {
+  CameraControl c;
+  CameraParams camera;
+  camera.position_m = {0.0f, 0.0f, 100.0f};
+  camera.view_dir = {0.0f, 1.0f, 0.0f};
+  c.sync_from(camera);
+  c.set_speed_mps(20.0f);
+  c.update(CameraInput{.forward = 1.0f}, 0.5f);  // north at 20 m/s for 0.5 s
+  EXPECT_NEAR(c.position_m().y, 10.0f, 1e-4f);
+  c.update(CameraInput{.right = 1.0f, .up = -1.0f}, 0.25f);  // east and down
+  EXPECT_NEAR(c.position_m().x, 5.0f, 1e-4f);
+  EXPECT_NEAR(c.position_m().z, 95.0f, 1e-4f);
+  c.update(CameraInput{.up = -1.0f}, 1.0f);
+  c.update(CameraInput{.up = -1.0f}, 1.0f);
+  c.update(CameraInput{.up = -1.0f}, 1.0f);
+  c.update(CameraInput{.up = -1.0f}, 1.0f);
+  c.update(CameraInput{.up = -1.0f}, 1.0f);
+  EXPECT_EQ(c.position_m().z, 0.0f);  // never below the ground
+  c.update(CameraInput{.look_dx_px = 100.0f, .look_dy_px = -1000.0f}, 0.1f);
+  EXPECT_NEAR(c.yaw_deg(), 100.0f * CameraControl::kLookDegPerPx, 1e-4f);
+  EXPECT_LT(c.pitch_deg(), 90.0f);  // never straight up
+  EXPECT_GT(c.view_dir().z, 0.99f);
+  c.scale_speed(1.0f);
+  EXPECT_FLOAT_EQ(c.speed_mps(), 25.0f);
+  c.scale_speed(-1000.0f);
+  EXPECT_FLOAT_EQ(c.speed_mps(), CameraControl::kMinSpeedMps);
+  c.update(CameraInput{.roll = 1.0f}, 1.0f);
+  EXPECT_FLOAT_EQ(c.roll_deg(), CameraControl::kRollDegPerS);
+}
+
+TEST(ViewerCamera, OrbitsAroundAPointAtItsDistance) {
+  CameraControl c;
+  CameraParams camera;
+  camera.position_m = {0.0f, 0.0f, 1000.0f};
+  camera.view_dir = {0.0f, 1.0f, 0.0f};
+  c.sync_from(camera);
+  c.set_orbit_distance_m(500.0f);
+  c.set_mode(CameraMode::kOrbit);
+  const glm::vec3 target = c.orbit_target_m();
+  EXPECT_NEAR(glm::length(target - glm::vec3(0.0f, 500.0f, 1000.0f)), 0.0f, 1e-3f);
+  c.update(CameraInput{.look_dx_px = 600.0f}, 0.1f);  // 90 deg around
+  EXPECT_NEAR(glm::length(c.position_m() - target), 500.0f, 1e-2f);
+  EXPECT_NEAR(c.position_m().x, -500.0f, 1e-2f);
+  c.set_orbit_distance_m(100.0f);
+  EXPECT_NEAR(glm::length(c.position_m() - target), 100.0f, 1e-2f);
+}
+
+TEST(ViewerCamera, PlaceOnThePlanetAndGoToAltitude) {
+  LocationParams here;
+  here.lat_deg = 45.0f;
+  here.lon_deg = 7.0f;
+  here.altitude_m = 300.0f;
+  const float radius_km = 6360.0f;
+  Geodetic g = geodetic_from_enu({0.0f, 0.0f, 0.0f}, here, radius_km);
+  EXPECT_NEAR(g.lat_deg, 45.0, 1e-9);
+  EXPECT_NEAR(g.lon_deg, 7.0, 1e-9);
+  EXPECT_NEAR(g.altitude_m, 300.0, 1e-6);
+  // One degree of arc north at 1 km up: latitude 46, the same height.
+  const double r = radius_km * 1000.0 + 1000.0, a = std::numbers::pi / 180.0;
+  g = geodetic_from_enu({0.0f, float(r * std::sin(a)), float(r * std::cos(a) - radius_km * 1000.0)},
+                        here, radius_km);
+  EXPECT_NEAR(g.lat_deg, 46.0, 1e-4);
+  EXPECT_NEAR(g.lon_deg, 7.0, 1e-4);
+  EXPECT_NEAR(g.altitude_m, 1300.0, 0.5);
+  // 10 km east on the equator: 10 / 6360 rad of longitude.
+  LocationParams equator;
+  g = geodetic_from_enu({10000.0f, 0.0f, 0.0f}, equator, radius_km);
+  EXPECT_NEAR(g.lon_deg, std::atan(10.0 / 6360.0) * 180.0 / std::numbers::pi, 1e-6);
+  EXPECT_NEAR(g.lat_deg, 0.0, 1e-9);
+
+  CameraControl c;
+  CameraParams camera;
+  camera.position_m = {50000.0f, 0.0f, 2.0f};
+  c.sync_from(camera);
+  c.go_to_altitude(3000.0f, radius_km);
+  g = geodetic_from_enu(c.position_m(), equator, radius_km);
+  EXPECT_NEAR(g.altitude_m, 3000.0, 0.5);
+  EXPECT_GT(c.position_m().x, 50000.0f);  // straight up from where it was
+  EXPECT_EQ(c.position_m().y, 0.0f);
+}
+
+}  // namespace
+}  // namespace nephele::view
