@@ -23,9 +23,9 @@ bool stderr_is_terminal() {
 
 }  // namespace
 
-bool progress_wanted(bool progress_flag, bool quiet) {
+bool progress_wanted(bool progress_flag, bool quiet, bool verbose) {
   if (quiet) return false;
-  return progress_flag || stderr_is_terminal();
+  return progress_flag || (!verbose && stderr_is_terminal());
 }
 
 Progress::Progress(std::string label, int total_steps, bool enabled)

@@ -14,8 +14,8 @@
 namespace nephele::cli {
 
 // Whether a command shows progress: never with --quiet, always with --progress, otherwise when
-// standard error is a terminal.
-bool progress_wanted(bool progress_flag, bool quiet);
+// standard error is a terminal and --verbose is not printing a line a step of its own.
+bool progress_wanted(bool progress_flag, bool quiet, bool verbose = false);
 
 class Progress {
  public:
