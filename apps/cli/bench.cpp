@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include "nephele/renderer.h"
 #include "bench_plot.h"
 #include "bench_realtime.h"
+#include "progress.h"
 #include "render_command.h"
 
 namespace nephele::cli {
@@ -128,6 +130,7 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
                  "moving_error, frame_times_ms, device, ...) to this file, or to standard "
                  "output with -");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
+  add_progress_flags(cmd, options.progress, options.quiet);
 }
 
 namespace {
@@ -167,17 +170,25 @@ void print_realtime(const nlohmann::json& r) {
   std::fflush(stdout);
 }
 
+// The number of configurations run_sweeps measures.
+int sweep_count(bool quick) {
+  return 2 * int(2 * sweep_values(quick).size() + resolutions(quick).size());
+}
+
 // The seed's study: both modes over density, coverage and resolution.
-std::vector<Sample> run_sweeps(Renderer& renderer, const Scene& base, const BenchOptions& options) {
+std::vector<Sample> run_sweeps(Renderer& renderer, const Scene& base, const BenchOptions& options,
+                               Progress& progress) {
   std::printf("%-10s %-8s %7s %8s %11s %10s %8s\n", "sweep", "mode", "density", "coverage",
               "resolution", "gpu ms", "fps");
   std::vector<Sample> samples;
   auto record = [&](const Scene& scene, const std::string& sweep) {
     samples.push_back(measure(renderer, scene, sweep, options.frames));
     const Sample& s = samples.back();
+    progress.clear();
     std::printf("%-10s %-8s %7.3f %8.3f %5dx%-5d %10.1f %8.3f\n", s.sweep.c_str(),
                 to_string(s.mode), s.density, s.coverage, s.width, s.height, s.gpu_ms, s.fps());
     std::fflush(stdout);
+    progress.advance();
   };
   for (MarchMode mode : {MarchMode::Default, MarchMode::Baseline}) {
     Scene scene = base;
@@ -235,12 +246,25 @@ int run_bench(const BenchOptions& options) {
 
   RealtimeSettings settings;
   if (options.quick) settings.static_frames = settings.moving_frames = 16;
+  // One step a measured frame of the real-time part (its error frames print a line each: the
+  // bar makes way for them) and one a configuration of the sweeps.
+  const int timed_steps = std::max(settings.static_frames, settings.moving_frames);
+  Progress progress("bench",
+                    timed_steps + settings.error_frames +
+                        (options.realtime_only ? 0 : sweep_count(options.quick)),
+                    progress_wanted(options.progress, options.quiet, options.verbose));
+  settings.on_step = [&progress, timed_steps, steps = 0]() mutable {
+    progress.advance();
+    if (++steps > timed_steps) progress.clear();
+  };
   const nlohmann::json realtime = measure_realtime(renderer, renderer_options, base, settings);
+  progress.clear();
   print_realtime(realtime);
   if (!options.json.empty()) write_text_output(options.json, realtime.dump(2) + "\n");
   if (options.realtime_only) return 0;
 
-  const std::vector<Sample> samples = run_sweeps(renderer, base, options);
+  const std::vector<Sample> samples = run_sweeps(renderer, base, options, progress);
+  progress.finish();
   nlohmann::json summary = realtime;
   summary["frames_per_point"] = options.frames;
   summary["sweeps"] = to_json(samples);

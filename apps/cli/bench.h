@@ -21,6 +21,8 @@ struct BenchOptions {
   std::string device;
   bool verbose = false;
   bool validation = false;
+  bool progress = false;  // a progress line on standard error even when it is not a terminal
+  bool quiet = false;     // no progress
 };
 
 void add_bench_flags(CLI::App& cmd, BenchOptions& options);

@@ -154,6 +154,7 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
                      .stats);
     }
     if (i % seed_every == seed_every / 2) seed.add(seed_renderer.render_next(baseline, false).stats);
+    if (f.on_step) f.on_step();
   }
 
   // Errors, untimed: the still view once more, then flight frames spread over a few cycles.
@@ -169,6 +170,7 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
       const Frame frame = flight.render_next(s, compare);
       if (!compare) continue;
       const double e = error_against_reference(reference, s, frame.color);
+      if (f.on_step) f.on_step();
       std::printf("  flight frame %d: error %.4f\n", flight_frame, e);
       moving_error = std::max(moving_error, e);
     }

@@ -3,6 +3,7 @@
 // full-resolution, non-reprojected, high-step-count reference of the same views.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "nephele/renderer.h"
@@ -19,6 +20,9 @@ struct RealtimeSettings {
   float speed_mps = 100.0f;  // flight speed along the view's heading
   float turn_deg_s = 20.0f;  // yaw rate
   float frame_dt_s = 0.05f;  // animation time per frame (the moving target: 20 frames/s)
+  // Called after each of the max(static_frames, moving_frames) timed steps and each of the
+  // error_frames comparisons (progress).
+  std::function<void()> on_step;
 };
 
 // The scene a reference for `scene` is rendered from: every pixel, full resolution,

@@ -13,6 +13,7 @@
 #include "nephele/image.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
+#include "progress.h"
 #include "render_command.h"
 
 namespace nephele::cli {
@@ -81,6 +82,7 @@ void add_gallery_flags(CLI::App& cmd, GalleryOptions& options) {
       ->capture_default_str();
   cmd.add_option("--columns", options.columns, "tiles per row, [1, 16]")->capture_default_str();
   add_device_flags(cmd, options.device, options.verbose, options.validation);
+  add_progress_flags(cmd, options.progress, options.quiet);
 }
 
 int run_gallery(const GalleryOptions& options) {
@@ -111,6 +113,9 @@ int run_gallery(const GalleryOptions& options) {
     validate_scene(scenes.back());
   }
   Renderer renderer({options.device, options.validation, options.verbose});
+  // A step a preset (--verbose prints a line a preset instead, unless --progress).
+  Progress progress("gallery", int(names.size()),
+                    progress_wanted(options.progress, options.quiet, options.verbose));
   for (size_t i = 0; i < names.size(); ++i) {
     const Scene& scene = scenes[i];
     const Frame frame = renderer.render(scene);
@@ -127,8 +132,11 @@ int run_gallery(const GalleryOptions& options) {
     std::snprintf(label, sizeof label, "%s  %d/8 (%.2f)", names[i].c_str(),
                   sky_cover_oktas(cover), cover);
     draw_label(gallery, x0, y0, label, scale);
+    progress.clear();
     if (options.verbose) std::fprintf(stderr, "nephele: gallery %s\n", label);
+    progress.advance();
   }
+  progress.finish();
   if (options.validation && renderer.validation_messages() > 0) {
     std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
     return 1;

@@ -28,6 +28,8 @@ struct GalleryOptions {
   std::string device;
   bool verbose = false;
   bool validation = false;
+  bool progress = false;  // progress on standard error even when it is not a terminal
+  bool quiet = false;     // no progress
 };
 
 void add_gallery_flags(CLI::App& cmd, GalleryOptions& options);

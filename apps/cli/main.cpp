@@ -33,7 +33,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "nephele 0.1.0");
 
   nephele::cli::RenderOptions render;
-  CLI::App* render_cmd = app.add_subcommand("render", "render one frame to an image");
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "render a frame, a sequence (--frames) or a flight (--camera-path) to images");
   nephele::cli::add_render_flags(*render_cmd, render);
 
   nephele::cli::BenchOptions bench;

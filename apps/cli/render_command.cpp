@@ -3,16 +3,20 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
+#include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele/image.h"
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
+#include "progress.h"
 
 namespace nephele::cli {
 
@@ -24,9 +28,21 @@ void add_device_flags(CLI::App& cmd, std::string& device, bool& verbose, bool& v
   cmd.add_flag("--validation", validation, "enable the Khronos validation layer");
 }
 
+void add_progress_flags(CLI::App& cmd, bool& progress, bool& quiet) {
+  cmd.add_flag("--progress", progress,
+               "show progress and the time left on standard error even when it is not a terminal "
+               "(a line every few seconds)");
+  CLI::Option* quiet_flag =
+      cmd.add_flag("--quiet,-q", quiet, "no progress and no informational lines on standard error");
+  if (CLI::Option* verbose = cmd.get_option_no_throw("--verbose")) quiet_flag->excludes(verbose);
+}
+
 void add_render_flags(CLI::App& cmd, RenderOptions& options) {
   add_scene_flags(cmd, options.scene);
-  cmd.add_option("--output,-o", options.output, "image to write: .png (tone-mapped) or .exr (HDR)")
+  cmd.add_option("--output,-o", options.output,
+                 "image to write: .png (tone-mapped) or .exr (HDR); a sequence's frames are "
+                 "name_0000.png ..., or numbered where a %d or %0Nd in the name says "
+                 "(out/f_%04d.png)")
       ->capture_default_str();
   cmd.add_option("--stats-json", options.stats_json,
                  "write frame statistics as JSON to this file, or to standard output with -");
@@ -34,10 +50,28 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
                "write EXR as 32-bit floats (the sun's true radiance); the default half floats "
                "clamp at 65504");
   cmd.add_option("--frames", options.frames,
-                 "render a sequence of N frames, numbered name_0000.png ... (default 1)");
+                 "render a sequence of N frames, numbered name_0000.png ... (default 1; with "
+                 "--camera-path, up to the path's end)")
+      ->each([&options](const std::string&) { options.frames_given = true; });
   cmd.add_option("--step", options.step_s,
-                 "seconds of scene time between frames of a sequence (the clock and the wind)");
+                 "seconds of scene time between frames of a sequence (the clock and the wind)")
+      ->each([&options](const std::string&) { options.step_given = true; });
+  cmd.add_option("--start-frame", options.start_frame,
+                 "number of a sequence's first frame, [0, 10000000]; frame K is K steps (or K / "
+                 "--fps seconds) into the sequence, so a flight can be rendered in parts");
+  cmd.add_option("--camera-path", options.camera_path,
+                 "fly the camera along this path (TOML [[key]] tables, see the README): frame i "
+                 "at path time (--start-frame + i) / --fps, the scene's clock advancing alike; "
+                 "rendered as an animation (temporal reprojection)")
+      ->type_name("FILE");
+  cmd.add_option("--fps", options.fps, "frames per second of a --camera-path flight, (0, 1000]")
+      ->each([&options](const std::string&) { options.fps_given = true; })
+      ->capture_default_str();
+  cmd.add_flag("--still-frames", options.still_frames,
+               "render every frame of a --camera-path flight as a still image (every pixel "
+               "marched, slower) instead of as an animation");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
+  add_progress_flags(cmd, options.progress, options.quiet);
 }
 
 void write_text_output(const std::string& path, const std::string& text) {
@@ -77,15 +111,61 @@ std::string stats_to_json(const FrameStats& stats, const std::string& image_path
   return j.dump(2) + "\n";
 }
 
-std::string frame_path(const std::string& path, int index, int frames) {
-  if (frames <= 1) return path;
+std::string sequence_frame_path(const std::string& path, int number, const std::string& parameter) {
+  const auto refuse = [&](const std::string& what) {
+    throw InputError(parameter + " '" + shorten_path_for_message(path) + "': " + what);
+  };
+  std::string out;
+  bool numbered = false;
+  for (size_t i = 0; i < path.size(); ++i) {
+    if (path[i] != '%') {
+      out += path[i];
+      continue;
+    }
+    if (i + 1 < path.size() && path[i + 1] == '%') {  // %% is a percent sign
+      out += '%';
+      ++i;
+      continue;
+    }
+    // %d or %0Nd: a zero-padded width of at most 2 digits.
+    size_t j = i + 1;
+    const bool zero = j < path.size() && path[j] == '0';
+    if (zero) ++j;
+    int width = 0;
+    size_t digits = 0;
+    for (; j < path.size() && std::isdigit(static_cast<unsigned char>(path[j])) && digits < 3;
+         ++j, ++digits)
+      width = 10 * width + (path[j] - '0');
+    const bool ok = j < path.size() && path[j] == 'd' && digits <= 2 && zero == (digits > 0) &&
+                    (!zero || width > 0);
+    if (!ok)
+      refuse(
+          "only %d or a zero-padded %0Nd (N of 1 or 2 digits) can number the frames, and %% "
+          "writes a percent sign");
+    if (numbered) refuse("has more than one %d: one number names a frame");
+    numbered = true;
+    char text[64];
+    std::snprintf(text, sizeof text, "%0*d", width, number);
+    out += text;
+    i = j;
+  }
+  if (numbered) return out;
   const fs::path p(path);
   char suffix[16];
-  std::snprintf(suffix, sizeof suffix, "_%04d", index);
+  std::snprintf(suffix, sizeof suffix, "_%04d", number);
   return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
+std::string frame_path(const std::string& path, int index, int frames) {
+  if (frames <= 1) return path;
+  return sequence_frame_path(path, index);
+}
+
 namespace {
+
+constexpr int kMaxFrames = 100000;
+constexpr int kMaxStartFrame = 10000000;
+constexpr double kMaxFps = 1000.0;
 
 std::string number_text(double value) {
   char text[32];
@@ -93,39 +173,119 @@ std::string number_text(double value) {
   return text;
 }
 
-// Scene time of frame `index` of a sequence.
-float frame_time_s(const Scene& scene, const RenderOptions& options, int index) {
-  return scene.time_s + float(index) * options.step_s;
-}
+// What `render` draws: one still, or a sequence of numbered frames along the clock or a path.
+struct Sequence {
+  bool numbered = false;  // files named by frame number (sequence_frame_path)
+  int frames = 1;
+  std::optional<CameraPath> path;
 
-// Everything about the sequence that can be checked before the first frame: the frame count,
-// the step, every frame's time (its ends bound the rest), and the outputs.
-void check_sequence(const Scene& scene, const RenderOptions& options) {
-  if (options.frames < 1 || options.frames > 100000)
-    throw InputError("--frames " + std::to_string(options.frames) + ": must be in [1, 100000]");
+  int number(const RenderOptions& options, int i) const { return options.start_frame + i; }
+  std::string output(const std::string& file, const RenderOptions& options, int i,
+                     const std::string& parameter) const {
+    return numbered ? sequence_frame_path(file, number(options, i), parameter) : file;
+  }
+  // The scene of frame i: the clock `number` steps on, or 1 / fps a frame along the path.
+  Scene scene(const Scene& base, const RenderOptions& options, int i) const {
+    Scene s = base;
+    const int n = number(options, i);
+    if (path) {
+      const double t_s = double(n) / options.fps;
+      s.camera = path->at(t_s);
+      s.time_s = float(double(base.time_s) + t_s);
+    } else {
+      s.time_s = base.time_s + float(n) * options.step_s;
+    }
+    return s;
+  }
+};
+
+// The flags that shape a sequence, each checked on its own.
+void check_sequence_flags(const RenderOptions& options) {
+  const bool flight = !options.camera_path.empty();
+  if (options.frames_given && (options.frames < 1 || options.frames > kMaxFrames))
+    throw InputError("--frames " + std::to_string(options.frames) + ": must be in [1, " +
+                     std::to_string(kMaxFrames) + "]");
   if (!std::isfinite(options.step_s))
     throw InputError("--step " + number_text(options.step_s) +
                      ": must be a finite number of seconds");
-  Scene last = scene;
-  last.time_s = frame_time_s(scene, options, options.frames - 1);
-  try {
-    validate_scene(last);
-  } catch (const InputError& e) {
-    throw InputError("--frames " + std::to_string(options.frames) + " --step " +
-                     number_text(options.step_s) + ": the last frame's " + e.what());
+  if (options.start_frame < 0 || options.start_frame > kMaxStartFrame)
+    throw InputError("--start-frame " + std::to_string(options.start_frame) + ": must be in [0, " +
+                     std::to_string(kMaxStartFrame) + "]");
+  if (!(options.fps > 0.0 && options.fps <= kMaxFps))
+    throw InputError("--fps " + number_text(options.fps) + ": must be in (0, 1000]");
+  if (!flight && options.fps_given)
+    throw InputError("--fps " + number_text(options.fps) +
+                     ": needs --camera-path (a --frames sequence moves the clock by --step)");
+  if (!flight && options.still_frames)
+    throw InputError("--still-frames needs --camera-path (a --frames sequence renders stills)");
+  if (flight && options.step_given)
+    throw InputError("--step " + number_text(options.step_s) +
+                     ": cannot be combined with --camera-path (the clock advances 1 / --fps a "
+                     "frame)");
+}
+
+// A flight without --frames runs to the path's end: frames start ... floor(end x fps).
+int flight_frames(const CameraPath& path, const RenderOptions& options) {
+  const double last = std::floor(path.end_s() * options.fps + 1e-9);
+  const double count = last - double(options.start_frame) + 1.0;
+  if (count < 1.0)
+    throw InputError("--start-frame " + std::to_string(options.start_frame) + ": at --fps " +
+                     number_text(options.fps) + " it is " +
+                     number_text(options.start_frame / options.fps) +
+                     " s into the path, after its end (" + number_text(path.end_s()) +
+                     " s); give --frames to render beyond the end");
+  if (count > kMaxFrames)
+    throw InputError("--camera-path " + shorten_path_for_message(options.camera_path) + ": " +
+                     number_text(count) + " frames at --fps " + number_text(options.fps) +
+                     " (more than " + std::to_string(kMaxFrames) + "); give --frames");
+  return int(count);
+}
+
+// Everything about the sequence that can be checked before the first frame: the flags, the
+// camera path, every frame's scene and every output's name.
+Sequence plan_sequence(const Scene& scene, const RenderOptions& options) {
+  check_sequence_flags(options);
+  Sequence seq;
+  seq.frames = options.frames;
+  if (!options.camera_path.empty()) {
+    seq.path = load_camera_path(options.camera_path, scene);
+    if (!options.frames_given) seq.frames = flight_frames(*seq.path, options);
   }
-  // A sequence's names are the longest: check the first frame's (frame_path).
-  const std::string image = frame_path(options.output, 0, options.frames);
-  check_output_path(image, "--output");
-  std::vector<std::pair<std::string, std::string>> outputs = {{"--output", image}};
-  if (!options.stats_json.empty()) {
-    const std::string stats = options.stats_json == kStandardOutput
-                                  ? options.stats_json
-                                  : frame_path(options.stats_json, 0, options.frames);
-    check_output_file(stats, "--stats-json", true);
-    outputs.emplace_back("--stats-json", stats);
+  seq.numbered = seq.frames > 1 || seq.path || options.start_frame != 0;
+  if (seq.path) {
+    for (int i = 0; i < seq.frames; ++i) {
+      try {
+        validate_scene(seq.scene(scene, options, i));
+      } catch (const InputError& e) {
+        throw InputError("--camera-path " + shorten_path_for_message(options.camera_path) +
+                         ": frame " + std::to_string(seq.number(options, i)) + " (t = " +
+                         number_text(seq.number(options, i) / options.fps) + " s): " + e.what());
+      }
+    }
+  } else if (seq.numbered) {
+    // The clock moves linearly: its ends bound the frames between.
+    try {
+      validate_scene(seq.scene(scene, options, seq.frames - 1));
+    } catch (const InputError& e) {
+      throw InputError("--frames " + std::to_string(seq.frames) + " --step " +
+                       number_text(options.step_s) + ": the last frame's " + e.what());
+    }
   }
-  check_distinct_outputs(outputs);
+  const bool stats_to_stdout = options.stats_json == kStandardOutput;
+  for (int i = 0; i < seq.frames; ++i) {
+    const std::string image = seq.output(options.output, options, i, "--output");
+    check_output_path(image, "--output");
+    std::vector<std::pair<std::string, std::string>> outputs = {{"--output", image}};
+    if (!options.stats_json.empty()) {
+      const std::string stats = stats_to_stdout
+                                    ? options.stats_json
+                                    : seq.output(options.stats_json, options, i, "--stats-json");
+      check_output_file(stats, "--stats-json", true);
+      outputs.emplace_back("--stats-json", stats);
+    }
+    if (i == 0) check_distinct_outputs(outputs);
+  }
+  return seq;
 }
 
 }  // namespace
@@ -133,25 +293,34 @@ void check_sequence(const Scene& scene, const RenderOptions& options) {
 int run_render(const RenderOptions& options) {
   // Everything the user typed is checked before any work, so a bad flag writes nothing.
   const Scene scene = resolve_scene(options.scene);
-  check_sequence(scene, options);
+  const Sequence seq = plan_sequence(scene, options);
   if (options.verbose) std::cerr << "# resolved scene\n" << scene_to_toml(scene);
 
   const bool stats_to_stdout = options.stats_json == kStandardOutput;
   const ExrPixels exr = options.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf;
+  // A flight is an animation: the first frame a still, the others reprojected from it.
+  const bool animation = seq.path && !options.still_frames;
   Renderer renderer({options.device, options.validation, options.verbose});
-  for (int i = 0; i < options.frames; ++i) {
-    Scene frame_scene = scene;
-    frame_scene.time_s = frame_time_s(scene, options, i);
-    const Frame frame = renderer.render(frame_scene);
+  // Per frame for a sequence. (--verbose prints a line a frame instead, unless --progress.)
+  // A single still will show the renderer's own progress, reported through a callback, here.
+  Progress progress(
+      "render", seq.frames,
+      seq.numbered && progress_wanted(options.progress, options.quiet, options.verbose));
+  for (int i = 0; i < seq.frames; ++i) {
+    const Scene frame_scene = seq.scene(scene, options, i);
+    const Frame frame =
+        animation && i > 0 ? renderer.render_next(frame_scene) : renderer.render(frame_scene);
     const float exposure = scene.output.auto_exposure
                                ? auto_exposure(scene.output.exposure, frame.stats.mean_luminance)
                                : scene.output.exposure;
-    const std::string path = frame_path(options.output, i, options.frames);
+    const std::string path = seq.output(options.output, options, i, "--output");
     write_image(frame.color, path, exposure, exr);
     if (!options.stats_json.empty())
-      write_text_output(stats_to_stdout ? options.stats_json
-                                        : frame_path(options.stats_json, i, options.frames),
+      write_text_output(stats_to_stdout
+                            ? options.stats_json
+                            : seq.output(options.stats_json, options, i, "--stats-json"),
                         stats_to_json(frame.stats, path));
+    progress.clear();
     if (options.verbose)
       std::fprintf(stderr, "nephele: %dx%d on %s: %.1f ms GPU, %.1f ms wall, exposure %g\n",
                    frame.stats.width, frame.stats.height, frame.stats.device.c_str(),
@@ -161,7 +330,8 @@ int run_render(const RenderOptions& options) {
                    renderer.validation_messages());
       return 1;
     }
-    if (!stats_to_stdout) std::cout << path << "\n";
+    if (!stats_to_stdout) std::cout << path << std::endl;
+    progress.advance();
   }
   return 0;
 }

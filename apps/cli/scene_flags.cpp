@@ -62,6 +62,9 @@ const std::vector<FlagSpec>& flag_specs() {
        "looking direction: east, north, up"},
       {"--fov-deg", &F::fov_deg, "camera.fov_deg", TO(camera.fov_deg), "F",
        "vertical field of view (deg), (0, 180)"},
+      {"--roll-deg", &F::roll_deg, "camera.roll_deg", TO(camera.roll_deg), "DEG",
+       "camera roll about the view direction (deg), [-180, 180]; positive turns the camera "
+       "clockwise, so the horizon rises to the right"},
       {"--sun-dir", &F::sun_dir, "sun.direction", TO(sun.direction), "E,N,U",
        "direction towards the sun: east, north, up"},
       {"--sun-elevation-deg",

@@ -18,7 +18,7 @@ struct SceneFlags {
   std::optional<std::string> scene_file;  // --scene FILE
   std::optional<std::string> preset;      // --preset NAME; "default" when neither is given
   std::optional<std::string> width, height;
-  std::optional<std::string> camera_altitude_m, camera_pos, view_dir, fov_deg;
+  std::optional<std::string> camera_altitude_m, camera_pos, view_dir, fov_deg, roll_deg;
   std::optional<std::string> sun_dir, sun_elevation_deg, sun_azimuth_deg, sun_illuminance;
   std::optional<std::string> coverage, cloud_type, precipitation, density, cloud_bottom_m, cloud_top_m, extinction_per_m;
   std::optional<std::string> attenuation, light_attenuation, albedo, g_forward, g_backward;

@@ -25,6 +25,11 @@ struct CameraParams {
   glm::vec3 position_m{0.0f, 0.0f, 2.0f};
   glm::vec3 view_dir{0.0f, 1.0f, 0.25f};   // ENU, looking direction
   float fov_deg = 70.0f;                   // vertical field of view, [0.01, 180)
+  // Rotation about the looking direction (deg), [-180, 180]. Positive turns the camera
+  // clockwise as its viewer sees it (an aircraft banking right, right wing down), so the image
+  // turns counter-clockwise: the horizon rises to the right. 0 keeps the image's up in the
+  // vertical plane through view_dir (north when looking straight up or down).
+  float roll_deg = 0.0f;
 };
 
 struct SunParams {

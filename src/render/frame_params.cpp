@@ -63,6 +63,17 @@ CameraBasis camera_basis(const glm::vec3& view_dir) {
   return b;
 }
 
+CameraBasis camera_basis(const CameraParams& camera) {
+  CameraBasis b = camera_basis(camera.view_dir);
+  if (camera.roll_deg == 0.0f) return b;
+  const float roll_rad = glm::radians(camera.roll_deg);
+  const float c = std::cos(roll_rad), s = std::sin(roll_rad);
+  const glm::vec3 right = c * b.right - s * b.up;
+  b.up = c * b.up + s * b.right;
+  b.right = right;
+  return b;
+}
+
 namespace {
 
 constexpr int kSkyDirections = 64;
@@ -239,7 +250,7 @@ SkyLights sky_lights(const Scene& scene) {
 }
 
 void set_previous_frame(gpu::FrameParams& f, const Scene& scene, const Scene& previous) {
-  const CameraBasis basis = camera_basis(previous.camera.view_dir);
+  const CameraBasis basis = camera_basis(previous.camera);
   // ENU and planet axes coincide, so the ENU difference is the planet-frame difference,
   // without the rounding of positions 6.4e6 m from the planet's centre.
   const glm::vec3 eye_offset = previous.camera.position_m - scene.camera.position_m;
@@ -306,7 +317,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   const CloudParams& c = scene.clouds;
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
   const float planet_m = atmosphere.planet_radius_m;
-  const CameraBasis basis = camera_basis(scene.camera.view_dir);
+  const CameraBasis basis = camera_basis(scene.camera);
   const KeyLight& key = lights.key;
   const glm::vec3 sun = key.direction;  // the key light's: the sun's, or at night the moon's
   const float aspect = float(scene.output.width) / float(scene.output.height);

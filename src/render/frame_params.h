@@ -38,7 +38,13 @@ AtmosphereTables compute_atmosphere_tables(const Scene& scene);
 struct CameraBasis {
   glm::vec3 forward, right, up;
 };
+// The basis of a camera without roll: right horizontal, up in the vertical plane through
+// view_dir (north when looking straight up or down).
 CameraBasis camera_basis(const glm::vec3& view_dir);
+// The camera's basis: camera_basis(view_dir) turned about forward by roll_deg, clockwise as the
+// viewer sees it: right = cos r right0 - sin r up0, up = cos r up0 + sin r right0. Roll 0 gives
+// camera_basis(view_dir) bit for bit.
+CameraBasis camera_basis(const CameraParams& camera);
 
 // The light whose direct light and shadows the clouds and the ground get: the sun, or at night
 // the moon once it lights the middle of the cloud layer more than the setting sun does (the

@@ -98,7 +98,7 @@ bool history_usable(const Scene& scene, const Scene& previous, const glm::vec3& 
 // Share of above-horizon pixels (view ray rising above the camera's local horizontal) whose
 // cloud transmittance is below 0.5.
 double cloud_cover_fraction(const Scene& scene, const Image& clouds) {
-  const CameraBasis basis = camera_basis(scene.camera.view_dir);
+  const CameraBasis basis = camera_basis(scene.camera);
   const float tan_half_fov = std::tan(glm::radians(scene.camera.fov_deg) * 0.5f);
   const float aspect = float(clouds.width) / float(clouds.height);
   const glm::vec3 up = glm::normalize(planet_from_enu(scene, scene.camera.position_m));

@@ -145,7 +145,10 @@ const std::vector<Section>& scene_sections() {
       {"camera",
        {FIELD(camera, position_m, "east, north, up (m); east and north in [-1e9, 1e9], up in [0, 1e9]"),
         FIELD(camera, view_dir, "looking direction, ENU, length in [1e-6, 1e6]"),
-        FIELD(camera, fov_deg, "vertical field of view, [0.01, 180)")},
+        FIELD(camera, fov_deg, "vertical field of view, [0.01, 180)"),
+        FIELD(camera, roll_deg,
+              "about view_dir, [-180, 180]; positive turns the camera clockwise (the horizon "
+              "rises to the right)")},
        {"altitude_m"}},
       {"sun",
        {FIELD(sun, from_time, "true: placed by the ephemeris for time and location"),

@@ -32,6 +32,14 @@ struct Section {
   std::vector<std::string_view> extra_keys;  // keys the reader handles itself
 };
 
+// toml++ builds and destroys nested tables recursively, so a dotted key of 50,000 parts
+// overflows the stack. nephele's deepest key has 4 parts (conditions.good.night.hour); a
+// line whose keys have more than this many parts is refused before parsing (scene files and
+// camera paths).
+constexpr int kMaxKeyParts = 32;
+// The first line on which keys have more than kMaxKeyParts dotted parts, 0 when none.
+int line_of_too_deep_key(std::string_view text);
+
 // Every field of Scene, in the order scene_to_toml writes them; the top level comes first.
 const std::vector<Section>& scene_sections();
 

@@ -24,23 +24,9 @@ extern const size_t kFileCount;
 }  // namespace nephele_presets
 
 namespace nephele {
-namespace {
+namespace scene_detail {
 
-using scene_detail::Field;
-using scene_detail::Section;
-
-// A preset may start from another preset; this bounds the chain (and breaks cycles).
-constexpr int kMaxPresetDepth = 8;
-
-// Scene files are small; anything larger is not one (and /dev/zero never ends).
-constexpr std::uintmax_t kMaxSceneFileBytes = 1u << 20;
-
-// toml++ builds and destroys nested tables recursively, so a dotted key of 50,000 parts
-// overflows the stack. nephele's deepest key has 4 parts (conditions.good.night.hour); a
-// line whose keys have more than this many parts is refused before parsing. (Nested arrays
-// and inline tables are bounded by toml++ itself, at 256.)
-constexpr int kMaxKeyParts = 32;
-
+// (kMaxKeyParts: nested arrays and inline tables are bounded by toml++ itself, at 256.)
 // The first line on which keys have more than kMaxKeyParts dotted parts, 0 when none. Keys
 // never span lines in TOML. Dots in strings and comments are not key dots, nor is the first
 // dot between two digits of a word (1.5, 18:30:00.5); a key of digits (1.2.3) counts the rest.
@@ -111,6 +97,21 @@ int line_of_too_deep_key(std::string_view text) {
   }
   return 0;
 }
+
+}  // namespace scene_detail
+
+namespace {
+
+using scene_detail::kMaxKeyParts;
+using scene_detail::line_of_too_deep_key;
+using scene_detail::Field;
+using scene_detail::Section;
+
+// A preset may start from another preset; this bounds the chain (and breaks cycles).
+constexpr int kMaxPresetDepth = 8;
+
+// Scene files are small; anything larger is not one (and /dev/zero never ends).
+constexpr std::uintmax_t kMaxSceneFileBytes = 1u << 20;
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;

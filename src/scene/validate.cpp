@@ -192,6 +192,7 @@ void check_camera(const Checker& check, const CameraParams& camera) {
   check.in_range("camera.altitude_m", camera.position_m.z, 0.0f, kMaxCameraDistanceM);
   check.direction("camera.view_dir", camera.view_dir);
   check.in_range("camera.fov_deg", camera.fov_deg, 0.01f, 180.0f, false, true);
+  check.in_range("camera.roll_deg", camera.roll_deg, -180.0f, 180.0f);
 }
 
 void check_sun(const Checker& check, const SunParams& sun) {

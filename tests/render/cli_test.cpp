@@ -27,8 +27,9 @@ struct CliRun {
   std::string output;  // stdout and stderr
 };
 
-CliRun run_cli(const std::string& args) {
-  const std::string command = std::string(NEPHELE_CLI_PATH) + " " + args + " 2>&1";
+// `redirect`: what the shell does with the streams; by default both are captured.
+CliRun run_cli(const std::string& args, const std::string& redirect = "2>&1") {
+  const std::string command = std::string(NEPHELE_CLI_PATH) + " " + args + " " + redirect;
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 4096> buffer;
@@ -348,4 +349,87 @@ TEST_F(CliTest, BadSequenceAndConditionsFlagsAreRejected) {
   expect_rejected("--width 8 --height 8 --conditions artist", {"conditions.hour"});
   expect_rejected("--width 8 --height 8 --hour 25", {"--hour", "25"});
   expect_rejected("--width 8 --height 8 --sky rayleigh", {"--sky", "rayleigh"});
+}
+
+// A camera path of three keys: east along the ground, turning, climbing and rolling.
+const char* const kFlight =
+    "[[key]]\ntime_s = 0\nposition_m = [0, 0, 50]\nheading_deg = 0\npitch_deg = 5\n"
+    "[[key]]\ntime_s = 1\nposition_m = [40, 30, 80]\nlook_at_m = [400, 2000, 900]\nroll_deg = 10\n"
+    "[[key]]\ntime_s = 2\nposition_m = [90, 40, 120]\nheading_deg = 60\npitch_deg = 0\n"
+    "fov_deg = 50\n";
+
+// --camera-path: one frame a 1 / --fps of path time, named by a printf-style pattern, the first
+// a still and the rest an animation; --still-frames and --start-frame number from K.
+TEST_F(CliTest, FlightWritesTheFramesNamedAsAsked) {
+  const std::string flight = path("flight.toml");
+  std::ofstream(flight) << kFlight;
+  fs::create_directories(path("out"));
+  const CliRun r = run_cli("render --camera-path " + flight +
+                           " --fps 1 --frames 3 --width 24 --height 16 --validation -o " +
+                           path("out/f_%02d.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* name : {"f_00.png", "f_01.png", "f_02.png"}) {
+    EXPECT_TRUE(fs::exists(path("out/") + name)) << name;
+    EXPECT_NE(r.output.find(path("out/") + name), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(path("out")), fs::directory_iterator()), 3);
+  // Stills from frame 3 on at 2 frames a second: up to the path's end (t = 2 s, frame 4).
+  const std::string stills_args =
+      " --fps 2 --start-frame 3 --still-frames --width 16 --height 16 -o " + path("still.png");
+  const CliRun stills = run_cli("render --camera-path " + flight + stills_args);
+  ASSERT_EQ(stills.status, 0) << stills.output;
+  EXPECT_TRUE(fs::exists(path("still_0003.png")));
+  EXPECT_TRUE(fs::exists(path("still_0004.png")));
+  EXPECT_FALSE(fs::exists(path("still_0005.png")));
+}
+
+// A malformed path, or a bad name pattern, is one line and exit 2 before any frame is written.
+TEST_F(CliTest, MalformedFlightWritesNothing) {
+  const std::string flight = path("flight.toml");
+  std::ofstream(flight) << "[[key]]\ntime_s = 1\nposition_m = [0, 0, 2]\nheading_deg = 0\n"
+                           "pitch_deg = 0\n[[key]]\ntime_s = 0\nposition_m = [0, 9, 2]\n"
+                           "heading_deg = 0\npitch_deg = 0\n";
+  const std::string bad_pitch = path("pitch.toml");
+  std::ofstream(bad_pitch)
+      << std::string(kFlight) +
+             "[[key]]\ntime_s = 3\nposition_m = [0, 0, 2]\nheading_deg = 0\npitch_deg = 91\n";
+  const std::string good = path("good.toml");
+  std::ofstream(good) << kFlight;
+  const std::pair<std::string, std::string> cases[] = {
+      {"--camera-path " + flight,
+       "flight.toml: key[1].time_s = 0: must be greater than key[0].time_s = 1"},
+      {"--camera-path " + bad_pitch, "pitch.toml: key[3].pitch_deg = 91: must be in [-90, 90]"},
+      {"--camera-path " + path("missing.toml"), "missing.toml: cannot read the camera path"},
+      {"--camera-path " + good + " -o " + path("f_%d_%d.png"), "has more than one %d"},
+      {"--camera-path " + good + " -o " + path("f_%x.png"), "only %d or a zero-padded %0Nd"},
+      {"--camera-path " + good + " --fps 0", "--fps 0: must be in (0, 1000]"},
+      {"--camera-path " + good + " --step 2", "--step 2: cannot be combined with --camera-path"},
+      {"--fps 24", "--fps 24: needs --camera-path"},
+  };
+  for (const auto& [args, message] : cases) {
+    const std::string output = args.find(" -o ") == std::string::npos ? " -o " + path("f.png") : "";
+    const CliRun r = run_cli("render --width 8 --height 8 " + args + output);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos)
+        << "expected '" << message << "' in " << r.output;
+  }
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().extension(), ".toml") << entry.path();
+}
+
+// --progress shows the sequence's progress on standard error though it is not a terminal (as
+// plain lines); --quiet shows nothing there.
+TEST_F(CliTest, ProgressOnStandardErrorWithProgressNoneWithQuiet) {
+  const std::string args = "render --width 16 --height 16 --frames 2 -o " + path("p.png");
+  const std::string only_stderr = "2>&1 >/dev/null";
+  const CliRun progress = run_cli(args + " --progress", only_stderr);
+  ASSERT_EQ(progress.status, 0) << progress.output;
+  EXPECT_NE(progress.output.find("render [####################] 100%  2/2"), std::string::npos)
+      << progress.output;
+  EXPECT_NE(progress.output.find(" left\n"), std::string::npos) << progress.output;
+  EXPECT_EQ(progress.output.find('\r'), std::string::npos) << "no redraws in a pipe";
+  const CliRun quiet = run_cli(args + " --progress --quiet", only_stderr);
+  ASSERT_EQ(quiet.status, 0) << quiet.output;
+  EXPECT_EQ(quiet.output, "");
 }

@@ -66,6 +66,7 @@ TEST(SceneFlags, RegistersExactlyTheSceneSpellings) {
                            "--camera-pos",
                            "--view-dir",
                            "--fov-deg",
+                           "--roll-deg",
                            "--sun-dir",
                            "--sun-elevation-deg",
                            "--sun-azimuth-deg",
@@ -119,6 +120,7 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--view-dir", "0, 1, -0.5"},
        [](const Scene& s) { return s.camera.view_dir == glm::vec3(0.0f, 1.0f, -0.5f); }},
       {{"--fov-deg", "45"}, [](const Scene& s) { return s.camera.fov_deg == 45.0f; }},
+      {{"--roll-deg", "-12.5"}, [](const Scene& s) { return s.camera.roll_deg == -12.5f; }},
       {{"--sun-dir", "1,0,1"},
        [](const Scene& s) { return s.sun.direction == glm::vec3(1.0f, 0.0f, 1.0f); }},
       {{"--sun-illuminance", "3e1"}, [](const Scene& s) { return s.sun.illuminance == 30.0f; }},
@@ -226,6 +228,7 @@ TEST(SceneFlags, ValidationErrorsNameTheFlag) {
   EXPECT_EQ(resolve_error({"--light-steps", "65"}), "--light-steps 65: must be in [1, 64]");
   EXPECT_EQ(resolve_error({"--march-stride", "3"}), "--march-stride 3: must be 1, 2 or 4");
   EXPECT_EQ(resolve_error({"--fov-deg", "180"}), "--fov-deg 180: must be in [0.01, 180)");
+  EXPECT_EQ(resolve_error({"--roll-deg", "181"}), "--roll-deg 181: must be in [-180, 180]");
   EXPECT_EQ(resolve_error({"--g-backward", "0.5"}), "--g-backward 0.5: must be in (-1, 0]");
   EXPECT_EQ(resolve_error({"--exposure", "nan"}), "--exposure nan: must be in (0, 1e+06]");
   EXPECT_EQ(resolve_error({"--camera-altitude-m", "-1"}),

@@ -56,6 +56,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.camera.position_m, b.camera.position_m);
   EXPECT_EQ(a.camera.view_dir, b.camera.view_dir);
   EXPECT_EQ(a.camera.fov_deg, b.camera.fov_deg);
+  EXPECT_EQ(a.camera.roll_deg, b.camera.roll_deg);
   EXPECT_EQ(a.sun.direction, b.sun.direction);
   EXPECT_EQ(a.sun.illuminance, b.sun.illuminance);
   EXPECT_EQ(a.sun.disk_angular_radius_deg, b.sun.disk_angular_radius_deg);
@@ -130,7 +131,7 @@ void expect_near(const glm::vec3& actual, const glm::vec3& expected) {
 // A scene in which every field differs from the defaults, with awkward float values.
 Scene unusual_scene() {
   Scene s;
-  s.camera = {{-12.5f, 3e4f, 123.456f}, {0.1f, -0.2f, 0.3f}, 33.3f};
+  s.camera = {{-12.5f, 3e4f, 123.456f}, {0.1f, -0.2f, 0.3f}, 33.3f, -47.125f};
   s.sun = {{-0.3f, 0.4f, 1e-7f}, 7.25f, 0.55f, true};
   s.time = "1999-12-31T23:59:59.5-03:30";
   s.location = {-33.8688f, 151.2093f, 58.0f};
@@ -579,6 +580,9 @@ const BadValue kBadValues[] = {
     {"camera.fov_deg = 0", [](Scene& s) { s.camera.fov_deg = 0.0f; }},
     {"camera.fov_deg = 180", [](Scene& s) { s.camera.fov_deg = 180.0f; }},
     {"camera.fov_deg = nan", [](Scene& s) { s.camera.fov_deg = kNaN; }},
+    {"camera.roll_deg = 180.5: must be in [-180, 180]",
+     [](Scene& s) { s.camera.roll_deg = 180.5f; }},
+    {"camera.roll_deg = nan", [](Scene& s) { s.camera.roll_deg = kNaN; }},
     {"sun.direction = (0, 0, 0)", [](Scene& s) { s.sun.direction = glm::vec3(0.0f); }},
     {"sun.direction = (0, -inf, 1)",
      [](Scene& s) {
@@ -753,6 +757,8 @@ TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
       [](Scene& s) { s.camera.view_dir = {1e-6f, 0.0f, 0.0f}; },
       [](Scene& s) { s.camera.view_dir = {0.0f, 1e6f, 0.0f}; },
       [](Scene& s) { s.camera.fov_deg = 0.01f; },
+      [](Scene& s) { s.camera.roll_deg = -180.0f; },
+      [](Scene& s) { s.camera.roll_deg = 180.0f; },
       [](Scene& s) { s.sun.illuminance = 1e6f; },
       [](Scene& s) { s.atmosphere.mie_scattering_per_m = s.atmosphere.mie_extinction_per_m = 0.01f; },
       [](Scene& s) { s.clouds.ambient_strength = 100.0f; },
