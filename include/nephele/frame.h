@@ -41,6 +41,9 @@ struct FrameOptions {
   // pixel of each quality.march_stride^2 block, the others reprojected from the history (as
   // Renderer::render_next).
   bool still = false;
+  // false: the display image is not made this frame (it keeps what it held), for a host that
+  // reads only `hdr` (Renderer reads the HDR image back and tone-maps files itself).
+  bool display = true;
 };
 
 // The images a recorded frame leaves, quality.* and output.* of its scene applied.

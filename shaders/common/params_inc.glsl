@@ -51,7 +51,7 @@ struct FrameParams {
                             // (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
   vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w unused
-  vec4 cloud_weather;       // x, y unused; z the weather map's time (weather_time), w the
+  vec4 cloud_weather;       // x, y, z unused; w the
                             // cloud profile's half extent (m; cloud_profile.comp)
   CloudLayerGpu cloud_layers[CLOUD_LAYERS];
   // The wind (seed 002; common/clouds_inc.glsl, cloud_wind_offset): xy its growth from a
@@ -129,8 +129,10 @@ struct FrameParams {
   vec4 weather_blend;
 };
 
-// Steps of the evolving weather per clouds.weather_evolution_s (2 s at an hour).
-const int WEATHER_STEPS = 1800;
+// Steps of the evolving weather per clouds.weather_evolution_s (10 s at an hour): the map is
+// blended linearly between states that far apart, where the weather's clusters move 1/360
+// of a noise cell.
+const int WEATHER_STEPS = 360;
 
 // FrameParams::steps.w: how the clouds pass turns its pixels into rays.
 const int PROJECTION_CAMERA = 0;    // the camera's perspective

@@ -306,11 +306,6 @@ gpu::CloudLayerGpu cloud_layer(float planet_m, float bottom_m, float top_m, floa
 
 }  // namespace
 
-float weather_time(const Scene& scene) {
-  const float evolution_s = scene.clouds.weather_evolution_s;
-  if (evolution_s <= 0.0f || !scene.clouds.weather_map.empty()) return 0.0f;
-  return float(std::floor(double(scene.time_s) / evolution_s * kWeatherSteps) / kWeatherSteps);
-}
 
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
                                    const AtmosphereTables& tables) {
@@ -408,7 +403,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   f.cirrus = glm::vec4(f.radii_m.x + ci.altitude_m, ci.coverage, ci.type, ci.optical_depth);
   f.cirrus_wind = glm::vec4(ci.wind_mps * scene.time_s,
                             wind_speed > 0.0f ? ci.wind_mps / wind_speed : glm::vec2(1.0f, 0.0f));
-  f.cloud_weather = glm::vec4(0.0f, 0.0f, weather_time(scene), 0.0f);
+  f.cloud_weather = glm::vec4(0.0f);
   f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
                             1.0f / c.weather_period_m, c.detail_erosion);
   f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);

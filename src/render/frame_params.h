@@ -86,11 +86,6 @@ double moon_illuminance_ratio(double illuminated_fraction, double distance_km);
 // table passes read.
 void set_atmosphere(gpu::FrameParams& f, const Scene& scene);
 
-// The weather map's time (FrameParams::cloud_weather.z): time_s in units of
-// clouds.weather_evolution_s, in steps of 1/kWeatherSteps of it (2 s at an hour), so an
-// animation rebuilds the map (weather.comp) at most that often; 0 for a static map.
-constexpr float kWeatherSteps = 1800.0f;
-float weather_time(const Scene& scene);
 
 // The flow map of local swirls (clouds.flow_speed_mps) is the curl noise texture over a tile
 // of this size: eddies about 4 km across (its coarsest octave has 4 cells a tile).

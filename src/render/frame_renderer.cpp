@@ -247,7 +247,7 @@ FrameImages FrameRenderer::record_frame(VkCommandBuffer cmd, const Scene& scene,
   if (cmd == VK_NULL_HANDLE)
     throw InputError("FrameRenderer::record_frame: cmd is VK_NULL_HANDLE; a command buffer in "
                      "the recording state is needed");
-  return impl_->record_frame(cmd, scene, options.still);
+  return impl_->record_frame(cmd, scene, options);
 }
 
 Frame FrameRenderer::read_back() {
@@ -295,8 +295,9 @@ Frame FrameRenderer::Impl::download_last(const Scene& scene) {
 }
 
 FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& scene,
-                                              bool still) {
+                                              const FrameOptions& options) {
   validate_scene(scene);
+  const bool still = options.still;
   const auto start = std::chrono::steady_clock::now();
   const int slot = int(frames_recorded % gpu::kFramesInFlight);
   collect(slot);  // the host has waited for the frame recorded there before
@@ -353,7 +354,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     pass_ground_light(cmd, s, scene.quality.mode);
   pass_compose(cmd, s, scene.atmosphere.model);
   pass_stars(cmd, s);
-  pass_tonemap(cmd, s);
+  if (options.display) pass_tonemap(cmd, s);
   gpu::frame_end_barrier(cmd, ctx.has_graphics());
 
   previous = scene;

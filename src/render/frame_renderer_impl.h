@@ -49,7 +49,7 @@ struct FrameRenderer::Impl {
   // The brute-force reference sky, tile by tile (one submission each), into state.reference_sky.
   void render_reference_sky(gpu::FrameParams params);
 
-  FrameImages record_frame(VkCommandBuffer cmd, const Scene& scene, bool still);
+  FrameImages record_frame(VkCommandBuffer cmd, const Scene& scene, const FrameOptions& options);
   // After the frame of `slot` completed: its stats with the passes' timings (moved into
   // `completed`); nothing when none is pending there.
   void collect(int slot);

@@ -33,7 +33,9 @@ Frame Renderer::render_frame(const Scene& scene, bool still, bool read_back) {
   const auto start = std::chrono::steady_clock::now();
   FrameRenderer::Impl& f = *impl_->frames.impl_;
   FrameImages images;
-  f.ctx.submit_and_wait([&](VkCommandBuffer cmd) { images = f.record_frame(cmd, scene, still); });
+  f.ctx.submit_and_wait([&](VkCommandBuffer cmd) { 
+    images = f.record_frame(cmd, scene, FrameOptions{still, false});
+  });
   f.collect(images.slot);
   Frame frame;
   if (read_back) frame = f.download_last(scene);

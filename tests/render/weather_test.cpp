@@ -61,7 +61,7 @@ TEST_F(WeatherTest, TheSameSeedAndTimeGiveTheSameImage) {
 }
 
 TEST_F(WeatherTest, OneSecondChangesLittleTenMinutesChangeTheSky) {
-  // 1799.5 s and 1800.5 s straddle a step of the map's time (weather_time: 2 s at an hour).
+  // 1799.5 s and 1800.5 s: the map blended between states 10 s apart (WEATHER_STEPS).
   const Frame start = render(still_air(1799.5f));
   const Frame second = render(still_air(1800.5f));
   const Frame later = render(still_air(2399.5f));

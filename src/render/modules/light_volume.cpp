@@ -12,7 +12,7 @@ namespace nephele {
 
 namespace {
 constexpr int kRows = gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_Z;
-constexpr int kRowsPerFrame = (kRows + kLightVolumeBuildFrames - 1) / kLightVolumeBuildFrames;
+constexpr int rows_per_frame(int frames) { return (kRows + frames - 1) / frames; }
 }  // namespace
 
 LightVolumeModule::LightVolumeModule(gpu::Context& ctx, gpu::DescriptorSet& set)
@@ -62,8 +62,10 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
       build_key_ = now;  // a new build (one for other clouds is abandoned)
       next_row_ = 0;
     }
+    const bool edit = build_key_->clouds != read_key_->clouds;
     first_row_ = next_row_;
-    rows_ = std::min(kRowsPerFrame, kRows - next_row_);
+    rows_ = std::min(rows_per_frame(edit ? kLightVolumeEditFrames : kLightVolumeBuildFrames),
+                     kRows - next_row_);
   }
   next_row_ = first_row_ + rows_;
   if (rows_ > 0 && next_row_ >= kRows) {  // complete this frame: read after its last band

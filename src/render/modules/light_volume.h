@@ -17,8 +17,13 @@
 namespace nephele {
 
 // Frames over which an animation rebuilds the light volume (LIGHT_VOLUME_Z LIGHT_VOLUME_XY
-// rows, 80 a frame): on lavapipe a whole volume costs some 40 frames' worth of clouds.
-constexpr int kLightVolumeBuildFrames = 64;
+// rows): on lavapipe a whole volume costs some 200 frames' worth of clouds at 240x160. When
+// the light, the camera or the clouds' drift made it stale, over kLightVolumeBuildFrames
+// (12.8 s at 20 frames/s; the light moves by 0.25 deg in a minute); when the clouds
+// themselves changed (an edit), over kLightVolumeEditFrames, so that the lighting follows
+// the edit within a second.
+constexpr int kLightVolumeBuildFrames = 256;
+constexpr int kLightVolumeEditFrames = 16;
 
 class LightVolumeModule {
  public:

@@ -80,7 +80,7 @@ void WeatherModule::prepare(const Scene& scene, gpu::FrameParams& params) {
   }
   const double steps = weather_time(scene) * gpu::WEATHER_STEPS;
   const long long k = (long long)std::floor(steps);
-  const float f = float(steps - double(k));
+  const float f = std::floor(float(steps - double(k)) * kWeatherBlends) / kWeatherBlends;
   const auto have = [&](long long step) { return step_in_layer_[layer_of(step)] == step; };
   // The two states blended must be complete now: computed whole in this frame when they are
   // not (the first frame, a jump in time). Then the next one, a band a frame.

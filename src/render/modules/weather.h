@@ -15,8 +15,12 @@
 namespace nephele {
 
 constexpr uint32_t kWeatherMapSize = 512;  // procedural weather map 512^2
-// Frames over which the next state of the evolving weather is computed.
-constexpr int kWeatherBuildFrames = 16;
+// Frames over which the next state of the evolving weather is computed (the states are 10 s
+// apart at an hour's evolution: 200 frames at 20 frames/s).
+constexpr int kWeatherBuildFrames = 64;
+// The map is blended again when the share of the later state has moved by 1/kWeatherBlends
+// (0.16 s of weather at an hour's evolution).
+constexpr int kWeatherBlends = 64;
 
 class WeatherModule {
  public:
