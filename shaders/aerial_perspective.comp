@@ -19,12 +19,14 @@ layout(local_size_x = 8, local_size_y = 8) in;
 const int STEPS_PER_SLICE = 2;
 
 void main() {
-  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-  if (texel.x >= AP_SIZE_U || texel.y >= AP_SIZE_V) return;
+  ivec2 texel = ivec2(gl_GlobalInvocationID.x, frame.sky_view_rows.z + int(gl_GlobalInvocationID.y));
+  if (texel.x >= AP_SIZE_U || texel.y >= AP_SIZE_V ||
+      int(gl_GlobalInvocationID.y) >= frame.sky_view_rows.w)
+    return;
   Atmosphere a = frame_atmosphere();
   vec3 eye = frame.camera_pos_m.xyz;
   vec3 sun = frame.sun_dir.xyz;
-  SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward);
+  SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_build_up, frame.sky_view_build_forward);
   vec2 uv = (vec2(texel) + 0.5f) / vec2(AP_SIZE_U, AP_SIZE_V);
   vec3 dir = sky_view_texel_dir(sky_frame, uv, eye, a.planet_radius_m);
   vec2 ground = ray_sphere(eye, dir, a.planet_radius_m);

@@ -24,12 +24,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 void main() {
   ivec2 size = imageSize(sky_view_out);
   int rows = size.y / 2;
-  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-  if (texel.x >= size.x || texel.y >= rows) return;
+  ivec2 texel = ivec2(gl_GlobalInvocationID.x, frame.sky_view_rows.x + int(gl_GlobalInvocationID.y));
+  if (texel.x >= size.x || texel.y >= rows || int(gl_GlobalInvocationID.y) >= frame.sky_view_rows.y)
+    return;
 
   vec3 eye = frame.camera_pos_m.xyz;
   vec3 sun = frame.sun_dir.xyz;
-  SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward);
+  SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_build_up, frame.sky_view_build_forward);
   vec2 uv = (vec2(texel) + 0.5f) / vec2(size.x, rows);
   vec3 dir = sky_view_texel_dir(sky_frame, uv, eye, frame.radii_m.x);
   Atmosphere a = frame_atmosphere();

@@ -127,6 +127,13 @@ struct FrameParams {
   // and the later state (weather_blend.comp).
   ivec4 weather_build;
   vec4 weather_blend;
+  // The frame of the sky-view LUT and aerial-perspective volume being built (as sky_view_up
+  // and sky_view_forward are the frame of the pair read; render/modules/sky_view.h).
+  vec4 sky_view_build_up;
+  vec4 sky_view_build_forward;
+  // The rows built this frame: x the LUT's first, y its count (of kSkyViewHeight), z the
+  // volume's first, w its count (of AP_SIZE_V).
+  ivec4 sky_view_rows;
 };
 
 // Steps of the evolving weather per clouds.weather_evolution_s (10 s at an hour): the map is

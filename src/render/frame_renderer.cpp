@@ -145,7 +145,7 @@ void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
   tables.transmittance = download(ctx, state.transmittance_lut, false).pixels;
   tables.multiple_scattering = download(ctx, state.ms_lut, false).pixels;
   luts_built = scene.atmosphere;
-  sky_view_built.reset();
+  sky_view.invalidate();
 }
 
 void FrameRenderer::Impl::render_reference_sky(gpu::FrameParams params) {
@@ -213,7 +213,8 @@ FrameRenderer::Impl::Impl(const RendererOptions& options)
       state(ctx),
       verbose(options.verbose),
       weather(ctx, state.set),
-      light_volume(ctx, state.set) {}
+      light_volume(ctx, state.set),
+      sky_view(ctx, state.set) {}
 
 FrameRenderer::Impl::Impl(const HostVulkan& host, const RendererOptions& options)
     : ctx(gpu::HostDevice{host.instance, host.physical_device, host.device, host.queue_family,
@@ -222,7 +223,8 @@ FrameRenderer::Impl::Impl(const HostVulkan& host, const RendererOptions& options
       state(ctx),
       verbose(options.verbose),
       weather(ctx, state.set),
-      light_volume(ctx, state.set) {}
+      light_volume(ctx, state.set),
+      sky_view(ctx, state.set) {}
 
 FrameRenderer::FrameRenderer(const RendererOptions& options)
     : impl_(std::make_unique<Impl>(options)) {}
@@ -328,15 +330,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   params.cloud_shape.x = 2.0f * params.camera_pos_m.w / float(cloud_h);  // detail noise's LOD
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
   light_volume.prepare(scene, key, WeatherModule::weather_time(scene), still, params);
-  // The sky-view LUT depends on the sun, the camera's position and the atmosphere only: a
-  // camera turning or clouds changing reuse it, and so does a camera that moved a little
-  // (sky_view_reusable), sampled in the frame the LUT was built in.
-  const SkyViewKey sky_key = sky_view_key(params);
-  const bool sky_stale = !sky_view_built || !sky_view_reusable(sky_view_built->key, sky_key);
-  if (!sky_stale) {
-    params.sky_view_up = sky_view_built->up;
-    params.sky_view_forward = sky_view_built->forward;
-  }
+  sky_view.prepare(still, params);
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);
   weather.prepare(scene, params);
@@ -344,7 +338,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
 
   s.begin(cmd, slot, params);
   weather.record(cmd, *s.timer);
-  if (sky_stale) pass_sky_view(cmd, s);
+  sky_view.record(cmd, *s.timer);
   light_volume.record(cmd, *s.timer);
   pass_clouds(cmd, s, scene.quality.mode);
   pass_march_range(cmd, s);
@@ -361,7 +355,6 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   previous_key = key;
   previous_light_dir = lights.key.direction;
   ++frame_counter;
-  if (sky_stale) sky_view_built = SkyViewBuilt{sky_key, params.sky_view_up, params.sky_view_forward};
   last_params = params;
 
   FrameStats stats;

@@ -9,6 +9,7 @@
 #include "nephele/frame.h"
 #include "render/frame_params.h"
 #include "render/modules/light_volume.h"
+#include "render/modules/sky_view.h"
 #include "render/modules/weather.h"
 #include "render/passes.h"
 
@@ -34,13 +35,8 @@ struct FrameRenderer::Impl {
 
   WeatherModule weather;
   LightVolumeModule light_volume;
+  SkyViewModule sky_view;
 
-  // Inputs of the sky-view LUT in the texture and the LUT frame it was built in.
-  struct SkyViewBuilt {
-    SkyViewKey key;
-    glm::vec4 up, forward;
-  };
-  std::optional<SkyViewBuilt> sky_view_built;
   // Hillaire's transmittance and multiple-scattering tables: what they were built for, and
   // their copy on the host for the lighting computed on the CPU.
   std::optional<AtmosphereParams> luts_built;

@@ -15,7 +15,6 @@ GpuState::GpuState(gpu::Context& c)
       noise_base_kernel(c, set, "noise_base.comp.spv"),
       noise_detail_kernel(c, set, "noise_detail.comp.spv"),
       noise_curl_kernel(c, set, "noise_curl.comp.spv"),
-      sky_view_kernel(c, set, "sky_view.comp.spv"),
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
       resolve_kernel(c, set, "resolve.comp.spv"),
@@ -25,7 +24,6 @@ GpuState::GpuState(gpu::Context& c)
       stars_kernel(c, set, "stars.comp.spv"),
       transmittance_lut_kernel(c, set, "transmittance_lut.comp.spv"),
       ms_lut_kernel(c, set, "multiscattering_lut.comp.spv"),
-      aerial_perspective_kernel(c, set, "aerial_perspective.comp.spv"),
       reference_psi_kernel(c, set, "sky_reference_psi.comp.spv"),
       reference_sky_kernel(c, set, "sky_reference.comp.spv"),
       cloud_profile_kernel(c, set, "cloud_profile.comp.spv"),
@@ -38,17 +36,11 @@ GpuState::GpuState(gpu::Context& c)
       detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
                    VK_FORMAT_R8G8B8A8_UNORM, VK_SAMPLER_ADDRESS_MODE_REPEAT, kDetailNoiseLevels),
       curl_noise(c, kCurlNoiseSize, kCurlNoiseSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT),
-      // Half floats hold radiance to 0.05%. Both tables wrap in azimuth (u); v and w are kept
-      // half a texel inside by the shaders (sky_view_inc.glsl), so repeating there reads nothing.
-      sky_view(c, kSkyViewWidth, 2 * kSkyViewHeight, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
-               VK_SAMPLER_ADDRESS_MODE_REPEAT),
       ground_light(c, 1, 1, 1, VK_FORMAT_R32_SFLOAT),
       transmittance_lut(c, glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1,
                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       ms_lut(c, glsl::MS_LUT_W, glsl::MS_LUT_H, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
              VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
-      aerial_perspective(c, glsl::AP_SIZE_U, glsl::AP_SIZE_V, glsl::AP_SLICES,
-                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_REPEAT),
       reference_psi(c, gpu::REFERENCE_TILE, gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES,
                     VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set.bind_image(gpu::kReferencePsiOut, gpu::kReferencePsi, reference_psi);
@@ -58,7 +50,6 @@ GpuState::GpuState(gpu::Context& c)
   resize_reference_sky(1, 1);
   set.bind_image(gpu::kTransmittanceLutOut, gpu::kTransmittanceLut, transmittance_lut);
   set.bind_image(gpu::kMsLutOut, gpu::kMsLut, ms_lut);
-  set.bind_image(gpu::kAerialPerspectiveOut, gpu::kAerialPerspective, aerial_perspective);
   set.bind_image(gpu::kGroundLightOut, gpu::kGroundLight, ground_light);
   for (int i = 0; i < kSlots; ++i) {
     timers[i] = std::make_unique<gpu::PassTimer>(c, 16);
@@ -72,7 +63,6 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_image(gpu::kBaseNoiseOut, gpu::kBaseNoise, base_noise);
   set.bind_image(gpu::kDetailNoiseOut, gpu::kDetailNoise, detail_noise);
   set.bind_image(gpu::kCurlNoiseOut, gpu::kCurlNoise, curl_noise);
-  set.bind_image(gpu::kSkyViewOut, gpu::kSkyView, sky_view);
   resize(1, 1, 1, 1);
 }
 
@@ -170,13 +160,6 @@ void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s) {
                 glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1, 8, 8, 1);
   gpu::dispatch(cmd, s.ms_lut_kernel, s.set, *s.timer, "multiscatter", glsl::MS_LUT_W,
                 glsl::MS_LUT_H, 1, 8, 8, 1);
-}
-
-void pass_sky_view(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.sky_view_kernel, s.set, *s.timer, "sky_view", kSkyViewWidth, kSkyViewHeight,
-                1, 8, 8, 1);
-  gpu::dispatch(cmd, s.aerial_perspective_kernel, s.set, *s.timer, "aerial_persp", glsl::AP_SIZE_U,
-                glsl::AP_SIZE_V, 1, 8, 8, 1);
 }
 
 namespace {

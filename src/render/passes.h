@@ -18,10 +18,6 @@ constexpr uint32_t kBaseNoiseSize = 128;    // seed 000, 2.2.2: base shape noise
 constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
 constexpr uint32_t kDetailNoiseLevels = 6;  // and its mip levels down to 1^3 (far clouds)
 constexpr uint32_t kCurlNoiseSize = 128;    // curl noise 128^2
-// Sky-view LUT (Hillaire 2020, 5.3): azimuth x elevation texels per table; the image stacks two
-// tables (radiance, sun-lit ground), so it is kSkyViewWidth x 2 kSkyViewHeight.
-constexpr uint32_t kSkyViewWidth = 256;
-constexpr uint32_t kSkyViewHeight = 108;
 // The sky dome (sky_dome_ray): kSkyDomeSize^2 directions of equal solid angle over the
 // observer's upper hemisphere, where sky_cover_fraction is measured.
 constexpr uint32_t kSkyDomeSize = 64;
@@ -60,9 +56,9 @@ struct GpuState {
   gpu::Context& ctx;
   gpu::DescriptorSet set;
   gpu::Kernel noise_base_kernel, noise_detail_kernel, noise_curl_kernel;
-  gpu::Kernel sky_view_kernel, clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
+  gpu::Kernel clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
   gpu::Kernel compose_kernel, compose_reference_kernel, march_range_kernel;
-  gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel, aerial_perspective_kernel;
+  gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel;
   gpu::Kernel reference_psi_kernel, reference_sky_kernel, cloud_profile_kernel;
   gpu::Kernel ground_light_default_kernel, ground_light_baseline_kernel, tonemap_kernel;
   std::unique_ptr<gpu::PassTimer> timers[kSlots];
@@ -71,10 +67,10 @@ struct GpuState {
   int slot = kOneOff;               // since begin()
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
   int star_count = 0;
-  gpu::Texture base_noise, detail_noise, curl_noise, sky_view;
+  gpu::Texture base_noise, detail_noise, curl_noise;
   gpu::Texture ground_light;
   // Hillaire's tables (atmosphere_lut_inc.glsl, sky_view_inc.glsl).
-  gpu::Texture transmittance_lut, ms_lut, aerial_perspective;
+  gpu::Texture transmittance_lut, ms_lut;
   // The reference sky (bindings_inc.glsl): one tile's Psi_ms, and the sky per pixel (resized to
   // the image only when the reference is rendered).
   gpu::Texture reference_psi, reference_sky;
@@ -97,9 +93,6 @@ void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
 void pass_noise_curl(VkCommandBuffer cmd, GpuState& s);
 // Only when the atmosphere changes: the transmittance LUT, then the multiple-scattering LUT.
 void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s);
-// Only when its inputs change (the renderer caches it by sky_view_key): the sky-view LUT and
-// the aerial-perspective volume, which share its frame.
-void pass_sky_view(VkCommandBuffer cmd, GpuState& s);
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
 // The clouds pass over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME), into dome_a
 // and dome_b (bind_march(true) first).

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "render/glsl.h"
-#include "render/passes.h"
+#include "render/modules/sky_view.h"
 
 namespace g = nephele::glsl;
 using glm::vec2;
