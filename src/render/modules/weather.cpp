@@ -9,6 +9,9 @@
 namespace nephele {
 
 namespace {
+// The blended map keeps 16 bits: blends of 8-bit states between 8-bit steps, so that the map
+// moves a little every frame instead of jumping by 1/255 now and then.
+constexpr VkFormat kBlendedFormat = VK_FORMAT_R16G16B16A16_UNORM;
 constexpr int kRowsPerFrame = int(kWeatherMapSize) / kWeatherBuildFrames;
 int layer_of(long long step) { return int(((step % 3) + 3) % 3); }
 }  // namespace
@@ -19,7 +22,7 @@ WeatherModule::WeatherModule(gpu::Context& ctx, gpu::DescriptorSet& set)
       build_kernel_(ctx, set, "weather.comp.spv"),
       blend_kernel_(ctx, set, "weather_blend.comp.spv"),
       states_(ctx, kWeatherMapSize, kWeatherMapSize, 3, VK_FORMAT_R8G8B8A8_UNORM),
-      map_(ctx, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM) {
+      map_(ctx, kWeatherMapSize, kWeatherMapSize, 1, kBlendedFormat) {
   set_.bind_storage_image(gpu::kWeatherStates, states_);
   set_.bind_image(gpu::kWeatherMapOut, gpu::kWeatherMap, map_);
 }
@@ -37,7 +40,8 @@ double WeatherModule::weather_time(const Scene& scene) {
 // texture space and needs no flip.
 void WeatherModule::upload_png(const std::string& path) {
   const Image png = read_image(path);
-  if (map_.width() != uint32_t(png.width) || map_.height() != uint32_t(png.height)) {
+  if (map_.width() != uint32_t(png.width) || map_.height() != uint32_t(png.height) ||
+      map_key_.rfind("file:", 0) != 0) {
     ctx_.wait_queue_idle();
     map_ = gpu::Texture(ctx_, uint32_t(png.width), uint32_t(png.height), 1,
                         VK_FORMAT_R8G8B8A8_UNORM);
@@ -67,9 +71,9 @@ void WeatherModule::prepare(const Scene& scene, gpu::FrameParams& params) {
     map_key_ = key;
     return;
   }
-  if (map_.width() != kWeatherMapSize || map_.height() != kWeatherMapSize) {
+  if (map_key_.rfind("file:", 0) == 0) {  // the map held a file, in another format
     ctx_.wait_queue_idle();
-    map_ = gpu::Texture(ctx_, kWeatherMapSize, kWeatherMapSize, 1, VK_FORMAT_R8G8B8A8_UNORM);
+    map_ = gpu::Texture(ctx_, kWeatherMapSize, kWeatherMapSize, 1, kBlendedFormat);
     set_.bind_image(gpu::kWeatherMapOut, gpu::kWeatherMap, map_);
     map_key_.clear();
   }
