@@ -394,7 +394,8 @@ void Viewer::handle_input(float dt_s) {
   // The panel, a script or a preset moved the camera: take its pose.
   const CameraParams& scene_camera = editor_.scene().camera;
   if (scene_camera.position_m != applied_camera_.position_m ||
-      scene_camera.view_dir != applied_camera_.view_dir)
+      scene_camera.view_dir != applied_camera_.view_dir ||
+      scene_camera.roll_deg != applied_camera_.roll_deg)
     camera_.sync_from(scene_camera);
   input_this_frame_ = in.any() || wheel != 0.0f;
   if (input_this_frame_) {
@@ -436,8 +437,7 @@ void Viewer::draw_view_panel() {
       applied_camera_ = editor_.scene().camera;
     }
   }
-  // TODO(camera-path branch): the roll reaches the image once CameraParams::roll_deg lands.
-  ImGui::Text("roll %.1f deg (Z/C; not rendered yet)", camera_.roll_deg());
+  ImGui::Text("roll %.1f deg (Z/C; positive: right wing down)", double(camera_.roll_deg()));
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
   ImGui::InputFloat("##altitude", &goto_altitude_m_, 0.0f, 0.0f, "%.0f");
   ImGui::SameLine();

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <set>
 
@@ -11,6 +12,7 @@
 
 #include "camera_control.h"
 #include "dynamic_resolution.h"
+#include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
 #include "scene_editor.h"
@@ -257,6 +259,93 @@ TEST(ViewerCamera, FliesAtItsSpeedAndLooksWithTheMouse) {
   EXPECT_FLOAT_EQ(c.speed_mps(), CameraControl::kMinSpeedMps);
   c.update(CameraInput{.roll = 1.0f}, 1.0f);
   EXPECT_FLOAT_EQ(c.roll_deg(), CameraControl::kRollDegPerS);
+}
+
+// The viewer's roll is the scene's camera.roll_deg, with its sign: the library reads the same
+// roll back from the applied camera (key_from_camera), and its rolled right wing points down.
+TEST(ViewerCamera, AppliesItsRollAsTheScenesRoll) {
+  CameraParams camera;
+  camera.position_m = {0.0f, 0.0f, 500.0f};
+  camera.view_dir = glm::normalize(glm::vec3(1.0f, 1.0f, 0.2f));
+  camera.roll_deg = 30.0f;
+  CameraControl c;
+  c.sync_from(camera);
+  EXPECT_FLOAT_EQ(c.roll_deg(), 30.0f);
+  CameraParams out;
+  c.apply_to(out);
+  EXPECT_FLOAT_EQ(out.roll_deg, 30.0f);
+  EXPECT_NEAR(key_from_camera(0.0, out).roll_deg, 30.0, 1e-3);
+
+  c.update(CameraInput{.roll = 1.0f}, 1.0f);  // C for a second
+  c.apply_to(out);
+  EXPECT_FLOAT_EQ(out.roll_deg, 30.0f + CameraControl::kRollDegPerS);
+  const CameraKey key = key_from_camera(0.0, out);
+  EXPECT_NEAR(key.roll_deg, 75.0, 1e-3);
+  const glm::dvec3 right =
+      orientation_from_angles(key.heading_deg, key.pitch_deg, key.roll_deg) * glm::dvec3(1, 0, 0);
+  EXPECT_LT(right.z, -0.9);  // 75 deg: the right wing well down
+
+  // Past 180 the roll wraps, staying in the scene's [-180, 180].
+  c.set_roll_deg(170.0f);
+  c.update(CameraInput{.roll = 1.0f}, 0.5f);  // +22.5
+  c.apply_to(out);
+  EXPECT_NEAR(out.roll_deg, -167.5f, 1e-3f);
+  c.set_roll_deg(-180.0f);
+  c.apply_to(out);
+  EXPECT_GE(out.roll_deg, -180.0f);
+  EXPECT_LE(out.roll_deg, 180.0f);
+  c.set_roll_deg(std::numeric_limits<float>::quiet_NaN());  // ignored
+  c.apply_to(out);
+  EXPECT_TRUE(std::isfinite(out.roll_deg));
+}
+
+// W flies along the view direction whatever the roll; A/D and Q/E along the rolled image's right
+// and up (exactly, at pitch 0); the mouse turns the view towards the image's right and up.
+TEST(ViewerCamera, FliesAndLooksRelativeToTheRolledCamera) {
+  for (const float roll_deg : {0.0f, 35.0f, 90.0f, -120.0f}) {
+    SCOPED_TRACE(roll_deg);
+    CameraParams camera;
+    camera.position_m = {0.0f, 0.0f, 1000.0f};
+    camera.view_dir = glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f));
+    camera.roll_deg = roll_deg;
+    CameraControl c;
+    c.sync_from(camera);
+    c.set_speed_mps(10.0f);
+    const CameraKey key = key_from_camera(0.0, camera);
+    const glm::dquat q = orientation_from_angles(key.heading_deg, key.pitch_deg, key.roll_deg);
+    const glm::vec3 image_right(q * glm::dvec3(1, 0, 0)), image_up(q * glm::dvec3(0, 0, 1));
+    EXPECT_NEAR(glm::length(c.strafe_right() - image_right), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(c.strafe_up() - image_up), 0.0f, 1e-5f);
+
+    c.update(CameraInput{.forward = 1.0f}, 1.0f);
+    EXPECT_NEAR(glm::length(c.position_m() - (camera.position_m + camera.view_dir * 10.0f)), 0.0f,
+                1e-3f);
+    const glm::vec3 before = c.position_m();
+    c.update(CameraInput{.right = 1.0f}, 1.0f);
+    EXPECT_NEAR(glm::length(c.position_m() - (before + image_right * 10.0f)), 0.0f, 1e-3f);
+    c.update(CameraInput{.up = 1.0f}, 1.0f);
+    EXPECT_NEAR(glm::length(c.position_m() - (before + (image_right + image_up) * 10.0f)), 0.0f,
+                1e-3f);
+
+    // A small drag right turns the view towards the image's right, a drag down towards its down;
+    // the roll stays.
+    const glm::vec3 view = c.view_dir();
+    c.update(CameraInput{.look_dx_px = 4.0f}, 0.01f);
+    const glm::vec3 turned_right = glm::normalize(c.view_dir() - view);
+    EXPECT_GT(glm::dot(turned_right, image_right), 0.999f);
+    const glm::vec3 view2 = c.view_dir();
+    c.update(CameraInput{.look_dy_px = 4.0f}, 0.01f);
+    const glm::vec3 turned_down = glm::normalize(c.view_dir() - view2);
+    EXPECT_GT(glm::dot(turned_down, -image_up), 0.99f);
+    EXPECT_FLOAT_EQ(c.roll_deg(), roll_deg);
+  }
+  // Pitched, unrolled: Q/E stay vertical and A/D level, as before roll was rendered.
+  CameraParams pitched;
+  pitched.view_dir = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
+  CameraControl c;
+  c.sync_from(pitched);
+  EXPECT_NEAR(glm::length(c.strafe_up() - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(c.strafe_right() - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
 }
 
 TEST(ViewerCamera, OrbitsAroundAPointAtItsDistance) {
