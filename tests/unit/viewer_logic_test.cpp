@@ -1,5 +1,6 @@
 // nephele-view's logic without a window: scripts, the scene editor, the panel's groups and
-// value texts, dynamic resolution, the camera and its place on the planet.
+// value texts, dynamic resolution, the camera and its place on the planet, recording and flying
+// camera paths.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
+#include "path_control.h"
 #include "scene_editor.h"
 #include "script.h"
 
@@ -346,6 +348,95 @@ TEST(ViewerCamera, FliesAndLooksRelativeToTheRolledCamera) {
   c.sync_from(pitched);
   EXPECT_NEAR(glm::length(c.strafe_up() - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
   EXPECT_NEAR(glm::length(c.strafe_right() - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+}
+
+CameraParams camera_at(glm::vec3 position_m, float roll_deg = 0.0f) {
+  CameraParams camera;
+  camera.position_m = position_m;
+  camera.view_dir = {0.0f, 1.0f, 0.0f};
+  camera.roll_deg = roll_deg;
+  return camera;
+}
+
+// A key every half second of scene time while the camera moves; a pause is two keys at one
+// place; the keys are the cameras as they were and read back from the file exactly.
+TEST(ViewerPathRecorder, KeysEveryIntervalWhileMovingAndHoldsPauses) {
+  PathRecorder r;
+  const glm::vec3 a(0.0f, 0.0f, 100.0f);
+  r.start(100.0, camera_at(a));  // scene time 100 is path time 0
+  EXPECT_TRUE(r.recording());
+  // Moving, one sample a frame of 0.1 s: a key at 0.5, 1.0, 1.5 (path time).
+  for (int frame = 1; frame <= 15; ++frame)
+    r.sample(100.0 + 0.1 * frame, camera_at(a + glm::vec3(0.0f, float(frame), 0.0f)));
+  EXPECT_EQ(r.key_count(), 4u);
+  // Still from 1.5 to 3.0, then moving again at 3.5.
+  const glm::vec3 b = a + glm::vec3(0.0f, 15.0f, 0.0f);
+  for (int frame = 16; frame <= 30; ++frame) r.sample(100.0 + 0.1 * frame, camera_at(b));
+  EXPECT_EQ(r.key_count(), 4u);  // nothing moved: nothing kept
+  r.sample(103.5, camera_at(b + glm::vec3(5.0f, 0.0f, 0.0f), 10.0f));
+  EXPECT_EQ(r.key_count(), 6u);  // the pause's end (3.0, at b) and the new pose
+  r.sample(103.2, camera_at(a));  // the clock went back: skipped
+  EXPECT_EQ(r.key_count(), 6u);
+  const CameraPath path = r.stop(103.7, camera_at(b + glm::vec3(6.0f, 0.0f, 0.0f), 10.0f));
+  EXPECT_FALSE(r.recording());
+  ASSERT_EQ(path.keys().size(), 7u);  // and the camera when it stopped
+  const std::vector<double> times = {0.0, 0.5, 1.0, 1.5, 3.0, 3.5, 3.7};
+  for (size_t i = 0; i < times.size(); ++i) EXPECT_NEAR(path.keys()[i].time_s, times[i], 1e-9);
+  EXPECT_EQ(path.keys()[3].position_m, glm::dvec3(b));
+  EXPECT_EQ(path.keys()[4].position_m, glm::dvec3(b));  // held
+  EXPECT_NEAR(path.keys()[5].roll_deg, 10.0, 1e-4);
+  // The path holds still between the pause's keys.
+  EXPECT_EQ(path.at(2.2).position_m, b);
+
+  // Written and read back, the same keys.
+  const Scene scene;
+  const CameraPath back = parse_camera_path(camera_path_to_toml(path), "rec.toml", scene);
+  EXPECT_EQ(back.keys(), path.keys());
+}
+
+TEST(ViewerPathRecorder, AlwaysTwoKeys) {
+  PathRecorder r;
+  const glm::vec3 a(10.0f, 20.0f, 30.0f);
+  r.start(5.0, camera_at(a));
+  CameraPath path = r.stop(5.0, camera_at(a));  // no time passed
+  ASSERT_EQ(path.keys().size(), 2u);
+  EXPECT_EQ(path.keys()[0].position_m, glm::dvec3(a));
+  EXPECT_EQ(path.keys()[1].position_m, glm::dvec3(a));
+  EXPECT_DOUBLE_EQ(path.duration_s(), PathRecorder::kSampleIntervalS);
+
+  r.start(5.0, camera_at(a));
+  r.sample(6.0, camera_at(a));  // still
+  path = r.stop(7.0, camera_at(a));
+  ASSERT_EQ(path.keys().size(), 2u);  // still all along: the start and the end
+  EXPECT_DOUBLE_EQ(path.duration_s(), 2.0);
+}
+
+TEST(ViewerPathPlayback, FliesThePathInSceneTimeFromWhenItStarted) {
+  const Scene scene;
+  const CameraPath path = parse_camera_path(
+      "[[key]]\ntime_s = 2\nposition_m = [0, 0, 100]\nheading_deg = 0\npitch_deg = 0\n"
+      "[[key]]\ntime_s = 6\nposition_m = [400, 0, 300]\nheading_deg = 90\npitch_deg = 10\n"
+      "roll_deg = 20\n",
+      "p.toml", scene);
+  PathPlayback p;
+  EXPECT_FALSE(p.camera_at(0.0));  // nothing loaded
+  p.load(path, "p.toml");
+  EXPECT_FALSE(p.playing());
+  EXPECT_FALSE(p.camera_at(0.0));
+  p.play(50.0);  // scene time 50 is path time 2
+  ASSERT_TRUE(p.playing());
+  for (const double t : {50.0, 51.0, 53.5}) {
+    const std::optional<CameraParams> camera = p.camera_at(t);
+    ASSERT_TRUE(camera);
+    EXPECT_TRUE(same_view(*camera, path.at(t - 48.0))) << t;
+  }
+  EXPECT_TRUE(p.playing());
+  const std::optional<CameraParams> last = p.camera_at(54.5);  // past the last key
+  ASSERT_TRUE(last);
+  EXPECT_TRUE(same_view(*last, path.at(6.0)));
+  EXPECT_FLOAT_EQ(last->roll_deg, path.at(6.0).roll_deg);
+  EXPECT_FALSE(p.playing());  // the flight is over
+  EXPECT_FALSE(p.camera_at(55.0));
 }
 
 TEST(ViewerCamera, OrbitsAroundAPointAtItsDistance) {
