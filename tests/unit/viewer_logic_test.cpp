@@ -73,8 +73,8 @@ TEST(ViewerScript, BadLinesAreOneLineWithTheLineNumber) {
   EXPECT_EQ(error("\nframe -1 quit\n"), "s.txt:2: frame '-1': expected an integer in [0, 16000000]");
   EXPECT_EQ(error("frame 1x quit\n"), "s.txt:1: frame '1x': expected an integer in [0, 16000000]");
   EXPECT_EQ(error("frame 1\n"),
-            "s.txt:1: unknown command '' (allowed: set, preset, load, camera-path, screenshot, "
-            "window-screenshot, resize, quit)");
+            "s.txt:1: unknown command '' (allowed: set, preset, load, camera-path, record-start, "
+            "record-stop, print-camera, screenshot, window-screenshot, resize, quit)");
   EXPECT_EQ(error("frame 1 resize 640\n"), "s.txt:1: resize '640': expected WxH, each in [1, 16384]");
   EXPECT_EQ(error("frame 1 resize 640x0\n"),
             "s.txt:1: resize '640x0': expected WxH, each in [1, 16384]");
@@ -92,10 +92,32 @@ TEST(ViewerScript, BadLinesAreOneLineWithTheLineNumber) {
   EXPECT_EQ(error("frame 1 preset fog\n").rfind(
                 "s.txt:1: preset 'fog': unknown preset (available: above-clouds, ", 0),
             0u);
-  EXPECT_EQ(error("frame 1 camera-path p.toml\n").rfind("s.txt:1: camera-path: camera paths are "
-                                                        "not available in this build",
-                                                        0),
+  EXPECT_EQ(error("frame 1 camera-path\n"),
+            "s.txt:1: camera-path: expected a path file, e.g. 'camera-path flight.toml'");
+  EXPECT_EQ(error("frame 1 record-start now\n"), "s.txt:1: record-start: takes nothing, got 'now'");
+  EXPECT_EQ(error("frame 1 print-camera x\n"), "s.txt:1: print-camera: takes nothing, got 'x'");
+  EXPECT_EQ(error("frame 1 record-stop /no/such/folder/p.toml\n")
+                .rfind("s.txt:1: record-stop '/no/such/folder/p.toml': ", 0),
             0u);
+}
+
+TEST(ViewerScript, ReadsCameraPathCommands) {
+  const Script s = parse_script(
+      "frame 30 record-stop flight.toml\n"
+      "frame 20 camera-path missing-until-it-runs.toml\n"
+      "frame 10 record-start\n"
+      "frame 31 record-stop\n"
+      "frame 32 print-camera\n",
+      "s.txt");
+  ASSERT_EQ(s.commands.size(), 5u);
+  EXPECT_EQ(s.commands[0].action, ScriptAction::kRecordStart);
+  EXPECT_EQ(s.commands[1].action, ScriptAction::kCameraPath);
+  EXPECT_EQ(s.commands[1].argument, "missing-until-it-runs.toml");  // read when it runs
+  EXPECT_EQ(s.commands[2].action, ScriptAction::kRecordStop);
+  EXPECT_EQ(s.commands[2].argument, "flight.toml");
+  EXPECT_EQ(s.commands[3].action, ScriptAction::kRecordStop);
+  EXPECT_EQ(s.commands[3].argument, "");
+  EXPECT_EQ(s.commands[4].action, ScriptAction::kPrintCamera);
 }
 
 TEST(ViewerSceneEditor, AcceptsValidEditsAndKeepsTheLastValidScene) {
