@@ -36,14 +36,33 @@ void CameraControl::sync_from(const CameraParams& camera) {
   const SunAngles angles = sun_angles_from_direction(camera.view_dir);
   yaw_deg_ = float(angles.azimuth_deg);
   pitch_deg_ = std::clamp(float(angles.elevation_deg), -kMaxPitchDeg, kMaxPitchDeg);
+  set_roll_deg(camera.roll_deg);
   if (mode_ == CameraMode::kOrbit) orbit_target_m_ = position_m_ + view_dir() * orbit_distance_m_;
 }
 
 void CameraControl::apply_to(CameraParams& camera) const {
   camera.position_m = position_m_;
   camera.view_dir = view_dir();
-  // TODO(camera-path branch): camera.roll_deg = roll_deg_; once CameraParams has roll_deg.
-  // Until then the roll is kept here and shown in the panel, and the image is not rolled.
+  camera.roll_deg = roll_deg_;  // the same sign: right wing down is positive in both
+}
+
+void CameraControl::set_roll_deg(float roll_deg) {
+  if (!std::isfinite(roll_deg)) return;
+  roll_deg_ = std::clamp(std::remainder(roll_deg, 360.0f), -180.0f, 180.0f);
+}
+
+// The level right (horizontal, perpendicular to the heading) and the world's up, turned by the
+// roll about the heading: positive roll turns the right downwards and the up towards the right.
+glm::vec3 CameraControl::strafe_right() const {
+  const float yaw = yaw_deg_ / float(kDegPerRad), roll = roll_deg_ / float(kDegPerRad);
+  const glm::vec3 level_right(std::cos(yaw), -std::sin(yaw), 0.0f);
+  return level_right * std::cos(roll) - glm::vec3(0.0f, 0.0f, 1.0f) * std::sin(roll);
+}
+
+glm::vec3 CameraControl::strafe_up() const {
+  const float yaw = yaw_deg_ / float(kDegPerRad), roll = roll_deg_ / float(kDegPerRad);
+  const glm::vec3 level_right(std::cos(yaw), -std::sin(yaw), 0.0f);
+  return level_right * std::sin(roll) + glm::vec3(0.0f, 0.0f, 1.0f) * std::cos(roll);
 }
 
 glm::vec3 CameraControl::view_dir() const {
@@ -52,9 +71,17 @@ glm::vec3 CameraControl::view_dir() const {
 
 void CameraControl::update(const CameraInput& input, float dt_s) {
   dt_s = std::clamp(dt_s, 0.0f, 1.0f);  // a stall (a table rebuild) is not a leap
-  yaw_deg_ = std::fmod(yaw_deg_ + input.look_dx_px * kLookDegPerPx + 360.0f, 360.0f);
-  pitch_deg_ = std::clamp(pitch_deg_ - input.look_dy_px * kLookDegPerPx, -kMaxPitchDeg, kMaxPitchDeg);
-  roll_deg_ = std::remainder(roll_deg_ + input.roll * kRollDegPerS * dt_s, 360.0f);
+  // The mouse moves the view towards the image's right (dx) and down (dy). In (yaw, pitch) the
+  // rolled image's right is (cos r, -sin r) and its up (sin r, cos r).
+  const float roll_rad = roll_deg_ / float(kDegPerRad);
+  const float cos_roll = std::cos(roll_rad), sin_roll = std::sin(roll_rad);
+  const float look_yaw_deg =
+      (input.look_dx_px * cos_roll - input.look_dy_px * sin_roll) * kLookDegPerPx;
+  const float look_pitch_deg =
+      (-input.look_dx_px * sin_roll - input.look_dy_px * cos_roll) * kLookDegPerPx;
+  yaw_deg_ = std::fmod(std::fmod(yaw_deg_ + look_yaw_deg, 360.0f) + 360.0f, 360.0f);
+  pitch_deg_ = std::clamp(pitch_deg_ + look_pitch_deg, -kMaxPitchDeg, kMaxPitchDeg);
+  set_roll_deg(roll_deg_ + input.roll * kRollDegPerS * dt_s);
   if (mode_ == CameraMode::kOrbit) {
     // W/S move in and out, A/D and Q/E circle the target.
     const float factor = std::pow(2.0f, -input.forward * dt_s);
@@ -64,10 +91,8 @@ void CameraControl::update(const CameraInput& input, float dt_s) {
     update_orbit_position();
     return;
   }
-  const glm::vec3 forward = view_dir();
-  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 0.0f, 1.0f)));
-  const glm::vec3 move = forward * input.forward + right * input.right +
-                         glm::vec3(0.0f, 0.0f, 1.0f) * input.up;
+  const glm::vec3 move =
+      view_dir() * input.forward + strafe_right() * input.right + strafe_up() * input.up;
   position_m_ = clamp_to_scene(position_m_ + move * speed_mps_ * dt_s);
 }
 

@@ -1,8 +1,19 @@
 // nephele-view — the interactive camera: flight and orbit, and where it is on the planet.
 //
 // Angles: yaw_deg is the azimuth of the view from north through east, pitch_deg its elevation
-// above the local horizontal plane, roll_deg a turn about the view axis (right wing down
-// positive). Positions are the scene's ENU metres (scene.h).
+// above the local horizontal plane, roll_deg a turn about the view axis with the scene's sign
+// (camera.roll_deg: positive turns the camera clockwise as its viewer sees it, right wing down).
+// Positions are the scene's ENU metres (scene.h).
+//
+// Flight with a rolled camera, as a pilot sees the image:
+//   - W/S fly along the view direction, whatever the roll;
+//   - A/D and Q/E move along the image's right and up as the roll turns them about the heading:
+//     the level right (horizontal, perpendicular to the heading) and the world's up, turned by
+//     roll_deg in their plane. With roll 0 they are the level right and straight up, as before;
+//     at pitch 0 they are exactly the rolled image's right and up;
+//   - the mouse turns the view towards the image's right and up: a drag of (dx, dy) pixels is
+//     turned by the roll into yaw and pitch, so the scene follows the mouse in a rolled image
+//     as in a level one. The roll itself stays as it is (Z/C change it).
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -31,9 +42,10 @@ class CameraControl {
   static constexpr float kRollDegPerS = 45.0f;
   static constexpr float kMinOrbitDistanceM = 1.0f;
 
-  // Takes position and direction from the scene's camera.
+  // Takes position, direction and roll from the scene's camera.
   void sync_from(const CameraParams& camera);
-  // Writes position and direction (and, when the scene has it, roll) into the scene's camera.
+  // Writes position, direction and roll (camera.roll_deg, in [-180, 180]) into the scene's
+  // camera; the field of view stays the scene's.
   void apply_to(CameraParams& camera) const;
 
   // One frame of `dt_s` seconds.
@@ -60,7 +72,11 @@ class CameraControl {
   float yaw_deg() const { return yaw_deg_; }
   float pitch_deg() const { return pitch_deg_; }
   float roll_deg() const { return roll_deg_; }
-  void set_roll_deg(float roll_deg) { roll_deg_ = roll_deg; }
+  // Wrapped into [-180, 180]; a value that is not finite is ignored.
+  void set_roll_deg(float roll_deg);
+  // The directions A/D and Q/E move along (unit vectors, ENU): see the top of this file.
+  glm::vec3 strafe_right() const;
+  glm::vec3 strafe_up() const;
 
  private:
   void update_orbit_position();

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele/image.h"
 #include "nephele/output_file.h"
@@ -33,12 +34,13 @@ void parse_size(const std::string& text, int& width, int& height) {
 int main(int argc, char** argv) {
   CLI::App app{
       "nephele-view: interactive sky and volumetric clouds (right drag looks, WASD/QE fly, "
-      "wheel or +/- speed, Z/C roll, space plays time, F1 hides the panel)"};
+      "wheel or +/- speed, Z/C roll, space plays time, R records the camera path, P flies it, F1 "
+      "hides the panel)"};
   app.set_version_flag("--version", "nephele-view 0.1.0");
 
   nephele::cli::SceneFlags scene_flags;
   nephele::cli::add_scene_flags(app, scene_flags);
-  std::string size = "1280x800", script_path;
+  std::string size = "1280x800", script_path, camera_path;
   nephele::view::ViewerOptions options;
   app.add_option("--size", size, "window size WxH (default 1280x800)")->type_name("WxH");
   app.add_flag("--validation", options.validation,
@@ -58,7 +60,12 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
   app.add_option("--script", script_path,
                  "timed commands, one a line: frame N set KEY VALUE | preset NAME | load FILE | "
+                 "camera-path FILE | record-start | record-stop [FILE] | print-camera | "
                  "screenshot FILE | window-screenshot FILE | resize WxH | quit")
+      ->type_name("FILE");
+  app.add_option("--camera-path", camera_path,
+                 "fly this camera path (TOML, as `nephele render --camera-path` reads) from the "
+                 "first frame, in scene time; the clock runs")
       ->type_name("FILE");
   app.add_option("--target-ms", options.target_ms,
                  "frame time the dynamic resolution holds (default 33)")
@@ -103,6 +110,14 @@ int main(int argc, char** argv) {
           "--screenshot, --window-screenshot and --soak need --frames N (how many frames "
           "before it)");
     if (!script_path.empty()) options.script = nephele::view::load_script(script_path);
+    if (!camera_path.empty()) {
+      try {
+        options.camera_path = nephele::load_camera_path(camera_path, options.scene);
+      } catch (const nephele::InputError& e) {
+        throw nephele::InputError("--camera-path " + std::string(e.what()));
+      }
+      options.camera_path_name = camera_path;
+    }
     return nephele::view::run_viewer(options);
   } catch (const nephele::InputError& e) {
     print_error("error", e.what());

@@ -11,6 +11,7 @@
 
 #include "nephele/error.h"
 #include "nephele/image.h"
+#include "nephele/output_file.h"
 #include "nephele/scene_io.h"
 
 namespace nephele::view {
@@ -44,6 +45,9 @@ constexpr ActionName kActions[] = {
     {"preset", ScriptAction::kPreset},
     {"load", ScriptAction::kLoad},
     {"camera-path", ScriptAction::kCameraPath},
+    {"record-start", ScriptAction::kRecordStart},
+    {"record-stop", ScriptAction::kRecordStop},
+    {"print-camera", ScriptAction::kPrintCamera},
     {"screenshot", ScriptAction::kScreenshot},
     {"window-screenshot", ScriptAction::kWindowScreenshot},
     {"resize", ScriptAction::kResize},
@@ -127,17 +131,31 @@ Script parse_script(const std::string& text, const std::string& source) {
         break;
       }
       case ScriptAction::kQuit:
+      case ScriptAction::kRecordStart:
+      case ScriptAction::kPrintCamera:
         if (!argument.empty())
-          throw bad("quit: takes nothing, got " + quoted(argument));
+          throw bad(std::string(name) + ": takes nothing, got " + quoted(argument));
         break;
       case ScriptAction::kResize:
         if (!parse_window_size(argument, command.width, command.height))
           throw bad("resize " + quoted(argument) + ": expected WxH, each in [1, 16384]");
         break;
       case ScriptAction::kCameraPath:
-        // TODO(camera-path): run the path once include/nephele/camera_path.h lands on main.
-        throw bad("camera-path: camera paths are not available in this build (the camera-path "
-             "module has not landed yet)");
+        // The file is read when the command runs: an earlier record-stop may write it.
+        if (argument.empty())
+          throw bad("camera-path: expected a path file, e.g. 'camera-path flight.toml'");
+        command.argument = std::string(argument);
+        break;
+      case ScriptAction::kRecordStop:
+        if (!argument.empty()) {
+          try {
+            check_output_file(std::string(argument), "record-stop");
+          } catch (const InputError& error) {
+            throw bad(error.what());
+          }
+        }
+        command.argument = std::string(argument);
+        break;
       case ScriptAction::kScreenshot:
       case ScriptAction::kWindowScreenshot:
         if (argument.empty()) throw bad(std::string(name) + ": expected a file name");

@@ -19,6 +19,7 @@
 
 #include "camera_control.h"
 #include "dynamic_resolution.h"
+#include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele/frame.h"
 #include "nephele/image.h"
@@ -26,6 +27,7 @@
 #include "nephele/scene_io.h"
 #include "nephele/sky.h"
 #include "panel.h"
+#include "path_control.h"
 #include "scene_editor.h"
 #include "vulkan_window.h"
 
@@ -133,6 +135,15 @@ class Viewer {
   void advance_clock(float dt_s);
   void draw_ui();
   void draw_view_panel();
+  void draw_path_panel();
+  // Camera paths (path_control.h): flying one, recording the flown camera, writing a path.
+  void play_path(CameraPath path, const std::string& name);
+  void follow_path();
+  void start_recording();
+  std::string stop_recording(const std::string& file);
+  std::string save_path(const std::string& file, const std::string& parameter);
+  void print_camera() const;
+  void set_message(const std::string& message, bool is_error);
   void draw_overlay();
   Scene render_scene() const;
   bool draw_frame(const std::string& window_capture_path);
@@ -146,7 +157,9 @@ class Viewer {
 
   SceneEditor editor_;
   CameraControl camera_;
-  CameraParams applied_camera_;  // what camera_ last wrote into the scene
+  CameraParams applied_camera_;  // what camera_ (or a flight) last wrote into the scene
+  PathPlayback flight_;
+  PathRecorder recorder_;
   DynamicResolution dynres_;
   bool follow_window_ = true;
 
@@ -174,6 +187,7 @@ class Viewer {
   // Panel inputs.
   char scene_path_[512] = "scene.toml";
   char screenshot_path_[512] = "screenshot.png";
+  char path_file_[512] = "flight.toml";
   float goto_altitude_m_ = 2000.0f;
   std::string file_message_;
   bool file_message_is_error_ = false;
@@ -196,6 +210,10 @@ Viewer::Viewer(const ViewerOptions& options)
     throw RuntimeError("the window has no area (" + std::to_string(options.window_width) + "x" +
                        std::to_string(options.window_height) + ")");
   init_imgui();
+  if (options.camera_path) {
+    std::snprintf(path_file_, sizeof path_file_, "%s", options.camera_path_name.c_str());
+    play_path(*options.camera_path, options.camera_path_name);
+  }
 }
 
 Viewer::~Viewer() {
@@ -304,13 +322,36 @@ void Viewer::run_script_commands() {
         glfwSetWindowSize(glfw_.window, c.width, c.height);
         break;
       case ScriptAction::kCameraPath:
-        error = "camera-path: not available in this build";  // refused when read
+        // A path that cannot be read or is malformed leaves the camera (and a flight) as it was.
+        try {
+          play_path(load_camera_path(c.argument, editor_.scene()), c.argument);
+        } catch (const std::exception& e) {
+          error = e.what();
+        }
+        break;
+      case ScriptAction::kRecordStart:
+        if (recorder_.recording())
+          error = "record-start: already recording (record-stop ends a recording)";
+        else
+          start_recording();
+        break;
+      case ScriptAction::kRecordStop:
+        if (!recorder_.recording()) {
+          error = "record-stop: not recording (record-start begins a recording)";
+        } else {
+          error = stop_recording(c.argument);
+          if (!error.empty()) exit_status_ = 1;  // as a screenshot that cannot be written
+        }
+        break;
+      case ScriptAction::kPrintCamera:
+        print_camera();
         break;
       case ScriptAction::kQuit:
         quit_ = true;
         return;
     }
     if (!error.empty()) std::fprintf(stderr, "nephele-view: %s%s\n", where.c_str(), error.c_str());
+    follow_path();  // a `set time_s` moves a flight's camera before the next command sees it
   }
 }
 
@@ -377,6 +418,24 @@ void Viewer::handle_input(float dt_s) {
       wheel -= 1.0f;
     if (ImGui::IsKeyPressed(GLFW_KEY_F1)) show_panel_ = !show_panel_;
     if (ImGui::IsKeyPressed(GLFW_KEY_SPACE)) playing_ = !playing_;
+    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) {
+      if (recorder_.recording()) {
+        const std::string error = stop_recording("");
+        if (!error.empty()) set_message(error, true);
+      } else {
+        start_recording();
+      }
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) {
+      if (flight_.playing()) {
+        flight_.stop();
+        set_message("flight stopped", false);
+      } else if (flight_.loaded()) {
+        play_path(flight_.path(), flight_.name());
+      } else {
+        set_message("no path to fly: load one in the panel (Camera path) or record one (R)", true);
+      }
+    }
   }
   if (!io.WantCaptureMouse) {
     if (ImGui::IsMouseDown(ImGuiMouseButton_Right)) {
@@ -391,12 +450,20 @@ void Viewer::handle_input(float dt_s) {
     else
       camera_.scale_speed(wheel);
   }
-  // The panel, a script or a preset moved the camera: take its pose.
+  // The panel, a script or a preset moved the camera: take its pose (and end a flight).
   const CameraParams& scene_camera = editor_.scene().camera;
-  if (scene_camera.position_m != applied_camera_.position_m ||
-      scene_camera.view_dir != applied_camera_.view_dir)
+  if (!same_view(scene_camera, applied_camera_)) {
     camera_.sync_from(scene_camera);
+    if (flight_.playing()) {
+      flight_.stop();
+      set_message("flight stopped: the camera was moved", false);
+    }
+  }
   input_this_frame_ = in.any() || wheel != 0.0f;
+  if (in.any() && flight_.playing()) {  // the pilot takes over
+    flight_.stop();
+    set_message("flight stopped: the keys or the mouse took over", false);
+  }
   if (input_this_frame_) {
     camera_.update(in, dt_s);
     editor_.change([&](Scene& s) { camera_.apply_to(s.camera); });
@@ -436,8 +503,7 @@ void Viewer::draw_view_panel() {
       applied_camera_ = editor_.scene().camera;
     }
   }
-  // TODO(camera-path branch): the roll reaches the image once CameraParams::roll_deg lands.
-  ImGui::Text("roll %.1f deg (Z/C; not rendered yet)", camera_.roll_deg());
+  ImGui::Text("roll %.1f deg (Z/C; positive: right wing down)", double(camera_.roll_deg()));
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
   ImGui::InputFloat("##altitude", &goto_altitude_m_, 0.0f, 0.0f, "%.0f");
   ImGui::SameLine();
@@ -479,6 +545,146 @@ void Viewer::draw_view_panel() {
       ImGui::Text("moon elevation %6.2f  azimuth %6.2f deg, %.0f%% lit",
                   stats->ephemeris->moon.elevation_deg, stats->ephemeris->moon.azimuth_deg,
                   stats->ephemeris->moon_illuminated_fraction * 100.0);
+  }
+}
+
+void Viewer::set_message(const std::string& message, bool is_error) {
+  file_message_ = message;
+  file_message_is_error_ = is_error;
+}
+
+// Flies `path` from its first key, now; the clock runs (the path is in scene time).
+void Viewer::play_path(CameraPath path, const std::string& name) {
+  const double duration_s = path.duration_s();
+  const size_t keys = path.keys().size();
+  flight_.load(std::move(path), name);
+  flight_.play(double(editor_.scene().time_s));
+  playing_ = true;
+  applied_camera_ = editor_.scene().camera;  // the flight owns the camera from here
+  follow_path();
+  char text[160];
+  std::snprintf(text, sizeof text, "%zu keys, %.1f s of scene time", keys, duration_s);
+  set_message("flying " + name + ": " + text, false);
+}
+
+// A flight's camera for the scene's time_s. Anything else that moved the camera since the
+// flight last placed it (a script's or the panel's edit, a preset) ends the flight.
+void Viewer::follow_path() {
+  if (!flight_.playing()) return;
+  if (!same_view(editor_.scene().camera, applied_camera_)) {
+    flight_.stop();
+    set_message("flight stopped: the camera was moved", false);
+    return;
+  }
+  const std::optional<CameraParams> camera = flight_.camera_at(double(editor_.scene().time_s));
+  if (!camera) return;
+  const std::string error = editor_.change([&](Scene& s) { s.camera = *camera; });
+  if (!error.empty()) {
+    flight_.stop();
+    set_message("flight stopped: " + error, true);
+    std::fprintf(stderr, "nephele-view: flight %s stopped: %s\n", flight_.name().c_str(),
+                 error.c_str());
+  }
+  applied_camera_ = editor_.scene().camera;
+  camera_.sync_from(applied_camera_);
+  if (!flight_.playing() && error.empty()) set_message("flight over: " + flight_.name(), false);
+}
+
+// Records the scene's camera from now; the clock runs (the keys are in scene time).
+void Viewer::start_recording() {
+  recorder_.start(double(editor_.scene().time_s), editor_.scene().camera);
+  playing_ = true;
+  set_message("recording the camera (R stops)", false);
+}
+
+// Ends the recording; it becomes the path that "play path" flies, and is written to `file`
+// unless that is empty. Returns "" or the message of a write that failed.
+std::string Viewer::stop_recording(const std::string& file) {
+  CameraPath path = recorder_.stop(double(editor_.scene().time_s), editor_.scene().camera);
+  char text[160];
+  std::snprintf(text, sizeof text, "recorded %zu keys, %.1f s of scene time", path.keys().size(),
+                path.duration_s());
+  flight_.load(std::move(path), "the recording");
+  set_message(text, false);
+  return file.empty() ? "" : save_path(file, "record-stop");
+}
+
+// Writes the loaded path (the last recording, or a path file) as TOML (camera_path_to_toml).
+std::string Viewer::save_path(const std::string& file, const std::string& parameter) {
+  if (!flight_.loaded()) return parameter + ": no path yet (record one, or load a path file)";
+  try {
+    check_output_file(file, parameter);
+    write_file_atomically(file, camera_path_to_toml(flight_.path()));
+  } catch (const std::exception& e) {
+    set_message(e.what(), true);
+    return e.what();
+  }
+  std::fprintf(stderr, "nephele-view: wrote %s (%zu keys, %.1f s)\n", file.c_str(),
+               flight_.path().keys().size(), flight_.path().duration_s());
+  set_message("wrote " + file, false);
+  return "";
+}
+
+// The scene's camera on standard output, as the [camera] table of a scene file.
+void Viewer::print_camera() const {
+  const Scene& scene = editor_.scene();
+  std::string text = "# print-camera: frame " + std::to_string(frame_) + ", time_s " +
+                     get_scene_value(scene, "time_s") + "\n[camera]\n";
+  for (const SceneParameter& p : scene_parameters())
+    if (p.key.starts_with("camera."))
+      text += p.key.substr(7) + " = " + get_scene_value(scene, p.key) + "\n";
+  std::fputs(text.c_str(), stdout);
+  std::fflush(stdout);
+}
+
+void Viewer::draw_path_panel() {
+  if (!ImGui::CollapsingHeader("Camera path", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const double time_s = double(editor_.scene().time_s);
+  if (recorder_.recording()) {
+    if (ImGui::Button("stop recording (R)")) {
+      const std::string error = stop_recording("");
+      if (!error.empty()) set_message(error, true);
+    }
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "REC %zu keys, %.1f s",
+                       recorder_.key_count(), recorder_.elapsed_s(time_s));
+  } else if (ImGui::Button("record path (R)")) {
+    start_recording();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("a key every %.1f s of scene time while the camera moves; the clock runs",
+                      PathRecorder::kSampleIntervalS);
+  ImGui::InputText("path file", path_file_, sizeof path_file_);
+  if (ImGui::Button("load path")) {
+    try {
+      flight_.load(load_camera_path(path_file_, editor_.scene()), path_file_);
+      set_message(std::string("loaded ") + path_file_, false);
+    } catch (const std::exception& e) {
+      set_message(e.what(), true);
+    }
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("save path")) save_path(path_file_, "path file");
+  ImGui::SameLine();
+  if (flight_.playing()) {
+    if (ImGui::Button("stop (P)")) {
+      flight_.stop();
+      set_message("flight stopped", false);
+    }
+  } else if (ImGui::Button("play path (P)")) {
+    if (flight_.loaded())
+      play_path(flight_.path(), flight_.name());
+    else
+      set_message("no path to fly: load one or record one", true);
+  }
+  if (flight_.loaded()) {
+    const CameraPath& path = flight_.path();
+    if (flight_.playing())
+      ImGui::Text("flying %s: %.1f of %.1f s", flight_.name().c_str(),
+                  flight_.path_time_s(time_s) - path.start_s(), path.duration_s());
+    else
+      ImGui::Text("path %s: %zu keys, %.1f s", flight_.name().c_str(), path.keys().size(),
+                  path.duration_s());
   }
 }
 
@@ -589,6 +795,7 @@ void Viewer::draw_ui() {
   }
 
   draw_view_panel();
+  draw_path_panel();
 
   if (ImGui::CollapsingHeader("Performance")) {
     bool enabled = dynres_.enabled();
@@ -827,6 +1034,15 @@ int Viewer::run() {
     ImGui::NewFrame();
     handle_input(dt_s);
     advance_clock(dt_s);
+    follow_path();
+    if (recorder_.recording() &&
+        !recorder_.sample(double(editor_.scene().time_s), editor_.scene().camera)) {
+      const std::string error = stop_recording("");
+      set_message(error.empty() ? "recording stopped: " + std::to_string(PathRecorder::kMaxKeys) +
+                                      " keys, the most a path holds (save path writes it)"
+                                : error,
+                  !error.empty());
+    }
     draw_ui();
     ImGui::Render();
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "nephele/camera_path.h"
 #include "nephele/scene.h"
 #include "script.h"
 
@@ -20,6 +21,8 @@ struct ViewerOptions {
   std::string screenshot;        // --screenshot FILE: after the last frame, a still render
   std::string window_screenshot;  // --window-screenshot FILE: the last frame's window
   std::optional<Script> script;  // --script FILE
+  std::optional<CameraPath> camera_path;  // --camera-path FILE: flown from the first frame
+  std::string camera_path_name;           // its file's name, for messages
   bool soak = false;             // --soak: RSS at frame 100 and at the end; growth fails
   double target_ms = 33.0;       // --target-ms: dynamic resolution's frame time
   bool dynamic_resolution = true;

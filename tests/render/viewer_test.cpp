@@ -12,9 +12,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 
+#include "nephele/camera_path.h"
 #include "nephele/image.h"
 #include "nephele/image_compare.h"
+#include "nephele/scene_io.h"
 
 namespace fs = std::filesystem;
 
@@ -79,6 +83,66 @@ void expect_clean(const ProcessRun& r) {
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
 }
+
+// The cameras a script's print-camera lines wrote, in order: each key of the [camera] table
+// ("position_m", "view_dir", "roll_deg", ...) with its numbers.
+using PrintedCamera = std::map<std::string, std::vector<double>>;
+std::vector<PrintedCamera> printed_cameras(const std::string& output) {
+  std::vector<PrintedCamera> cameras;
+  std::istringstream in(output);
+  std::string line;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (line.starts_with("# print-camera:")) {
+      cameras.emplace_back();
+      inside = true;
+      continue;
+    }
+    if (!inside || line == "[camera]") continue;
+    const size_t equals = line.find(" = ");
+    if (equals == std::string::npos) {
+      inside = false;
+      continue;
+    }
+    std::string value = line.substr(equals + 3);
+    for (char& c : value)
+      if (c == '[' || c == ']' || c == ',') c = ' ';
+    std::istringstream numbers(value);
+    std::vector<double>& out = cameras.back()[line.substr(0, equals)];
+    for (double x; numbers >> x;) out.push_back(x);
+  }
+  return cameras;
+}
+
+// The printed camera is `expected` (CameraPath::at): position to a millimetre, direction and
+// roll to float rounding.
+void expect_camera(const PrintedCamera& printed, const nephele::CameraParams& expected) {
+  ASSERT_EQ(printed.count("position_m"), 1u);
+  ASSERT_EQ(printed.at("position_m").size(), 3u);
+  ASSERT_EQ(printed.count("view_dir"), 1u);
+  ASSERT_EQ(printed.at("view_dir").size(), 3u);
+  ASSERT_EQ(printed.count("roll_deg"), 1u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(printed.at("position_m")[size_t(i)], expected.position_m[i], 1e-3) << i;
+    EXPECT_NEAR(printed.at("view_dir")[size_t(i)], expected.view_dir[i], 1e-6) << i;
+  }
+  EXPECT_NEAR(printed.at("roll_deg")[0], expected.roll_deg, 1e-4);
+}
+
+// A flight of two keys, rolling and turning as it climbs.
+constexpr const char* kTwoKeyPath =
+    "[[key]]\n"
+    "time_s = 0\n"
+    "position_m = [0, -2000, 300]\n"
+    "heading_deg = 0\n"
+    "pitch_deg = 8\n"
+    "\n"
+    "[[key]]\n"
+    "time_s = 4\n"
+    "position_m = [600, -1000, 900]\n"
+    "heading_deg = 40\n"
+    "pitch_deg = 15\n"
+    "roll_deg = 25\n";
 
 TEST_F(ViewerTest, ScreenshotOfTheDefaultSceneIsTheCliRender) {
   const ProcessRun r = view("--preset default --frames 3 --screenshot " + path("view.png") +
@@ -172,16 +236,24 @@ TEST_F(ViewerTest, BadFlagsAndScriptLinesAreOneLineAndExitTwo) {
       {"--frames 2 --screenshot out.jpg", "--screenshot 'out.jpg': unsupported image format"},
       {"--screenshot out.png", "need --frames N"},
       {"--script " + write("bad1.txt", "frame 1 jump\n"),
-       "bad1.txt:1: unknown command 'jump' (allowed: set, preset, load, camera-path, screenshot, "
-       "window-screenshot, resize, quit)"},
+       "bad1.txt:1: unknown command 'jump' (allowed: set, preset, load, camera-path, record-start, "
+       "record-stop, print-camera, screenshot, window-screenshot, resize, quit)"},
       {"--script " + write("bad5.txt", "frame 1 resize 0x10\n"),
        "bad5.txt:1: resize '0x10': expected WxH, each in [1, 16384]"},
       {"--script " + write("bad2.txt", "\nframe x set clouds.coverage 1\n"),
        "bad2.txt:2: frame 'x': expected an integer in [0, 16000000]"},
       {"--script " + write("bad3.txt", "frame 1 set clouds.cover 1\n"),
        "bad3.txt:1: set: unknown scene key 'clouds.cover' (allowed in [clouds]:"},
-      {"--script " + write("bad4.txt", "frame 1 camera-path p.toml\n"),
-       "bad4.txt:1: camera-path: camera paths are not available"},
+      {"--script " + write("bad4.txt", "frame 1 camera-path\n"),
+       "bad4.txt:1: camera-path: expected a path file"},
+      {"--script " + write("bad6.txt", "frame 1 record-stop " + path("none/p.toml") + "\n"),
+       "bad6.txt:1: record-stop '"},
+      {"--camera-path " + write("one-key.toml",
+                                "[[key]]\ntime_s = 0\nposition_m = [0, 0, 10]\n"
+                                "heading_deg = 0\npitch_deg = 0\n"),
+       "nephele-view: error: --camera-path " + path("one-key.toml") +
+           ": 1 key: a camera path needs at least 2 keys ([[key]] tables)"},
+      {"--camera-path " + path("missing.toml"), "nephele-view: error: --camera-path "},
       {"--script " + path("missing.txt"), "missing.txt: cannot read the script"},
   };
   for (const auto& c : cases) {
@@ -190,6 +262,121 @@ TEST_F(ViewerTest, BadFlagsAndScriptLinesAreOneLineAndExitTwo) {
     EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << c.args << "\n" << r.output;
   }
+}
+
+// A script flies a two-key path (camera-path): the screenshots at path times 1 and 3 differ, the
+// second is what `nephele render --camera-path` makes of the same path at the same time, and
+// the camera the viewer reports (print-camera) is CameraPath::at of those times. The path runs
+// in scene time from when it started (time_s 0 here), so `set time_s` puts it at a known time.
+TEST_F(ViewerTest, PlaysACameraPathAsNepheleRenderFliesIt) {
+  const std::string flight = write("flight.toml", kTwoKeyPath);
+  const std::string script = write("script.txt",
+                                   "frame 1 camera-path " + flight + "\n"
+                                   "frame 2 set time_s 1\n"
+                                   "frame 2 screenshot " + path("first.png") + "\n"
+                                   "frame 2 print-camera\n"
+                                   "frame 4 set time_s 3\n"
+                                   "frame 4 screenshot " + path("second.png") + "\n"
+                                   "frame 4 print-camera\n"
+                                   "frame 5 quit\n");
+  const ProcessRun r = view("--preset default --script " + script);
+  expect_clean(r);
+
+  const nephele::CameraPath expected =
+      nephele::load_camera_path(flight, nephele::load_preset("default"));
+  const std::vector<PrintedCamera> cameras = printed_cameras(r.output);
+  ASSERT_EQ(cameras.size(), 2u) << r.output;
+  expect_camera(cameras[0], expected.at(1.0));
+  expect_camera(cameras[1], expected.at(3.0));
+
+  const nephele::Image first = nephele::read_image(path("first.png"));
+  const nephele::Image second = nephele::read_image(path("second.png"));
+  const nephele::CompareResult moved = nephele::compare_images(second, first, image_tolerance());
+  std::printf("path time 1 s against 3 s: %s\n", moved.summary.c_str());
+  EXPECT_FALSE(moved.pass) << "the camera moved between the screenshots: " << moved.summary;
+
+  // Frame 3 at 1 frame a second is path time 3, the scene's clock 3 s on from time_s 0.
+  const ProcessRun cli =
+      run(std::string(NEPHELE_CLI_PATH) +
+          " render --preset default --width 160 --height 120 --camera-path " + flight +
+          " --fps 1 --start-frame 3 --frames 1 -o " + path("cli_%d.png"));
+  ASSERT_EQ(cli.status, 0) << cli.output;
+  const nephele::Image reference = nephele::read_image(path("cli_3.png"));
+  const nephele::CompareResult result =
+      nephele::compare_images(second, reference, image_tolerance());
+  std::printf("viewer at path time 3 s against nephele render --camera-path: %s\n",
+              result.summary.c_str());
+  if (!result.pass) nephele::write_image(result.diff, path("diff.png"));
+  EXPECT_TRUE(result.pass) << result.summary << " (images in " << dir_ << ")";
+}
+
+// record-start ... record-stop FILE writes the flown camera as a path file: the keys are the
+// cameras the script placed, at increasing times, and the file reads back (load_camera_path).
+TEST_F(ViewerTest, RecordsTheFlownCameraAsAPathFile) {
+  const std::string script = write("script.txt",
+                                   "frame 2 record-start\n"
+                                   "frame 3 set camera.position_m [100.0, 200.0, 300.0]\n"
+                                   "frame 3 set time_s 5\n"
+                                   "frame 6 set camera.position_m [500.0, 600.0, 700.0]\n"
+                                   "frame 6 set camera.roll_deg 20\n"
+                                   "frame 6 set time_s 10\n"
+                                   "frame 8 record-stop " + path("recorded.toml") + "\n"
+                                   "frame 9 quit\n");
+  const ProcessRun r = view("--preset default --script " + script);
+  expect_clean(r);
+  EXPECT_NE(r.output.find("nephele-view: wrote " + path("recorded.toml")), std::string::npos)
+      << r.output;
+
+  const nephele::Scene scene = nephele::load_preset("default");
+  const nephele::CameraPath recorded = nephele::load_camera_path(path("recorded.toml"), scene);
+  const std::vector<nephele::CameraKey>& keys = recorded.keys();
+  ASSERT_GE(keys.size(), 3u) << r.output;
+  const glm::dvec3 start(scene.camera.position_m), a(100.0, 200.0, 300.0), b(500.0, 600.0, 700.0);
+  EXPECT_EQ(keys.front().position_m, start);
+  EXPECT_DOUBLE_EQ(keys.front().time_s, 0.0);
+  EXPECT_EQ(keys.back().position_m, b);
+  EXPECT_NEAR(keys.back().roll_deg, 20.0, 1e-4);
+  bool saw_a = false;
+  for (const nephele::CameraKey& k : keys) {
+    EXPECT_TRUE(k.position_m == start || k.position_m == a || k.position_m == b)
+        << k.position_m.x << ", " << k.position_m.y << ", " << k.position_m.z;
+    saw_a = saw_a || k.position_m == a;
+  }
+  EXPECT_TRUE(saw_a);
+  // The keys are in scene time since record-start: A after 5 s, B after 10 s (plus a frame).
+  for (const nephele::CameraKey& k : keys) {
+    if (k.position_m == b) EXPECT_GE(k.time_s, 10.0 - 1.0);
+  }
+}
+
+// A malformed or missing path in a script is one line with the script's line and the path's
+// own message; the run goes on (exit 0) and the flight already under way keeps flying.
+TEST_F(ViewerTest, MalformedPathInAScriptIsReportedAndTheFlightGoesOn) {
+  const std::string good = write("good.toml", kTwoKeyPath);
+  write("bad.toml",
+        "[[key]]\ntime_s = 5\nposition_m = [0, 0, 100]\nheading_deg = 0\npitch_deg = 0\n"
+        "[[key]]\ntime_s = 1\nposition_m = [0, 0, 200]\nheading_deg = 0\npitch_deg = 0\n");
+  const std::string script = write("script.txt",
+                                   "frame 1 camera-path " + good + "\n"
+                                   "frame 2 camera-path " + path("bad.toml") + "\n"
+                                   "frame 2 camera-path " + path("missing.toml") + "\n"
+                                   "frame 3 set time_s 2\n"
+                                   "frame 3 print-camera\n"
+                                   "frame 4 quit\n");
+  const ProcessRun r = view("--preset default --script " + script);
+  expect_clean(r);
+  EXPECT_NE(r.output.find("script.txt:2: " + path("bad.toml") +
+                          ": key[1].time_s = 1: must be greater than key[0].time_s = 5\n"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("script.txt:3: " + path("missing.toml") +
+                          ": cannot read the camera path: No such file or directory\n"),
+            std::string::npos)
+      << r.output;
+  const std::vector<PrintedCamera> cameras = printed_cameras(r.output);
+  ASSERT_EQ(cameras.size(), 1u) << r.output;
+  expect_camera(cameras[0],
+                nephele::load_camera_path(good, nephele::load_preset("default")).at(2.0));
 }
 
 // 2,000 frames; the viewer measures its RSS at frame 100 and at the end (--soak) and fails on

@@ -1,9 +1,11 @@
 // nephele-view's logic without a window: scripts, the scene editor, the panel's groups and
-// value texts, dynamic resolution, the camera and its place on the planet.
+// value texts, dynamic resolution, the camera and its place on the planet, recording and flying
+// camera paths.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <set>
 
@@ -11,8 +13,10 @@
 
 #include "camera_control.h"
 #include "dynamic_resolution.h"
+#include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
+#include "path_control.h"
 #include "scene_editor.h"
 #include "script.h"
 
@@ -69,8 +73,8 @@ TEST(ViewerScript, BadLinesAreOneLineWithTheLineNumber) {
   EXPECT_EQ(error("\nframe -1 quit\n"), "s.txt:2: frame '-1': expected an integer in [0, 16000000]");
   EXPECT_EQ(error("frame 1x quit\n"), "s.txt:1: frame '1x': expected an integer in [0, 16000000]");
   EXPECT_EQ(error("frame 1\n"),
-            "s.txt:1: unknown command '' (allowed: set, preset, load, camera-path, screenshot, "
-            "window-screenshot, resize, quit)");
+            "s.txt:1: unknown command '' (allowed: set, preset, load, camera-path, record-start, "
+            "record-stop, print-camera, screenshot, window-screenshot, resize, quit)");
   EXPECT_EQ(error("frame 1 resize 640\n"), "s.txt:1: resize '640': expected WxH, each in [1, 16384]");
   EXPECT_EQ(error("frame 1 resize 640x0\n"),
             "s.txt:1: resize '640x0': expected WxH, each in [1, 16384]");
@@ -88,10 +92,32 @@ TEST(ViewerScript, BadLinesAreOneLineWithTheLineNumber) {
   EXPECT_EQ(error("frame 1 preset fog\n").rfind(
                 "s.txt:1: preset 'fog': unknown preset (available: above-clouds, ", 0),
             0u);
-  EXPECT_EQ(error("frame 1 camera-path p.toml\n").rfind("s.txt:1: camera-path: camera paths are "
-                                                        "not available in this build",
-                                                        0),
+  EXPECT_EQ(error("frame 1 camera-path\n"),
+            "s.txt:1: camera-path: expected a path file, e.g. 'camera-path flight.toml'");
+  EXPECT_EQ(error("frame 1 record-start now\n"), "s.txt:1: record-start: takes nothing, got 'now'");
+  EXPECT_EQ(error("frame 1 print-camera x\n"), "s.txt:1: print-camera: takes nothing, got 'x'");
+  EXPECT_EQ(error("frame 1 record-stop /no/such/folder/p.toml\n")
+                .rfind("s.txt:1: record-stop '/no/such/folder/p.toml': ", 0),
             0u);
+}
+
+TEST(ViewerScript, ReadsCameraPathCommands) {
+  const Script s = parse_script(
+      "frame 30 record-stop flight.toml\n"
+      "frame 20 camera-path missing-until-it-runs.toml\n"
+      "frame 10 record-start\n"
+      "frame 31 record-stop\n"
+      "frame 32 print-camera\n",
+      "s.txt");
+  ASSERT_EQ(s.commands.size(), 5u);
+  EXPECT_EQ(s.commands[0].action, ScriptAction::kRecordStart);
+  EXPECT_EQ(s.commands[1].action, ScriptAction::kCameraPath);
+  EXPECT_EQ(s.commands[1].argument, "missing-until-it-runs.toml");  // read when it runs
+  EXPECT_EQ(s.commands[2].action, ScriptAction::kRecordStop);
+  EXPECT_EQ(s.commands[2].argument, "flight.toml");
+  EXPECT_EQ(s.commands[3].action, ScriptAction::kRecordStop);
+  EXPECT_EQ(s.commands[3].argument, "");
+  EXPECT_EQ(s.commands[4].action, ScriptAction::kPrintCamera);
 }
 
 TEST(ViewerSceneEditor, AcceptsValidEditsAndKeepsTheLastValidScene) {
@@ -257,6 +283,182 @@ TEST(ViewerCamera, FliesAtItsSpeedAndLooksWithTheMouse) {
   EXPECT_FLOAT_EQ(c.speed_mps(), CameraControl::kMinSpeedMps);
   c.update(CameraInput{.roll = 1.0f}, 1.0f);
   EXPECT_FLOAT_EQ(c.roll_deg(), CameraControl::kRollDegPerS);
+}
+
+// The viewer's roll is the scene's camera.roll_deg, with its sign: the library reads the same
+// roll back from the applied camera (key_from_camera), and its rolled right wing points down.
+TEST(ViewerCamera, AppliesItsRollAsTheScenesRoll) {
+  CameraParams camera;
+  camera.position_m = {0.0f, 0.0f, 500.0f};
+  camera.view_dir = glm::normalize(glm::vec3(1.0f, 1.0f, 0.2f));
+  camera.roll_deg = 30.0f;
+  CameraControl c;
+  c.sync_from(camera);
+  EXPECT_FLOAT_EQ(c.roll_deg(), 30.0f);
+  CameraParams out;
+  c.apply_to(out);
+  EXPECT_FLOAT_EQ(out.roll_deg, 30.0f);
+  EXPECT_NEAR(key_from_camera(0.0, out).roll_deg, 30.0, 1e-3);
+
+  c.update(CameraInput{.roll = 1.0f}, 1.0f);  // C for a second
+  c.apply_to(out);
+  EXPECT_FLOAT_EQ(out.roll_deg, 30.0f + CameraControl::kRollDegPerS);
+  const CameraKey key = key_from_camera(0.0, out);
+  EXPECT_NEAR(key.roll_deg, 75.0, 1e-3);
+  const glm::dvec3 right =
+      orientation_from_angles(key.heading_deg, key.pitch_deg, key.roll_deg) * glm::dvec3(1, 0, 0);
+  EXPECT_LT(right.z, -0.9);  // 75 deg: the right wing well down
+
+  // Past 180 the roll wraps, staying in the scene's [-180, 180].
+  c.set_roll_deg(170.0f);
+  c.update(CameraInput{.roll = 1.0f}, 0.5f);  // +22.5
+  c.apply_to(out);
+  EXPECT_NEAR(out.roll_deg, -167.5f, 1e-3f);
+  c.set_roll_deg(-180.0f);
+  c.apply_to(out);
+  EXPECT_GE(out.roll_deg, -180.0f);
+  EXPECT_LE(out.roll_deg, 180.0f);
+  c.set_roll_deg(std::numeric_limits<float>::quiet_NaN());  // ignored
+  c.apply_to(out);
+  EXPECT_TRUE(std::isfinite(out.roll_deg));
+}
+
+// W flies along the view direction whatever the roll; A/D and Q/E along the rolled image's right
+// and up (exactly, at pitch 0); the mouse turns the view towards the image's right and up.
+TEST(ViewerCamera, FliesAndLooksRelativeToTheRolledCamera) {
+  for (const float roll_deg : {0.0f, 35.0f, 90.0f, -120.0f}) {
+    SCOPED_TRACE(roll_deg);
+    CameraParams camera;
+    camera.position_m = {0.0f, 0.0f, 1000.0f};
+    camera.view_dir = glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f));
+    camera.roll_deg = roll_deg;
+    CameraControl c;
+    c.sync_from(camera);
+    c.set_speed_mps(10.0f);
+    const CameraKey key = key_from_camera(0.0, camera);
+    const glm::dquat q = orientation_from_angles(key.heading_deg, key.pitch_deg, key.roll_deg);
+    const glm::vec3 image_right(q * glm::dvec3(1, 0, 0)), image_up(q * glm::dvec3(0, 0, 1));
+    EXPECT_NEAR(glm::length(c.strafe_right() - image_right), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(c.strafe_up() - image_up), 0.0f, 1e-5f);
+
+    c.update(CameraInput{.forward = 1.0f}, 1.0f);
+    EXPECT_NEAR(glm::length(c.position_m() - (camera.position_m + camera.view_dir * 10.0f)), 0.0f,
+                1e-3f);
+    const glm::vec3 before = c.position_m();
+    c.update(CameraInput{.right = 1.0f}, 1.0f);
+    EXPECT_NEAR(glm::length(c.position_m() - (before + image_right * 10.0f)), 0.0f, 1e-3f);
+    c.update(CameraInput{.up = 1.0f}, 1.0f);
+    EXPECT_NEAR(glm::length(c.position_m() - (before + (image_right + image_up) * 10.0f)), 0.0f,
+                1e-3f);
+
+    // A small drag right turns the view towards the image's right, a drag down towards its down;
+    // the roll stays.
+    const glm::vec3 view = c.view_dir();
+    c.update(CameraInput{.look_dx_px = 4.0f}, 0.01f);
+    const glm::vec3 turned_right = glm::normalize(c.view_dir() - view);
+    EXPECT_GT(glm::dot(turned_right, image_right), 0.999f);
+    const glm::vec3 view2 = c.view_dir();
+    c.update(CameraInput{.look_dy_px = 4.0f}, 0.01f);
+    const glm::vec3 turned_down = glm::normalize(c.view_dir() - view2);
+    EXPECT_GT(glm::dot(turned_down, -image_up), 0.99f);
+    EXPECT_FLOAT_EQ(c.roll_deg(), roll_deg);
+  }
+  // Pitched, unrolled: Q/E stay vertical and A/D level, as before roll was rendered.
+  CameraParams pitched;
+  pitched.view_dir = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
+  CameraControl c;
+  c.sync_from(pitched);
+  EXPECT_NEAR(glm::length(c.strafe_up() - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(c.strafe_right() - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+}
+
+CameraParams camera_at(glm::vec3 position_m, float roll_deg = 0.0f) {
+  CameraParams camera;
+  camera.position_m = position_m;
+  camera.view_dir = {0.0f, 1.0f, 0.0f};
+  camera.roll_deg = roll_deg;
+  return camera;
+}
+
+// A key every half second of scene time while the camera moves; a pause is two keys at one
+// place; the keys are the cameras as they were and read back from the file exactly.
+TEST(ViewerPathRecorder, KeysEveryIntervalWhileMovingAndHoldsPauses) {
+  PathRecorder r;
+  const glm::vec3 a(0.0f, 0.0f, 100.0f);
+  r.start(100.0, camera_at(a));  // scene time 100 is path time 0
+  EXPECT_TRUE(r.recording());
+  // Moving, one sample a frame of 0.1 s: a key at 0.5, 1.0, 1.5 (path time).
+  for (int frame = 1; frame <= 15; ++frame)
+    r.sample(100.0 + 0.1 * frame, camera_at(a + glm::vec3(0.0f, float(frame), 0.0f)));
+  EXPECT_EQ(r.key_count(), 4u);
+  // Still from 1.5 to 3.0, then moving again at 3.5.
+  const glm::vec3 b = a + glm::vec3(0.0f, 15.0f, 0.0f);
+  for (int frame = 16; frame <= 30; ++frame) r.sample(100.0 + 0.1 * frame, camera_at(b));
+  EXPECT_EQ(r.key_count(), 4u);  // nothing moved: nothing kept
+  r.sample(103.5, camera_at(b + glm::vec3(5.0f, 0.0f, 0.0f), 10.0f));
+  EXPECT_EQ(r.key_count(), 6u);  // the pause's end (3.0, at b) and the new pose
+  r.sample(103.2, camera_at(a));  // the clock went back: skipped
+  EXPECT_EQ(r.key_count(), 6u);
+  const CameraPath path = r.stop(103.7, camera_at(b + glm::vec3(6.0f, 0.0f, 0.0f), 10.0f));
+  EXPECT_FALSE(r.recording());
+  ASSERT_EQ(path.keys().size(), 7u);  // and the camera when it stopped
+  const std::vector<double> times = {0.0, 0.5, 1.0, 1.5, 3.0, 3.5, 3.7};
+  for (size_t i = 0; i < times.size(); ++i) EXPECT_NEAR(path.keys()[i].time_s, times[i], 1e-9);
+  EXPECT_EQ(path.keys()[3].position_m, glm::dvec3(b));
+  EXPECT_EQ(path.keys()[4].position_m, glm::dvec3(b));  // held
+  EXPECT_NEAR(path.keys()[5].roll_deg, 10.0, 1e-4);
+  // The path holds still between the pause's keys.
+  EXPECT_EQ(path.at(2.2).position_m, b);
+
+  // Written and read back, the same keys.
+  const Scene scene;
+  const CameraPath back = parse_camera_path(camera_path_to_toml(path), "rec.toml", scene);
+  EXPECT_EQ(back.keys(), path.keys());
+}
+
+TEST(ViewerPathRecorder, AlwaysTwoKeys) {
+  PathRecorder r;
+  const glm::vec3 a(10.0f, 20.0f, 30.0f);
+  r.start(5.0, camera_at(a));
+  CameraPath path = r.stop(5.0, camera_at(a));  // no time passed
+  ASSERT_EQ(path.keys().size(), 2u);
+  EXPECT_EQ(path.keys()[0].position_m, glm::dvec3(a));
+  EXPECT_EQ(path.keys()[1].position_m, glm::dvec3(a));
+  EXPECT_DOUBLE_EQ(path.duration_s(), PathRecorder::kSampleIntervalS);
+
+  r.start(5.0, camera_at(a));
+  r.sample(6.0, camera_at(a));  // still
+  path = r.stop(7.0, camera_at(a));
+  ASSERT_EQ(path.keys().size(), 2u);  // still all along: the start and the end
+  EXPECT_DOUBLE_EQ(path.duration_s(), 2.0);
+}
+
+TEST(ViewerPathPlayback, FliesThePathInSceneTimeFromWhenItStarted) {
+  const Scene scene;
+  const CameraPath path = parse_camera_path(
+      "[[key]]\ntime_s = 2\nposition_m = [0, 0, 100]\nheading_deg = 0\npitch_deg = 0\n"
+      "[[key]]\ntime_s = 6\nposition_m = [400, 0, 300]\nheading_deg = 90\npitch_deg = 10\n"
+      "roll_deg = 20\n",
+      "p.toml", scene);
+  PathPlayback p;
+  EXPECT_FALSE(p.camera_at(0.0));  // nothing loaded
+  p.load(path, "p.toml");
+  EXPECT_FALSE(p.playing());
+  EXPECT_FALSE(p.camera_at(0.0));
+  p.play(50.0);  // scene time 50 is path time 2
+  ASSERT_TRUE(p.playing());
+  for (const double t : {50.0, 51.0, 53.5}) {
+    const std::optional<CameraParams> camera = p.camera_at(t);
+    ASSERT_TRUE(camera);
+    EXPECT_TRUE(same_view(*camera, path.at(t - 48.0))) << t;
+  }
+  EXPECT_TRUE(p.playing());
+  const std::optional<CameraParams> last = p.camera_at(54.5);  // past the last key
+  ASSERT_TRUE(last);
+  EXPECT_TRUE(same_view(*last, path.at(6.0)));
+  EXPECT_FLOAT_EQ(last->roll_deg, path.at(6.0).roll_deg);
+  EXPECT_FALSE(p.playing());  // the flight is over
+  EXPECT_FALSE(p.camera_at(55.0));
 }
 
 TEST(ViewerCamera, OrbitsAroundAPointAtItsDistance) {
