@@ -118,7 +118,7 @@ void write_sample(ivec2 block, vec3 scattered, float transmittance, float haze, 
 void main() {
   int stride = frame.cloud_grid.z;
   int blocks_x = (frame.cloud_grid.x + stride - 1) / stride;
-  ivec2 block = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 block = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, frame.cloud_band.x);
   ivec2 pixel = block * stride + frame.march_offset.xy;
   int width = frame.cloud_grid.x;
   int height = frame.cloud_grid.y;

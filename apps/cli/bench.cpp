@@ -238,7 +238,7 @@ int run_bench(const BenchOptions& options) {
                               {"--json", options.json}});
   }
 
-  const RendererOptions renderer_options{options.device, options.validation, options.verbose};
+  const RendererOptions renderer_options{options.device, options.validation, options.verbose, {}};
   Renderer renderer(renderer_options);
   std::printf("nephele bench on %s, scene %dx%d\n", renderer.device_name().c_str(),
               base.output.width, base.output.height);

@@ -112,7 +112,7 @@ int run_gallery(const GalleryOptions& options) {
     scenes.back().output.height = options.tile_height;
     validate_scene(scenes.back());
   }
-  Renderer renderer({options.device, options.validation, options.verbose});
+  Renderer renderer({options.device, options.validation, options.verbose, {}});
   // A step a preset (--verbose prints a line a preset instead, unless --progress).
   Progress progress("gallery", int(names.size()),
                     progress_wanted(options.progress, options.quiet, options.verbose));

@@ -1,9 +1,11 @@
 // nephele — the renderer: Vulkan compute passes behind a plain C++ interface.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "nephele/image.h"
@@ -12,10 +14,18 @@
 
 namespace nephele {
 
+// Progress of long work, called on the calling thread: `stage` ("noise": the noise textures
+// made for a seed, about 3 s on a CPU; "clouds": a still image marched in bands of rows),
+// `done` of `total` steps.
+using ProgressCallback = std::function<void(std::string_view stage, int done, int total)>;
+
 struct RendererOptions {
   std::string device;       // substring of the device name to pick; empty = best available
   bool validation = false;  // enable VK_LAYER_KHRONOS_validation; messages are counted
   bool verbose = false;     // print device choice and pass timings to stderr
+  // When set, the noise textures and still images (render(), FrameOptions::still) are made in
+  // several submissions, each reported when done. The images are the same.
+  ProgressCallback progress;
 };
 
 struct PassTiming {

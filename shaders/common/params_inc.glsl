@@ -134,6 +134,7 @@ struct FrameParams {
   // The rows built this frame: x the LUT's first, y its count (of kSkyViewHeight), z the
   // volume's first, w its count (of AP_SIZE_V).
   ivec4 sky_view_rows;
+  ivec4 cloud_band;  // x the first row of blocks the clouds pass marches (a still in bands)
 };
 
 // Steps of the evolving weather per clouds.weather_evolution_s (10 s at an hour): the map is

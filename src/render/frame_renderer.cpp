@@ -126,14 +126,55 @@ void FrameRenderer::Impl::print_timings(const std::vector<std::pair<std::string,
 
 void FrameRenderer::Impl::update_noise(const Scene& scene, const gpu::FrameParams& params) {
   if (noise_seed_built == scene.noise_seed) return;
-  print_timings(state.run_once(params,
-                               [&](VkCommandBuffer cmd) {
-                                 pass_noise_base(cmd, state);
-                                 pass_noise_detail(cmd, state);
-                                 pass_noise_curl(cmd, state);
-                               }),
-                " (made once for its seed)");
+  if (!progress) {
+    print_timings(state.run_once(params,
+                                 [&](VkCommandBuffer cmd) {
+                                   pass_noise_base(cmd, state);
+                                   pass_noise_detail(cmd, state);
+                                   pass_noise_curl(cmd, state);
+                                 }),
+                  " (made once for its seed)");
+  } else {  // one submission a texture, each reported
+    using Pass = void (*)(VkCommandBuffer, GpuState&);
+    const Pass passes[] = {pass_noise_base, pass_noise_detail, pass_noise_curl};
+    progress("noise", 0, 3);
+    for (int i = 0; i < 3; ++i) {
+      print_timings(state.run_once(params, [&](VkCommandBuffer cmd) { passes[i](cmd, state); }),
+                    " (made once for its seed)");
+      progress("noise", i + 1, 3);
+    }
+  }
   noise_seed_built = scene.noise_seed;
+}
+
+void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FrameParams& params) {
+  const int block_rows = (state.cloud_height + state.stride - 1) / state.stride;
+  const int bands = std::clamp(block_rows / 16, 1, 40);
+  band_timings.clear();
+  const auto keep = [&](const std::vector<std::pair<std::string, double>>& results) {
+    for (const auto& [name, ms] : results) {
+      auto it = std::find_if(band_timings.begin(), band_timings.end(),
+                             [&](const PassTiming& p) { return p.name == name; });
+      if (it == band_timings.end()) band_timings.push_back({name, ms});
+      else it->ms += ms;
+    }
+  };
+  progress("clouds", 0, bands + 1);
+  keep(state.run_once(params, [&](VkCommandBuffer cmd) {
+    weather.record(cmd, *state.timer);
+    sky_view.record(cmd, *state.timer);
+    light_volume.record(cmd, *state.timer);
+  }));
+  progress("clouds", 1, bands + 1);
+  for (int b = 0; b < bands; ++b) {
+    gpu::FrameParams band = params;
+    const int first = block_rows * b / bands, rows = block_rows * (b + 1) / bands - first;
+    band.cloud_band = glm::ivec4(first, 0, 0, 0);
+    keep(state.run_once(band, [&](VkCommandBuffer cmd) {
+      pass_clouds(cmd, state, scene.quality.mode, rows);
+    }));
+    progress("clouds", b + 2, bands + 1);
+  }
 }
 
 void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
@@ -212,6 +253,7 @@ FrameRenderer::Impl::Impl(const RendererOptions& options)
     : ctx({options.device, options.validation, options.verbose}),
       state(ctx),
       verbose(options.verbose),
+      progress(options.progress),
       weather(ctx, state.set),
       light_volume(ctx, state.set),
       sky_view(ctx, state.set) {}
@@ -222,6 +264,7 @@ FrameRenderer::Impl::Impl(const HostVulkan& host, const RendererOptions& options
           options.verbose),
       state(ctx),
       verbose(options.verbose),
+      progress(options.progress),
       weather(ctx, state.set),
       light_volume(ctx, state.set),
       sky_view(ctx, state.set) {}
@@ -336,11 +379,16 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   weather.prepare(scene, params);
   s.swap_history();
 
+  const bool in_bands = still && progress;
+  band_timings.clear();
+  if (in_bands) march_in_bands(scene, params);
   s.begin(cmd, slot, params);
-  weather.record(cmd, *s.timer);
-  sky_view.record(cmd, *s.timer);
-  light_volume.record(cmd, *s.timer);
-  pass_clouds(cmd, s, scene.quality.mode);
+  if (!in_bands) {
+    weather.record(cmd, *s.timer);
+    sky_view.record(cmd, *s.timer);
+    light_volume.record(cmd, *s.timer);
+    pass_clouds(cmd, s, scene.quality.mode);
+  }
   pass_march_range(cmd, s);
   pass_resolve(cmd, s);
   // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe).
@@ -371,6 +419,10 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   }
   stats.wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (const PassTiming& p : band_timings) {
+    stats.passes.push_back(p);
+    stats.frame_ms += p.ms;
+  }
   pending[slot] = std::move(stats);
   ++frames_recorded;
   last_slot = slot;

@@ -22,6 +22,7 @@ struct FrameRenderer::Impl {
   gpu::Context ctx;
   GpuState state;
   bool verbose = false;
+  ProgressCallback progress;
   std::optional<uint32_t> noise_seed_built;  // noise textures are valid for this seed
   std::optional<Scene> previous;             // the scene of the last frame recorded
   std::string previous_key;                  // its history_key()
@@ -46,6 +47,10 @@ struct FrameRenderer::Impl {
   void render_reference_sky(gpu::FrameParams params);
 
   FrameImages record_frame(VkCommandBuffer cmd, const Scene& scene, const FrameOptions& options);
+  // A still image with progress: the modules' work, then the clouds pass in bands of rows,
+  // each submitted and waited for and reported; what remains is recorded into the frame.
+  void march_in_bands(const Scene& scene, const gpu::FrameParams& params);
+  std::vector<PassTiming> band_timings;  // of march_in_bands, for the frame's stats
   // After the frame of `slot` completed: its stats with the passes' timings (moved into
   // `completed`); nothing when none is pending there.
   void collect(int slot);

@@ -6,7 +6,7 @@
 #include "common/params_inc.glsl"
 
 namespace nephele::gpu {
-static_assert(sizeof(FrameParams) == 67 * 16, "FrameParams must be 67 vec4s (std140 layout)");
+static_assert(sizeof(FrameParams) == 68 * 16, "FrameParams must be 68 vec4s (std140 layout)");
 static_assert(sizeof(StarGpu) == 2 * 16);
 static_assert(alignof(FrameParams) <= 16);
 }  // namespace nephele::gpu

@@ -168,11 +168,11 @@ const gpu::Kernel& clouds_kernel(const GpuState& s, MarchMode mode) {
 }
 }  // namespace
 
-void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {
+void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode, int rows) {
   const gpu::Kernel& kernel = clouds_kernel(s, mode);
   const auto blocks = [&](int n) { return uint32_t((n + s.stride - 1) / s.stride); };
   gpu::dispatch(cmd, kernel, s.set, *s.timer, "clouds", blocks(s.cloud_width),
-                blocks(s.cloud_height), 1, 8, 8, 1);
+                rows < 0 ? blocks(s.cloud_height) : uint32_t(rows), 1, 8, 8, 1);
 }
 
 void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode) {

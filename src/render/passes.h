@@ -93,7 +93,8 @@ void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
 void pass_noise_curl(VkCommandBuffer cmd, GpuState& s);
 // Only when the atmosphere changes: the transmittance LUT, then the multiple-scattering LUT.
 void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s);
-void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode);
+// Every row of blocks, or `rows` of them from FrameParams::cloud_band.x.
+void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode, int rows = -1);
 // The clouds pass over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME), into dome_a
 // and dome_b (bind_march(true) first).
 void pass_sky_dome(VkCommandBuffer cmd, GpuState& s, MarchMode mode);

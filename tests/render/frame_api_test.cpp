@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "nephele/error.h"
 #include "nephele/frame.h"
 #include "nephele/image.h"
+#include "nephele/renderer.h"
 #include "nephele/scene_io.h"
 
 namespace {
@@ -249,6 +251,32 @@ TEST(FrameApi, SynchronisationValidationSeesAHazard) {
   host.submit(0);
   vkDeviceWaitIdle(host.vk.device);
   EXPECT_GT(host.messages, 0);
+}
+
+// A still with a progress callback is marched in bands of rows, each reported; the image is the
+// one made in a single submission.
+TEST(FrameApi, StillsReportProgressAndGiveTheSameImage) {
+  nephele::Scene scene = small_scene();
+  scene.output.height = 40;  // 2 bands of 16 rows and the rest
+  std::vector<std::string> calls;
+  nephele::RendererOptions options;
+  options.validation = true;
+  options.progress = [&](std::string_view stage, int done, int total) {
+    calls.push_back(std::string(stage) + " " + std::to_string(done) + "/" + std::to_string(total));
+  };
+  nephele::Renderer with(options);
+  const nephele::Frame banded = with.render(scene);
+  const std::vector<std::string> expected = {"noise 0/3",  "noise 1/3",  "noise 2/3",
+                                             "noise 3/3",  "clouds 0/3", "clouds 1/3",
+                                             "clouds 2/3", "clouds 3/3"};
+  EXPECT_EQ(calls, expected);
+  nephele::Renderer without({"", true, false, {}});
+  const nephele::Frame whole = without.render(scene);
+  EXPECT_EQ(banded.color.pixels, whole.color.pixels);
+  bool clouds_timed = false;
+  for (const nephele::PassTiming& p : banded.stats.passes) clouds_timed |= p.name == "clouds";
+  EXPECT_TRUE(clouds_timed);
+  EXPECT_EQ(with.validation_messages(), 0);
 }
 
 TEST(FrameApi, RefusesNullHandlesAndCommandBuffers) {
