@@ -125,26 +125,22 @@ void FrameRenderer::Impl::print_timings(const std::vector<std::pair<std::string,
 }
 
 void FrameRenderer::Impl::update_noise(const Scene& scene, const gpu::FrameParams& params) {
-  if (noise_seed_built == scene.noise_seed) return;
+  if (!noise.stale(scene.noise_seed)) return;
+  const auto record_all = [&](VkCommandBuffer cmd) {
+    for (int i = 0; i < NoiseModule::kTextures; ++i) noise.record(cmd, *state.timer, i);
+  };
   if (!progress) {
-    print_timings(state.run_once(params,
-                                 [&](VkCommandBuffer cmd) {
-                                   pass_noise_base(cmd, state);
-                                   pass_noise_detail(cmd, state);
-                                   pass_noise_curl(cmd, state);
-                                 }),
-                  " (made once for its seed)");
+    print_timings(state.run_once(params, record_all), " (made once for its seed)");
   } else {  // one submission a texture, each reported
-    using Pass = void (*)(VkCommandBuffer, GpuState&);
-    const Pass passes[] = {pass_noise_base, pass_noise_detail, pass_noise_curl};
-    progress("noise", 0, 3);
-    for (int i = 0; i < 3; ++i) {
-      print_timings(state.run_once(params, [&](VkCommandBuffer cmd) { passes[i](cmd, state); }),
+    progress("noise", 0, NoiseModule::kTextures);
+    for (int i = 0; i < NoiseModule::kTextures; ++i) {
+      print_timings(state.run_once(params,
+                                   [&](VkCommandBuffer cmd) { noise.record(cmd, *state.timer, i); }),
                     " (made once for its seed)");
-      progress("noise", i + 1, 3);
+      progress("noise", i + 1, NoiseModule::kTextures);
     }
   }
-  noise_seed_built = scene.noise_seed;
+  noise.made(scene.noise_seed);
 }
 
 void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FrameParams& params) {
@@ -178,14 +174,13 @@ void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FramePar
 }
 
 void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
-  if (luts_built == scene.atmosphere) return;
+  if (!atmosphere.stale(scene.atmosphere)) return;
   gpu::FrameParams params{};
   set_atmosphere(params, scene);
-  print_timings(state.run_once(params, [&](VkCommandBuffer cmd) { pass_atmosphere_luts(cmd, state); }),
+  print_timings(state.run_once(params,
+                               [&](VkCommandBuffer cmd) { atmosphere.record(cmd, *state.timer); }),
                 " (cached until the atmosphere changes)");
-  tables.transmittance = download(ctx, state.transmittance_lut, false).pixels;
-  tables.multiple_scattering = download(ctx, state.ms_lut, false).pixels;
-  luts_built = scene.atmosphere;
+  atmosphere.made(scene.atmosphere);
   sky_view.invalidate();
 }
 
@@ -226,7 +221,7 @@ double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode
 CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
   validate_scene(scene);
   update_atmosphere_luts(scene);
-  gpu::FrameParams params = make_frame_params(scene, 0, sky_lights(scene), tables);
+  gpu::FrameParams params = make_frame_params(scene, 0, sky_lights(scene), atmosphere.tables());
   params.cloud_weather.w = 0.5f * scene.clouds.weather_period_m;
   update_noise(scene, params);
   weather.prepare(scene, params);
@@ -254,6 +249,8 @@ FrameRenderer::Impl::Impl(const RendererOptions& options)
       state(ctx),
       verbose(options.verbose),
       progress(options.progress),
+      noise(ctx, state.set),
+      atmosphere(ctx, state.set),
       weather(ctx, state.set),
       light_volume(ctx, state.set),
       sky_view(ctx, state.set) {}
@@ -265,6 +262,8 @@ FrameRenderer::Impl::Impl(const HostVulkan& host, const RendererOptions& options
       state(ctx),
       verbose(options.verbose),
       progress(options.progress),
+      noise(ctx, state.set),
+      atmosphere(ctx, state.set),
       weather(ctx, state.set),
       light_volume(ctx, state.set),
       sky_view(ctx, state.set) {}
@@ -366,7 +365,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   if (resized) ctx.wait_queue_idle();  // the frames in flight use the images replaced
   s.resize(scene.output.width, scene.output.height, cloud_w, cloud_h);
   s.stride = stride;
-  gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights, tables);
+  gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights, atmosphere.tables());
   if (history) set_previous_frame(params, scene, *previous);
   const glm::ivec2 offset = march_offset(stride, frame_counter);
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);

@@ -8,7 +8,9 @@
 
 #include "nephele/frame.h"
 #include "render/frame_params.h"
+#include "render/modules/atmosphere.h"
 #include "render/modules/light_volume.h"
+#include "render/modules/noise.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/weather.h"
 #include "render/passes.h"
@@ -23,7 +25,6 @@ struct FrameRenderer::Impl {
   GpuState state;
   bool verbose = false;
   ProgressCallback progress;
-  std::optional<uint32_t> noise_seed_built;  // noise textures are valid for this seed
   std::optional<Scene> previous;             // the scene of the last frame recorded
   std::string previous_key;                  // its history_key()
   glm::vec3 previous_light_dir{0.0f};        // its key light (sky_lights)
@@ -34,14 +35,13 @@ struct FrameRenderer::Impl {
   std::optional<FrameStats> pending[gpu::kFramesInFlight];
   std::optional<FrameStats> completed;
 
+  // The modules, each owning its kernels, textures and rebuild rule (src/render/modules).
+  NoiseModule noise;
+  AtmosphereModule atmosphere;
   WeatherModule weather;
   LightVolumeModule light_volume;
   SkyViewModule sky_view;
 
-  // Hillaire's transmittance and multiple-scattering tables: what they were built for, and
-  // their copy on the host for the lighting computed on the CPU.
-  std::optional<AtmosphereParams> luts_built;
-  AtmosphereTables tables;
   void update_atmosphere_luts(const Scene& scene);
   // The brute-force reference sky, tile by tile (one submission each), into state.reference_sky.
   void render_reference_sky(gpu::FrameParams params);

@@ -12,9 +12,6 @@ namespace nephele {
 GpuState::GpuState(gpu::Context& c)
     : ctx(c),
       set(c),
-      noise_base_kernel(c, set, "noise_base.comp.spv"),
-      noise_detail_kernel(c, set, "noise_detail.comp.spv"),
-      noise_curl_kernel(c, set, "noise_curl.comp.spv"),
       clouds_default_kernel(c, set, "clouds.comp.spv", {0}),
       clouds_baseline_kernel(c, set, "clouds.comp.spv", {1}),
       resolve_kernel(c, set, "resolve.comp.spv"),
@@ -22,8 +19,6 @@ GpuState::GpuState(gpu::Context& c)
       compose_reference_kernel(c, set, "compose.comp.spv", {1}),
       march_range_kernel(c, set, "march_range.comp.spv"),
       stars_kernel(c, set, "stars.comp.spv"),
-      transmittance_lut_kernel(c, set, "transmittance_lut.comp.spv"),
-      ms_lut_kernel(c, set, "multiscattering_lut.comp.spv"),
       reference_psi_kernel(c, set, "sky_reference_psi.comp.spv"),
       reference_sky_kernel(c, set, "sky_reference.comp.spv"),
       cloud_profile_kernel(c, set, "cloud_profile.comp.spv"),
@@ -32,15 +27,7 @@ GpuState::GpuState(gpu::Context& c)
       tonemap_kernel(c, set, "tonemap.comp.spv"),
       stars(c, sizeof(gpu::StarGpu) * std::max<size_t>(star_catalogue().size(), 1),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
-      base_noise(c, kBaseNoiseSize, kBaseNoiseSize, kBaseNoiseSize, VK_FORMAT_R8G8B8A8_UNORM),
-      detail_noise(c, kDetailNoiseSize, kDetailNoiseSize, kDetailNoiseSize,
-                   VK_FORMAT_R8G8B8A8_UNORM, VK_SAMPLER_ADDRESS_MODE_REPEAT, kDetailNoiseLevels),
-      curl_noise(c, kCurlNoiseSize, kCurlNoiseSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT),
       ground_light(c, 1, 1, 1, VK_FORMAT_R32_SFLOAT),
-      transmittance_lut(c, glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1,
-                        VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
-      ms_lut(c, glsl::MS_LUT_W, glsl::MS_LUT_H, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-             VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       reference_psi(c, gpu::REFERENCE_TILE, gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES,
                     VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set.bind_image(gpu::kReferencePsiOut, gpu::kReferencePsi, reference_psi);
@@ -48,8 +35,6 @@ GpuState::GpuState(gpu::Context& c)
     *t = gpu::Texture(c, kSkyDomeSize, kSkyDomeSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                       VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   resize_reference_sky(1, 1);
-  set.bind_image(gpu::kTransmittanceLutOut, gpu::kTransmittanceLut, transmittance_lut);
-  set.bind_image(gpu::kMsLutOut, gpu::kMsLut, ms_lut);
   set.bind_image(gpu::kGroundLightOut, gpu::kGroundLight, ground_light);
   for (int i = 0; i < kSlots; ++i) {
     timers[i] = std::make_unique<gpu::PassTimer>(c, 16);
@@ -60,9 +45,6 @@ GpuState::GpuState(gpu::Context& c)
   for (const Star& star : star_catalogue())
     star_data[star_count++] = {glm::vec4(star.dir_j2000, star.vmag),
                                glm::vec4(star.irradiance, star.b_v)};
-  set.bind_image(gpu::kBaseNoiseOut, gpu::kBaseNoise, base_noise);
-  set.bind_image(gpu::kDetailNoiseOut, gpu::kDetailNoise, detail_noise);
-  set.bind_image(gpu::kCurlNoiseOut, gpu::kCurlNoise, curl_noise);
   resize(1, 1, 1, 1);
 }
 
@@ -137,29 +119,6 @@ void GpuState::swap_history() {
   set.bind_image(gpu::kCloudsBOut, gpu::kCloudsB, clouds_b[current]);
   set.bind_sampled_image(gpu::kHistoryA, clouds_a[1 - current]);
   set.bind_sampled_image(gpu::kHistoryB, clouds_b[1 - current]);
-}
-
-void pass_noise_base(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.noise_base_kernel, s.set, *s.timer, "noise_base", kBaseNoiseSize,
-                kBaseNoiseSize, kBaseNoiseSize, 4, 4, 4);
-}
-
-void pass_noise_detail(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.noise_detail_kernel, s.set, *s.timer, "noise_detail", kDetailNoiseSize,
-                kDetailNoiseSize, kDetailNoiseSize, 4, 4, 4);
-  s.detail_noise.record_mipmaps(cmd);
-}
-
-void pass_noise_curl(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.noise_curl_kernel, s.set, *s.timer, "noise_curl", kCurlNoiseSize,
-                kCurlNoiseSize, 1, 8, 8, 1);
-}
-
-void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.transmittance_lut_kernel, s.set, *s.timer, "transmittance",
-                glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1, 8, 8, 1);
-  gpu::dispatch(cmd, s.ms_lut_kernel, s.set, *s.timer, "multiscatter", glsl::MS_LUT_W,
-                glsl::MS_LUT_H, 1, 8, 8, 1);
 }
 
 namespace {

@@ -14,10 +14,6 @@
 
 namespace nephele {
 
-constexpr uint32_t kBaseNoiseSize = 128;    // seed 000, 2.2.2: base shape noise 128^3
-constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
-constexpr uint32_t kDetailNoiseLevels = 6;  // and its mip levels down to 1^3 (far clouds)
-constexpr uint32_t kCurlNoiseSize = 128;    // curl noise 128^2
 // The sky dome (sky_dome_ray): kSkyDomeSize^2 directions of equal solid angle over the
 // observer's upper hemisphere, where sky_cover_fraction is measured.
 constexpr uint32_t kSkyDomeSize = 64;
@@ -55,10 +51,9 @@ struct GpuState {
 
   gpu::Context& ctx;
   gpu::DescriptorSet set;
-  gpu::Kernel noise_base_kernel, noise_detail_kernel, noise_curl_kernel;
   gpu::Kernel clouds_default_kernel, clouds_baseline_kernel, resolve_kernel;
   gpu::Kernel compose_kernel, compose_reference_kernel, march_range_kernel;
-  gpu::Kernel stars_kernel, transmittance_lut_kernel, ms_lut_kernel;
+  gpu::Kernel stars_kernel;
   gpu::Kernel reference_psi_kernel, reference_sky_kernel, cloud_profile_kernel;
   gpu::Kernel ground_light_default_kernel, ground_light_baseline_kernel, tonemap_kernel;
   std::unique_ptr<gpu::PassTimer> timers[kSlots];
@@ -67,10 +62,7 @@ struct GpuState {
   int slot = kOneOff;               // since begin()
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
   int star_count = 0;
-  gpu::Texture base_noise, detail_noise, curl_noise;
   gpu::Texture ground_light;
-  // Hillaire's tables (atmosphere_lut_inc.glsl, sky_view_inc.glsl).
-  gpu::Texture transmittance_lut, ms_lut;
   // The reference sky (bindings_inc.glsl): one tile's Psi_ms, and the sky per pixel (resized to
   // the image only when the reference is rendered).
   gpu::Texture reference_psi, reference_sky;
@@ -88,11 +80,6 @@ struct GpuState {
   int stride = 1;  // this frame's march stride
 };
 
-void pass_noise_base(VkCommandBuffer cmd, GpuState& s);
-void pass_noise_detail(VkCommandBuffer cmd, GpuState& s);
-void pass_noise_curl(VkCommandBuffer cmd, GpuState& s);
-// Only when the atmosphere changes: the transmittance LUT, then the multiple-scattering LUT.
-void pass_atmosphere_luts(VkCommandBuffer cmd, GpuState& s);
 // Every row of blocks, or `rows` of them from FrameParams::cloud_band.x.
 void pass_clouds(VkCommandBuffer cmd, GpuState& s, MarchMode mode, int rows = -1);
 // The clouds pass over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME), into dome_a

@@ -8,7 +8,9 @@
 #include "gpu/context.h"
 #include "nephele/scene.h"
 #include "render/frame_params.h"
+#include "render/modules/atmosphere.h"
 #include "render/modules/light_volume.h"
+#include "render/modules/noise.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/weather.h"
 #include "render/passes.h"
@@ -69,7 +71,13 @@ double random_pair_difference(const Volume& v, int c) {
 // must not be bound).
 struct Modules {
   Modules(nephele::gpu::Context& ctx, nephele::GpuState& s)
-      : weather(ctx, s.set), light_volume(ctx, s.set), sky_view(ctx, s.set) {}
+      : noise(ctx, s.set),
+        atmosphere(ctx, s.set),
+        weather(ctx, s.set),
+        light_volume(ctx, s.set),
+        sky_view(ctx, s.set) {}
+  nephele::NoiseModule noise;
+  nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
   nephele::LightVolumeModule light_volume;
   nephele::SkyViewModule sky_view;
@@ -86,13 +94,13 @@ void run_passes(nephele::gpu::Context&, nephele::GpuState& state, Passes passes)
 TEST(NoiseTextures, TileSeamlesslyAndCarryNoise) {
   nephele::gpu::Context ctx({"", true, false});
   nephele::GpuState state(ctx);
-  const Modules modules(ctx, state);  // every binding of the set filled
+  Modules modules(ctx, state);  // every binding of the set filled
   run_passes(ctx, state, [&](VkCommandBuffer cmd) {
-    nephele::pass_noise_base(cmd, state);
-    nephele::pass_noise_detail(cmd, state);
+    modules.noise.record(cmd, *state.timer, 0);
+    modules.noise.record(cmd, *state.timer, 1);
   });
-  const Volume base = download(ctx, state.base_noise);
-  const Volume detail = download(ctx, state.detail_noise);
+  const Volume base = download(ctx, modules.noise.base());
+  const Volume detail = download(ctx, modules.noise.detail());
   ASSERT_EQ(base.size, 128u);
   ASSERT_EQ(detail.size, 32u);
 
@@ -117,14 +125,15 @@ TEST(NoiseTextures, TileSeamlesslyAndCarryNoise) {
 TEST(NoiseTextures, CurlNoiseIsDivergenceFreeUnitAndTiles) {
   nephele::gpu::Context ctx({"", true, false});
   nephele::GpuState state(ctx);
-  const Modules modules(ctx, state);  // every binding of the set filled
-  run_passes(ctx, state, [&](VkCommandBuffer cmd) { nephele::pass_noise_curl(cmd, state); });
-  const int n = int(state.curl_noise.width());
+  Modules modules(ctx, state);  // every binding of the set filled
+  run_passes(ctx, state, [&](VkCommandBuffer cmd) { modules.noise.record(cmd, *state.timer, 2); });
+  const nephele::gpu::Texture& curl = modules.noise.curl();
+  const int n = int(curl.width());
   ASSERT_EQ(n, 128);
   std::vector<glm::vec4> texels(size_t(n) * n);
   nephele::gpu::Buffer staging(ctx, texels.size() * sizeof(glm::vec4),
                                VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  ctx.submit_and_wait([&](VkCommandBuffer cmd) { state.curl_noise.record_download(cmd, staging); });
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) { curl.record_download(cmd, staging); });
   std::memcpy(texels.data(), staging.data(), texels.size() * sizeof(glm::vec4));
   const auto at = [&](int x, int y) {
     return glm::vec2(texels[size_t((y + n) % n) * n + size_t((x + n) % n)]);

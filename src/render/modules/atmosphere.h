@@ -1,0 +1,35 @@
+// The atmosphere module: Hillaire's transmittance and multiple-scattering tables
+// (transmittance_lut.comp, multiscattering_lut.comp), rebuilt when the atmosphere changes (a
+// host wait of about 0.2 s on a CPU) and read back for the lighting computed on the CPU.
+#pragma once
+
+#include <optional>
+
+#include "gpu/kernel.h"
+#include "nephele/scene.h"
+#include "render/frame_params.h"
+
+namespace nephele {
+
+class AtmosphereModule {
+ public:
+  AtmosphereModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  // Whether the tables are not (yet) those of `atmosphere`.
+  bool stale(const AtmosphereParams& atmosphere) const { return built_ != atmosphere; }
+  // Records both tables for the atmosphere in the frame parameters.
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  // After the recorded work completed: keeps their copy on the host for `atmosphere`.
+  void made(const AtmosphereParams& atmosphere);
+  // The host's copy, for the per-frame lighting (make_frame_params).
+  const AtmosphereTables& tables() const { return tables_; }
+
+ private:
+  gpu::Context& ctx_;
+  gpu::DescriptorSet& set_;
+  gpu::Kernel transmittance_kernel_, ms_kernel_;
+  gpu::Texture transmittance_, ms_;
+  std::optional<AtmosphereParams> built_;
+  AtmosphereTables tables_;
+};
+
+}  // namespace nephele
