@@ -201,6 +201,13 @@ Viewer::Viewer(const ViewerOptions& options)
       follow_window_(options.follow_window) {
   RendererOptions renderer_options;
   renderer_options.validation = options.validation;
+  // The noise textures are made at the first frame (some seconds on a CPU): said on a terminal.
+  if (isatty(STDERR_FILENO))
+    renderer_options.progress = [](std::string_view stage, int done, int total) {
+      if (stage == "noise")
+        std::fprintf(stderr, "\rnephele-view: making the noise textures %d/%d%s", done, total,
+                     done == total ? "\n" : "");
+    };
   renderer_ = std::make_unique<FrameRenderer>(vk_.host(), renderer_options);
   camera_.sync_from(editor_.scene().camera);
   applied_camera_ = editor_.scene().camera;
