@@ -88,7 +88,8 @@ void WeatherModule::prepare(const Scene& scene, gpu::FrameParams& params) {
   const auto have = [&](long long step) { return step_in_layer_[layer_of(step)] == step; };
   // The two states blended must be complete now: computed whole in this frame when they are
   // not (the first frame, a jump in time). Then the next one, a band a frame.
-  if (!have(k) || !have(k + 1)) {
+  const bool blended_states_built = !have(k) || !have(k + 1);
+  if (blended_states_built) {
     const long long first = have(k) ? k + 1 : k;
     build_first_step_ = int(first);
     build_steps_ = int(k + 2 - first);
@@ -118,7 +119,7 @@ void WeatherModule::prepare(const Scene& scene, gpu::FrameParams& params) {
   // The map is blended again when its inputs change.
   const std::string key = "blend:" + std::to_string(scene.noise_seed) + ":" + std::to_string(k) +
                           ":" + std::to_string(f);
-  blend_ = map_key_ != key || build_steps_ > 0;
+  blend_ = map_key_ != key || blended_states_built;
   map_key_ = key;
 }
 
