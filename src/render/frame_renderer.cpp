@@ -245,20 +245,20 @@ CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
 }
 
 FrameRenderer::Impl::Impl(const RendererOptions& options)
-    : ctx({options.device, options.validation, options.verbose}),
-      state(ctx),
-      verbose(options.verbose),
-      progress(options.progress),
-      noise(ctx, state.set),
-      atmosphere(ctx, state.set),
-      weather(ctx, state.set),
-      light_volume(ctx, state.set),
-      sky_view(ctx, state.set) {}
+    : Impl(std::make_unique<gpu::Context>(
+               gpu::ContextOptions{options.device, options.validation, options.verbose}),
+           options) {}
 
 FrameRenderer::Impl::Impl(const HostVulkan& host, const RendererOptions& options)
-    : ctx(gpu::HostDevice{host.instance, host.physical_device, host.device, host.queue_family,
-                          host.queue},
-          options.verbose),
+    : Impl(std::make_unique<gpu::Context>(
+               gpu::HostDevice{host.instance, host.physical_device, host.device,
+                               host.queue_family, host.queue},
+               options.verbose),
+           options) {}
+
+FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererOptions& options)
+    : owned_ctx(std::move(context)),
+      ctx(*owned_ctx),
       state(ctx),
       verbose(options.verbose),
       progress(options.progress),

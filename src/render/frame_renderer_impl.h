@@ -20,8 +20,10 @@ namespace nephele {
 struct FrameRenderer::Impl {
   Impl(const RendererOptions& options);
   Impl(const HostVulkan& host, const RendererOptions& options);
+  Impl(std::unique_ptr<gpu::Context> context, const RendererOptions& options);
 
-  gpu::Context ctx;
+  std::unique_ptr<gpu::Context> owned_ctx;  // its own, or the one on the host's device
+  gpu::Context& ctx;
   GpuState state;
   bool verbose = false;
   ProgressCallback progress;

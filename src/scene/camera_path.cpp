@@ -24,7 +24,6 @@ using scene_detail::format_double;
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr double kMaxTimeS = 1.0e6;            // as the scene's time_s
 constexpr double kMaxCameraDistanceM = 1.0e9;  // as camera.position_m
-constexpr std::uintmax_t kMaxPathFileBytes = 1u << 20;
 
 double radians(double degrees) {
   return degrees / kDegPerRad;
@@ -480,20 +479,9 @@ CameraPath parse_camera_path(std::string_view toml, const std::string& source_na
 }
 
 CameraPath load_camera_path(const std::string& path, const Scene& scene) {
-  const std::string cannot = shorten_path_for_message(path) + ": cannot read the camera path: ";
-  std::error_code error;
-  const std::filesystem::file_status status = std::filesystem::status(path, error);
-  if (std::filesystem::is_directory(status)) throw InputError(cannot + "it is a directory");
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw InputError(cannot + "it is not a regular file (a device, a pipe or a socket)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(cannot + std::strerror(errno));
-  std::string text(kMaxPathFileBytes + 1, '\0');  // one byte more than allowed: it may grow
-  in.read(text.data(), std::streamsize(text.size()));
-  if (in.bad()) throw InputError(cannot + "read error");
-  text.resize(size_t(in.gcount()));
-  if (text.size() > kMaxPathFileBytes) throw InputError(cannot + "it is larger than 1 MiB");
-  return parse_camera_path(text, path, scene);
+  return parse_camera_path(
+      scene_detail::read_small_text_file(path, "camera path", "it is larger than 1 MiB"), path,
+      scene);
 }
 
 std::string camera_path_to_toml(const CameraPath& path) {

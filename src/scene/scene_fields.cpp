@@ -1,10 +1,16 @@
 // nephele — the table of scene keys, MarchMode names, number formatting.
 #include "scene/scene_fields.h"
 
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 
+#include "nephele/error.h"
 #include "nephele/scene_io.h"
 
 namespace nephele {
@@ -315,6 +321,26 @@ std::string toml_quote(std::string_view text) {
     }
   }
   return out + "\"";
+}
+
+std::string read_small_text_file(const std::string& path, const std::string& what,
+                                 const std::string& too_large) {
+  constexpr size_t kMaxBytes = 1u << 20;
+  const std::string cannot = shorten_path_for_message(path) + ": cannot read the " + what + ": ";
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status)) throw InputError(cannot + "it is a directory");
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(cannot + "it is not a regular file (a device, a pipe or a socket)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(cannot + std::strerror(errno));
+  // Read at most one byte more than allowed: the file may grow after the check.
+  std::string text(kMaxBytes + 1, '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  if (in.bad()) throw InputError(cannot + "read error");
+  text.resize(size_t(in.gcount()));
+  if (text.size() > kMaxBytes) throw InputError(cannot + too_large);
+  return text;
 }
 
 }  // namespace scene_detail

@@ -62,4 +62,10 @@ std::string toml_float(float value);
 // A TOML basic string literal, quoted and escaped.
 std::string toml_quote(std::string_view text);
 
+// The text of a small file a user names (a scene file, a camera path): only a regular file of
+// at most 1 MiB, read once. Errors are InputErrors "<path>: cannot read the <what>: <why>",
+// with `too_large` as the why of a larger file.
+std::string read_small_text_file(const std::string& path, const std::string& what,
+                                 const std::string& too_large);
+
 }  // namespace nephele::scene_detail

@@ -111,7 +111,6 @@ using scene_detail::Section;
 constexpr int kMaxPresetDepth = 8;
 
 // Scene files are small; anything larger is not one (and /dev/zero never ends).
-constexpr std::uintmax_t kMaxSceneFileBytes = 1u << 20;
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -468,22 +467,8 @@ void scene_detail::read_field_value(Scene& scene, const Field& field, const std:
 }
 
 Scene load_scene_file(const std::string& path) {
-  const std::string cannot =
-      shorten_path_for_message(path) + ": cannot read the scene file: ";
-  std::error_code error;
-  const std::filesystem::file_status status = std::filesystem::status(path, error);
-  if (std::filesystem::is_directory(status)) throw InputError(cannot + "it is a directory");
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw InputError(cannot + "it is not a regular file (a device, a pipe or a socket)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(cannot + std::strerror(errno));
-  // Read at most one byte more than allowed: the file may grow after the check.
-  std::string text(kMaxSceneFileBytes + 1, '\0');
-  in.read(text.data(), std::streamsize(text.size()));
-  if (in.bad()) throw InputError(cannot + "read error");
-  text.resize(size_t(in.gcount()));
-  if (text.size() > kMaxSceneFileBytes)
-    throw InputError(cannot + "it is larger than 1 MiB (scene files are a few KB)");
+  const std::string text = scene_detail::read_small_text_file(
+      path, "scene file", "it is larger than 1 MiB (scene files are a few KB)");
   std::string base_dir = std::filesystem::path(path).parent_path().string();
   return parse_scene_toml(text, path, base_dir);
 }
