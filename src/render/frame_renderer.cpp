@@ -144,7 +144,7 @@ void FrameRenderer::Impl::update_noise(const Scene& scene, const gpu::FrameParam
 }
 
 void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FrameParams& params) {
-  const int block_rows = (state.cloud_height + state.stride - 1) / state.stride;
+  const int block_rows = (clouds.height() + clouds.stride() - 1) / clouds.stride();
   const int bands = std::clamp(block_rows / 16, 1, 40);
   band_timings.clear();
   const auto keep = [&](const std::vector<std::pair<std::string, double>>& results) {
@@ -167,7 +167,7 @@ void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FramePar
     const int first = block_rows * b / bands, rows = block_rows * (b + 1) / bands - first;
     band.cloud_band = glm::ivec4(first, 0, 0, 0);
     keep(state.run_once(band, [&](VkCommandBuffer cmd) {
-      pass_clouds(cmd, state, scene.quality.mode, rows);
+      clouds.record_march(cmd, *state.timer, scene.quality.mode, rows);
     }));
     progress("clouds", b + 2, bands + 1);
   }
@@ -206,13 +206,13 @@ double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode
   params.cloud_shape.x = 0.0f;  // the detail noise's finest level, as an observer sees it
   params.cloud_grid = glm::ivec4(kSkyDomeSize, kSkyDomeSize, 1, 0);
   params.march_offset = glm::ivec4(0, 0, 0, 1);
-  state.bind_march(true);
-  const auto results =
-      state.run_once(params, [&](VkCommandBuffer cmd) { pass_sky_dome(cmd, state, mode); });
-  state.bind_march(false);
+  clouds.bind_march(true);
+  const auto results = state.run_once(
+      params, [&](VkCommandBuffer cmd) { clouds.record_sky_dome(cmd, *state.timer, mode); });
+  clouds.bind_march(false);
   ms = 0.0;
   for (const auto& [name, pass_ms] : results) ms += pass_ms;
-  const Image dome = download(ctx, state.dome_a, false);
+  const Image dome = download(ctx, clouds.dome(), false);
   const auto covered = std::count_if(dome.pixels.begin(), dome.pixels.end(),
                                      [](const glm::vec4& p) { return p.a < 0.5f; });
   return double(covered) / double(dome.pixels.size());
@@ -225,13 +225,13 @@ CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
   params.cloud_weather.w = 0.5f * scene.clouds.weather_period_m;
   update_noise(scene, params);
   weather.prepare(scene, params);
-  state.bind_march(true);
+  clouds.bind_march(true);
   state.run_once(params, [&](VkCommandBuffer cmd) {
     weather.record(cmd, *state.timer);
-    pass_cloud_profile(cmd, state);
+    clouds.record_profile(cmd, *state.timer);
   });
-  state.bind_march(false);
-  const Image sums = download(ctx, state.dome_a, false);
+  clouds.bind_march(false);
+  const Image sums = download(ctx, clouds.dome(), false);
   const glm::vec2 shell_m = cloud_shell_m(scene);
   CloudProfile profile;
   for (int bin = 0; bin < sums.height; ++bin) {
@@ -266,7 +266,8 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       atmosphere(ctx, state.set),
       weather(ctx, state.set),
       light_volume(ctx, state.set),
-      sky_view(ctx, state.set) {}
+      sky_view(ctx, state.set),
+      clouds(ctx, state.set) {}
 
 FrameRenderer::FrameRenderer(const RendererOptions& options)
     : impl_(std::make_unique<Impl>(options)) {}
@@ -329,8 +330,7 @@ void FrameRenderer::Impl::collect(int slot) {
 Frame FrameRenderer::Impl::download_last(const Scene& scene) {
   Frame frame;
   frame.color = download(ctx, state.color[last_slot], false);
-  frame.clouds = resample(download(ctx, state.clouds_a[state.current], false), state.width,
-                          state.height);
+  frame.clouds = resample(download(ctx, clouds.cloud_buffer(), false), state.width, state.height);
   double sum = 0.0;
   for (const glm::vec4& p : frame.color.pixels) sum += luminance(p);
   frame.stats.mean_luminance = sum / double(frame.color.pixels.size());
@@ -355,7 +355,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   const std::string key = history_key(scene);
   const SkyLights lights = sky_lights(scene);  // the ephemeris and key light, once a frame
   const bool resized = state.width != scene.output.width || state.height != scene.output.height ||
-                       state.cloud_width != cloud_w || state.cloud_height != cloud_h;
+                       clouds.width() != cloud_w || clouds.height() != cloud_h;
   const bool history = !still && stride > 1 && !resized && previous && key == previous_key &&
                        history_usable(scene, *previous, lights.key.direction, previous_light_dir);
   if (!history) frame_counter = 0;
@@ -363,8 +363,9 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
 
   GpuState& s = state;
   if (resized) ctx.wait_queue_idle();  // the frames in flight use the images replaced
-  s.resize(scene.output.width, scene.output.height, cloud_w, cloud_h);
-  s.stride = stride;
+  s.resize(scene.output.width, scene.output.height);
+  clouds.resize(cloud_w, cloud_h);
+  clouds.set_stride(stride);
   gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights, atmosphere.tables());
   if (history) set_previous_frame(params, scene, *previous);
   const glm::ivec2 offset = march_offset(stride, frame_counter);
@@ -376,7 +377,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);
   weather.prepare(scene, params);
-  s.swap_history();
+  clouds.swap_history();
 
   const bool in_bands = still && progress;
   band_timings.clear();
@@ -386,13 +387,12 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     weather.record(cmd, *s.timer);
     sky_view.record(cmd, *s.timer);
     light_volume.record(cmd, *s.timer);
-    pass_clouds(cmd, s, scene.quality.mode);
+    clouds.record_march(cmd, *s.timer, scene.quality.mode);
   }
-  pass_march_range(cmd, s);
-  pass_resolve(cmd, s);
+  clouds.record_reconstruction(cmd, *s.timer);
   // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe).
   if (light_volume.completed() || params.light_volume.w == 0.0f)
-    pass_ground_light(cmd, s, scene.quality.mode);
+    clouds.record_ground_light(cmd, *s.timer, scene.quality.mode);
   pass_compose(cmd, s, scene.atmosphere.model);
   pass_stars(cmd, s);
   if (options.display) pass_tonemap(cmd, s);

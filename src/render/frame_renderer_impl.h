@@ -9,6 +9,7 @@
 #include "nephele/frame.h"
 #include "render/frame_params.h"
 #include "render/modules/atmosphere.h"
+#include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
 #include "render/modules/sky_view.h"
@@ -43,6 +44,7 @@ struct FrameRenderer::Impl {
   WeatherModule weather;
   LightVolumeModule light_volume;
   SkyViewModule sky_view;
+  CloudsModule clouds;
 
   void update_atmosphere_luts(const Scene& scene);
   // The brute-force reference sky, tile by tile (one submission each), into state.reference_sky.

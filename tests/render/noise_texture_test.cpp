@@ -9,6 +9,7 @@
 #include "nephele/scene.h"
 #include "render/frame_params.h"
 #include "render/modules/atmosphere.h"
+#include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
 #include "render/modules/sky_view.h"
@@ -75,12 +76,14 @@ struct Modules {
         atmosphere(ctx, s.set),
         weather(ctx, s.set),
         light_volume(ctx, s.set),
-        sky_view(ctx, s.set) {}
+        sky_view(ctx, s.set),
+        clouds(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
   nephele::LightVolumeModule light_volume;
   nephele::SkyViewModule sky_view;
+  nephele::CloudsModule clouds;
 };
 
 // Runs `passes` with the default scene's parameters.

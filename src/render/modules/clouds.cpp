@@ -1,0 +1,102 @@
+#include "render/modules/clouds.h"
+
+namespace nephele {
+
+CloudsModule::CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : ctx_(ctx),
+      set_(set),
+      march_default_(ctx, set, "clouds.comp.spv", {0}),
+      march_baseline_(ctx, set, "clouds.comp.spv", {1}),
+      range_(ctx, set, "march_range.comp.spv"),
+      resolve_(ctx, set, "resolve.comp.spv"),
+      profile_(ctx, set, "cloud_profile.comp.spv"),
+      ground_default_(ctx, set, "ground_light.comp.spv", {0}),
+      ground_baseline_(ctx, set, "ground_light.comp.spv", {1}),
+      ground_light_(ctx, 1, 1, 1, VK_FORMAT_R32_SFLOAT) {
+  for (gpu::Texture* t : {&dome_a_, &dome_b_})
+    *t = gpu::Texture(ctx, kSkyDomeSize, kSkyDomeSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  set_.bind_image(gpu::kGroundLightOut, gpu::kGroundLight, ground_light_);
+  resize(1, 1);
+}
+
+bool CloudsModule::resize(int w, int h) {
+  if (w == width_ && h == height_) return false;
+  const auto cloud_image = [&] {
+    return gpu::Texture(ctx_, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  };
+  // Room for a still image's march of every pixel.
+  march_a_ = cloud_image();
+  march_b_ = cloud_image();
+  range_lo_ = cloud_image();
+  range_hi_ = cloud_image();
+  for (int i = 0; i < 2; ++i) {
+    clouds_a_[i] = cloud_image();
+    clouds_b_[i] = cloud_image();
+  }
+  bind_march(false);
+  set_.bind_storage_image(gpu::kRangeLo, range_lo_);
+  set_.bind_storage_image(gpu::kRangeHi, range_hi_);
+  // Defined contents: filters read neighbours of the texels a frame writes.
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
+    for (const gpu::Texture* t : {&march_a_, &march_b_, &range_lo_, &range_hi_, &clouds_a_[0],
+                                  &clouds_a_[1], &clouds_b_[0], &clouds_b_[1]})
+      t->record_clear(cmd);
+  });
+  current_ = 1;
+  swap_history();
+  width_ = w;
+  height_ = h;
+  return true;
+}
+
+void CloudsModule::bind_march(bool sky_dome) {
+  set_.bind_image(gpu::kMarchAOut, gpu::kMarchA, sky_dome ? dome_a_ : march_a_);
+  set_.bind_image(gpu::kMarchBOut, gpu::kMarchB, sky_dome ? dome_b_ : march_b_);
+}
+
+void CloudsModule::swap_history() {
+  current_ = 1 - current_;
+  set_.bind_image(gpu::kCloudsAOut, gpu::kCloudsA, clouds_a_[current_]);
+  set_.bind_image(gpu::kCloudsBOut, gpu::kCloudsB, clouds_b_[current_]);
+  set_.bind_sampled_image(gpu::kHistoryA, clouds_a_[1 - current_]);
+  set_.bind_sampled_image(gpu::kHistoryB, clouds_b_[1 - current_]);
+}
+
+const gpu::Kernel& CloudsModule::march_kernel(MarchMode mode) const {
+  return mode == MarchMode::Baseline ? march_baseline_ : march_default_;
+}
+
+void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
+                                int rows) {
+  const auto blocks = [&](int n) { return uint32_t((n + stride_ - 1) / stride_); };
+  gpu::dispatch(cmd, march_kernel(mode), set_, timer, "clouds", blocks(width_),
+                rows < 0 ? blocks(height_) : uint32_t(rows), 1, 8, 8, 1);
+}
+
+void CloudsModule::record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  const auto blocks = [&](int n) { return uint32_t((n + stride_ - 1) / stride_); };
+  gpu::dispatch(cmd, range_, set_, timer, "march_range", blocks(width_), blocks(height_), 1, 8, 8,
+                1);
+  gpu::dispatch(cmd, resolve_, set_, timer, "resolve", uint32_t(width_), uint32_t(height_), 1, 8,
+                8, 1);
+}
+
+void CloudsModule::record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer,
+                                       MarchMode mode) {
+  gpu::dispatch(cmd, mode == MarchMode::Baseline ? ground_baseline_ : ground_default_, set_,
+                timer, "ground_light", 16, 16, 1, 16, 16, 1);
+}
+
+void CloudsModule::record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode) {
+  gpu::dispatch(cmd, march_kernel(mode), set_, timer, "sky_dome", kSkyDomeSize, kSkyDomeSize, 1,
+                8, 8, 1);
+}
+
+void CloudsModule::record_profile(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  gpu::dispatch(cmd, profile_, set_, timer, "cloud_profile", kCloudProfileSize, kCloudProfileSize,
+                1, 8, 8, 1);
+}
+
+}  // namespace nephele

@@ -1,0 +1,64 @@
+// The clouds module: the noise clouds' march (clouds.comp, seed 000 and 002), its temporal
+// reconstruction (march_range.comp, resolve.comp) and the light the clouds let through to the
+// ground (ground_light.comp), with the per-pixel images they own: the marched samples, the
+// cloud buffer of this frame and the previous one (the history), and the sky dome's images
+// (the same march over the observer's hemisphere, and the cloud profile). Another cloud model
+// is another module beside this one.
+#pragma once
+
+#include "gpu/kernel.h"
+#include "nephele/scene.h"
+
+namespace nephele {
+
+// The sky dome (sky_dome_ray): kSkyDomeSize^2 directions of equal solid angle over the
+// observer's upper hemisphere, where sky_cover_fraction is measured.
+constexpr uint32_t kSkyDomeSize = 64;
+// The cloud profile (cloud_profile.comp): altitude bins, and points per side of its grid. It
+// writes the sky dome's image, so the two are one size.
+constexpr uint32_t kCloudProfileSize = kSkyDomeSize;
+
+class CloudsModule {
+ public:
+  CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+
+  // (Re)allocates the cloud buffer and the marched samples at `width` x `height`; true when
+  // they were (the history is lost).
+  bool resize(int width, int height);
+  // The cloud buffer just written becomes the history of the next frame.
+  void swap_history();
+  // Points the march's outputs at the sky dome's images (true) or the marched samples.
+  void bind_march(bool sky_dome);
+  void set_stride(int stride) { stride_ = stride; }
+
+  // The march: every row of blocks, or `rows` of them from FrameParams::cloud_band.x.
+  void record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode, int rows = -1);
+  // The march range and the resolve: the cloud buffer of this frame.
+  void record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  // The clouds' mean diffuse transmittance over the ground around the camera (one texel).
+  void record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode);
+  // The march over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME) into dome_a and
+  // dome_b, and the cloud profile into dome_a (bind_march(true) first).
+  void record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode);
+  void record_profile(VkCommandBuffer cmd, gpu::PassTimer& timer);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int stride() const { return stride_; }
+  const gpu::Texture& cloud_buffer() const { return clouds_a_[current_]; }  // this frame's
+  const gpu::Texture& dome() const { return dome_a_; }
+
+ private:
+  const gpu::Kernel& march_kernel(MarchMode mode) const;
+
+  gpu::Context& ctx_;
+  gpu::DescriptorSet& set_;
+  gpu::Kernel march_default_, march_baseline_, range_, resolve_, profile_;
+  gpu::Kernel ground_default_, ground_baseline_;
+  gpu::Texture march_a_, march_b_, range_lo_, range_hi_, dome_a_, dome_b_, ground_light_;
+  gpu::Texture clouds_a_[2], clouds_b_[2];
+  int current_ = 0;  // index of this frame's cloud buffer
+  int width_ = 0, height_ = 0, stride_ = 1;
+};
+
+}  // namespace nephele
