@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -165,6 +166,19 @@ struct HighCloudParams {
   glm::vec2 wind_mps{15.0f, 4.0f};    // east, north (m/s)
 };
 
+// How view rays cross the voxel clouds' regions (seed 002, New Three-Phases Raymarching).
+enum class VoxelMarch {
+  Plain,       // the noise clouds' adaptive march everywhere (the seed's baseline)
+  ThreePhase,  // adaptive steps in the noise clouds, SDF sphere tracing across the voxel regions'
+               // empty space, short adaptive steps inside voxel clouds
+};
+
+// How samples find the sunlight's attenuation by the voxel clouds (seed 002, SDF Shadow).
+enum class VoxelShadow {
+  LightMarch,  // the light march (and light volume) through the density, as for noise clouds
+  SdfCone,     // cone tracing through the signed distance field (soft shadows, few lookups)
+};
+
 enum class MarchMode {
   Default,   // jittered, distance-adaptive step count, early exit, longer light march
   Baseline,  // the seed's algorithm as written: fixed 64-step march, 4-sample light march
@@ -198,6 +212,10 @@ struct QualityParams {
   // grid around the camera (fine near it, coarse far away) and looked up by cloud samples
   // after a short light march. 0 = march every light ray with light_steps steps. [0, 1000].
   int light_volume_km = 150;
+  VoxelMarch voxel_march = VoxelMarch::ThreePhase;
+  VoxelShadow voxel_shadow = VoxelShadow::LightMarch;
+  // The SDF cone's half-angle tangent (the seed's LightTangent): larger, softer shadows.
+  float sdf_light_tangent = 0.1f;  // [0.001, 10]
 };
 
 struct OutputParams {
@@ -234,6 +252,30 @@ struct ConditionsParams {
   ConditionTable bad = default_bad_weather();
 };
 
+// A voxel cloud placed in the scene (seed 002, 体素云建模): a density grid with its signed
+// distance field, from a file or generated, drawn among the noise clouds and lit as they are.
+// At most kMaxVoxelClouds per scene.
+struct VoxelCloudParams {
+  // OpenVDB (.vdb: float grid "density", optional level set "sdf") or NanoVDB (.nvdb); in a
+  // scene file relative to it. Exactly one of file and preset.
+  std::string file;
+  // A generated cloud (`nephele make-cloud`): "cumulus", "cumulus-congestus", "cumulonimbus",
+  // with `seed`.
+  std::string preset;
+  uint32_t seed = 1;
+  // ENU (m) of the cloud's anchor: the centre of its base. East and north in [-1e7, 1e7], up in
+  // [-1e3, 1e5]. (A scene file may give lat_deg, lon_deg and altitude_m instead: enu_from_lat_lon.)
+  glm::vec3 position_m{0.0f, 0.0f, 1500.0f};
+  float scale = 1.0f;         // (0, 100]: multiplies the grid's size
+  float rotation_deg = 0.0f;  // about the up axis, from north through east, [-360, 360]
+  float density = 1.0f;       // [0, 100]: sigma_t = grid density x this x clouds.extinction_per_m
+  // Moves with the low layer's wind (clouds.wind_mps) when true; else with wind_mps.
+  bool follow_wind = true;
+  glm::vec2 wind_mps{0.0f, 0.0f};  // east, north (m/s), [-200, 200], when follow_wind is false
+  int resolution = 128;            // voxels along the longest axis, [16, 256]
+};
+constexpr int kMaxVoxelClouds = 16;
+
 struct Scene {
   CameraParams camera;
   SunParams sun;
@@ -250,9 +292,12 @@ struct Scene {
   std::string time;
   float time_s = 0.0f;       // animation time (s): moves clouds with the wind, [-1e6, 1e6]
   uint32_t noise_seed = 1;   // seeds the noise textures and the procedural weather map
+  std::vector<VoxelCloudParams> voxel_clouds;
 };
 
 const char* to_string(MarchMode mode);
+const char* to_string(VoxelMarch mode);
+const char* to_string(VoxelShadow mode);
 const char* to_string(SkyModel model);
 const char* to_string(ConditionsMode mode);
 
