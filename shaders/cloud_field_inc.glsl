@@ -10,6 +10,7 @@
 #include "common/math_inc.glsl"
 #include "common/clouds_inc.glsl"
 #include "common/light_volume_inc.glsl"
+#include "voxel_field_inc.glsl"
 
 const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 
@@ -52,11 +53,11 @@ vec4 flowed_base_noise(vec2 ground_xy, float altitude_m, vec2 flow_m, vec2 phase
                                               frame.cloud_noise.x, 0.0f);
 }
 
-// Cloud density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z.
+// The noise clouds' density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z.
 // Returns (x) the base shape alone, without detail erosion (what coarse steps test), and
 // (y) the full field. Every texture is read whatever the early outs: a CPU device (lavapipe)
 // executes both sides of a branch, so the reads cost the same either way.
-vec2 cloud_density_pair(vec3 pos) {
+vec2 noise_density_pair(vec3 pos) {
   float radius_m = length(pos);
   CloudLayerGpu layer = cloud_layer_at(radius_m);
   float h = cloud_height_fraction(radius_m, layer.radii_m.x, layer.radii_m.y);
@@ -131,6 +132,22 @@ vec2 cloud_density_pair(vec3 pos) {
   // The anvil, smooth (not eroded): ice, spread thin by the wind.
   float anvil_shape = cloud_apply_coverage(noise, anvil) * anvil_density;
   return max(vec2(shape, shape > 0.0f ? eroded : 0.0f) * density_gradient, vec2(anvil_shape));
+}
+
+// Every cloud at pos: the noise clouds, faded out near the voxel clouds' regions, and the voxel
+// clouds. x the base shape (voxel clouds whole), y the full field, z the voxel clouds' signed
+// distance (m), w the voxel size (m) there. Where a whole batch of lanes lies in voxel regions
+// the noise is not read at all.
+vec4 cloud_field(vec3 pos) {
+  VoxelSample v = voxel_field(pos);
+  float fade = voxel_noise_fade(v.region_m);
+  vec2 noise = vec2(0.0f);
+  if (fade > 0.0f) noise = noise_density_pair(pos) * fade;
+  return vec4(noise + v.density, v.sdf_m, v.voxel_m);
+}
+
+vec2 cloud_density_pair(vec3 pos) {
+  return frame.voxel_info.x > 0 ? cloud_field(pos).xy : noise_density_pair(pos);
 }
 
 float cloud_density(vec3 pos, bool with_detail) {

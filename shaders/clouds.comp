@@ -231,28 +231,50 @@ void main() {
     float lit_depth = 0.0f;   // optical depth gathered so far (density field x m)
     bool lit_volume = false;  // look the rest up in the light volume
     int budget = 4 * frame.steps.x * (light_n + 1);
+    // Voxel clouds (seed 002, New Three-Phases Raymarching): phase 1 the adaptive steps above
+    // in the noise clouds; phase 2, in a voxel cloud's box (where the noise clouds have faded
+    // out) but outside the cloud, sphere tracing through its signed distance field, at least
+    // min_step_m a step near surfaces and box edges, never past the box's exit; phase 3,
+    // inside the cloud, the fine steps, entered by stepping back. Leaving the cloud inside the
+    // box returns to sphere tracing at once, leaving the box to phase 1.
+    bool three_phase = frame.voxel_info.x > 0 && frame.voxel_info.y == VOXEL_MARCH_THREE_PHASE;
+    bool sdf_shadow = frame.voxel_info.x > 0 && frame.voxel_info.z == VOXEL_SHADOW_SDF_CONE;
+    float last_step = 0.0f;   // the last step of the view ray
+    float lit_visibility = 1.0f;  // the SDF cone's soft shadow of the sample being lit
     for (int i = 0; i < budget && t < segment.y && transmittance.x >= 0.01f; ++i) {
       bool lighting = light_k > 0;
+      // A sample lit by the SDF cone is shaded without another look-up.
+      bool coned = light_k > light_n;
       // Light march steps grow linearly: step k is k units long and starts k (k - 1) / 2 units in.
       float seg_m = lit_unit_m * float(light_k);
       float mid_m = lit_unit_m * 0.5f * float(light_k * (light_k - 1)) + 0.5f * seg_m;
       vec3 pos = lighting ? lit_pos + sun * mid_m : eye + dir * t;
-      vec2 field = cloud_density_pair(pos);
+      VoxelSample vox = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f);
+      vec2 field = vec2(0.0f);
+      if (!coned) {
+        vox = voxel_field(pos);
+        field = vec2(vox.density);
+        float fade = voxel_noise_fade(vox.region_m);
+        if (fade > 0.0f) field += noise_density_pair(pos) * fade;
+      }
+      bool in_region = vox.region_m <= 0.0f;
       // Fine steps from the thickness of the layer the ray is in.
       float fine_step = max(layer_thickness_m(pos) / float(frame.steps.x), FINE_PER_M * t);
       float coarse_step = COARSE_STEPS * fine_step;
 
       if (lighting) {
-        lit_depth += field.y * seg_m;
-        if (light_k < light_n) {
-          ++light_k;
-          continue;
+        if (!coned) {
+          lit_depth += field.y * seg_m;
+          if (light_k < light_n) {
+            ++light_k;
+            continue;
+          }
         }
         // The light march is done: shade the sample and step on along the view ray.
         light_k = 0;
         float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
         float tau_light = depth * sigma_scale * light_atten;
-        float energy = multiple_scattering(tau_light, mu, powder, phases);
+        float energy = multiple_scattering(tau_light, mu, powder, phases) * lit_visibility;
         float h = layer_fraction(lit_pos);
         // What the cloud between the sample and the light lets through: the sunlight it has
         // scattered forward, no longer a beam but a diffuse flux (radiance = flux / pi, the
@@ -271,13 +293,19 @@ void main() {
         weighted_t += t * transmittance.x * (1.0f - step_t);
         transmittance *= step_t;
         t += lit_step_m;
+        last_step = lit_step_m;
         continue;
       }
 
       if (++primary > 4 * frame.steps.x) break;
+      bool tracing = three_phase && in_region;
       if (!fine) {
         if (field.x <= 0.0f) {
-          t += coarse_step;
+          last_step = coarse_step;
+          if (tracing)  // phase 2
+            last_step = min(voxel_sphere_step(vox.sdf_m, vox.voxel_m, fine_step),
+                            voxel_region_exit_m(pos, dir) + 0.5f * fine_step);
+          t += last_step;
           continue;
         }
         fine = true;
@@ -286,24 +314,40 @@ void main() {
         // Step back over what the coarse step skipped, not into what fine steps have sampled:
         // where the base shape fills space that erosion has emptied (a deck's thin base seen
         // at a grazing angle) the march would otherwise crawl one fine step per return.
-        t = max(t - coarse_step, sampled_until);
+        t = max(t - last_step, sampled_until);
         continue;
       }
       sampled_until = t;
       if (field.y <= 0.0f) {
-        if (++misses >= 6 && t > fine_until) fine = false;
+        // Out of a voxel cloud, in its box, past the sample that found it: sphere tracing
+        // again (phase 3 to 2).
+        bool left = tracing && vox.sdf_m > vox.voxel_m;
+        if ((++misses >= 6 || left) && t > fine_until) fine = false;
         t += fine_step;
+        last_step = fine_step;
         continue;
       }
       misses = 0;
       // Light this sample in the next light_n iterations: march the first voxel of the light
       // volume towards the sun (where it is too coarse for the light's fast change at a cloud's
       // surface) and look the rest up where that march ends; without the volume, march all.
+      // In a voxel region with SDF shadows: a cone traced through the voxel clouds' distance
+      // field to the region's edge, and the light volume from there, at once.
       float sigma_t = field.y * sigma_scale * view_atten;
       // At most TAU_STEP_96 * 96 / primary_steps of optical depth per step (0.5 at 96 steps).
       lit_step_m = clamp(TAU_STEP_96 * 96.0f / (float(frame.steps.x) * sigma_t), 1.0f, fine_step);
       lit_sigma_t = sigma_t;
       lit_pos = pos;
+      lit_visibility = 1.0f;
+      if (sdf_shadow && in_region) {
+        vec3 cone = sdf_cone_trace(pos, sun);
+        lit_depth = cone.x;
+        lit_visibility = cone.y;
+        lit_near_m = cone.z;
+        lit_volume = light_volume_covers(pos + sun * cone.z);
+        light_k = light_n + 1;
+        continue;
+      }
       float length_m = light_ray_length(pos, sun);
       lit_volume = light_volume_covers(pos);
       lit_near_m = lit_volume ? min(light_volume_voxel_at(pos), length_m) : length_m;

@@ -33,6 +33,17 @@ struct PassTiming {
   double ms = 0.0;
 };
 
+// A voxel cloud on the device (the sparse bricks of render/modules/voxel_clouds.h).
+struct VoxelCloudMemory {
+  std::string source;        // its file, or "preset:NAME:SEED"
+  int dims[3] = {0, 0, 0};   // its grid (voxels)
+  double voxel_m = 0.0;      // the voxel's edge in the scene (m)
+  size_t stored_bricks = 0;  // of total_bricks, those near its surface, stored
+  size_t total_bricks = 0;
+  size_t bytes = 0;          // its bricks and page table on the device
+  size_t dense_bytes = 0;    // what the same grid would take stored whole (RG16F)
+};
+
 struct FrameStats {
   std::string device;            // name of the Vulkan device used
   int width = 0;
@@ -48,6 +59,8 @@ struct FrameStats {
   std::vector<PassTiming> passes;
   SkyPosition sun;                     // the frame's sun (distance 0 without a time)
   std::optional<Ephemeris> ephemeris;  // sun, moon and sidereal time when the scene has a time
+  std::vector<VoxelCloudMemory> voxel_clouds;
+  size_t voxel_bytes = 0;  // the voxel clouds' textures on the device (atlas and page tables)
 };
 
 // Cloud cover in oktas (eighths of the sky, WMO code 2700) from the covered share of the sky:

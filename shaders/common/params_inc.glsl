@@ -27,6 +27,28 @@ struct CloudLayerGpu {
   vec4 wind;     // xy its displacement by the wind (wind x time, m); zw its wind (m/s)
 };
 
+// Voxel clouds (render/modules/voxel_clouds.h, shaders/voxel_field_inc.glsl): each cloud's grid
+// is cut into bricks of VOXEL_BRICK^3 voxels; the bricks near its surface are stored in one
+// atlas texture (VOXEL_BRICK_TEXELS per edge: a brick's voxels and the next one's first, so
+// trilinear filtering stays inside a brick; VOXEL_ATLAS_BRICKS^2 bricks per layer) and a page
+// table texture holds, per brick, its atlas index (>= 0) or, for an empty brick, minus its
+// distance from the cloud (voxels). Atlas texels: x density [0, 1], y signed distance (voxels).
+const int MAX_VOXEL_CLOUDS = 16;
+const int VOXEL_BRICK = 8;
+const int VOXEL_BRICK_TEXELS = 9;
+const int VOXEL_ATLAS_BRICKS = 16;
+
+struct VoxelCloudGpu {
+  // Rows of the map from the planet frame to grid coordinates (voxels, voxel centres at
+  // i + 0.5): u = (dot(to_grid_x.xyz, p - anchor_m.xyz) + to_grid_x.w, ...).
+  vec4 to_grid_x;
+  vec4 to_grid_y;
+  vec4 to_grid_z;
+  vec4 anchor_m;  // xyz the cloud's anchor (planet frame, m); w density field per grid density
+  vec4 dims;      // xyz the grid's voxels; w the voxel's edge in the scene (m)
+  ivec4 bricks;   // xyz its page table (bricks per axis); w its first layer in the page table
+};
+
 struct FrameParams {
   vec4 camera_pos_m;        // xyz camera position (m, planet frame); w tan(vertical fov / 2)
   vec4 camera_forward;      // xyz unit view direction; w aspect (width / height)
@@ -135,7 +157,20 @@ struct FrameParams {
   // volume's first, w its count (of AP_SIZE_V).
   ivec4 sky_view_rows;
   ivec4 cloud_band;  // x the first row of blocks the clouds pass marches (a still in bands)
+  ivec4 voxel_info;  // x voxel clouds, y VOXEL_MARCH_*, z VOXEL_SHADOW_*, w unused
+  // x the SDF cone's half-angle tangent (the seed's LightTangent), y the distance (m) over
+  // which the noise clouds fade in away from a voxel region, z how much the detail noise
+  // erodes a voxel cloud's surface [0, 1], w the detail noise's frequency there, as a multiple
+  // of the noise clouds'
+  vec4 voxel_light;
+  VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
+
+// FrameParams::voxel_info.y, z (nephele::VoxelMarch, VoxelShadow).
+const int VOXEL_MARCH_PLAIN = 0;
+const int VOXEL_MARCH_THREE_PHASE = 1;
+const int VOXEL_SHADOW_LIGHT_MARCH = 0;
+const int VOXEL_SHADOW_SDF_CONE = 1;
 
 // Steps of the evolving weather per clouds.weather_evolution_s (10 s at an hour): the map is
 // blended linearly between states that far apart, where the weather's clusters move 1/360

@@ -56,6 +56,8 @@ enum Binding : uint32_t {
   kGroundLight = 39,
   kDisplayOut = 40,
   kWeatherMapOut = 41,
+  kVoxelAtlas = 42,
+  kVoxelPages = 43,
   kBindingCount
 };
 

@@ -222,6 +222,7 @@ CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
   validate_scene(scene);
   update_atmosphere_luts(scene);
   gpu::FrameParams params = make_frame_params(scene, 0, sky_lights(scene), atmosphere.tables());
+  voxel_clouds.prepare(scene, params);
   params.cloud_weather.w = 0.5f * scene.clouds.weather_period_m;
   update_noise(scene, params);
   weather.prepare(scene, params);
@@ -232,7 +233,8 @@ CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
   });
   clouds.bind_march(false);
   const Image sums = download(ctx, clouds.dome(), false);
-  const glm::vec2 shell_m = cloud_shell_m(scene);
+  // The shell the profile spans (voxel clouds may widen it beyond the layers).
+  const glm::vec2 shell_m = glm::vec2(params.radii_m.z, params.radii_m.w) - params.radii_m.x;
   CloudProfile profile;
   for (int bin = 0; bin < sums.height; ++bin) {
     glm::dvec4 total(0.0);
@@ -266,6 +268,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       atmosphere(ctx, state.set),
       weather(ctx, state.set),
       light_volume(ctx, state.set),
+      voxel_clouds(ctx, state.set),
       sky_view(ctx, state.set),
       clouds(ctx, state.set) {}
 
@@ -372,6 +375,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
   params.cloud_shape.x = 2.0f * params.camera_pos_m.w / float(cloud_h);  // detail noise's LOD
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
+  voxel_clouds.prepare(scene, params);
   light_volume.prepare(scene, key, WeatherModule::weather_time(scene), still, params);
   sky_view.prepare(still, params);
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
@@ -409,6 +413,8 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   stats.width = s.width;
   stats.height = s.height;
   stats.ephemeris = lights.ephemeris;
+  stats.voxel_clouds = voxel_clouds.memory();
+  stats.voxel_bytes = scene.voxel_clouds.empty() ? 0 : voxel_clouds.device_bytes();
   if (stats.ephemeris && scene.sun.from_time) {
     stats.sun = stats.ephemeris->sun;
   } else {

@@ -13,6 +13,7 @@
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
 #include "render/modules/sky_view.h"
+#include "render/modules/voxel_clouds.h"
 #include "render/modules/weather.h"
 #include "render/passes.h"
 
@@ -43,6 +44,7 @@ struct FrameRenderer::Impl {
   AtmosphereModule atmosphere;
   WeatherModule weather;
   LightVolumeModule light_volume;
+  VoxelCloudsModule voxel_clouds;
   SkyViewModule sky_view;
   CloudsModule clouds;
 

@@ -49,6 +49,7 @@ namespace {
 #include "common/sky_view_inc.glsl"
 #include "common/clouds_inc.glsl"
 #include "common/light_volume_inc.glsl"
+#include "common/voxel_inc.glsl"
 }  // namespace
 }  // namespace nephele::glsl
 #pragma GCC diagnostic pop

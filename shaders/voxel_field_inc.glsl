@@ -1,0 +1,135 @@
+// The voxel clouds' density and signed distance at a point (seed 002, 体素云建模), read from the
+// brick atlas through the page table (common/params_inc.glsl, VoxelCloudGpu). GLSL only.
+#ifndef NEPHELE_VOXEL_FIELD_INC
+#define NEPHELE_VOXEL_FIELD_INC
+
+#extension GL_GOOGLE_include_directive : require
+#include "common/bindings_inc.glsl"
+#include "common/math_inc.glsl"
+#include "common/voxel_inc.glsl"
+
+// What the voxel clouds hold at a point.
+struct VoxelSample {
+  float density;  // density field (as the noise clouds', sigma_t = density x cloud_shape.z)
+  float sdf_m;    // signed distance (m) to the nearest voxel cloud: a lower bound outside
+  float region_m; // distance (m) to the nearest voxel cloud's box: 0 inside one
+  float voxel_m;  // the voxel's edge of the nearest box (m)
+};
+
+vec3 voxel_grid_coord(VoxelCloudGpu c, vec3 p) {
+  vec3 d = p - c.anchor_m.xyz;
+  return vec3(dot(c.to_grid_x.xyz, d) + c.to_grid_x.w, dot(c.to_grid_y.xyz, d) + c.to_grid_y.w,
+              dot(c.to_grid_z.xyz, d) + c.to_grid_z.w);
+}
+
+// (density, signed distance in voxels) of a cloud's grid at u (inside its box).
+vec2 voxel_lookup(VoxelCloudGpu c, vec3 u) {
+  vec3 uc = clamp(u, vec3(0.5f), c.dims.xyz - 0.5f);
+  ivec3 b = min(ivec3(floor((uc - 0.5f) / float(VOXEL_BRICK))), c.bricks.xyz - 1);
+  float page = texelFetch(voxel_pages, ivec3(b.xy, b.z + c.bricks.w), 0).r;
+  int index = int(max(page, 0.0f));
+  ivec3 origin = ivec3(index % VOXEL_ATLAS_BRICKS, (index / VOXEL_ATLAS_BRICKS) % VOXEL_ATLAS_BRICKS,
+                       index / (VOXEL_ATLAS_BRICKS * VOXEL_ATLAS_BRICKS)) * VOXEL_BRICK_TEXELS;
+  // Texel k of brick b holds voxel VOXEL_BRICK b + k, centred at grid coordinate VOXEL_BRICK b + k + 0.5.
+  vec3 coord = (vec3(origin) + uc - vec3(b * VOXEL_BRICK)) / vec3(textureSize(voxel_atlas, 0));
+  vec2 texel = textureLod(voxel_atlas, coord, 0.0f).rg;
+  return page < 0.0f ? vec2(0.0f, -page) : texel;
+}
+
+// Erodes a voxel cloud's density at its surface with the detail noise at a raised frequency
+// (seed 002, transition 1: "raise the voxel clouds' detail noise frequency to sharpen their
+// surface"), in the cloud's own frame so the detail moves with it.
+float voxel_surface_erosion(float density, float sdf_voxels, vec3 u, float voxel_m) {
+  float skin = saturate(1.0f + sdf_voxels / 3.0f);  // 1 at the surface, 0 three voxels in
+  vec3 d = textureLod(detail_noise, u * voxel_m * frame.cloud_noise.y * frame.voxel_light.w, 0.0f).rgb;
+  float detail = d.r * 0.625f + d.g * 0.25f + d.b * 0.125f;
+  return saturate(remap(density, detail * frame.voxel_light.z * skin, 1.0f, 0.0f, 1.0f));
+}
+
+VoxelSample voxel_field(vec3 p) {
+  VoxelSample s = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f);
+  for (int i = 0; i < frame.voxel_info.x; ++i) {
+    VoxelCloudGpu c = frame.voxel_clouds[i];
+    vec3 u = voxel_grid_coord(c, p);
+    float box = voxel_box_distance(u, c.dims.xyz);
+    vec2 v = vec2(0.0f, box);
+    if (box <= 0.0f) {
+      v = voxel_lookup(c, u);
+      if (v.x > 0.0f) v.x = voxel_surface_erosion(v.x, v.y, u, c.dims.w);
+    }
+    s.density += v.x * c.anchor_m.w;
+    if (v.y * c.dims.w < s.sdf_m) {
+      s.sdf_m = v.y * c.dims.w;
+      s.voxel_m = c.dims.w;
+    }
+    s.region_m = min(s.region_m, box * c.dims.w);
+  }
+  return s;
+}
+
+// How far (m) from p along dir the ray leaves the voxel clouds' boxes that contain p (0 in none).
+float voxel_region_exit_m(vec3 p, vec3 dir) {
+  float exit_m = 0.0f;
+  for (int i = 0; i < frame.voxel_info.x; ++i) {
+    VoxelCloudGpu c = frame.voxel_clouds[i];
+    vec3 u = voxel_grid_coord(c, p);
+    if (voxel_box_distance(u, c.dims.xyz) > 0.0f) continue;
+    vec3 du = vec3(dot(c.to_grid_x.xyz, dir), dot(c.to_grid_y.xyz, dir), dot(c.to_grid_z.xyz, dir));
+    vec3 far_plane = mix(-u, c.dims.xyz - u, greaterThanEqual(du, vec3(0.0f)));
+    vec3 t = far_plane / mix(vec3(1e-30f), du, greaterThan(abs(du), vec3(1e-30f)));
+    exit_m = max(exit_m, min(t.x, min(t.y, t.z)));
+  }
+  return exit_m;
+}
+
+// Steps of an SDF cone trace (sdf_cone_trace).
+const int SDF_SHADOW_STEPS = 10;
+
+// The sunlight's path from p through the voxel clouds' regions traced through their signed
+// distance field (seed 002, SDF Shadow): outside a cloud each step crosses what the distance
+// field says is empty, and the cone's visibility (sdf_cone_visibility, the seed's LightTangent
+// frame.voxel_light.x) is taken where the path comes nearer a cloud; inside a cloud each step
+// goes as deep as the distance to its surface, adding density x length to the optical depth.
+// Returns (x) that optical depth (density field x m), (y) the visibility, (z) how far the
+// trace went (m): the rest of the light's path starts there.
+vec3 sdf_cone_trace(vec3 p, vec3 sun) {
+  float t = 0.0f, depth = 0.0f, visibility = 1.0f, previous_m = -1e9f;
+  for (int k = 0; k < SDF_SHADOW_STEPS; ++k) {
+    vec3 q = p + sun * t;
+    float density = 0.0f, sdf_m = 1e9f, voxel_m = 1.0f, region_m = 1e9f;
+    for (int i = 0; i < frame.voxel_info.x; ++i) {
+      VoxelCloudGpu c = frame.voxel_clouds[i];
+      vec3 u = voxel_grid_coord(c, q);
+      float box = voxel_box_distance(u, c.dims.xyz);
+      vec2 v = box <= 0.0f ? voxel_lookup(c, u) : vec2(0.0f, box);
+      density += v.x * c.anchor_m.w;
+      if (v.y * c.dims.w < sdf_m) {
+        sdf_m = v.y * c.dims.w;
+        voxel_m = c.dims.w;
+      }
+      region_m = min(region_m, box * c.dims.w);
+    }
+    if (region_m > 0.0f) break;  // out of the voxel regions
+    float step_m;
+    if (sdf_m < 0.0f) {
+      step_m = max(-sdf_m, voxel_m);
+      depth += density * step_m;
+    } else {
+      if (t > 0.0f && sdf_m < previous_m)
+        visibility = sdf_cone_visibility(visibility, sdf_m, t, frame.voxel_light.x);
+      step_m = max(sdf_m, voxel_m);
+    }
+    previous_m = sdf_m;
+    t += step_m;
+  }
+  return vec3(depth, visibility, t);
+}
+
+// The noise clouds' weight at a point region_m from a voxel region: 0 inside one, rising to 1
+// over frame.voxel_light.y (seed 002, transition 1: a low-resolution noise cloud never cuts
+// into a close voxel cloud).
+float voxel_noise_fade(float region_m) {
+  return frame.voxel_info.x > 0 ? smoothstep(0.0f, frame.voxel_light.y, region_m) : 1.0f;
+}
+
+#endif
