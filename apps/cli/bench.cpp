@@ -16,6 +16,7 @@
 #include "nephele/error.h"
 #include "nephele/output_file.h"
 #include "nephele/renderer.h"
+#include "bench_ablation.h"
 #include "bench_plot.h"
 #include "bench_realtime.h"
 #include "progress.h"
@@ -124,6 +125,12 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
   cmd.add_flag("--quick", options.quick, "a few small configurations only");
   cmd.add_flag("--realtime-only", options.realtime_only,
                "only the real-time figures (still and flying camera, error, speed-up)");
+  cmd.add_flag("--ablation", options.ablation,
+               "only seed 002's ablation: a voxel-heavy view with the plain march and a light "
+               "march (the seed's baseline), the SDF march, SDF shadows and both; writes "
+               "ablation.png to --out-dir and, with --json, baseline_ms, sdf_march_ms, "
+               "sdf_shadow_ms, sdf_both_ms, speedup_sdf_march, speedup_sdf_both, "
+               "max_luminance_difference");
   cmd.add_option("--json", options.json,
                  "write the real-time figures (static_fps, moving_fps, static_p99_ms, "
                  "moving_p99_ms, moving_max_ms, speedup_vs_baseline, static_error, "
@@ -213,11 +220,30 @@ std::vector<Sample> run_sweeps(Renderer& renderer, const Scene& base, const Benc
   return samples;
 }
 
+// `--ablation`: seed 002's ablation alone.
+int run_ablation_bench(const Scene& base, const BenchOptions& options) {
+  namespace fs = std::filesystem;
+  const std::string image = (fs::path(options.out_dir) / "ablation.png").string();
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  check_output_path(image, "--out-dir");
+  if (!options.json.empty()) {
+    check_output_file(options.json, "--json", true);
+    check_distinct_outputs({{"--out-dir", image}, {"--json", options.json}});
+  }
+  Renderer renderer(RendererOptions{options.device, options.validation, options.verbose, {}});
+  const nlohmann::json result =
+      run_ablation(renderer, ablation_scene(base), std::max(options.frames, 1), image);
+  if (!options.json.empty()) write_text_output(options.json, result.dump(2) + "\n");
+  return 0;
+}
+
 }  // namespace
 
 int run_bench(const BenchOptions& options) {
   const Scene base = resolve_scene(options.scene);
   namespace fs = std::filesystem;
+  if (options.ablation) return run_ablation_bench(base, options);
   const std::string csv = (fs::path(options.out_dir) / "bench.csv").string();
   const std::string json = (fs::path(options.out_dir) / "bench.json").string();
   // The figures scripts/plot_bench.py draws; removed before it runs, so that those left

@@ -17,6 +17,7 @@ struct BenchOptions {
   int frames = 3;                     // timed frames per configuration (one warm-up per mode)
   bool quick = false;                 // fewer points, small resolutions (for tests)
   bool realtime_only = false;         // skip the seed's sweeps
+  bool ablation = false;              // only seed 002's voxel-cloud ablation
   std::string json;                   // also write the real-time figures here
   std::string device;
   bool verbose = false;

@@ -109,6 +109,21 @@ std::string stats_to_json(const FrameStats& stats, const std::string& image_path
   nlohmann::json passes = nlohmann::json::object();
   for (const PassTiming& p : stats.passes) passes[p.name] = p.ms;
   j["passes_ms"] = passes;
+  if (!stats.voxel_clouds.empty()) {
+    // The device memory of the voxel clouds' sparse bricks, each against the same grid stored
+    // whole (the seed stores a 128^3 RGBA8 cloud, ~8 MB, and its SDF, 128x128x64 R16, 2 MB).
+    nlohmann::json clouds = nlohmann::json::array();
+    for (const VoxelCloudMemory& m : stats.voxel_clouds)
+      clouds.push_back({{"source", m.source},
+                        {"dims", {m.dims[0], m.dims[1], m.dims[2]}},
+                        {"voxel_m", m.voxel_m},
+                        {"stored_bricks", m.stored_bricks},
+                        {"total_bricks", m.total_bricks},
+                        {"bytes", m.bytes},
+                        {"dense_bytes", m.dense_bytes}});
+    j["voxel_clouds"] = clouds;
+    j["voxel_bytes"] = stats.voxel_bytes;
+  }
   return j.dump(2) + "\n";
 }
 
