@@ -1,4 +1,4 @@
-// nephele — command-line tool: render a scene to PNG/EXR, run the benchmark, render the preset gallery, list presets.
+// nephele — command-line tool: render a scene to PNG/EXR, run the benchmark, render the preset gallery, list presets, make voxel clouds.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -10,6 +10,7 @@
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
 #include "render_command.h"
+#include "voxel_commands.h"
 
 namespace {
 
@@ -49,6 +50,16 @@ int main(int argc, char** argv) {
 
   CLI::App* presets_cmd = app.add_subcommand("presets", "list the built-in scene presets");
 
+  nephele::cli::MakeCloudOptions make_cloud;
+  CLI::App* make_cloud_cmd = app.add_subcommand(
+      "make-cloud", "generate a voxel cloud (cumulus, congestus, cumulonimbus) as OpenVDB");
+  nephele::cli::add_make_cloud_flags(*make_cloud_cmd, make_cloud);
+
+  nephele::cli::VoxelizeOptions voxelize;
+  CLI::App* voxelize_cmd = app.add_subcommand(
+      "voxelize", "bake a closed OBJ mesh into a voxel cloud (OpenVDB) with eroded edges");
+  nephele::cli::add_voxelize_flags(*voxelize_cmd, voxelize);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -68,6 +79,8 @@ int main(int argc, char** argv) {
     if (render_cmd->parsed()) return nephele::cli::run_render(render);
     if (bench_cmd->parsed()) return nephele::cli::run_bench(bench);
     if (gallery_cmd->parsed()) return nephele::cli::run_gallery(gallery);
+    if (make_cloud_cmd->parsed()) return nephele::cli::run_make_cloud(make_cloud);
+    if (voxelize_cmd->parsed()) return nephele::cli::run_voxelize(voxelize);
     if (presets_cmd->parsed()) {
       for (const std::string& name : nephele::preset_names()) std::cout << name << "\n";
       return 0;

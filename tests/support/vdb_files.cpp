@@ -1,0 +1,77 @@
+// Test files for the voxel-cloud importer, written with OpenVDB's and NanoVDB's own writers.
+#include "support/vdb_files.h"
+
+#include <nanovdb/util/IO.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
+#include <openvdb/openvdb.h>
+
+#include <cmath>
+
+namespace nephele::test {
+namespace {
+
+openvdb::FloatGrid::Ptr fog_ball(const std::string& name) {
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName(name);
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(0.5));
+  openvdb::FloatGrid::Accessor acc = grid->getAccessor();
+  for (int k = -6; k <= 6; ++k)
+    for (int j = -6; j <= 6; ++j)
+      for (int i = -6; i <= 6; ++i) {
+        const float r = std::sqrt(float(i * i + j * j + k * k)) / 6.5f;
+        if (r < 1.0f) acc.setValue(openvdb::Coord(i, j, k), 1.0f - r);
+      }
+  return grid;
+}
+
+void write(const std::string& path, openvdb::GridBase::Ptr grid) {
+  openvdb::io::File(path).write(openvdb::GridPtrVec{grid});
+}
+
+}  // namespace
+
+void write_fog_balls_vdb(const std::string& path, const std::vector<std::string>& names) {
+  openvdb::GridPtrVec grids;
+  for (const std::string& n : names) grids.push_back(fog_ball(n));
+  openvdb::io::File(path).write(grids);
+}
+
+void write_fog_balls_nvdb(const std::string& path, const std::vector<std::string>& names) {
+  std::vector<nanovdb::GridHandle<>> handles;
+  for (const std::string& n : names) handles.push_back(nanovdb::openToNanoVDB(*fog_ball(n)));
+  nanovdb::io::writeGrids(path, handles);
+}
+
+void write_vector_density_vdb(const std::string& path) {
+  openvdb::initialize();
+  openvdb::Vec3SGrid::Ptr grid = openvdb::Vec3SGrid::create();
+  grid->setName("density");
+  grid->tree().setValue(openvdb::Coord(0, 0, 0), openvdb::Vec3s(1, 0, 0));
+  write(path, grid);
+}
+
+void write_empty_density_vdb(const std::string& path) {
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  write(path, grid);
+}
+
+void write_nan_density_vdb(const std::string& path) {
+  openvdb::FloatGrid::Ptr grid = fog_ball("density");
+  grid->tree().setValue(openvdb::Coord(1, 2, 3), std::nanf(""));
+  write(path, grid);
+}
+
+void write_far_apart_density_vdb(const std::string& path) {
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  grid->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
+  grid->tree().setValue(openvdb::Coord(100000, 0, 0), 1.0f);
+  write(path, grid);
+}
+
+}  // namespace nephele::test

@@ -1,0 +1,24 @@
+// Test files for the voxel-cloud importer, written with OpenVDB's and NanoVDB's own writers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace nephele::test {
+
+// Fog balls of radius 6 voxels (0.5 m voxels, 13 active an axis), density 1 at the centre
+// falling to 0 at the rim, one grid a name: a .vdb through openvdb::io::File, a .nvdb through
+// nanovdb::io::writeGrids.
+void write_fog_balls_vdb(const std::string& path, const std::vector<std::string>& names);
+void write_fog_balls_nvdb(const std::string& path, const std::vector<std::string>& names);
+
+// A "density" grid of Vec3s values.
+void write_vector_density_vdb(const std::string& path);
+// A "density" float grid without active voxels.
+void write_empty_density_vdb(const std::string& path);
+// A fog ball with a NaN in it.
+void write_nan_density_vdb(const std::string& path);
+// Two active voxels 100000 voxels apart on x.
+void write_far_apart_density_vdb(const std::string& path);
+
+}  // namespace nephele::test
