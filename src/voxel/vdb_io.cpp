@@ -1,6 +1,9 @@
 // nephele — voxel clouds: reading OpenVDB (.vdb) and NanoVDB (.nvdb) files into the dense
 // grid, and writing it as OpenVDB. Every way a file can be wrong is one line of InputError.
+// clang-format off
+#include <iostream>  // before GridValidator.h, which uses std::cerr without including it
 #include <nanovdb/util/GridValidator.h>
+// clang-format on
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/NanoToOpenVDB.h>
 #include <openvdb/io/File.h>
@@ -14,7 +17,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iostream>  // before GridValidator.h, which uses std::cerr without including it
 #include <sstream>
 
 #include "nephele/error.h"
