@@ -100,12 +100,12 @@ void add_tower(Shape& shape, Random& rng, glm::vec2 axis_m, float top_m, float b
     const glm::vec2 xy =
         axis_m + lean_m * t + glm::vec2(rng.uniform(-0.2f, 0.2f), rng.uniform(-0.2f, 0.2f)) * r;
     shape.balls.push_back({glm::vec3(xy, z), r});
-    const int bulges = 2 + int(rng.next() % 3);
+    const int bulges = 4 + int(rng.next() % 3);
     for (int b = 0; b < bulges; ++b) {
       const float angle = rng.uniform(0.0f, 6.2831853f);
       const float up = rng.uniform(-0.2f, 0.6f);
       const glm::vec3 dir = glm::normalize(glm::vec3(std::cos(angle), std::sin(angle), up));
-      const float br = r * rng.uniform(0.35f, 0.6f);
+      const float br = r * rng.uniform(0.3f, 0.55f);
       shape.balls.push_back({glm::vec3(xy, z) + dir * (r * 0.75f), br});
     }
   }
@@ -127,20 +127,20 @@ Shape make_shape(CloudPreset preset, uint32_t seed) {
         add_tower(s, rng, 300.0f * glm::vec2(std::cos(a), std::sin(a)), rng.uniform(450.0f, 700.0f),
                   220.0f, 140.0f, 2, glm::vec2(0.0f));
       }
-      s.skin_m = 100.0f;
+      s.skin_m = 80.0f;
       break;
     }
     case CloudPreset::CumulusCongestus: {
       // ~2 km wide, ~3 km tall: a main tower and younger towers around it.
       s.blend_m = 200.0f;
-      add_tower(s, rng, glm::vec2(0.0f), 3000.0f, 600.0f, 320.0f, 6, downwind * 200.0f);
+      add_tower(s, rng, glm::vec2(0.0f), 3000.0f, 620.0f, 450.0f, 7, downwind * 200.0f);
       const int towers = 2 + int(rng.next() % 2);
       for (int c = 0; c < towers; ++c) {
         const float a = rng.uniform(0.0f, 6.2831853f);
         add_tower(s, rng, rng.uniform(450.0f, 600.0f) * glm::vec2(std::cos(a), std::sin(a)),
-                  rng.uniform(1400.0f, 2400.0f), 420.0f, 260.0f, 4, downwind * 100.0f);
+                  rng.uniform(1400.0f, 2400.0f), 420.0f, 320.0f, 4, downwind * 100.0f);
       }
-      s.skin_m = 200.0f;
+      s.skin_m = 150.0f;
       break;
     }
     case CloudPreset::Cumulonimbus: {
@@ -156,10 +156,10 @@ Shape make_shape(CloudPreset preset, uint32_t seed) {
       }
       s.has_anvil = true;
       const glm::vec2 anvil_xy = downwind * 900.0f;
-      s.anvil_centre_m = glm::vec3(anvil_xy, 8300.0f);
-      s.anvil_radii_m = glm::vec3(3000.0f, 3000.0f, 750.0f);
+      s.anvil_centre_m = glm::vec3(anvil_xy, 8200.0f);
+      s.anvil_radii_m = glm::vec3(3000.0f, 3000.0f, 1000.0f);
       s.top_m = 9000.0f;
-      s.skin_m = 450.0f;
+      s.skin_m = 300.0f;
       break;
     }
   }
@@ -226,7 +226,7 @@ VoxelGrid make_cloud(CloudPreset preset, uint32_t seed, int max_dim) {
         float density = 1.0f;
         if (inside < 1.0f) {
           const float n = curly_alligator(p + noise_offset, shape.noise_frequency_per_m);
-          const float erosion = 0.9f * (1.0f - n);
+          const float erosion = 0.8f * (1.0f - n);
           density = std::clamp((inside - erosion) / (1.0f - erosion), 0.0f, 1.0f);
         }
         // A crisp, flat base: condensation starts at one height.

@@ -2,8 +2,8 @@
 // grid, and writing it as OpenVDB. Every way a file can be wrong is one line of InputError.
 // clang-format off
 #include <iostream>  // before GridValidator.h, which uses std::cerr without including it
-// clang-format on
 #include <nanovdb/util/GridValidator.h>
+// clang-format on
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/NanoToOpenVDB.h>
 #include <openvdb/io/File.h>
@@ -98,6 +98,12 @@ Source read_openvdb(const std::string& path) {
     // Not delayed: a truncated file fails here and in readGrid, not later on first access.
     file.open(/*delayLoad=*/false);
   } catch (const std::exception& e) {
+    // A file that starts as OpenVDB's do but fails is cut short or damaged; a file written
+    // as a stream (write_vdb's) is read whole here, so its truncation shows here too.
+    int32_t magic = 0;
+    std::ifstream(path, std::ios::binary).read(reinterpret_cast<char*>(&magic), sizeof magic);
+    if (magic == openvdb::OPENVDB_MAGIC)
+      fail(path, "is truncated or corrupt (" + shorten_for_message(e.what()) + ")");
     fail(path, "is not a readable OpenVDB file (" + shorten_for_message(e.what()) +
                    "; a .vdb with a float grid \"density\" is required)");
   }

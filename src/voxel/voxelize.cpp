@@ -145,6 +145,9 @@ VoxelGrid voxelize_mesh(const std::string& obj_path, int max_dim) {
         }
         grid.density[v] = density;
       }
+  if (std::none_of(grid.density.begin(), grid.density.end(), [](float d) { return d > 0.0f; }))
+    throw InputError(where + "encloses no voxel centre at resolution " + std::to_string(max_dim) +
+                     " (a mesh thicker than a voxel is required)");
   // The cloud's frame: its anchor is the centre of the mesh's base.
   grid.origin_m -= glm::vec3(0.5f * (lo.x + hi.x), 0.5f * (lo.y + hi.y), lo.z);
   return grid;

@@ -142,7 +142,7 @@ TEST_F(VoxelIo, RefusesHugeTruncatedAndGarbageFiles) {
   std::ifstream in(path("whole.vdb"), std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), {});
   std::ofstream(path("half.vdb"), std::ios::binary) << bytes.substr(0, bytes.size() / 2);
-  expect_refused(path("half.vdb"), {"half.vdb: "});
+  expect_refused(path("half.vdb"), {"half.vdb: is truncated or corrupt"});
 
   std::mt19937 rng(5);
   std::string garbage(4096, '\0');

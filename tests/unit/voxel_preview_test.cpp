@@ -1,6 +1,6 @@
 // Not a check but a look (run with --gtest_also_run_disabled_tests): the vertical mid-slices
 // of each preset's density, and the time each preset takes at full resolution, written to
-// test-output/voxel_preview/<preset>.png.
+// test-output/voxel_preview/<preset>.png, and the time to load each back from .vdb.
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
 
@@ -26,6 +26,13 @@ TEST(VoxelPreview, DISABLED_WritesMidSlicesOfThePresets) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s: %d x %d x %d, %.3g m, %.2f s\n", cloud_preset_name(preset), grid.dims.x,
                 grid.dims.y, grid.dims.z, grid.voxel_m, seconds);
+    const std::string vdb = (dir / (std::string(cloud_preset_name(preset)) + ".vdb")).string();
+    write_vdb(grid, vdb);
+    const auto load_start = std::chrono::steady_clock::now();
+    const VoxelGrid loaded = load_voxel_cloud(vdb, 128);
+    std::printf(
+        "  load: %d x %d x %d, %.2f s\n", loaded.dims.x, loaded.dims.y, loaded.dims.z,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count());
     // x-z slice through the middle (density, top up), beside it the density summed over y
     // (a crude side view).
     const int w = grid.dims.x, h = grid.dims.z;
