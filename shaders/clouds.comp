@@ -249,7 +249,7 @@ void main() {
       float seg_m = lit_unit_m * float(light_k);
       float mid_m = lit_unit_m * 0.5f * float(light_k * (light_k - 1)) + 0.5f * seg_m;
       vec3 pos = lighting ? lit_pos + sun * mid_m : eye + dir * t;
-      VoxelSample vox = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f);
+      VoxelSample vox = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f, 0);
       vec2 field = vec2(0.0f);
       if (!coned) {
         vox = voxel_field(pos);
@@ -275,7 +275,8 @@ void main() {
         float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
         float tau_light = depth * sigma_scale * light_atten;
         float energy = multiple_scattering(tau_light, mu, powder, phases) * lit_visibility;
-        float h = layer_fraction(lit_pos);
+        // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
+        float h = saturate(layer_fraction(lit_pos));
         // What the cloud between the sample and the light lets through: the sunlight it has
         // scattered forward, no longer a beam but a diffuse flux (radiance = flux / pi, the
         // flux through a horizontal deck mu_sun times the sun's), and the sky's light through
@@ -331,8 +332,8 @@ void main() {
       // Light this sample in the next light_n iterations: march the first voxel of the light
       // volume towards the sun (where it is too coarse for the light's fast change at a cloud's
       // surface) and look the rest up where that march ends; without the volume, march all.
-      // In a voxel region with SDF shadows: a cone traced through the voxel clouds' distance
-      // field to the region's edge, and the light volume from there, at once.
+      // In a voxel region with SDF shadows: a cone traced through the cloud's distance field
+      // to its box's edge, and the light volume from there, at once.
       float sigma_t = field.y * sigma_scale * view_atten;
       // At most TAU_STEP_96 * 96 / primary_steps of optical depth per step (0.5 at 96 steps).
       lit_step_m = clamp(TAU_STEP_96 * 96.0f / (float(frame.steps.x) * sigma_t), 1.0f, fine_step);
@@ -340,7 +341,8 @@ void main() {
       lit_pos = pos;
       lit_visibility = 1.0f;
       if (sdf_shadow && in_region) {
-        vec3 cone = sdf_cone_trace(pos, sun);
+        // Opaque at an optical depth of 20 along the light.
+        vec3 cone = sdf_cone_trace(pos, sun, vox.cloud, 20.0f / (sigma_scale * light_atten));
         lit_depth = cone.x;
         lit_visibility = cone.y;
         lit_near_m = cone.z;

@@ -14,6 +14,7 @@ struct VoxelSample {
   float sdf_m;    // signed distance (m) to the nearest voxel cloud: a lower bound outside
   float region_m; // distance (m) to the nearest voxel cloud's box: 0 inside one
   float voxel_m;  // the voxel's edge of the nearest box (m)
+  int cloud;      // the nearest cloud (by sdf_m)
 };
 
 vec3 voxel_grid_coord(VoxelCloudGpu c, vec3 p) {
@@ -47,7 +48,7 @@ float voxel_surface_erosion(float density, float sdf_voxels, vec3 u, float voxel
 }
 
 VoxelSample voxel_field(vec3 p) {
-  VoxelSample s = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f);
+  VoxelSample s = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f, 0);
   for (int i = 0; i < frame.voxel_info.x; ++i) {
     VoxelCloudGpu c = frame.voxel_clouds[i];
     vec3 u = voxel_grid_coord(c, p);
@@ -61,6 +62,7 @@ VoxelSample voxel_field(vec3 p) {
     if (v.y * c.dims.w < s.sdf_m) {
       s.sdf_m = v.y * c.dims.w;
       s.voxel_m = c.dims.w;
+      s.cloud = i;
     }
     s.region_m = min(s.region_m, box * c.dims.w);
   }
@@ -83,43 +85,37 @@ float voxel_region_exit_m(vec3 p, vec3 dir) {
 }
 
 // Steps of an SDF cone trace (sdf_cone_trace).
-const int SDF_SHADOW_STEPS = 10;
+const int SDF_SHADOW_STEPS = 6;
 
-// The sunlight's path from p through the voxel clouds' regions traced through their signed
-// distance field (seed 002, SDF Shadow): outside a cloud each step crosses what the distance
-// field says is empty, and the cone's visibility (sdf_cone_visibility, the seed's LightTangent
-// frame.voxel_light.x) is taken where the path comes nearer a cloud; inside a cloud each step
-// goes as deep as the distance to its surface, adding density x length to the optical depth.
-// Returns (x) that optical depth (density field x m), (y) the visibility, (z) how far the
-// trace went (m): the rest of the light's path starts there.
-vec3 sdf_cone_trace(vec3 p, vec3 sun) {
-  float t = 0.0f, depth = 0.0f, visibility = 1.0f, previous_m = -1e9f;
-  for (int k = 0; k < SDF_SHADOW_STEPS; ++k) {
-    vec3 q = p + sun * t;
-    float density = 0.0f, sdf_m = 1e9f, voxel_m = 1.0f, region_m = 1e9f;
-    for (int i = 0; i < frame.voxel_info.x; ++i) {
-      VoxelCloudGpu c = frame.voxel_clouds[i];
-      vec3 u = voxel_grid_coord(c, q);
-      float box = voxel_box_distance(u, c.dims.xyz);
-      vec2 v = box <= 0.0f ? voxel_lookup(c, u) : vec2(0.0f, box);
-      density += v.x * c.anchor_m.w;
-      if (v.y * c.dims.w < sdf_m) {
-        sdf_m = v.y * c.dims.w;
-        voxel_m = c.dims.w;
-      }
-      region_m = min(region_m, box * c.dims.w);
-    }
-    if (region_m > 0.0f) break;  // out of the voxel regions
+// The sunlight's path from p through voxel cloud `cloud` (the one p is in) traced through its
+// signed distance field (seed 002, SDF Shadow): outside the cloud each step crosses what the
+// distance field says is empty, and the cone's visibility (sdf_cone_visibility, the seed's
+// LightTangent frame.voxel_light.x) is taken where the path comes nearer the cloud again;
+// inside, each step goes as deep as the distance to the surface, adding density x length to
+// the optical depth. It ends where the path leaves the cloud's box, after SDF_SHADOW_STEPS,
+// or once the cloud is opaque (optical depth `opaque`). Returns (x) the optical depth
+// (density field x m), (y) the visibility, (z) how far it went (m): the rest of the light's
+// path (other clouds, the noise clouds) is looked up from there.
+vec3 sdf_cone_trace(vec3 p, vec3 sun, int cloud, float opaque) {
+  VoxelCloudGpu c = frame.voxel_clouds[cloud];
+  vec3 u = voxel_grid_coord(c, p);
+  vec3 du = vec3(dot(c.to_grid_x.xyz, sun), dot(c.to_grid_y.xyz, sun), dot(c.to_grid_z.xyz, sun));
+  float t = 0.0f, depth = 0.0f, visibility = 1.0f, previous = -1e9f;
+  for (int k = 0; k < SDF_SHADOW_STEPS && depth < opaque; ++k) {
+    vec3 q = u + du * t;
+    if (voxel_box_distance(q, c.dims.xyz) > 0.0f) break;  // out of the cloud's box
+    vec2 v = voxel_lookup(c, q);
+    float sdf_m = v.y * c.dims.w;
     float step_m;
     if (sdf_m < 0.0f) {
-      step_m = max(-sdf_m, voxel_m);
-      depth += density * step_m;
+      step_m = max(-sdf_m, c.dims.w);
+      depth += v.x * c.anchor_m.w * step_m;
     } else {
-      if (t > 0.0f && sdf_m < previous_m)
+      if (t > 0.0f && sdf_m < previous)
         visibility = sdf_cone_visibility(visibility, sdf_m, t, frame.voxel_light.x);
-      step_m = max(sdf_m, voxel_m);
+      step_m = max(sdf_m, c.dims.w);
     }
-    previous_m = sdf_m;
+    previous = sdf_m;
     t += step_m;
   }
   return vec3(depth, visibility, t);

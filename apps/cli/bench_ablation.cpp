@@ -44,7 +44,7 @@ Scene ablation_scene(const Scene& base) {
   Scene s = base;
   if (!s.voxel_clouds.empty()) return s;
   s.camera.position_m = {0.0f, 0.0f, 2.0f};
-  s.camera.view_dir = {0.0f, 1.0f, 0.22f};
+  s.camera.view_dir = {0.0f, 1.0f, 0.3f};
   s.camera.fov_deg = 60.0f;
   s.clouds.coverage = 0.35f;
   struct Placed {
@@ -53,11 +53,11 @@ Scene ablation_scene(const Scene& base) {
     glm::vec3 position_m;
   };
   const Placed placed[] = {
-      {"cumulus", 1, {-2200.0f, 4500.0f, 1500.0f}},
-      {"cumulus", 2, {1800.0f, 5500.0f, 1400.0f}},
-      {"cumulus-congestus", 3, {-500.0f, 8000.0f, 1300.0f}},
-      {"cumulonimbus", 4, {5000.0f, 14000.0f, 1200.0f}},
-      {"cumulus", 5, {3600.0f, 3800.0f, 1600.0f}},
+      {"cumulus", 1, {-1300.0f, 3000.0f, 1300.0f}},
+      {"cumulus", 2, {1100.0f, 2600.0f, 1100.0f}},
+      {"cumulus-congestus", 3, {-2500.0f, 6500.0f, 1200.0f}},
+      {"cumulonimbus", 4, {4500.0f, 14000.0f, 1000.0f}},
+      {"cumulus", 5, {300.0f, 4200.0f, 1500.0f}},
   };
   for (const Placed& p : placed) {
     VoxelCloudParams c;

@@ -13,8 +13,8 @@
 namespace nephele::cli {
 
 // The ablation's view: `base` with, when it has no voxel clouds of its own, five generated
-// ones (cumulus, congestus, cumulonimbus) 4 to 12 km north of a camera on the ground, among
-// noise clouds.
+// ones (cumulus, congestus, cumulonimbus) 2.5 to 15 km north of a camera on the ground,
+// filling much of its view, among noise clouds.
 Scene ablation_scene(const Scene& base);
 
 // Renders the four variants of `scene` `rounds` times each (interleaved, so drift of the
