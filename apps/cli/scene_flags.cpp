@@ -7,6 +7,7 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <variant>
 #include <vector>
@@ -22,7 +23,8 @@ using Target = std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&)
                             uint32_t& (*)(Scene&), glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
                             std::string& (*)(Scene&), MarchMode& (*)(Scene&),
                             bool& (*)(Scene&), SkyModel& (*)(Scene&),
-                            ConditionsMode& (*)(Scene&)>;
+                            ConditionsMode& (*)(Scene&), VoxelMarch& (*)(Scene&),
+                            VoxelShadow& (*)(Scene&)>;
 
 struct FlagSpec {
   const char* flag;
@@ -164,6 +166,14 @@ const std::vector<FlagSpec>& flag_specs() {
        "light volume half extent (km), [0, 1000]; 0 = march every light ray"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
+      {"--voxel-march", &F::voxel_march, "quality.voxel_march", TO(quality.voxel_march),
+       "plain|three-phase",
+       "how rays cross the voxel clouds: three-phase (default; SDF sphere tracing across their "
+       "empty space) or plain (the noise clouds' march everywhere)"},
+      {"--voxel-shadow", &F::voxel_shadow, "quality.voxel_shadow", TO(quality.voxel_shadow),
+       "march|sdf-cone",
+       "the voxel clouds' shadows: march (default; light march through the density) or "
+       "sdf-cone (cone traced through the distance field, soft)"},
       {"--sky", &F::sky, "atmosphere.model", TO(atmosphere.model), "hillaire|preetham|reference",
        "sky model: hillaire (default), preetham (seed 002's analytic sky), reference (brute "
        "force, slow)"},
@@ -276,6 +286,29 @@ void parse_into(const std::string& flag, const std::string& text, SkyModel& out)
   out = *model;
 }
 
+void parse_into(const std::string& flag, const std::string& text, VoxelMarch& out) {
+  std::optional<VoxelMarch> mode = parse_voxel_march(text);
+  if (!mode) fail(flag, text, "expected plain or three-phase");
+  out = *mode;
+}
+void parse_into(const std::string& flag, const std::string& text, VoxelShadow& out) {
+  std::optional<VoxelShadow> mode = parse_voxel_shadow(text);
+  if (!mode) fail(flag, text, "expected march or sdf-cone");
+  out = *mode;
+}
+
+constexpr const char* kVoxelCloudFlag = "--voxel-cloud";
+constexpr const char* kVoxelCloudForms =
+    "expected FILE@E,N,U or preset:NAME[:SEED]@E,N,U, NAME one of cumulus, cumulus-congestus, "
+    "cumulonimbus (e.g. preset:cumulus:7@0,4000,1200)";
+constexpr std::string_view kPresetPrefix = "preset:";
+
+// The generated clouds (src/voxel's parse_cloud_preset; validate_scene checks them too, but a
+// wrong name is a malformed spec, told with the accepted forms).
+bool is_voxel_cloud_preset_name(std::string_view name) {
+  return name == "cumulus" || name == "cumulus-congestus" || name == "cumulonimbus";
+}
+
 void check_conflicts(const SceneFlags& flags) {
   if (flags.scene_file && flags.preset)
     throw InputError(
@@ -326,20 +359,69 @@ void apply_sun_angles(const SceneFlags& flags, Scene& scene) {
 }
 
 // Validation names a parameter by its flag when a flag set it, otherwise by its scene key
-// prefixed with where the scene came from.
-ParamNamer make_namer(const SceneFlags& flags) {
+// prefixed with where the scene came from. The voxel clouds from index `first_flag_cloud` on
+// came from --voxel-cloud.
+ParamNamer make_namer(const SceneFlags& flags, size_t first_flag_cloud) {
   std::map<std::string, std::string> flag_of_key;
   for (const FlagSpec& spec : flag_specs())
     if (*spec.key && (flags.*spec.member).has_value()) flag_of_key[spec.key] = spec.flag;
   std::string origin =
       flags.scene_file ? *flags.scene_file : "preset '" + flags.preset.value_or("default") + "'";
-  return [flag_of_key, origin](const std::string& key) {
+  return [flag_of_key, origin, first_flag_cloud](const std::string& key) -> std::string {
     auto found = flag_of_key.find(key);
-    return found != flag_of_key.end() ? found->second : origin + ": " + key;
+    if (found != flag_of_key.end()) return found->second;
+    size_t index = 0;  // voxel_clouds[index].name
+    if (std::sscanf(key.c_str(), "voxel_clouds[%zu]", &index) == 1 && index >= first_flag_cloud)
+      return kVoxelCloudFlag;
+    return origin + ": " + key;
   };
 }
 
 }  // namespace
+
+VoxelCloudParams parse_voxel_cloud_spec(const std::string& spec) {
+  const auto bad = [&](const std::string& why) {
+    fail(kVoxelCloudFlag, spec, why + "; " + kVoxelCloudForms);
+  };
+  // The last '@': a file's name may hold one.
+  const size_t at = spec.rfind('@');
+  if (at == std::string::npos) bad("no @E,N,U position");
+  const std::string source = spec.substr(0, at), position = spec.substr(at + 1);
+  VoxelCloudParams cloud;
+  std::vector<std::string_view> parts;
+  for (std::string_view rest = position;;) {
+    const size_t comma = rest.find(',');
+    parts.push_back(rest.substr(0, comma));
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  if (parts.size() != 3) bad("the position is not 3 comma-separated numbers");
+  for (int i = 0; i < 3; ++i) {
+    const std::optional<double> value = to_number(parts[size_t(i)]);
+    if (!value || (std::isfinite(*value) && std::fabs(*value) > FLT_MAX))
+      bad("the position's '" + std::string(parts[size_t(i)]) + "' is not a number");
+    cloud.position_m[i] = static_cast<float>(*value);
+  }
+  if (source.starts_with(kPresetPrefix)) {
+    const std::string rest = source.substr(kPresetPrefix.size());
+    const size_t colon = rest.find(':');
+    cloud.preset = rest.substr(0, colon);
+    if (!is_voxel_cloud_preset_name(cloud.preset))
+      bad("unknown preset '" + cloud.preset + "'");
+    if (colon != std::string::npos) {
+      const std::string seed = rest.substr(colon + 1);
+      uint32_t value = 0;
+      auto [end, error] = std::from_chars(seed.data(), seed.data() + seed.size(), value);
+      if (seed.empty() || error != std::errc() || end != seed.data() + seed.size())
+        bad("the seed '" + seed + "' is not an integer in [0, 4294967295]");
+      cloud.seed = value;
+    }
+  } else {
+    if (source.empty()) bad("no file before the @");
+    cloud.file = source;  // as given: relative to the working folder, like --weather-map
+  }
+  return cloud;
+}
 
 void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
   for (const FlagSpec& spec : flag_specs()) {
@@ -351,6 +433,18 @@ void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
         ->type_name(spec.type_name)
         ->group("Scene");
   }
+  // Repeatable: a vector option, one value an occurrence (no extra arguments after it).
+  cmd.add_option_function<std::vector<std::string>>(
+         kVoxelCloudFlag,
+         [&flags](const std::vector<std::string>& values) {
+           flags.voxel_clouds.insert(flags.voxel_clouds.end(), values.begin(), values.end());
+         },
+         "add a voxel cloud (repeatable): FILE@E,N,U (an OpenVDB .vdb or NanoVDB .nvdb file) or "
+         "preset:NAME[:SEED]@E,N,U (a generated cumulus, cumulus-congestus or cumulonimbus), "
+         "anchored at its base's centre (m: east, north, up); e.g. preset:cumulus:7@0,4000,1200")
+      ->type_name("SPEC")
+      ->allow_extra_args(false)
+      ->group("Scene");
 }
 
 Scene resolve_scene(const SceneFlags& flags) {
@@ -375,7 +469,16 @@ Scene resolve_scene(const SceneFlags& flags) {
   if (flags.camera_pos && !(scene.camera.position_m.z >= 0.0f))
     fail("--camera-pos", *flags.camera_pos,
          "the up component must be >= 0 (the camera is below the ground)");
-  validate_scene(scene, make_namer(flags));
+  const size_t first_flag_cloud = scene.voxel_clouds.size();
+  if (first_flag_cloud + flags.voxel_clouds.size() > size_t(kMaxVoxelClouds))
+    throw InputError(std::string(kVoxelCloudFlag) + ": " +
+                     std::to_string(first_flag_cloud + flags.voxel_clouds.size()) +
+                     " voxel clouds (" + std::to_string(first_flag_cloud) + " in the scene, " +
+                     std::to_string(flags.voxel_clouds.size()) + " from " + kVoxelCloudFlag +
+                     "): at most " + std::to_string(kMaxVoxelClouds) + " voxel clouds per scene");
+  for (const std::string& spec : flags.voxel_clouds)
+    scene.voxel_clouds.push_back(parse_voxel_cloud_spec(spec));
+  validate_scene(scene, make_namer(flags, first_flag_cloud));
   return scene;
 }
 

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "nephele/scene.h"
 
@@ -27,10 +28,17 @@ struct SceneFlags {
   std::optional<std::string> wind_shear_mps, detail_drift_mps, flow_speed_mps, high_coverage,
       high_cloud_type, high_bottom_m, high_top_m, high_wind_mps;
   std::optional<std::string> time, lat_deg, lon_deg;
-  std::optional<std::string> time_s, seed, steps, light_steps, march_stride,
-      cloud_downsample, light_volume_km, mode, sky, turbidity, conditions, weather, hour,
-      exposure, auto_exposure;
+  std::optional<std::string> time_s, seed, steps, light_steps, march_stride, cloud_downsample,
+      light_volume_km, mode, sky, turbidity, conditions, weather, hour, exposure, auto_exposure,
+      voxel_march, voxel_shadow;
+  // --voxel-cloud SPEC, repeatable: FILE@E,N,U or preset:NAME[:SEED]@E,N,U, each appended to
+  // the scene's voxel clouds in the order given.
+  std::vector<std::string> voxel_clouds;
 };
+
+// One --voxel-cloud SPEC as a voxel cloud (the other fields at their defaults); throws an
+// InputError naming --voxel-cloud, the value and the accepted forms.
+VoxelCloudParams parse_voxel_cloud_spec(const std::string& spec);
 
 // Registers --scene, --preset and the scene overrides on `cmd`, writing into `flags`.
 void add_scene_flags(CLI::App& cmd, SceneFlags& flags);

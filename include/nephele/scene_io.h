@@ -4,8 +4,13 @@
 // `preset = "name"` (start from that preset instead of the defaults), then the tables
 // [camera], [sun], [atmosphere], [clouds], [quality], [output] whose keys are the struct
 // fields. Extra keys: camera.altitude_m (sets position_m's up component) and
-// sun.elevation_deg / sun.azimuth_deg (replace sun.direction). Every error is an
-// InputError whose one-line message names the parameter, the value and what is allowed.
+// sun.elevation_deg / sun.azimuth_deg (replace sun.direction). Voxel clouds are an array of
+// tables, [[voxel_clouds]], one per cloud (a file's array replaces a preset's), whose keys are
+// VoxelCloudParams' fields; lat_deg, lon_deg and altitude_m (all three) may replace position_m
+// (converted by enu_from_lat_lon with the file's final location and planet radius); a relative
+// file is relative to the scene file. Messages name them voxel_clouds[i].key (i from 0). Every
+// error is an InputError whose one-line message names the parameter, the value and what is
+// allowed.
 #pragma once
 
 #include <functional>
@@ -20,9 +25,9 @@
 namespace nephele {
 
 // Parses TOML text and applies it on top of the defaults of scene.h (or of the preset it
-// names). `source_name` prefixes error messages; a relative clouds.weather_map is resolved
-// against `base_dir` when that is not empty. Checks syntax, keys and types, not ranges:
-// call validate_scene on the final scene.
+// names). `source_name` prefixes error messages; a relative clouds.weather_map or voxel cloud
+// file is resolved against `base_dir` when that is not empty. Checks syntax, keys and types, not
+// ranges: call validate_scene on the final scene.
 Scene parse_scene_toml(std::string_view text, const std::string& source_name,
                        const std::string& base_dir = "");
 
@@ -70,6 +75,8 @@ struct SceneParameter {
 };
 
 // In scene_to_toml's order: time, time_s, noise_seed, then [location], [camera], [sun], ...
+// Scene::voxel_clouds, an array, is not among them (its number of entries varies): edit the
+// Scene's vector; scene_to_toml writes it.
 const std::vector<SceneParameter>& scene_parameters();
 
 // The parameter's value as TOML literal text ("0.45", "[8.0, 2.0]", "\"hillaire\"", "true");
@@ -91,6 +98,10 @@ std::optional<MarchMode> parse_march_mode(std::string_view text);
 std::optional<SkyModel> parse_sky_model(std::string_view text);
 // "off" / "artist" / "overlay".
 std::optional<ConditionsMode> parse_conditions_mode(std::string_view text);
+// "plain" / "three-phase".
+std::optional<VoxelMarch> parse_voxel_march(std::string_view text);
+// "march" / "sdf-cone".
+std::optional<VoxelShadow> parse_voxel_shadow(std::string_view text);
 
 // Sun direction (ENU, unit length) from its elevation above the horizon and its azimuth
 // from north through east: (cos el sin az, cos el cos az, sin el).

@@ -67,6 +67,38 @@ std::optional<MarchMode> parse_march_mode(std::string_view text) {
   return std::nullopt;
 }
 
+const char* to_string(VoxelMarch mode) {
+  switch (mode) {
+    case VoxelMarch::Plain:
+      return "plain";
+    case VoxelMarch::ThreePhase:
+      return "three-phase";
+  }
+  return "unknown";
+}
+
+std::optional<VoxelMarch> parse_voxel_march(std::string_view text) {
+  for (VoxelMarch m : {VoxelMarch::Plain, VoxelMarch::ThreePhase})
+    if (text == to_string(m)) return m;
+  return std::nullopt;
+}
+
+const char* to_string(VoxelShadow mode) {
+  switch (mode) {
+    case VoxelShadow::LightMarch:
+      return "march";
+    case VoxelShadow::SdfCone:
+      return "sdf-cone";
+  }
+  return "unknown";
+}
+
+std::optional<VoxelShadow> parse_voxel_shadow(std::string_view text) {
+  for (VoxelShadow m : {VoxelShadow::LightMarch, VoxelShadow::SdfCone})
+    if (text == to_string(m)) return m;
+  return std::nullopt;
+}
+
 namespace scene_detail {
 
 // FIELD(camera, fov_deg, note) is the key camera.fov_deg for Scene::camera.fov_deg; the unary +
@@ -229,7 +261,14 @@ const std::vector<Section>& scene_sections() {
         FIELD(quality, march_stride, "1, 2 or 4: one pixel per stride^2 block marched per frame"),
         FIELD(quality, cloud_downsample, "cloud buffer = image / this per axis, [1, 4]"),
         FIELD(quality, light_volume_km,
-              "light volume half extent (km), [0, 1000]; 0 = march every light ray")},
+              "light volume half extent (km), [0, 1000]; 0 = march every light ray"),
+        FIELD(quality, voxel_march,
+              "\"three-phase\" (SDF sphere tracing across the voxel clouds' empty space) or "
+              "\"plain\" (the noise clouds' march everywhere)"),
+        FIELD(quality, voxel_shadow,
+              "\"march\" (light march through the voxel clouds) or \"sdf-cone\" (cone traced "
+              "through their distance field)"),
+        FIELD(quality, sdf_light_tangent, "the SDF cone's half-angle tangent, [0.001, 10]")},
        {}},
       {"output",
        {FIELD(output, width, "pixels, [1, 16384]"), FIELD(output, height, "pixels, [1, 16384]"),
@@ -257,6 +296,42 @@ const std::vector<Section>& scene_sections() {
 
 #undef TOP_FIELD
 #undef FIELD
+
+// VOXEL_FIELD(density, note) is the key density of a [[voxel_clouds]] table.
+#define VOXEL_FIELD(name, note)                             \
+  VoxelField {                                              \
+#name, +[](VoxelCloudParams & c) -> auto& { return c.name; }, note \
+  }
+
+const std::vector<VoxelField>& voxel_cloud_fields() {
+  static const std::vector<VoxelField> fields = {
+      VOXEL_FIELD(file, ".vdb (OpenVDB) or .nvdb (NanoVDB) path; exactly one of file and preset"),
+      VOXEL_FIELD(preset, "generated: cumulus, cumulus-congestus or cumulonimbus"),
+      VOXEL_FIELD(seed, "the generated cloud's seed, [0, 4294967295]"),
+      VOXEL_FIELD(position_m,
+                  "east, north, up (m) of the base's centre; east and north in [-1e7, 1e7], up "
+                  "in [-1000, 1e5] (or lat_deg, lon_deg, altitude_m)"),
+      VOXEL_FIELD(scale, "multiplies the grid's size, (0, 100]"),
+      VOXEL_FIELD(rotation_deg, "about the up axis, from north through east, [-360, 360]"),
+      VOXEL_FIELD(density, "sigma_t = grid density x this x clouds.extinction_per_m, [0, 100]"),
+      VOXEL_FIELD(follow_wind, "true: moves with clouds.wind_mps; false: with wind_mps"),
+      VOXEL_FIELD(wind_mps, "east, north (m/s), [-200, 200] each, when follow_wind is false"),
+      VOXEL_FIELD(resolution, "voxels along the longest axis, [16, 256]"),
+  };
+  return fields;
+}
+
+#undef VOXEL_FIELD
+
+std::string voxel_cloud_key(size_t index) {
+  return std::string(kVoxelCloudsKey) + "[" + std::to_string(index) + "]";
+}
+
+bool is_voxel_cloud_preset(std::string_view name) {
+  for (std::string_view preset : kVoxelCloudPresets)
+    if (name == preset) return true;
+  return false;
+}
 
 template <typename T>
 static std::string shortest(T value) {

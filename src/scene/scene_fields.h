@@ -15,10 +15,11 @@
 namespace nephele::scene_detail {
 
 // Reference to one field of a Scene; the alternative says the field's type.
-using FieldAccess = std::variant<float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
-                                 glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&),
-                                 std::string& (*)(Scene&), MarchMode& (*)(Scene&), bool& (*)(Scene&),
-                                 SkyModel& (*)(Scene&), ConditionsMode& (*)(Scene&)>;
+using FieldAccess =
+    std::variant<float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
+                 glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&), std::string& (*)(Scene&),
+                 MarchMode& (*)(Scene&), bool& (*)(Scene&), SkyModel& (*)(Scene&),
+                 ConditionsMode& (*)(Scene&), VoxelMarch& (*)(Scene&), VoxelShadow& (*)(Scene&)>;
 
 struct Field {
   std::string_view name;  // key inside its table, e.g. "coverage"
@@ -31,6 +32,35 @@ struct Section {
   std::vector<Field> fields;
   std::vector<std::string_view> extra_keys;  // keys the reader handles itself
 };
+
+// The keys of one [[voxel_clouds]] table (Scene::voxel_clouds, an array the field table above
+// cannot hold: the reader, the writer and validation go through this list instead).
+using VoxelFieldAccess =
+    std::variant<float& (*)(VoxelCloudParams&), int& (*)(VoxelCloudParams&),
+                 uint32_t& (*)(VoxelCloudParams&), glm::vec2& (*)(VoxelCloudParams&),
+                 glm::vec3& (*)(VoxelCloudParams&), std::string& (*)(VoxelCloudParams&),
+                 bool& (*)(VoxelCloudParams&)>;
+
+struct VoxelField {
+  std::string_view name;  // key inside the table, e.g. "density"
+  VoxelFieldAccess access;
+  std::string_view note;  // comment written by scene_to_toml
+};
+
+// The array's top-level key.
+constexpr std::string_view kVoxelCloudsKey = "voxel_clouds";
+// Every key of a [[voxel_clouds]] table that is a field, in the order scene_to_toml writes them.
+const std::vector<VoxelField>& voxel_cloud_fields();
+// The keys the reader turns into position_m itself (all three or none, and not with position_m).
+inline constexpr std::string_view kVoxelCloudGeoKeys[] = {"lat_deg", "lon_deg", "altitude_m"};
+// "voxel_clouds[2]": how messages name cloud i (0-based).
+std::string voxel_cloud_key(size_t index);
+
+// The generated clouds' names (parse_cloud_preset of src/voxel takes the same; the scene layer
+// checks them itself so that it needs nothing of the voxel module).
+inline constexpr std::string_view kVoxelCloudPresets[] = {"cumulus", "cumulus-congestus",
+                                                          "cumulonimbus"};
+bool is_voxel_cloud_preset(std::string_view name);
 
 // toml++ builds and destroys nested tables recursively, so a dotted key of 50,000 parts
 // overflows the stack. nephele's deepest key has 4 parts (conditions.good.night.hour); a

@@ -14,6 +14,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele_embedded.h"
 #include "scene/scene_fields.h"
@@ -102,10 +103,11 @@ int line_of_too_deep_key(std::string_view text) {
 
 namespace {
 
+using scene_detail::Field;
 using scene_detail::kMaxKeyParts;
 using scene_detail::line_of_too_deep_key;
-using scene_detail::Field;
 using scene_detail::Section;
+using scene_detail::VoxelField;
 
 // A preset may start from another preset; this bounds the chain (and breaks cycles).
 constexpr int kMaxPresetDepth = 8;
@@ -165,6 +167,16 @@ std::string allowed_keys(const Section& section) {
     for (const Section& nested : scene_detail::scene_sections())
       if (!nested.name.empty() && nested.name.find('.') == std::string_view::npos)
         names.push_back(std::string("[").append(nested.name).append("]"));
+  if (section.name.empty())
+    names.push_back(std::string("[[").append(scene_detail::kVoxelCloudsKey).append("]]"));
+  return join(names);
+}
+
+// Keys allowed in a [[voxel_clouds]] table, for "unknown key" messages.
+std::string allowed_voxel_cloud_keys() {
+  std::vector<std::string> names;
+  for (const VoxelField& field : scene_detail::voxel_cloud_fields()) names.emplace_back(field.name);
+  for (std::string_view geo : scene_detail::kVoxelCloudGeoKeys) names.emplace_back(geo);
   return join(names);
 }
 
@@ -197,9 +209,14 @@ class SceneReader {
     Scene scene;
     if (const toml::node* preset = root.get("preset")) scene = read_preset(*preset);
     const Section& top = scene_detail::scene_sections().front();
+    std::vector<GeoPosition> geo_positions;
     for (const auto& [key, node] : root) {
       std::string name(key.str());
       if (name == "preset") continue;
+      if (name == scene_detail::kVoxelCloudsKey) {
+        read_voxel_clouds(node, scene, geo_positions);
+        continue;
+      }
       if (const Field* field = find_field(top, name)) {
         assign(*field, name, node, scene);
         continue;
@@ -213,6 +230,10 @@ class SceneReader {
       read_table(*section, *table, scene);
     }
     apply_sun_source(root, scene);
+    // After every table: the location and the planet's radius may come later in the file.
+    for (const GeoPosition& geo : geo_positions)
+      scene.voxel_clouds[geo.index].position_m =
+          glm::vec3(enu_from_lat_lon(scene, geo.lat_deg, geo.lon_deg, geo.altitude_m));
     return scene;
   }
 
@@ -224,6 +245,78 @@ class SceneReader {
   }
 
  private:
+  // A voxel cloud placed by latitude, longitude and altitude, converted once the scene's
+  // location is known.
+  struct GeoPosition {
+    size_t index;
+    double lat_deg, lon_deg, altitude_m;
+  };
+
+  // [[voxel_clouds]]: the file's array replaces a preset's (as any key does).
+  void read_voxel_clouds(const toml::node& node, Scene& scene,
+                         std::vector<GeoPosition>& geo_positions) const {
+    const std::string array_key(scene_detail::kVoxelCloudsKey);
+    const toml::array* array = node.as_array();
+    if (!array || !std::all_of(array->begin(), array->end(),
+                               [](const toml::node& item) { return item.is_table(); }))
+      fail_value(node, array_key, "expected an array of tables [[" + array_key + "]]");
+    scene.voxel_clouds.assign(array->size(), VoxelCloudParams{});
+    for (size_t i = 0; i < array->size(); ++i) {
+      const toml::table& table = *(*array)[i].as_table();
+      const std::string prefix = scene_detail::voxel_cloud_key(i);
+      VoxelCloudParams& cloud = scene.voxel_clouds[i];
+      for (const auto& [key, value] : table) {
+        const std::string name(key.str());
+        const std::string full_key = prefix + "." + name;
+        if (std::find(std::begin(scene_detail::kVoxelCloudGeoKeys),
+                      std::end(scene_detail::kVoxelCloudGeoKeys),
+                      name) != std::end(scene_detail::kVoxelCloudGeoKeys))
+          continue;  // read_voxel_cloud_geo
+        const auto& fields = scene_detail::voxel_cloud_fields();
+        const auto field = std::find_if(fields.begin(), fields.end(),
+                                        [&](const VoxelField& f) { return f.name == name; });
+        if (field == fields.end())
+          fail(key.source(), "unknown key '" + shorten_for_message(full_key) + "' (allowed in [[" +
+                                 array_key + "]]: " + allowed_voxel_cloud_keys() + ")");
+        std::visit([&](auto access) { read_value(value, full_key, access(cloud)); }, field->access);
+      }
+      cloud.file = resolve_path(cloud.file);
+      if (std::optional<GeoPosition> geo = read_voxel_cloud_geo(i, table))
+        geo_positions.push_back(*geo);
+    }
+  }
+
+  // lat_deg, lon_deg and altitude_m: all three or none, and not with position_m.
+  std::optional<GeoPosition> read_voxel_cloud_geo(size_t i, const toml::table& table) const {
+    const std::string prefix = scene_detail::voxel_cloud_key(i);
+    const toml::node* first = nullptr;
+    for (std::string_view name : scene_detail::kVoxelCloudGeoKeys)
+      if (!first) first = table.get(name);
+    if (!first) return std::nullopt;
+    if (table.contains("position_m"))
+      fail(first->source(), prefix +
+                                ": position_m and lat_deg/lon_deg/altitude_m are both given; give "
+                                "one form");
+    for (std::string_view name : scene_detail::kVoxelCloudGeoKeys)
+      if (!table.contains(name))
+        fail(first->source(), prefix + "." + std::string(name) +
+                                  " is missing (lat_deg, lon_deg and altitude_m go together)");
+    const auto number = [&](std::string_view name, double min, double max) {
+      const toml::node& node = *table.get(name);
+      const std::string key = prefix + "." + std::string(name);
+      const double value = read_number(node, key);
+      if (!(value >= min && value <= max))
+        fail_value(node, key,
+                   "must be in [" + scene_detail::format_double(min) + ", " +
+                       scene_detail::format_double(max) + "]");
+      return value;
+    };
+    // The altitude's range is position_m's up range; the point's ENU up is a little lower away
+    // from the origin, and validate_scene checks it.
+    return GeoPosition{i, number("lat_deg", -90.0, 90.0), number("lon_deg", -180.0, 360.0),
+                       number("altitude_m", -1.0e3, 1.0e5)};
+  }
+
   // "file:line:column: message"; the position is left out when toml++ has none.
   [[noreturn]] void fail(const toml::source_region& where, const std::string& message) const {
     if (source_.empty()) throw InputError(message);
@@ -336,6 +429,18 @@ class SceneReader {
     const auto* s = node.as_string();
     std::optional<ConditionsMode> mode = s ? parse_conditions_mode(s->get()) : std::nullopt;
     if (!mode) fail_value(node, key, "expected \"off\", \"artist\" or \"overlay\"");
+    out = *mode;
+  }
+  void read_value(const toml::node& node, const std::string& key, VoxelMarch& out) const {
+    const auto* s = node.as_string();
+    std::optional<VoxelMarch> mode = s ? parse_voxel_march(s->get()) : std::nullopt;
+    if (!mode) fail_value(node, key, "expected \"plain\" or \"three-phase\"");
+    out = *mode;
+  }
+  void read_value(const toml::node& node, const std::string& key, VoxelShadow& out) const {
+    const auto* s = node.as_string();
+    std::optional<VoxelShadow> mode = s ? parse_voxel_shadow(s->get()) : std::nullopt;
+    if (!mode) fail_value(node, key, "expected \"march\" or \"sdf-cone\"");
     out = *mode;
   }
   void read_value(const toml::node& node, const std::string& key, SkyModel& out) const {

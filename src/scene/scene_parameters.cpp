@@ -39,6 +39,14 @@ void describe_type(SceneParameter& parameter) {
     parameter.kind = K::kEnum;
     for (MarchMode m : {MarchMode::Default, MarchMode::Baseline})
       parameter.allowed.emplace_back(to_string(m));
+  } else if constexpr (std::is_same_v<T, VoxelMarch>) {
+    parameter.kind = K::kEnum;
+    for (VoxelMarch m : {VoxelMarch::Plain, VoxelMarch::ThreePhase})
+      parameter.allowed.emplace_back(to_string(m));
+  } else if constexpr (std::is_same_v<T, VoxelShadow>) {
+    parameter.kind = K::kEnum;
+    for (VoxelShadow m : {VoxelShadow::LightMarch, VoxelShadow::SdfCone})
+      parameter.allowed.emplace_back(to_string(m));
   } else if constexpr (std::is_same_v<T, SkyModel>) {
     parameter.kind = K::kEnum;
     for (SkyModel m : {SkyModel::Hillaire, SkyModel::Preetham, SkyModel::Reference})

@@ -33,6 +33,12 @@ std::string toml_value(ConditionsMode mode) {
 std::string toml_value(SkyModel model) {
   return scene_detail::toml_quote(to_string(model));
 }
+std::string toml_value(VoxelMarch mode) {
+  return scene_detail::toml_quote(to_string(mode));
+}
+std::string toml_value(VoxelShadow mode) {
+  return scene_detail::toml_quote(to_string(mode));
+}
 
 template <typename Vector>
 std::string toml_value(const Vector& v) {
@@ -72,6 +78,19 @@ std::string scene_to_toml(const Scene& scene) {
         note += "; " + sun_angles_note(scene.sun.direction);
       if (!note.empty()) line += "  # " + note;
       out += line + "\n";
+    }
+  }
+  // Arrays of tables go last: a [[table]] ends only at the next header.
+  for (VoxelCloudParams cloud : scene.voxel_clouds) {
+    out += "\n[[" + std::string(scene_detail::kVoxelCloudsKey) + "]]\n";
+    for (const scene_detail::VoxelField& field : scene_detail::voxel_cloud_fields()) {
+      // The source not used is left out (an empty one reads back as empty anyway).
+      if ((field.name == "file" && cloud.file.empty()) ||
+          (field.name == "preset" && cloud.preset.empty()))
+        continue;
+      std::string line = std::string(field.name) + " = ";
+      std::visit([&](auto access) { line += toml_value(access(cloud)); }, field.access);
+      out += line + "  # " + std::string(field.note) + "\n";
     }
   }
   return out;

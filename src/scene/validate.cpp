@@ -1,6 +1,7 @@
 // nephele — range checks on a resolved scene.
 #include <stb/stb_image.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -25,6 +26,10 @@ constexpr float kMaxLight = 1.0e6f;              // sun.illuminance, output.expo
 constexpr float kMaxFactor = 100.0f;             // extinction and light multipliers on clouds
 constexpr float kMaxAirCoefficientPerM = 0.01f;  // 100 m of air has optical depth 1
 constexpr float kMaxWindMps = 200.0f;
+// Voxel clouds' anchors (scene.h, VoxelCloudParams::position_m).
+constexpr float kMaxVoxelCloudDistanceM = 1.0e7f;
+constexpr float kMinVoxelCloudUpM = -1.0e3f;
+constexpr float kMaxVoxelCloudUpM = 1.0e5f;
 // Animation time: winds of kMaxWindMps carry the clouds 2e8 m, where float keeps ~16 m steps.
 constexpr float kMaxTimeS = 1.0e6f;
 // What a weather map's channels mean (scene.h, CloudParams::weather_map), for messages.
@@ -328,6 +333,76 @@ void check_quality(const Checker& check, const QualityParams& quality) {
     check.fail("quality.march_stride", std::to_string(quality.march_stride), "must be 1, 2 or 4");
   check.in_range("quality.cloud_downsample", quality.cloud_downsample, 1, 4);
   check.in_range("quality.light_volume_km", quality.light_volume_km, 0, 1000);
+  if (quality.voxel_march != VoxelMarch::Plain && quality.voxel_march != VoxelMarch::ThreePhase)
+    check.fail("quality.voxel_march", std::to_string(static_cast<int>(quality.voxel_march)),
+               "must be plain or three-phase");
+  if (quality.voxel_shadow != VoxelShadow::LightMarch &&
+      quality.voxel_shadow != VoxelShadow::SdfCone)
+    check.fail("quality.voxel_shadow", std::to_string(static_cast<int>(quality.voxel_shadow)),
+               "must be march or sdf-cone");
+  check.in_range("quality.sdf_light_tangent", quality.sdf_light_tangent, 0.001f, 10.0f);
+}
+
+// A string value as messages show it: quoted for a scene key, as typed for a flag.
+std::string string_text(const Checker& check, const std::string& key, const std::string& value) {
+  return check.is_flag(key) ? value : scene_detail::toml_quote(value);
+}
+
+bool ends_with_ignoring_case(const std::string& text, std::string_view suffix) {
+  if (text.size() < suffix.size()) return false;
+  for (size_t i = 0; i < suffix.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(text[text.size() - suffix.size() + i])) !=
+        suffix[i])
+      return false;
+  return true;
+}
+
+void check_voxel_cloud(const Checker& check, const VoxelCloudParams& cloud, size_t index) {
+  const std::string prefix = scene_detail::voxel_cloud_key(index);
+  const std::string file_key = prefix + ".file", preset_key = prefix + ".preset";
+  if (cloud.file.empty() && cloud.preset.empty())
+    check.fail(preset_key, string_text(check, preset_key, cloud.preset),
+               "a voxel cloud needs exactly one of file (.vdb or .nvdb) and preset (cumulus, "
+               "cumulus-congestus or cumulonimbus); neither is given");
+  if (!cloud.file.empty() && !cloud.preset.empty())
+    check.fail(file_key, string_text(check, file_key, cloud.file),
+               "preset = " + scene_detail::toml_quote(cloud.preset) +
+                   " is given too; give exactly one of file and preset");
+  if (!cloud.preset.empty() && !scene_detail::is_voxel_cloud_preset(cloud.preset))
+    check.fail(preset_key, string_text(check, preset_key, cloud.preset),
+               "must be cumulus, cumulus-congestus or cumulonimbus");
+  if (!cloud.file.empty()) {
+    // The importer reads the grids and reports what is wrong inside; here only what the
+    // name and the file system tell.
+    if (!ends_with_ignoring_case(cloud.file, ".vdb") &&
+        !ends_with_ignoring_case(cloud.file, ".nvdb"))
+      check.fail(file_key, string_text(check, file_key, cloud.file),
+                 "must be an OpenVDB (.vdb) or NanoVDB (.nvdb) file");
+    check.readable_file(file_key, cloud.file);
+  }
+  const std::string position_key = prefix + ".position_m";
+  const glm::vec3 p = cloud.position_m;
+  check.finite(position_key, p);
+  if (!(std::abs(p.x) <= kMaxVoxelCloudDistanceM && std::abs(p.y) <= kMaxVoxelCloudDistanceM))
+    check.fail(position_key, check.vector_text(position_key, p),
+               "east and north must be in [-" + format_float(kMaxVoxelCloudDistanceM) + ", " +
+                   format_float(kMaxVoxelCloudDistanceM) + "] m");
+  if (!(p.z >= kMinVoxelCloudUpM && p.z <= kMaxVoxelCloudUpM))
+    check.fail(position_key, check.vector_text(position_key, p),
+               "up must be in [" + format_float(kMinVoxelCloudUpM) + ", " +
+                   format_float(kMaxVoxelCloudUpM) + "] m");
+  check.in_range(prefix + ".scale", cloud.scale, 0.0f, kMaxFactor, true);
+  check.in_range(prefix + ".rotation_deg", cloud.rotation_deg, -360.0f, 360.0f);
+  check.in_range(prefix + ".density", cloud.density, 0.0f, kMaxFactor);
+  check.wind(prefix + ".wind_mps", cloud.wind_mps);
+  check.in_range(prefix + ".resolution", cloud.resolution, 16, 256);
+}
+
+void check_voxel_clouds(const Checker& check, const std::vector<VoxelCloudParams>& clouds) {
+  if (clouds.size() > size_t(kMaxVoxelClouds))
+    check.fail("voxel_clouds", std::to_string(clouds.size()) + " clouds",
+               "at most " + std::to_string(kMaxVoxelClouds) + " voxel clouds per scene");
+  for (size_t i = 0; i < clouds.size(); ++i) check_voxel_cloud(check, clouds[i], i);
 }
 
 void check_output(const Checker& check, const OutputParams& output) {
@@ -380,6 +455,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_layers(check, scene);
   check_quality(check, scene.quality);
   check_output(check, scene.output);
+  check_voxel_clouds(check, scene.voxel_clouds);
   check_conditions(check, scene);
   check.in_range("time_s", scene.time_s, -kMaxTimeS, kMaxTimeS);
   check_time(check, scene);

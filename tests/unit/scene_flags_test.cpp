@@ -97,6 +97,9 @@ TEST(SceneFlags, RegistersExactlyTheSceneSpellings) {
                            "--light-volume-km",
                            "--mode",
                            "--weather-map",
+                           "--voxel-march",
+                           "--voxel-shadow",
+                           "--voxel-cloud",
                            "--exposure"})
     EXPECT_NO_THROW(app.get_option(flag)) << flag;
   for (const char* flag : {"--output", "--stats-json", "--verbose", "--device"})
@@ -171,6 +174,14 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--mode", "baseline"},
        [](const Scene& s) { return s.quality.mode == MarchMode::Baseline; }},
       {{"--exposure", "0.25"}, [](const Scene& s) { return s.output.exposure == 0.25f; }},
+      {{"--voxel-march", "plain"},
+       [](const Scene& s) { return s.quality.voxel_march == VoxelMarch::Plain; }},
+      {{"--voxel-march", "three-phase"},
+       [](const Scene& s) { return s.quality.voxel_march == VoxelMarch::ThreePhase; }},
+      {{"--voxel-shadow", "sdf-cone"},
+       [](const Scene& s) { return s.quality.voxel_shadow == VoxelShadow::SdfCone; }},
+      {{"--voxel-shadow", "march"},
+       [](const Scene& s) { return s.quality.voxel_shadow == VoxelShadow::LightMarch; }},
   };
   for (const Override& o : overrides) {
     SCOPED_TRACE(o.args[0] + " " + o.args[1]);
@@ -273,12 +284,86 @@ TEST(SceneFlags, MalformedValuesNameTheFlag) {
             "--width 12.5: expected an integer in [-2147483648, 2147483647]");
   EXPECT_EQ(resolve_error({"--seed", "-1"}), "--seed -1: expected an integer in [0, 4294967295]");
   EXPECT_EQ(resolve_error({"--mode", "fast"}), "--mode fast: expected default or baseline");
+  EXPECT_EQ(resolve_error({"--voxel-march", "three_phase"}),
+            "--voxel-march three_phase: expected plain or three-phase");
+  EXPECT_EQ(resolve_error({"--voxel-shadow", "cone"}),
+            "--voxel-shadow cone: expected march or sdf-cone");
   EXPECT_EQ(resolve_error({"--sun-elevation-deg", "x"}),
             "--sun-elevation-deg x: expected a number");
   EXPECT_EQ(resolve_error({"--sun-elevation-deg", "91"}),
             "--sun-elevation-deg 91: must be in [-90, 90]");
   EXPECT_EQ(resolve_error({"--sun-azimuth-deg", "inf"}), "--sun-azimuth-deg inf: must be finite");
   EXPECT_EQ(resolve_error({"--density", "1e60"}), "--density 1e60: is out of range");
+}
+
+TEST(SceneFlags, VoxelCloudSpecsAppendClouds) {
+  const Scene scene = resolve({"--voxel-cloud", "preset:cumulus:7@0,4000,1200", "--voxel-cloud",
+                               "preset:cumulonimbus@-1.5,+2,1e3",
+                               "--voxel-cloud=preset:cumulus-congestus:4294967295@0,0,0"});
+  ASSERT_EQ(scene.voxel_clouds.size(), 3u);
+  const VoxelCloudParams& a = scene.voxel_clouds[0];
+  EXPECT_EQ(a.preset, "cumulus");
+  EXPECT_EQ(a.file, "");
+  EXPECT_EQ(a.seed, 7u);
+  EXPECT_EQ(a.position_m, glm::vec3(0.0f, 4000.0f, 1200.0f));
+  EXPECT_EQ(a.scale, VoxelCloudParams{}.scale);  // the rest at their defaults
+  EXPECT_EQ(a.resolution, VoxelCloudParams{}.resolution);
+  EXPECT_EQ(scene.voxel_clouds[1].preset, "cumulonimbus");
+  EXPECT_EQ(scene.voxel_clouds[1].seed, VoxelCloudParams{}.seed);
+  EXPECT_EQ(scene.voxel_clouds[1].position_m, glm::vec3(-1.5f, 2.0f, 1000.0f));
+  EXPECT_EQ(scene.voxel_clouds[2].preset, "cumulus-congestus");
+  EXPECT_EQ(scene.voxel_clouds[2].seed, 4294967295u);
+  EXPECT_TRUE(resolve({}).voxel_clouds.empty());
+
+  // A file: the last '@' starts the position; the path is taken as given.
+  const VoxelCloudParams file = parse_voxel_cloud_spec("clouds/a@b.vdb@1,2,3");
+  EXPECT_EQ(file.file, "clouds/a@b.vdb");
+  EXPECT_EQ(file.preset, "");
+  EXPECT_EQ(file.position_m, glm::vec3(1.0f, 2.0f, 3.0f));
+}
+
+TEST(SceneFlags, BadVoxelCloudSpecsNameTheFlagTheValueAndTheForms) {
+  const std::string forms =
+      "; expected FILE@E,N,U or preset:NAME[:SEED]@E,N,U, NAME one of cumulus, "
+      "cumulus-congestus, cumulonimbus (e.g. preset:cumulus:7@0,4000,1200)";
+  const std::pair<const char*, const char*> bad[] = {
+      {"preset:cumulus", "no @E,N,U position"},
+      {"preset:cumulus@0,0", "the position is not 3 comma-separated numbers"},
+      {"preset:cumulus@0,0,0,0", "the position is not 3 comma-separated numbers"},
+      {"preset:cumulus@", "the position is not 3 comma-separated numbers"},
+      {"preset:cumulus@a,0,0", "the position's 'a' is not a number"},
+      {"preset:cumulus@0,,0", "the position's '' is not a number"},
+      {"preset:cumulus@0,0,1e60", "the position's '1e60' is not a number"},
+      {"preset:cirrus@0,0,0", "unknown preset 'cirrus'"},
+      {"preset:@0,0,0", "unknown preset ''"},
+      {"preset:cumulus:x@0,0,0", "the seed 'x' is not an integer in [0, 4294967295]"},
+      {"preset:cumulus:-1@0,0,0", "the seed '-1' is not an integer in [0, 4294967295]"},
+      {"preset:cumulus:@0,0,0", "the seed '' is not an integer in [0, 4294967295]"},
+      {"preset:cumulus:4294967296@0,0,0",
+       "the seed '4294967296' is not an integer in [0, 4294967295]"},
+      {"@0,0,0", "no file before the @"},
+      {"", "no @E,N,U position"},
+  };
+  for (const auto& [spec, why] : bad)
+    EXPECT_EQ(resolve_error({"--voxel-cloud", spec}),
+              std::string("--voxel-cloud ") + spec + ": " + why + forms);
+}
+
+TEST(SceneFlags, VoxelCloudsFromFlagsAreValidatedUnderTheFlag) {
+  EXPECT_EQ(resolve_error({"--voxel-cloud", "preset:cumulus@0,0,2e5"}),
+            "--voxel-cloud 0,0,2e+05: up must be in [-1000, 1e+05] m");
+  EXPECT_EQ(resolve_error({"--voxel-cloud", "cloud.obj@0,0,0"}),
+            "--voxel-cloud cloud.obj: must be an OpenVDB (.vdb) or NanoVDB (.nvdb) file");
+  EXPECT_EQ(resolve_error({"--voxel-cloud", "/nonexistent/c.vdb@0,0,0"}),
+            "--voxel-cloud /nonexistent/c.vdb: cannot read the file");
+  std::vector<std::string> args;
+  for (int i = 0; i <= kMaxVoxelClouds; ++i)
+    args.insert(args.end(), {"--voxel-cloud", "preset:cumulus@0,0,1000"});
+  EXPECT_EQ(resolve_error(args),
+            "--voxel-cloud: 17 voxel clouds (0 in the scene, 17 from --voxel-cloud): at most 16 "
+            "voxel clouds per scene");
+  args.resize(args.size() - 2);
+  EXPECT_EQ(resolve(args).voxel_clouds.size(), size_t(kMaxVoxelClouds));
 }
 
 TEST(SceneFlags, ConflictingFlags) {
@@ -330,6 +415,25 @@ TEST_F(SceneFlagsFile, FileValuesAreNamedWithTheFile) {
   EXPECT_EQ(resolve_error({"--scene", path}), path + ": clouds.coverage = 1.5: must be in [0, 1]");
   // A flag can repair what the file got wrong: validation runs after the overrides.
   EXPECT_EQ(resolve({"--scene", path, "--coverage", "0.5"}).clouds.coverage, 0.5f);
+}
+
+TEST_F(SceneFlagsFile, VoxelCloudFlagsFollowTheFilesClouds) {
+  const std::string path = (dir_ / "scene.toml").string();
+  std::ofstream(path) << "[[voxel_clouds]]\npreset = \"cumulus\"\ndensity = 200\n";
+  // The file's cloud is named with the file, a flag's with the flag.
+  EXPECT_EQ(resolve_error({"--scene", path, "--voxel-cloud", "preset:cumulonimbus@0,0,0"}),
+            path + ": voxel_clouds[0].density = 200: must be in [0, 100]");
+  std::ofstream(path) << "[[voxel_clouds]]\npreset = \"cumulus\"\n";
+  const Scene scene = resolve({"--scene", path, "--voxel-cloud", "preset:cumulonimbus@0,0,0"});
+  ASSERT_EQ(scene.voxel_clouds.size(), 2u);
+  EXPECT_EQ(scene.voxel_clouds[0].preset, "cumulus");
+  EXPECT_EQ(scene.voxel_clouds[1].preset, "cumulonimbus");
+  std::vector<std::string> args = {"--scene", path};
+  for (int i = 0; i < kMaxVoxelClouds; ++i)
+    args.insert(args.end(), {"--voxel-cloud", "preset:cumulus@0,0,1000"});
+  EXPECT_EQ(resolve_error(args),
+            "--voxel-cloud: 17 voxel clouds (1 in the scene, 16 from --voxel-cloud): at most 16 "
+            "voxel clouds per scene");
 }
 
 TEST_F(SceneFlagsFile, MissingSceneFile) {

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele/image.h"
 #include "nephele/sky.h"
@@ -115,6 +116,24 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.quality.mode, b.quality.mode);
   EXPECT_EQ(a.quality.primary_steps, b.quality.primary_steps);
   EXPECT_EQ(a.quality.light_steps, b.quality.light_steps);
+  EXPECT_EQ(a.quality.voxel_march, b.quality.voxel_march);
+  EXPECT_EQ(a.quality.voxel_shadow, b.quality.voxel_shadow);
+  EXPECT_EQ(a.quality.sdf_light_tangent, b.quality.sdf_light_tangent);
+  ASSERT_EQ(a.voxel_clouds.size(), b.voxel_clouds.size());
+  for (size_t i = 0; i < a.voxel_clouds.size(); ++i) {
+    SCOPED_TRACE("voxel cloud " + std::to_string(i));
+    const VoxelCloudParams &av = a.voxel_clouds[i], &bv = b.voxel_clouds[i];
+    EXPECT_EQ(av.file, bv.file);
+    EXPECT_EQ(av.preset, bv.preset);
+    EXPECT_EQ(av.seed, bv.seed);
+    EXPECT_EQ(av.position_m, bv.position_m);
+    EXPECT_EQ(av.scale, bv.scale);
+    EXPECT_EQ(av.rotation_deg, bv.rotation_deg);
+    EXPECT_EQ(av.density, bv.density);
+    EXPECT_EQ(av.follow_wind, bv.follow_wind);
+    EXPECT_EQ(av.wind_mps, bv.wind_mps);
+    EXPECT_EQ(av.resolution, bv.resolution);
+  }
   EXPECT_EQ(a.output.width, b.output.width);
   EXPECT_EQ(a.output.height, b.output.height);
   EXPECT_EQ(a.output.exposure, b.output.exposure);
@@ -168,6 +187,21 @@ Scene unusual_scene() {
               "/maps/\"quoted\" \\ weather.png"};
   s.high_clouds = {6100.5f, 7300.25f, 0.35f, 0.625f, 0.45f, {17.5f, -2.25f}};
   s.quality = {MarchMode::Baseline, 64, 4};
+  s.quality.voxel_march = VoxelMarch::Plain;
+  s.quality.voxel_shadow = VoxelShadow::SdfCone;
+  s.quality.sdf_light_tangent = 0.3333f;
+  s.voxel_clouds.resize(2);
+  s.voxel_clouds[0].file = "/clouds/\"big\" one.NVDB";
+  s.voxel_clouds[0].seed = 77;  // unused with a file, but kept
+  s.voxel_clouds[0].position_m = {-1234.5f, 5e6f, -12.25f};
+  s.voxel_clouds[0].follow_wind = false;
+  s.voxel_clouds[0].wind_mps = {-3.25f, 1e-3f};
+  s.voxel_clouds[1].preset = "cumulonimbus";
+  s.voxel_clouds[1].seed = 4294967295u;
+  s.voxel_clouds[1].scale = 0.1f;
+  s.voxel_clouds[1].rotation_deg = -33.3f;
+  s.voxel_clouds[1].density = 2.5f;
+  s.voxel_clouds[1].resolution = 200;
   s.output = {1920, 1080, 2.5f};
   s.time_s = 12.75f;
   s.noise_seed = 4294967295u;
@@ -449,6 +483,242 @@ TEST(SceneToml, RelativeWeatherMapResolvesAgainstBaseDir) {
       parse_scene_toml("[clouds]\nweather_map = \"\"\n", "s.toml", "/data").clouds.weather_map, "");
 }
 
+// ---------------------------------------------------------------- voxel clouds and their modes
+
+TEST(SceneVoxelClouds, NoneByDefault) {
+  EXPECT_TRUE(Scene{}.voxel_clouds.empty());
+  EXPECT_TRUE(parse_scene_toml("", "scene.toml").voxel_clouds.empty());
+  for (const std::string& name : preset_names())
+    EXPECT_TRUE(load_preset(name).voxel_clouds.empty());
+}
+
+TEST(SceneVoxelClouds, ReadEveryKeyAndBothPositionForms) {
+  // The location comes after the clouds: lat/lon are converted with the file's final one.
+  const Scene scene = parse_scene_toml(
+      "[[voxel_clouds]]\n"
+      "preset = \"cumulus-congestus\"\nseed = 7\nposition_m = [100, -200.5, 1200]\n"
+      "scale = 2.5\nrotation_deg = -45\ndensity = 3\nfollow_wind = false\n"
+      "wind_mps = [4, -5]\nresolution = 64\n"
+      "[[voxel_clouds]]\n"
+      "file = \"/abs/c.vdb\"\nlat_deg = 45.01\nlon_deg = 7.02\naltitude_m = 1500\n"
+      "[location]\nlat_deg = 45.0\nlon_deg = 7.0\n"
+      "[atmosphere]\nplanet_radius_km = 6371\n",
+      "scene.toml");
+  ASSERT_EQ(scene.voxel_clouds.size(), 2u);
+  const VoxelCloudParams& a = scene.voxel_clouds[0];
+  EXPECT_EQ(a.preset, "cumulus-congestus");
+  EXPECT_EQ(a.file, "");
+  EXPECT_EQ(a.seed, 7u);
+  EXPECT_EQ(a.position_m, glm::vec3(100.0f, -200.5f, 1200.0f));
+  EXPECT_EQ(a.scale, 2.5f);
+  EXPECT_EQ(a.rotation_deg, -45.0f);
+  EXPECT_EQ(a.density, 3.0f);
+  EXPECT_FALSE(a.follow_wind);
+  EXPECT_EQ(a.wind_mps, glm::vec2(4.0f, -5.0f));
+  EXPECT_EQ(a.resolution, 64);
+  const VoxelCloudParams& b = scene.voxel_clouds[1];
+  EXPECT_EQ(b.file, "/abs/c.vdb");
+  EXPECT_EQ(b.position_m, glm::vec3(enu_from_lat_lon(scene, 45.01, 7.02, 1500.0)));
+  EXPECT_NEAR(b.position_m.y, 1112.0f, 2.0f);  // 0.01 deg of latitude north
+  EXPECT_GT(b.position_m.x, 1500.0f);          // 0.02 deg of longitude east at 45 deg
+  EXPECT_EQ(b.scale, 1.0f);                    // the rest at their defaults
+  EXPECT_TRUE(b.follow_wind);
+  EXPECT_EQ(b.resolution, 128);
+  Scene generated_only = scene;  // the file does not exist
+  generated_only.voxel_clouds.resize(1);
+  EXPECT_NO_THROW(validate_scene(generated_only));
+}
+
+TEST(SceneVoxelClouds, QualityModes) {
+  Scene scene = parse_scene_toml(
+      "[quality]\nvoxel_march = \"plain\"\nvoxel_shadow = \"sdf-cone\"\nsdf_light_tangent = 0.5\n",
+      "scene.toml");
+  EXPECT_EQ(scene.quality.voxel_march, VoxelMarch::Plain);
+  EXPECT_EQ(scene.quality.voxel_shadow, VoxelShadow::SdfCone);
+  EXPECT_EQ(scene.quality.sdf_light_tangent, 0.5f);
+  EXPECT_EQ(Scene{}.quality.voxel_march, VoxelMarch::ThreePhase);
+  EXPECT_EQ(Scene{}.quality.voxel_shadow, VoxelShadow::LightMarch);
+  EXPECT_EQ(
+      parse_error("[quality]\nvoxel_march = \"fast\"\n"),
+      "scene.toml:2:15: quality.voxel_march = \"fast\": expected \"plain\" or \"three-phase\"");
+  EXPECT_EQ(parse_error("[quality]\nvoxel_shadow = 1\n"),
+            "scene.toml:2:16: quality.voxel_shadow = 1: expected \"march\" or \"sdf-cone\"");
+  for (VoxelMarch m : {VoxelMarch::Plain, VoxelMarch::ThreePhase})
+    EXPECT_EQ(parse_voxel_march(to_string(m)), m);
+  for (VoxelShadow m : {VoxelShadow::LightMarch, VoxelShadow::SdfCone})
+    EXPECT_EQ(parse_voxel_shadow(to_string(m)), m);
+  EXPECT_EQ(parse_voxel_march("three_phase"), std::nullopt);
+  EXPECT_EQ(parse_voxel_shadow("sdf"), std::nullopt);
+}
+
+TEST(SceneVoxelClouds, ReadingErrorsNameTheCloudAndKey) {
+  EXPECT_EQ(parse_error("[[voxel_clouds]]\npreset = \"cumulus\"\n[[voxel_clouds]]\nfoo = 1\n")
+                .rfind("scene.toml:4:1: unknown key 'voxel_clouds[1].foo' (allowed in "
+                       "[[voxel_clouds]]: file, preset, seed, position_m, scale, rotation_deg, "
+                       "density, follow_wind, wind_mps, resolution, lat_deg, lon_deg, altitude_m)",
+                       0),
+            0u);
+  EXPECT_EQ(parse_error("[[voxel_clouds]]\ndensity = \"x\"\n"),
+            "scene.toml:2:11: voxel_clouds[0].density = \"x\": expected a number");
+  EXPECT_EQ(parse_error("[[voxel_clouds]]\nposition_m = [1, 2]\n"),
+            "scene.toml:2:14: voxel_clouds[0].position_m = [1, 2]: expected an array of 3 numbers");
+  EXPECT_EQ(parse_error("voxel_clouds = 1\n"),
+            "scene.toml:1:16: voxel_clouds = 1: expected an array of tables [[voxel_clouds]]");
+  EXPECT_EQ(parse_error("voxel_clouds = [1]\n"),
+            "scene.toml:1:16: voxel_clouds = [1]: expected an array of tables [[voxel_clouds]]");
+  EXPECT_NE(parse_error("[voxel_clouds]\npreset = \"cumulus\"\n")
+                .find("voxel_clouds = {...}: expected an array of tables [[voxel_clouds]]"),
+            std::string::npos);
+  // The top level's unknown-key message lists the array too.
+  EXPECT_NE(parse_error("voxel_cloud = 1\n").find(", [[voxel_clouds]])"), std::string::npos);
+}
+
+TEST(SceneVoxelClouds, PositionFormsAreExclusiveAndComplete) {
+  EXPECT_EQ(parse_error("[[voxel_clouds]]\npreset = \"cumulus\"\nposition_m = [0, 0, 1000]\n"
+                        "lat_deg = 1\nlon_deg = 2\naltitude_m = 3\n"),
+            "scene.toml:4:11: voxel_clouds[0]: position_m and lat_deg/lon_deg/altitude_m are "
+            "both given; give one form");
+  EXPECT_EQ(parse_error("[[voxel_clouds]]\nlat_deg = 1\nlon_deg = 2\n"),
+            "scene.toml:2:11: voxel_clouds[0].altitude_m is missing (lat_deg, lon_deg and "
+            "altitude_m go together)");
+  EXPECT_EQ(parse_error("[[voxel_clouds]]\nlat_deg = 91\nlon_deg = 2\naltitude_m = 3\n"),
+            "scene.toml:2:11: voxel_clouds[0].lat_deg = 91: must be in [-90, 90]");
+  EXPECT_EQ(parse_error("[[voxel_clouds]]\nlat_deg = 1\nlon_deg = nan\naltitude_m = 3\n"),
+            "scene.toml:3:11: voxel_clouds[0].lon_deg = nan: must be in [-180, 360]");
+  EXPECT_EQ(parse_error("[[voxel_clouds]]\nlat_deg = 1\nlon_deg = 2\naltitude_m = 1e6\n"),
+            "scene.toml:4:14: voxel_clouds[0].altitude_m = 1e+06: must be in [-1000, 1e+05]");
+}
+
+TEST(SceneVoxelClouds, RelativeFilesResolveAgainstTheSceneFile) {
+  const std::string toml = "[[voxel_clouds]]\nfile = \"clouds/c.vdb\"\n";
+  EXPECT_EQ(parse_scene_toml(toml, "s.toml", "/data/scenes").voxel_clouds[0].file,
+            "/data/scenes/clouds/c.vdb");
+  EXPECT_EQ(parse_scene_toml(toml, "s.toml", "").voxel_clouds[0].file, "clouds/c.vdb");
+  EXPECT_EQ(parse_scene_toml("[[voxel_clouds]]\nfile = \"/abs/c.vdb\"\n", "s.toml", "/data")
+                .voxel_clouds[0]
+                .file,
+            "/abs/c.vdb");
+  EXPECT_EQ(parse_scene_toml("[[voxel_clouds]]\npreset = \"cumulus\"\n", "s.toml", "/data")
+                .voxel_clouds[0]
+                .file,
+            "");
+}
+
+// A scene with one voxel cloud, generated, changed by `change`.
+std::string voxel_error(const std::function<void(VoxelCloudParams&)>& change) {
+  return validate_error([&](Scene& s) {
+    s.voxel_clouds.resize(1);
+    s.voxel_clouds[0].preset = "cumulus";
+    change(s.voxel_clouds[0]);
+  });
+}
+
+TEST(SceneVoxelClouds, ValidationNamesTheCloudTheValueAndTheRange) {
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.preset = ""; }),
+            "voxel_clouds[0].preset = \"\": a voxel cloud needs exactly one of file (.vdb or "
+            ".nvdb) and preset (cumulus, cumulus-congestus or cumulonimbus); neither is given");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.file = "a.vdb"; }),
+            "voxel_clouds[0].file = \"a.vdb\": preset = \"cumulus\" is given too; give exactly "
+            "one of file and preset");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.preset = "cirrus"; }),
+            "voxel_clouds[0].preset = \"cirrus\": must be cumulus, cumulus-congestus or "
+            "cumulonimbus");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) {
+              c.position_m = {2e7f, 0.0f, 1500.0f};
+            }),
+            "voxel_clouds[0].position_m = (2e+07, 0, 1500): east and north must be in [-1e+07, "
+            "1e+07] m");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) {
+              c.position_m = {0.0f, 0.0f, -1001.0f};
+            }),
+            "voxel_clouds[0].position_m = (0, 0, -1001): up must be in [-1000, 1e+05] m");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) {
+              c.position_m = {0.0f, kNaN, 0.0f};
+            }),
+            "voxel_clouds[0].position_m = (0, nan, 0): must be finite");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.scale = 0.0f; }),
+            "voxel_clouds[0].scale = 0: must be in (0, 100]");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.scale = kInf; }),
+            "voxel_clouds[0].scale = inf: must be in (0, 100]");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.rotation_deg = 361.0f; }),
+            "voxel_clouds[0].rotation_deg = 361: must be in [-360, 360]");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.density = kNaN; }),
+            "voxel_clouds[0].density = nan: must be in [0, 100]");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.density = -1.0f; }),
+            "voxel_clouds[0].density = -1: must be in [0, 100]");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) {
+              c.wind_mps = {0.0f, 201.0f};
+            }),
+            "voxel_clouds[0].wind_mps = (0, 201): every component must be in [-200, 200]");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.resolution = 15; }),
+            "voxel_clouds[0].resolution = 15: must be in [16, 256]");
+  EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.resolution = 257; }),
+            "voxel_clouds[0].resolution = 257: must be in [16, 256]");
+  EXPECT_EQ(validate_error([](Scene& s) { s.quality.sdf_light_tangent = 0.0f; }),
+            "quality.sdf_light_tangent = 0: must be in [0.001, 10]");
+  EXPECT_EQ(validate_error([](Scene& s) { s.quality.sdf_light_tangent = kNaN; }),
+            "quality.sdf_light_tangent = nan: must be in [0.001, 10]");
+  EXPECT_EQ(validate_error([](Scene& s) { s.quality.voxel_march = static_cast<VoxelMarch>(7); }),
+            "quality.voxel_march = 7: must be plain or three-phase");
+  EXPECT_EQ(validate_error([](Scene& s) { s.quality.voxel_shadow = static_cast<VoxelShadow>(7); }),
+            "quality.voxel_shadow = 7: must be march or sdf-cone");
+  // The index is the cloud's, from 0.
+  EXPECT_EQ(validate_error([](Scene& s) {
+              s.voxel_clouds.resize(3);
+              for (VoxelCloudParams& c : s.voxel_clouds) c.preset = "cumulus";
+              s.voxel_clouds[2].density = 101.0f;
+            }),
+            "voxel_clouds[2].density = 101: must be in [0, 100]");
+}
+
+TEST(SceneVoxelClouds, AtMostSixteen) {
+  EXPECT_EQ(validate_error([](Scene& s) {
+              s.voxel_clouds.resize(kMaxVoxelClouds + 1);
+              for (VoxelCloudParams& c : s.voxel_clouds) c.preset = "cumulus";
+            }),
+            "voxel_clouds = 17 clouds: at most 16 voxel clouds per scene");
+  Scene scene;
+  scene.voxel_clouds.resize(kMaxVoxelClouds);
+  for (VoxelCloudParams& c : scene.voxel_clouds) c.preset = "cumulonimbus";
+  EXPECT_NO_THROW(validate_scene(scene));
+}
+
+TEST(SceneVoxelClouds, BoundaryValuesAreAccepted) {
+  const std::vector<std::function<void(VoxelCloudParams&)>> fine = {
+      [](VoxelCloudParams& c) {
+        c.position_m = {-1e7f, 1e7f, -1000.0f};
+      },
+      [](VoxelCloudParams& c) {
+        c.position_m = {1e7f, -1e7f, 1e5f};
+      },
+      [](VoxelCloudParams& c) { c.scale = 100.0f; },
+      [](VoxelCloudParams& c) { c.scale = 1e-6f; },
+      [](VoxelCloudParams& c) { c.rotation_deg = -360.0f; },
+      [](VoxelCloudParams& c) { c.rotation_deg = 360.0f; },
+      [](VoxelCloudParams& c) { c.density = 0.0f; },
+      [](VoxelCloudParams& c) { c.density = 100.0f; },
+      [](VoxelCloudParams& c) {
+        c.wind_mps = {-200.0f, 200.0f};
+      },
+      [](VoxelCloudParams& c) { c.resolution = 16; },
+      [](VoxelCloudParams& c) { c.resolution = 256; },
+      [](VoxelCloudParams& c) { c.preset = "cumulus-congestus"; },
+      [](VoxelCloudParams& c) { c.preset = "cumulonimbus"; },
+  };
+  for (size_t i = 0; i < fine.size(); ++i) {
+    Scene scene;
+    scene.voxel_clouds.resize(1);
+    scene.voxel_clouds[0].preset = "cumulus";
+    fine[i](scene.voxel_clouds[0]);
+    EXPECT_NO_THROW(validate_scene(scene)) << "case " << i;
+  }
+  for (float tangent : {0.001f, 10.0f}) {
+    Scene scene;
+    scene.quality.sdf_light_tangent = tangent;
+    EXPECT_NO_THROW(validate_scene(scene)) << tangent;
+  }
+}
+
 // ---------------------------------------------------------------- files
 
 class SceneFile : public ::testing::Test {
@@ -474,6 +744,34 @@ TEST_F(SceneFile, LoadResolvesWeatherMapNextToTheFile) {
   EXPECT_EQ(scene.clouds.coverage, 0.7f);
   EXPECT_EQ(fs::path(scene.clouds.weather_map), dir_ / "maps" / "w.png");
   EXPECT_NO_THROW(validate_scene(scene));
+}
+
+TEST_F(SceneFile, VoxelCloudFilesAreCheckedButNotRead) {
+  write(dir_ / "maps" / "c.vdb", "not a grid: the importer reads it, not validation");
+  write(dir_ / "maps" / "c.NVDB", "");
+  write(dir_ / "maps" / "c.obj", "");
+  fs::create_directories(dir_ / "maps" / "d.vdb");
+  write(dir_ / "scene.toml",
+        "[[voxel_clouds]]\nfile = \"maps/c.vdb\"\n[[voxel_clouds]]\nfile = \"maps/c.NVDB\"\n");
+  const Scene scene = load_scene_file((dir_ / "scene.toml").string());
+  EXPECT_EQ(scene.voxel_clouds[0].file, (dir_ / "maps" / "c.vdb").string());
+  EXPECT_NO_THROW(validate_scene(scene));
+
+  auto error_for = [&](const std::string& file) {
+    Scene s;
+    s.voxel_clouds.resize(1);
+    s.voxel_clouds[0].file = file;
+    return input_error([&] { validate_scene(s); });
+  };
+  const std::string maps = (dir_ / "maps").string();
+  // Long paths are shortened in messages: the start and the end are compared.
+  const auto expect_error = [&](const std::string& file, const std::string& what) {
+    const std::string message = error_for(file);
+    EXPECT_EQ(message.rfind("voxel_clouds[0].file = \"/", 0), 0u) << message;
+    EXPECT_TRUE(message.ends_with("\": " + what) || message.ends_with("...: " + what)) << message;
+  };
+  expect_error(maps + "/c.obj", "must be an OpenVDB (.vdb) or NanoVDB (.nvdb) file");
+  expect_error(maps + "/d.vdb", "is not a regular file");
 }
 
 TEST_F(SceneFile, ErrorsNameTheFile) {
@@ -1015,6 +1313,22 @@ TEST(SceneRoundTrip, AwkwardFloatsSurvive) {
     EXPECT_EQ(back.time_s, value) << scene_to_toml(scene);
     EXPECT_EQ(std::signbit(back.time_s), std::signbit(value));
   }
+}
+
+TEST(SceneRoundTrip, VoxelCloudsAreArrayTablesWithoutTheUnusedSource) {
+  Scene scene;
+  scene.voxel_clouds.resize(2);
+  scene.voxel_clouds[0].preset = "cumulus";
+  scene.voxel_clouds[1].file = "c.vdb";
+  const std::string toml = scene_to_toml(scene);
+  EXPECT_EQ(toml.find("file = \"\""), std::string::npos) << toml;
+  EXPECT_EQ(toml.find("preset = \"\""), std::string::npos) << toml;
+  EXPECT_NE(toml.find("\n[[voxel_clouds]]\npreset = \"cumulus\"  # "), std::string::npos) << toml;
+  EXPECT_NE(toml.find("\n[[voxel_clouds]]\nfile = \"c.vdb\"  # "), std::string::npos) << toml;
+  expect_same_scene(parse_scene_toml(toml, "dump.toml"), scene);
+  EXPECT_NE(toml.find("voxel_march = \"three-phase\""), std::string::npos) << toml;
+  EXPECT_NE(toml.find("voxel_shadow = \"march\""), std::string::npos) << toml;
+  EXPECT_NE(toml.find("sdf_light_tangent = 0.1"), std::string::npos) << toml;
 }
 
 TEST(SceneRoundTrip, OutputIsCommentedAndHasAllTables) {

@@ -57,6 +57,9 @@ Scene unusual_scene() {
   scene.clouds.weather_map = "maps/w \"1\".png";
   scene.atmosphere.model = SkyModel::Preetham;
   scene.quality.mode = MarchMode::Baseline;
+  scene.quality.voxel_march = VoxelMarch::Plain;
+  scene.quality.voxel_shadow = VoxelShadow::SdfCone;
+  scene.quality.sdf_light_tangent = 2.5f;
   scene.conditions.mode = ConditionsMode::Overlay;
   scene.conditions.bad.keys[3].set.fog_far_m = 1234.5f;
   scene.output.auto_exposure = true;
@@ -86,6 +89,14 @@ TEST(SceneParameters, KindsAllowedValuesAndNotes) {
   EXPECT_EQ(parameter("quality.mode").allowed, (std::vector<std::string>{"default", "baseline"}));
   EXPECT_EQ(parameter("conditions.mode").allowed,
             (std::vector<std::string>{"off", "artist", "overlay"}));
+  EXPECT_EQ(parameter("quality.voxel_march").kind, SceneValueKind::kEnum);
+  EXPECT_EQ(parameter("quality.voxel_march").allowed,
+            (std::vector<std::string>{"plain", "three-phase"}));
+  EXPECT_EQ(parameter("quality.voxel_shadow").allowed,
+            (std::vector<std::string>{"march", "sdf-cone"}));
+  EXPECT_EQ(parameter("quality.sdf_light_tangent").kind, SceneValueKind::kFloat);
+  EXPECT_EQ(parameter("quality.sdf_light_tangent").note,
+            "the SDF cone's half-angle tangent, [0.001, 10]");
   EXPECT_TRUE(parameter("clouds.coverage").allowed.empty());
   EXPECT_NE(parameter("conditions.good.night.hour").note.find("[0, 24)"), std::string::npos);
 }
@@ -183,6 +194,35 @@ TEST(SceneParameters, WrongTypesNameTheKeyAndLeaveTheSceneAlone) {
   EXPECT_EQ(input_error([&] { set_scene_value(scene, "clouds.coverage", "0.5\nclouds.density = 1"); }),
             "clouds.coverage = 0.5?clouds.density = 1: expected one TOML value on one line");
   EXPECT_EQ(scene_to_toml(scene), before);
+}
+
+TEST(SceneParameters, VoxelModesAreSetByName) {
+  Scene scene;
+  EXPECT_EQ(get_scene_value(scene, "quality.voxel_march"), "\"three-phase\"");
+  EXPECT_EQ(get_scene_value(scene, "quality.voxel_shadow"), "\"march\"");
+  set_scene_value(scene, "quality.voxel_march", "\"plain\"");
+  set_scene_value(scene, "quality.voxel_shadow", "\"sdf-cone\"");
+  set_scene_value(scene, "quality.sdf_light_tangent", "0.25");
+  EXPECT_EQ(scene.quality.voxel_march, VoxelMarch::Plain);
+  EXPECT_EQ(scene.quality.voxel_shadow, VoxelShadow::SdfCone);
+  EXPECT_EQ(scene.quality.sdf_light_tangent, 0.25f);
+  EXPECT_EQ(input_error([&] { set_scene_value(scene, "quality.voxel_shadow", "\"cone\""); }),
+            "quality.voxel_shadow = \"cone\": expected \"march\" or \"sdf-cone\"");
+}
+
+// The voxel clouds are an array of varying length: not one parameter each, and a scene's clouds
+// are kept by get/set of the others.
+TEST(SceneParameters, VoxelCloudsAreNotParameters) {
+  for (const SceneParameter& p : scene_parameters())
+    EXPECT_FALSE(p.key.starts_with("voxel_clouds")) << p.key;
+  Scene scene;
+  scene.voxel_clouds.resize(2);
+  scene.voxel_clouds[1].preset = "cumulus";
+  set_scene_value(scene, "clouds.coverage", "0.25");
+  ASSERT_EQ(scene.voxel_clouds.size(), 2u);
+  EXPECT_EQ(scene.voxel_clouds[1].preset, "cumulus");
+  EXPECT_NE(input_error([&] { get_scene_value(scene, "voxel_clouds"); }).find("unknown scene key"),
+            std::string::npos);
 }
 
 TEST(SceneParameters, RangesAreLeftToValidation) {
