@@ -256,6 +256,16 @@ TEST_F(CliTest, RejectsAGreyWeatherMap) {
                    "A density)"});
 }
 
+// A bad --voxel-cloud is refused before anything renders: one line naming the flag, the value
+// and the accepted forms (each form's messages: scene_flags_test.cpp).
+TEST_F(CliTest, RejectsABadVoxelCloudSpec) {
+  expect_rejected("--voxel-cloud preset:cirrus@0,0,1000",
+                  {"--voxel-cloud preset:cirrus@0,0,1000: unknown preset 'cirrus'; expected "
+                   "FILE@E,N,U or preset:NAME[:SEED]@E,N,U"});
+  expect_rejected("--voxel-cloud preset:cumulus@0,0,1000 --voxel-cloud c.obj@0,0,0",
+                  {"--voxel-cloud c.obj: must be an OpenVDB (.vdb) or NanoVDB (.nvdb) file"});
+}
+
 TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
   expect_rejected("--coverag 0.5", {"--coverag"});
   expect_rejected("--coverage abc", {"--coverage", "abc"});
