@@ -160,7 +160,7 @@ void main() {
   vec3 ambient = 0.5f * (ambient_above + ambient_below);
   // The ground light's share under the clouds, once per ray: where it enters the clouds.
   vec3 entry = eye + dir * segment.x;
-  float below_share = below_light_share(entry, length(entry) - frame.radii_m.x);
+  float below_share = frame.voxel_info.x > 0 ? -1.0f : below_light_share(entry, length(entry) - frame.radii_m.x);
   float g_f = frame.cloud_phase.x;
   float g_b = frame.cloud_phase.y;
   float lobe = frame.cloud_phase.z;
@@ -277,6 +277,9 @@ void main() {
         float energy = multiple_scattering(tau_light, mu, powder, phases) * lit_visibility;
         // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
         float h = saturate(layer_fraction(lit_pos));
+        // With voxel clouds, where the ray first meets cloud: the shell's entry may lie far
+        // from a voxel cloud, and the light volume's voxels there would draw facets on it.
+        if (below_share < 0.0f) below_share = below_light_share(lit_pos, length(lit_pos) - frame.radii_m.x);
         // What the cloud between the sample and the light lets through: the sunlight it has
         // scattered forward, no longer a beam but a diffuse flux (radiance = flux / pi, the
         // flux through a horizontal deck mu_sun times the sun's), and the sky's light through
@@ -345,14 +348,22 @@ void main() {
         vec3 cone = sdf_cone_trace(pos, sun, vox.cloud, 20.0f / (sigma_scale * light_atten));
         lit_depth = cone.x;
         lit_visibility = cone.y;
-        lit_near_m = cone.z;
-        lit_volume = light_volume_covers(pos + sun * cone.z);
+        // The light volume from a voxel beyond the box (see below); what lies between is the
+        // noise clouds' fade, nearly empty.
+        lit_near_m = cone.z + light_volume_voxel_at(pos);
+        lit_volume = light_volume_covers(pos + sun * lit_near_m);
         light_k = light_n + 1;
         continue;
       }
       float length_m = light_ray_length(pos, sun);
       lit_volume = light_volume_covers(pos);
       lit_near_m = lit_volume ? min(light_volume_voxel_at(pos), length_m) : length_m;
+      // In a voxel region, across the region and one of the light volume's voxels beyond:
+      // the volume is too coarse for a voxel cloud's sharp shapes (its trilinear voxels, which
+      // straddle the region's edge, would draw facets on them).
+      if (in_region)
+        lit_near_m = min(max(lit_near_m, voxel_region_exit_m(pos, sun) + light_volume_voxel_at(pos)),
+                         length_m);
       lit_volume = lit_volume && lit_near_m < length_m;
       lit_unit_m = lit_near_m / float(light_n * (light_n + 1) / 2);
       lit_depth = 0.0f;
