@@ -1,5 +1,6 @@
 // nephele CLI — scene flags: registration, parsing, application to a Scene.
 #include "scene_flags.h"
+#include "voxel/voxel_grid.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -300,13 +301,15 @@ void parse_into(const std::string& flag, const std::string& text, VoxelShadow& o
 constexpr const char* kVoxelCloudFlag = "--voxel-cloud";
 constexpr const char* kVoxelCloudForms =
     "expected FILE@E,N,U or preset:NAME[:SEED]@E,N,U, NAME one of cumulus, cumulus-congestus, "
-    "cumulonimbus (e.g. preset:cumulus:7@0,4000,1200)";
+    "cumulonimbus, cumulus-mesh (e.g. preset:cumulus:7@0,4000,1200)";
 constexpr std::string_view kPresetPrefix = "preset:";
 
 // The generated clouds (src/voxel's parse_cloud_preset; validate_scene checks them too, but a
 // wrong name is a malformed spec, told with the accepted forms).
 bool is_voxel_cloud_preset_name(std::string_view name) {
-  return name == "cumulus" || name == "cumulus-congestus" || name == "cumulonimbus";
+  for (std::string_view preset : voxel::kCloudPresetNames)
+    if (name == preset) return true;
+  return false;
 }
 
 void check_conflicts(const SceneFlags& flags) {
@@ -440,7 +443,7 @@ void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
            flags.voxel_clouds.insert(flags.voxel_clouds.end(), values.begin(), values.end());
          },
          "add a voxel cloud (repeatable): FILE@E,N,U (an OpenVDB .vdb or NanoVDB .nvdb file) or "
-         "preset:NAME[:SEED]@E,N,U (a generated cumulus, cumulus-congestus or cumulonimbus), "
+         "preset:NAME[:SEED]@E,N,U (a generated cumulus, cumulus-congestus or cumulonimbus, or cumulus-mesh: the shipped mesh baked), "
          "anchored at its base's centre (m: east, north, up); e.g. preset:cumulus:7@0,4000,1200")
       ->type_name("SPEC")
       ->allow_extra_args(false)

@@ -260,7 +260,7 @@ struct VoxelCloudParams {
   // scene file relative to it. Exactly one of file and preset.
   std::string file;
   // A generated cloud (`nephele make-cloud`): "cumulus", "cumulus-congestus", "cumulonimbus",
-  // with `seed`.
+  // with `seed`, or "cumulus-mesh", baked from the mesh data/meshes/cumulus.obj.
   std::string preset;
   uint32_t seed = 1;
   // ENU (m) of the cloud's anchor: the centre of its base. East and north in [-1e7, 1e7], up in

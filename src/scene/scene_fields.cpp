@@ -1,5 +1,6 @@
 // nephele — the table of scene keys, MarchMode names, number formatting.
 #include "scene/scene_fields.h"
+#include "voxel/voxel_grid.h"
 
 #include <cerrno>
 #include <cstring>
@@ -306,7 +307,7 @@ const std::vector<Section>& scene_sections() {
 const std::vector<VoxelField>& voxel_cloud_fields() {
   static const std::vector<VoxelField> fields = {
       VOXEL_FIELD(file, ".vdb (OpenVDB) or .nvdb (NanoVDB) path; exactly one of file and preset"),
-      VOXEL_FIELD(preset, "generated: cumulus, cumulus-congestus or cumulonimbus"),
+      VOXEL_FIELD(preset, "generated: cumulus, cumulus-congestus, cumulonimbus; or cumulus-mesh, baked from data/meshes/cumulus.obj"),
       VOXEL_FIELD(seed, "the generated cloud's seed, [0, 4294967295]"),
       VOXEL_FIELD(position_m,
                   "east, north, up (m) of the base's centre; east and north in [-1e7, 1e7], up "
@@ -328,7 +329,7 @@ std::string voxel_cloud_key(size_t index) {
 }
 
 bool is_voxel_cloud_preset(std::string_view name) {
-  for (std::string_view preset : kVoxelCloudPresets)
+  for (std::string_view preset : voxel::kCloudPresetNames)
     if (name == preset) return true;
   return false;
 }

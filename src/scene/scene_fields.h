@@ -56,10 +56,7 @@ inline constexpr std::string_view kVoxelCloudGeoKeys[] = {"lat_deg", "lon_deg", 
 // "voxel_clouds[2]": how messages name cloud i (0-based).
 std::string voxel_cloud_key(size_t index);
 
-// The generated clouds' names (parse_cloud_preset of src/voxel takes the same; the scene layer
-// checks them itself so that it needs nothing of the voxel module).
-inline constexpr std::string_view kVoxelCloudPresets[] = {"cumulus", "cumulus-congestus",
-                                                          "cumulonimbus"};
+// One of the voxel clouds' presets (voxel::kCloudPresetNames).
 bool is_voxel_cloud_preset(std::string_view name);
 
 // toml++ builds and destroys nested tables recursively, so a dotted key of 50,000 parts

@@ -363,14 +363,14 @@ void check_voxel_cloud(const Checker& check, const VoxelCloudParams& cloud, size
   if (cloud.file.empty() && cloud.preset.empty())
     check.fail(preset_key, string_text(check, preset_key, cloud.preset),
                "a voxel cloud needs exactly one of file (.vdb or .nvdb) and preset (cumulus, "
-               "cumulus-congestus or cumulonimbus); neither is given");
+               "cumulus-congestus, cumulonimbus or cumulus-mesh); neither is given");
   if (!cloud.file.empty() && !cloud.preset.empty())
     check.fail(file_key, string_text(check, file_key, cloud.file),
                "preset = " + scene_detail::toml_quote(cloud.preset) +
                    " is given too; give exactly one of file and preset");
   if (!cloud.preset.empty() && !scene_detail::is_voxel_cloud_preset(cloud.preset))
     check.fail(preset_key, string_text(check, preset_key, cloud.preset),
-               "must be cumulus, cumulus-congestus or cumulonimbus");
+               "must be cumulus, cumulus-congestus, cumulonimbus or cumulus-mesh");
   if (!cloud.file.empty()) {
     // The importer reads the grids and reports what is wrong inside; here only what the
     // name and the file system tell.

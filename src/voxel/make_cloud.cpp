@@ -7,9 +7,15 @@
 #include <vector>
 
 #include "nephele/error.h"
+#include "nephele_embedded.h"
 #include "voxel/common.h"
 #include "voxel/level_set.h"
 #include "voxel/voxel_grid.h"
+
+namespace nephele_data {
+extern const EmbeddedFile kFiles[];
+extern const size_t kFileCount;
+}  // namespace nephele_data
 
 namespace nephele::voxel {
 namespace {
@@ -176,27 +182,26 @@ float smoothstep(float e0, float e1, float x) {
 }  // namespace
 
 CloudPreset parse_cloud_preset(const std::string& name, const std::string& parameter) {
-  for (CloudPreset p :
-       {CloudPreset::Cumulus, CloudPreset::CumulusCongestus, CloudPreset::Cumulonimbus})
-    if (name == cloud_preset_name(p)) return p;
-  throw InputError(parameter + " " + shorten_for_message(name) +
-                   ": must be one of cumulus, cumulus-congestus, cumulonimbus");
+  std::string allowed;
+  for (size_t i = 0; i < std::size(kCloudPresetNames); ++i) {
+    if (name == kCloudPresetNames[i]) return CloudPreset(i);
+    allowed += (i ? ", " : "") + std::string(kCloudPresetNames[i]);
+  }
+  throw InputError(parameter + " " + shorten_for_message(name) + ": must be one of " + allowed);
 }
 
 const char* cloud_preset_name(CloudPreset preset) {
-  switch (preset) {
-    case CloudPreset::Cumulus:
-      return "cumulus";
-    case CloudPreset::CumulusCongestus:
-      return "cumulus-congestus";
-    case CloudPreset::Cumulonimbus:
-      return "cumulonimbus";
-  }
-  return "?";
+  return kCloudPresetNames[size_t(preset)].data();
 }
 
 VoxelGrid make_cloud(CloudPreset preset, uint32_t seed, int max_dim) {
   check_max_dim(max_dim);
+  if (preset == CloudPreset::CumulusMesh) {
+    const EmbeddedFile* mesh =
+        find_embedded(nephele_data::kFiles, nephele_data::kFileCount, "cumulus.obj");
+    return voxelize_mesh_text(std::string(reinterpret_cast<const char*>(mesh->data), mesh->size),
+                              "cumulus.obj", max_dim);
+  }
   const Shape shape = make_shape(preset, seed);
   glm::vec3 lo, hi;
   shape.bounds(lo, hi);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace nephele::voxel {
@@ -45,15 +46,19 @@ VoxelGrid load_voxel_cloud(const std::string& path, int max_dim = 128);
 // Atomic: the file is whole or not written (write_file_atomically).
 void write_vdb(const VoxelGrid& grid, const std::string& path);
 
-// The procedural presets of `nephele make-cloud`.
-enum class CloudPreset { Cumulus, CumulusCongestus, Cumulonimbus };
-// "cumulus", "cumulus-congestus", "cumulonimbus"; InputError names the allowed values.
+// The presets of `nephele make-cloud` and of scenes' voxel clouds: three generated, and one
+// baked from the mesh shipped in data/meshes/cumulus.obj (embedded), as an artist's would be.
+enum class CloudPreset { Cumulus, CumulusCongestus, Cumulonimbus, CumulusMesh };
+inline constexpr std::string_view kCloudPresetNames[] = {"cumulus", "cumulus-congestus",
+                                                         "cumulonimbus", "cumulus-mesh"};
+// One of kCloudPresetNames; InputError names the allowed values.
 CloudPreset parse_cloud_preset(const std::string& name, const std::string& parameter);
 const char* cloud_preset_name(CloudPreset preset);
 
 // A cloud of `preset`'s shape (metaball clusters eroded at their surface by Curly-Alligator
 // noise), the same for the same seed. About the size of a real cloud of its kind (cumulus
 // ~1 km wide, congestus ~2-3 km tall, cumulonimbus ~8-10 km tall with an anvil).
+// CumulusMesh: the shipped mesh baked by voxelize_mesh_text (the seed is not used).
 VoxelGrid make_cloud(CloudPreset preset, uint32_t seed, int max_dim = 128);
 
 // Bakes a closed (watertight) triangle mesh (OBJ, metres, z up unless told otherwise) into a
@@ -61,6 +66,9 @@ VoxelGrid make_cloud(CloudPreset preset, uint32_t seed, int max_dim = 128);
 // erosion at the surface. Throws InputError naming the file when it cannot be read, has no
 // triangles or is not watertight (names an open edge's count).
 VoxelGrid voxelize_mesh(const std::string& obj_path, int max_dim = 128);
+// The same from the OBJ's text; `name` stands for the file in messages.
+VoxelGrid voxelize_mesh_text(const std::string& obj_text, const std::string& name,
+                             int max_dim = 128);
 
 // The seed's Curly-Alligator noise at p (cloud frame, metres): alligator (cellular) noise of
 // two rising frequencies, its domain displaced by curl noise; in [0, 1].

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <map>
 #include <tuple>
 
@@ -21,18 +22,14 @@ struct Mesh {
   std::vector<glm::uvec3> triangles;
 };
 
-Mesh read_obj(const std::string& path) {
-  const std::string where = file_prefix(path);
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw InputError(where + "cannot be read (an OBJ mesh file is required)");
-  }
+// `where` names the mesh in messages (file_prefix).
+Mesh read_obj(std::istream& in, const std::string& where) {
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warning, error;
-  // No material search path: a mesh's .mtl is of no use here and must not be read.
-  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, path.c_str(), nullptr,
+  // No material reader: a mesh's .mtl is of no use here and must not be read.
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &in, nullptr,
                         /*triangulate=*/true))
     throw InputError(where + "is not a readable OBJ mesh (" +
                      shorten_for_message(error.empty() ? "no geometry" : error) + ")");
@@ -99,12 +96,7 @@ float smoothstep(float e0, float e1, float x) {
   return t * t * (3.0f - 2.0f * t);
 }
 
-}  // namespace
-
-VoxelGrid voxelize_mesh(const std::string& obj_path, int max_dim) {
-  check_max_dim(max_dim);
-  const Mesh mesh = read_obj(obj_path);
-  const std::string where = file_prefix(obj_path);
+VoxelGrid voxelize(const Mesh& mesh, const std::string& where, int max_dim) {
   if (const size_t open = count_open_edges(mesh); open > 0)
     throw InputError(where + "is not watertight: " + std::to_string(open) +
                      " open edges (a closed mesh is required)");
@@ -151,6 +143,22 @@ VoxelGrid voxelize_mesh(const std::string& obj_path, int max_dim) {
   // The cloud's frame: its anchor is the centre of the mesh's base.
   grid.origin_m -= glm::vec3(0.5f * (lo.x + hi.x), 0.5f * (lo.y + hi.y), lo.z);
   return grid;
+}
+
+}  // namespace
+
+VoxelGrid voxelize_mesh(const std::string& obj_path, int max_dim) {
+  check_max_dim(max_dim);
+  const std::string where = file_prefix(obj_path);
+  std::ifstream in(obj_path, std::ios::binary);
+  if (!in) throw InputError(where + "cannot be read (an OBJ mesh file is required)");
+  return voxelize(read_obj(in, where), where, max_dim);
+}
+
+VoxelGrid voxelize_mesh_text(const std::string& obj_text, const std::string& name, int max_dim) {
+  check_max_dim(max_dim);
+  std::istringstream in(obj_text);
+  return voxelize(read_obj(in, name + ": "), name + ": ", max_dim);
 }
 
 }  // namespace nephele::voxel

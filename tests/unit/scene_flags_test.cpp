@@ -325,7 +325,7 @@ TEST(SceneFlags, VoxelCloudSpecsAppendClouds) {
 TEST(SceneFlags, BadVoxelCloudSpecsNameTheFlagTheValueAndTheForms) {
   const std::string forms =
       "; expected FILE@E,N,U or preset:NAME[:SEED]@E,N,U, NAME one of cumulus, "
-      "cumulus-congestus, cumulonimbus (e.g. preset:cumulus:7@0,4000,1200)";
+      "cumulus-congestus, cumulonimbus, cumulus-mesh (e.g. preset:cumulus:7@0,4000,1200)";
   const std::pair<const char*, const char*> bad[] = {
       {"preset:cumulus", "no @E,N,U position"},
       {"preset:cumulus@0,0", "the position is not 3 comma-separated numbers"},

@@ -616,13 +616,13 @@ std::string voxel_error(const std::function<void(VoxelCloudParams&)>& change) {
 TEST(SceneVoxelClouds, ValidationNamesTheCloudTheValueAndTheRange) {
   EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.preset = ""; }),
             "voxel_clouds[0].preset = \"\": a voxel cloud needs exactly one of file (.vdb or "
-            ".nvdb) and preset (cumulus, cumulus-congestus or cumulonimbus); neither is given");
+            ".nvdb) and preset (cumulus, cumulus-congestus, cumulonimbus or cumulus-mesh); neither is given");
   EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.file = "a.vdb"; }),
             "voxel_clouds[0].file = \"a.vdb\": preset = \"cumulus\" is given too; give exactly "
             "one of file and preset");
   EXPECT_EQ(voxel_error([](VoxelCloudParams& c) { c.preset = "cirrus"; }),
-            "voxel_clouds[0].preset = \"cirrus\": must be cumulus, cumulus-congestus or "
-            "cumulonimbus");
+            "voxel_clouds[0].preset = \"cirrus\": must be cumulus, cumulus-congestus, "
+            "cumulonimbus or cumulus-mesh");
   EXPECT_EQ(voxel_error([](VoxelCloudParams& c) {
               c.position_m = {2e7f, 0.0f, 1500.0f};
             }),
