@@ -40,9 +40,14 @@ vec2 voxel_lookup(VoxelCloudGpu c, vec3 u) {
 // Erodes a voxel cloud's density at its surface with the detail noise at a raised frequency
 // (seed 002, transition 1: "raise the voxel clouds' detail noise frequency to sharpen their
 // surface"), in the cloud's own frame so the detail moves with it.
-float voxel_surface_erosion(float density, float sdf_voxels, vec3 u, float voxel_m) {
+// Far away, the mip level of the pixel's footprint (as the noise clouds' detail): the finest
+// level would sparkle.
+float voxel_surface_erosion(float density, float sdf_voxels, vec3 u, float voxel_m, vec3 p) {
   float skin = saturate(1.0f + sdf_voxels / 3.0f);  // 1 at the surface, 0 three voxels in
-  vec3 d = textureLod(detail_noise, u * voxel_m * frame.cloud_noise.y * frame.voxel_light.w, 0.0f).rgb;
+  float frequency = frame.cloud_noise.y * frame.voxel_light.w;
+  float footprint_texels = distance(p, frame.camera_pos_m.xyz) * frame.cloud_shape.x * frequency *
+                           float(textureSize(detail_noise, 0).x);
+  vec3 d = textureLod(detail_noise, u * voxel_m * frequency, log2(max(footprint_texels, 1e-6f))).rgb;
   float detail = d.r * 0.625f + d.g * 0.25f + d.b * 0.125f;
   return saturate(remap(density, detail * frame.voxel_light.z * skin, 1.0f, 0.0f, 1.0f));
 }
@@ -56,7 +61,7 @@ VoxelSample voxel_field(vec3 p) {
     vec2 v = vec2(0.0f, box);
     if (box <= 0.0f) {
       v = voxel_lookup(c, u);
-      if (v.x > 0.0f) v.x = voxel_surface_erosion(v.x, v.y, u, c.dims.w);
+      if (v.x > 0.0f) v.x = voxel_surface_erosion(v.x, v.y, u, c.dims.w, p);
     }
     s.density += v.x * c.anchor_m.w;
     if (v.y * c.dims.w < s.sdf_m) {

@@ -29,7 +29,8 @@ const std::vector<GalleryEntry>& entries() {
   static const std::vector<GalleryEntry> table = {
       {"clear", {0, 0}},     {"few", {1, 2}},     {"scattered", {3, 4}},
       {"broken", {5, 7}},    {"overcast", {8, 8}}, {"stratus", {7, 8}},
-      {"cumulonimbus-storm", {4, 8}}, {"cirrus", {1, 6}}, {"sunset-cumulus", {3, 4}}};
+      {"cumulonimbus-storm", {4, 8}}, {"cirrus", {1, 6}}, {"sunset-cumulus", {3, 4}},
+      {"voxel-cumulus", {1, 3}},      {"voxel-above", {0, 0}}};
   return table;
 }
 

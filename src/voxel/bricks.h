@@ -23,7 +23,7 @@ constexpr int kBrickTexels = kBrick + 1;
 constexpr int kAtlasBricksXY = 16;  // bricks per row and column of an atlas layer
 // A brick is stored where some of its texels are nearer the surface than this (voxels), so
 // that an empty brick can be stepped across in steps of at least this much less one voxel.
-constexpr float kStoredBrickSdfVoxels = float(kBrick);
+constexpr float kStoredBrickSdfVoxels = 2.0f;
 
 struct BrickedCloud {
   glm::ivec3 dims{0};         // the grid's voxels
