@@ -70,8 +70,9 @@ BrickPool pack_bricks(const std::vector<const VoxelGrid*>& grids) {
 
   // The page table texture: the clouds' tables one above the other.
   pool.page_texels = page_max;
-  pool.pages.assign(size_t(page_max.x) * page_max.y * std::max(page_max.z, 1), -1e4f);
-  pool.page_texels.z = std::max(page_max.z, 1);
+  // At least two layers: the device's textures of depth 1 are 2D images.
+  pool.page_texels.z = std::max(page_max.z, 2);
+  pool.pages.assign(size_t(page_max.x) * page_max.y * size_t(pool.page_texels.z), -1e4f);
   for (size_t c = 0; c < grids.size(); ++c) {
     const BrickedCloud& bc = pool.clouds[c];
     for (int z = 0; z < bc.bricks.z; ++z)

@@ -36,8 +36,9 @@ gpu::Texture texture_of(gpu::Context& ctx, glm::ivec3 size, VkFormat format) {
 VoxelCloudsModule::VoxelCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     : ctx_(ctx),
       set_(set),
-      atlas_(texture_of(ctx, glm::ivec3(1), kAtlasFormat)),
-      pages_(texture_of(ctx, glm::ivec3(1), kPageFormat)) {
+      // Until the first voxel cloud: 1 x 1 x 2 (a depth of 1 would make a 2D image).
+      atlas_(texture_of(ctx, glm::ivec3(1, 1, 2), kAtlasFormat)),
+      pages_(texture_of(ctx, glm::ivec3(1, 1, 2), kPageFormat)) {
   set_.bind_sampled_image(gpu::kVoxelAtlas, atlas_);
   set_.bind_sampled_image(gpu::kVoxelPages, pages_);
 }
