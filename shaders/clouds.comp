@@ -239,7 +239,7 @@ void main() {
     // box returns to sphere tracing at once, leaving the box to phase 1.
     bool three_phase = frame.voxel_info.x > 0 && frame.voxel_info.y == VOXEL_MARCH_THREE_PHASE;
     bool sdf_shadow = frame.voxel_info.x > 0 && frame.voxel_info.z == VOXEL_SHADOW_SDF_CONE;
-    float last_step = 0.0f;   // the last step of the view ray
+    float traced_step = 0.0f;  // the last view-ray step, when it was sphere traced (phase 2)
     float lit_visibility = 1.0f;  // the SDF cone's soft shadow of the sample being lit
     for (int i = 0; i < budget && t < segment.y && transmittance.x >= 0.01f; ++i) {
       bool lighting = light_k > 0;
@@ -297,7 +297,6 @@ void main() {
         weighted_t += t * transmittance.x * (1.0f - step_t);
         transmittance *= step_t;
         t += lit_step_m;
-        last_step = lit_step_m;
         continue;
       }
 
@@ -305,20 +304,22 @@ void main() {
       bool tracing = three_phase && in_region;
       if (!fine) {
         if (field.x <= 0.0f) {
-          last_step = coarse_step;
+          traced_step = 0.0f;
           if (tracing)  // phase 2
-            last_step = min(voxel_sphere_step(vox.sdf_m, vox.voxel_m, fine_step),
-                            voxel_region_exit_m(pos, dir) + 0.5f * fine_step);
-          t += last_step;
+            traced_step = min(voxel_sphere_step(vox.sdf_m, vox.voxel_m, fine_step),
+                              voxel_region_exit_m(pos, dir) + 0.5f * fine_step);
+          t += tracing ? traced_step : coarse_step;
           continue;
         }
         fine = true;
         misses = 0;
         fine_until = t;
-        // Step back over what the coarse step skipped, not into what fine steps have sampled:
-        // where the base shape fills space that erosion has emptied (a deck's thin base seen
-        // at a grazing angle) the march would otherwise crawl one fine step per return.
-        t = max(t - last_step, sampled_until);
+        // Step back over what the coarse (or sphere-traced) step skipped, not into what fine
+        // steps have sampled: where the base shape fills space that erosion has emptied (a
+        // deck's thin base seen at a grazing angle) the march would otherwise crawl one fine
+        // step per return.
+        t = max(t - (traced_step > 0.0f ? traced_step : coarse_step), sampled_until);
+        traced_step = 0.0f;
         continue;
       }
       sampled_until = t;
@@ -328,7 +329,6 @@ void main() {
         bool left = tracing && vox.sdf_m > vox.voxel_m;
         if ((++misses >= 6 || left) && t > fine_until) fine = false;
         t += fine_step;
-        last_step = fine_step;
         continue;
       }
       misses = 0;

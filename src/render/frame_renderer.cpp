@@ -79,6 +79,15 @@ std::string history_key(Scene scene) {
   return scene_to_toml(scene);
 }
 
+// What shapes the clouds' density, for the light volume: the history's key less how the view
+// rays march the voxel clouds and how their samples are lit.
+std::string density_key(Scene scene) {
+  scene.quality.voxel_march = QualityParams{}.voxel_march;
+  scene.quality.voxel_shadow = QualityParams{}.voxel_shadow;
+  scene.quality.sdf_light_tangent = QualityParams{}.sdf_light_tangent;
+  return history_key(scene);
+}
+
 // The camera's side of the cloud layer: -1 below, 0 inside, 1 above.
 int layer_side(const Scene& scene) {
   const float z = scene.camera.position_m.z;
@@ -376,7 +385,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   params.cloud_shape.x = 2.0f * params.camera_pos_m.w / float(cloud_h);  // detail noise's LOD
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
   voxel_clouds.prepare(scene, params);
-  light_volume.prepare(scene, key, WeatherModule::weather_time(scene), still, params);
+  light_volume.prepare(scene, density_key(scene), WeatherModule::weather_time(scene), still, params);
   sky_view.prepare(still, params);
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);

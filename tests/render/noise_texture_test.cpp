@@ -13,6 +13,7 @@
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
 #include "render/modules/sky_view.h"
+#include "render/modules/voxel_clouds.h"
 #include "render/modules/weather.h"
 #include "render/passes.h"
 
@@ -76,12 +77,14 @@ struct Modules {
         atmosphere(ctx, s.set),
         weather(ctx, s.set),
         light_volume(ctx, s.set),
+        voxel_clouds(ctx, s.set),
         sky_view(ctx, s.set),
         clouds(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
   nephele::LightVolumeModule light_volume;
+  nephele::VoxelCloudsModule voxel_clouds;
   nephele::SkyViewModule sky_view;
   nephele::CloudsModule clouds;
 };

@@ -49,6 +49,7 @@ const SceneParameter& parameter(const std::string& key) {
 // A scene unlike the defaults in every section.
 Scene unusual_scene() {
   Scene scene = load_preset(preset_names().back());
+  scene.voxel_clouds.clear();  // an array: not in the parameter table
   scene.time = "2026-06-21T18:30:00Z";
   scene.time_s = 12.5f;
   scene.noise_seed = 7;
