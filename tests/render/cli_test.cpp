@@ -18,26 +18,14 @@
 
 #include "nephele/image.h"
 
+#include "support/process_run.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-// `redirect`: what the shell does with the streams; by default both are captured.
-CliRun run_cli(const std::string& args, const std::string& redirect = "2>&1") {
-  const std::string command = std::string(NEPHELE_CLI_PATH) + " " + args + " " + redirect;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
-}
+using CliRun = nephele::test::ProcessRun;
+using nephele::test::run_cli;
 
 class CliTest : public ::testing::Test {
  protected:

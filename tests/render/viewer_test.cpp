@@ -20,24 +20,14 @@
 #include "nephele/image_compare.h"
 #include "nephele/scene_io.h"
 
+#include "support/process_run.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct ProcessRun {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-ProcessRun run(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, output};
-}
+using nephele::test::ProcessRun;
+ProcessRun run(const std::string& command) { return nephele::test::run_process(command); }
 
 // The size every test renders at: lavapipe renders on the CPU.
 constexpr const char* kSize = "160x120";
