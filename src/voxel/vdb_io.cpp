@@ -281,8 +281,11 @@ VoxelGrid to_dense(const std::string& path, const Source& source, int max_dim) {
   const float ratio = grid.voxel_m / float(source_voxel.length() / std::sqrt(3.0));
   const int sub = ratio > 1.01f ? std::min(int(std::ceil(ratio)), kMaxSupersampling) : 1;
   tbb::parallel_for(0, grid.dims.z, [&](int k) {
+    // The sampler keeps a reference to the accessor: it must outlive the sampler (a
+    // temporary here was a use after scope, found by AddressSanitizer).
+    const openvdb::FloatGrid::ConstAccessor accessor = source.density->getConstAccessor();
     openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>
-        sampler(source.density->getConstAccessor(), xform);
+        sampler(accessor, xform);
     for (int j = 0; j < grid.dims.y; ++j)
       for (int i = 0; i < grid.dims.x; ++i) {
         double sum = 0.0;
@@ -313,8 +316,9 @@ VoxelGrid to_dense(const std::string& path, const Source& source, int max_dim) {
     grid.sdf_m.assign(count, 0.0f);
     std::atomic<bool> consistent{true};
     tbb::parallel_for(0, grid.dims.z, [&](int k) {
+      const openvdb::FloatGrid::ConstAccessor accessor = source.sdf->getConstAccessor();
       openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>
-          sampler(source.sdf->getConstAccessor(), source.sdf->transform());
+          sampler(accessor, source.sdf->transform());
       for (int j = 0; j < grid.dims.y; ++j)
         for (int i = 0; i < grid.dims.x; ++i) {
           const glm::vec3 p = origin_world + (glm::vec3(i, j, k) + 0.5f) * grid.voxel_m;
