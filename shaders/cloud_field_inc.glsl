@@ -135,19 +135,20 @@ vec2 noise_density_pair(vec3 pos) {
 }
 
 // Every cloud at pos: the noise clouds, faded out near the voxel clouds' regions, and the voxel
-// clouds. x the base shape (voxel clouds whole), y the full field, z the voxel clouds' signed
-// distance (m), w the voxel size (m) there. Where a whole batch of lanes lies in voxel regions
-// the noise is not read at all.
-vec4 cloud_field(vec3 pos) {
-  VoxelSample v = voxel_field(pos);
-  float fade = voxel_noise_fade(v.region_m);
+// clouds. Returns (x) the base shape (voxel clouds whole) and (y) the full field; `voxels` is
+// what the voxel clouds hold there (their distance, region, nearest cloud). Where a whole
+// batch of lanes lies in voxel regions the noise is not read at all.
+vec2 cloud_field(vec3 pos, out VoxelSample voxels) {
+  voxels = voxel_field(pos);
+  float fade = voxel_noise_fade(voxels.region_m);
   vec2 noise = vec2(0.0f);
   if (fade > 0.0f) noise = noise_density_pair(pos) * fade;
-  return vec4(noise + v.density, v.sdf_m, v.voxel_m);
+  return noise + voxels.density;
 }
 
 vec2 cloud_density_pair(vec3 pos) {
-  return frame.voxel_info.x > 0 ? cloud_field(pos).xy : noise_density_pair(pos);
+  VoxelSample voxels;
+  return frame.voxel_info.x > 0 ? cloud_field(pos, voxels) : noise_density_pair(pos);
 }
 
 float cloud_density(vec3 pos, bool with_detail) {

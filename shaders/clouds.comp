@@ -251,12 +251,7 @@ void main() {
       vec3 pos = lighting ? lit_pos + sun * mid_m : eye + dir * t;
       VoxelSample vox = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f, 0);
       vec2 field = vec2(0.0f);
-      if (!coned) {
-        vox = voxel_field(pos);
-        field = vec2(vox.density);
-        float fade = voxel_noise_fade(vox.region_m);
-        if (fade > 0.0f) field += noise_density_pair(pos) * fade;
-      }
+      if (!coned) field = cloud_field(pos, vox);
       bool in_region = vox.region_m <= 0.0f;
       // Fine steps from the thickness of the layer the ray is in.
       float fine_step = max(layer_thickness_m(pos) / float(frame.steps.x), FINE_PER_M * t);
