@@ -146,9 +146,11 @@ vec2 cloud_field(vec3 pos, out VoxelSample voxels) {
   return noise + voxels.density;
 }
 
+// One call, not a choice between cloud_field and noise_density_pair: a CPU device runs both
+// sides of a branch, even a uniform one, and would read the noise twice.
 vec2 cloud_density_pair(vec3 pos) {
   VoxelSample voxels;
-  return frame.voxel_info.x > 0 ? cloud_field(pos, voxels) : noise_density_pair(pos);
+  return cloud_field(pos, voxels);
 }
 
 float cloud_density(vec3 pos, bool with_detail) {
