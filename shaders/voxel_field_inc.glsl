@@ -44,12 +44,18 @@ vec2 voxel_lookup(VoxelCloudGpu c, vec3 u) {
 // level would sparkle.
 float voxel_surface_erosion(float density, float sdf_voxels, vec3 u, float voxel_m, vec3 p) {
   float skin = saturate(1.0f + sdf_voxels / 3.0f);  // 1 at the surface, 0 three voxels in
-  float frequency = frame.cloud_noise.y * frame.voxel_light.w;
-  float footprint_texels = distance(p, frame.camera_pos_m.xyz) * frame.cloud_shape.x * frequency *
-                           float(textureSize(detail_noise, 0).x);
-  vec3 d = textureLod(detail_noise, u * voxel_m * frequency, log2(max(footprint_texels, 1e-6f))).rgb;
-  float detail = d.r * 0.625f + d.g * 0.25f + d.b * 0.125f;
-  return saturate(remap(density, detail * frame.voxel_light.z * skin, 1.0f, 0.0f, 1.0f));
+  float eroded = density;
+  // Deeper than the skin, or where there is no cloud, erosion changes nothing: a loop of one
+  // trip or none, which a CPU device skips when no lane of the batch needs the noise.
+  for (int k = 0; k < (skin > 0.0f && density > 0.0f ? 1 : 0); ++k) {
+    float frequency = frame.cloud_noise.y * frame.voxel_light.w;
+    float footprint_texels = distance(p, frame.camera_pos_m.xyz) * frame.cloud_shape.x *
+                             frequency * float(textureSize(detail_noise, 0).x);
+    vec3 d = textureLod(detail_noise, u * voxel_m * frequency, log2(max(footprint_texels, 1e-6f))).rgb;
+    float detail = d.r * 0.625f + d.g * 0.25f + d.b * 0.125f;
+    eroded = saturate(remap(density, detail * frame.voxel_light.z * skin, 1.0f, 0.0f, 1.0f));
+  }
+  return eroded;
 }
 
 VoxelSample voxel_field(vec3 p) {
@@ -59,9 +65,12 @@ VoxelSample voxel_field(vec3 p) {
     vec3 u = voxel_grid_coord(c, p);
     float box = voxel_box_distance(u, c.dims.xyz);
     vec2 v = vec2(0.0f, box);
-    if (box <= 0.0f) {
+    // A loop of one trip or none, not a branch: a CPU device (lavapipe) runs both sides of a
+    // branch for every lane, but skips a loop that no lane enters, so a cloud whose box no lane
+    // of the batch is in costs no texture reads.
+    for (int k = 0; k < (box <= 0.0f ? 1 : 0); ++k) {
       v = voxel_lookup(c, u);
-      if (v.x > 0.0f) v.x = voxel_surface_erosion(v.x, v.y, u, c.dims.w, p);
+      v.x = voxel_surface_erosion(v.x, v.y, u, c.dims.w, p);
     }
     s.density += v.x * c.anchor_m.w;
     if (v.y * c.dims.w < s.sdf_m) {
@@ -90,40 +99,47 @@ float voxel_region_exit_m(vec3 p, vec3 dir) {
 }
 
 // Steps of an SDF cone trace (sdf_cone_trace).
-const int SDF_SHADOW_STEPS = 6;
+const int SDF_SHADOW_STEPS = 16;
 
 // The sunlight's path from p through voxel cloud `cloud` (the one p is in) traced through its
 // signed distance field (seed 002, SDF Shadow): outside the cloud each step crosses what the
 // distance field says is empty, and the cone's visibility (sdf_cone_visibility, the seed's
 // LightTangent frame.voxel_light.x) is taken where the path comes nearer the cloud again;
-// inside, each step goes as deep as the distance to the surface, adding density x length to
-// the optical depth. It ends where the path leaves the cloud's box, after SDF_SHADOW_STEPS,
-// or once the cloud is opaque (optical depth `opaque`). Returns (x) the optical depth
-// (density field x m), (y) the visibility, (z) how far it went (m): the rest of the light's
-// path (other clouds, the noise clouds) is looked up from there.
-vec3 sdf_cone_trace(vec3 p, vec3 sun, int cloud, float opaque) {
+// inside, each step goes as deep as the distance to the surface, and the optical depth adds
+// the step's length times the mean of the densities at its two ends (the trapezoid rule: the
+// density at the start alone under-counts a path going deeper). It ends where the path leaves
+// the cloud's box, after SDF_SHADOW_STEPS, or once the cloud is opaque (optical depth
+// `opaque`). Returns (x) the optical depth (density field x m), (y) the visibility, (z) how far
+// it went (m), (w) 1 if it left the box: the rest of the light's path (other clouds, the noise
+// clouds) is looked up from there.
+vec4 sdf_cone_trace(vec3 p, vec3 sun, int cloud, float opaque) {
   VoxelCloudGpu c = frame.voxel_clouds[cloud];
   vec3 u = voxel_grid_coord(c, p);
   vec3 du = vec3(dot(c.to_grid_x.xyz, sun), dot(c.to_grid_y.xyz, sun), dot(c.to_grid_z.xyz, sun));
   float t = 0.0f, depth = 0.0f, visibility = 1.0f, previous = -1e9f;
+  float last_step_m = 0.0f, last_density = 0.0f;
+  float left = 0.0f;
   for (int k = 0; k < SDF_SHADOW_STEPS && depth < opaque; ++k) {
     vec3 q = u + du * t;
-    if (voxel_box_distance(q, c.dims.xyz) > 0.0f) break;  // out of the cloud's box
-    vec2 v = voxel_lookup(c, q);
-    float sdf_m = v.y * c.dims.w;
-    float step_m;
-    if (sdf_m < 0.0f) {
-      step_m = max(-sdf_m, c.dims.w);
-      depth += v.x * c.anchor_m.w * step_m;
-    } else {
-      if (t > 0.0f && sdf_m < previous)
-        visibility = sdf_cone_visibility(visibility, sdf_m, t, frame.voxel_light.x);
-      step_m = max(sdf_m, c.dims.w);
+    if (voxel_box_distance(q, c.dims.xyz) > 0.0f) {  // out of the cloud's box
+      left = 1.0f;
+      break;
     }
+    vec2 v = voxel_lookup(c, q);
+    // Eroded at the surface as voxel_field erodes it: the light's path through the skin counts.
+    float density = voxel_surface_erosion(v.x, v.y, q, c.dims.w, p + sun * t) * c.anchor_m.w;
+    depth += 0.5f * (last_density + density) * last_step_m;
+    float sdf_m = v.y * c.dims.w;
+    if (sdf_m >= 0.0f && t > 0.0f && sdf_m < previous)
+      visibility = sdf_cone_visibility(visibility, sdf_m, t, frame.voxel_light.x);
+    last_step_m = max(abs(sdf_m), c.dims.w);
+    last_density = density;
     previous = sdf_m;
-    t += step_m;
+    t += last_step_m;
   }
-  return vec3(depth, visibility, t);
+  // The last step, whose end was not sampled: at its start's density.
+  depth += last_density * last_step_m * (left > 0.0f ? 0.5f : 1.0f);
+  return vec4(depth, visibility, t, left);
 }
 
 // The noise clouds' weight at a point region_m from a voxel region: 0 inside one, rising to 1

@@ -12,9 +12,9 @@
 
 namespace nephele::cli {
 
-// The ablation's view: `base` with, when it has no voxel clouds of its own, five generated
-// ones (cumulus, congestus, cumulonimbus) 2.5 to 15 km north of a camera on the ground,
-// filling much of its view, among noise clouds.
+// The ablation's view: `base` with, when it has no voxel clouds of its own, five voxel clouds
+// (three generated cumulus, the mesh-baked one, a congestus) 1.7 to 3.4 km north of a camera
+// 900 m up, filling most of the sky in its view, among noise clouds.
 Scene ablation_scene(const Scene& base);
 
 // Renders the four variants of `scene` `rounds` times each (interleaved, so drift of the
@@ -22,7 +22,9 @@ Scene ablation_scene(const Scene& base);
 // by side to `image_path` (PNG). Returns baseline_ms, sdf_march_ms, sdf_shadow_ms,
 // sdf_both_ms (medians), speedup_sdf_march, speedup_sdf_shadow, speedup_sdf_both,
 // max_luminance_difference (the largest of the three variants' mean-luminance differences
-// from the baseline's, as a fraction of it), each variant's mean luminance and the device.
+// from the baseline's, as a fraction of it), each variant's mean luminance and its difference
+// from a reference's (what the variants converge to, rendered once), and the
+// device.
 nlohmann::json run_ablation(Renderer& renderer, const Scene& scene, int rounds,
                             const std::string& image_path);
 

@@ -268,7 +268,10 @@ struct VoxelCloudParams {
   glm::vec3 position_m{0.0f, 0.0f, 1500.0f};
   float scale = 1.0f;         // (0, 100]: multiplies the grid's size
   float rotation_deg = 0.0f;  // about the up axis, from north through east, [-360, 360]
-  float density = 1.0f;       // [0, 100]: sigma_t = grid density x this x clouds.extinction_per_m
+  // [0, 100]: sigma_t = grid density x this x clouds.extinction_per_m. 0.15 gives a cumulus
+  // core 0.15/m at the default extinction, as a real one (liquid water 0.5 g/m^3 in droplets of
+  // 10 um radius: 1.5 LWC / (rho r) = 0.075/m, up to twice that); 1 made them solid as plaster.
+  float density = 0.15f;
   // Moves with the low layer's wind (clouds.wind_mps) when true; else with wind_mps.
   bool follow_wind = true;
   glm::vec2 wind_mps{0.0f, 0.0f};  // east, north (m/s), [-200, 200], when follow_wind is false
