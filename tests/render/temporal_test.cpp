@@ -197,6 +197,27 @@ TEST_F(TemporalTest, LightVolumeMatchesAFullLightMarch) {
 
 // Moving the sun rebuilds the light volume: a frame after the move equals a fresh renderer's
 // image of the new sun.
+// The light volume depends on the clouds, not on the image: a new output size (the viewer's
+// dynamic resolution) or march quality keeps it, where a new coverage rebuilds it.
+TEST_F(TemporalTest, ResizingKeepsTheLightVolume) {
+  auto rebuilds = [](const Frame& f) {
+    for (const nephele::PassTiming& p : f.stats.passes)
+      if (p.name == "light_volume") return true;
+    return false;
+  };
+  Scene s = view();
+  s.output.width = 64;
+  s.output.height = 40;
+  shared_renderer().render(s);
+  s.output.width = 48;
+  s.output.height = 30;
+  s.quality.primary_steps = 48;
+  EXPECT_FALSE(rebuilds(shared_renderer().render_next(s)));
+  EXPECT_FALSE(rebuilds(shared_renderer().render_next(s)));
+  s.clouds.coverage += 0.1f;
+  EXPECT_TRUE(rebuilds(shared_renderer().render_next(s)));
+}
+
 TEST_F(TemporalTest, SunMoveRebuildsTheLightVolume) {
   Scene s = view();
   render(s);
