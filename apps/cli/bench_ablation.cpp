@@ -72,8 +72,6 @@ Scene ablation_scene(const Scene& base) {
   return s;
 }
 
-// What the four converge to: the realtime bench's reference (4 times the primary steps, every
-// light ray marched with 64 steps, no light volume) with the plain march and the light march.
 Scene ablation_reference(const Scene& scene) {
   Scene s = reference_scene(scene);
   s.quality.voxel_march = VoxelMarch::Plain;

@@ -17,6 +17,11 @@ namespace nephele::cli {
 // 900 m up, filling most of the sky in its view, among noise clouds.
 Scene ablation_scene(const Scene& base);
 
+// What the four variants converge to: the real-time bench's reference_scene (4 times the
+// primary steps, every light ray marched with 64 steps, no light volume) with the plain march
+// and the light march.
+Scene ablation_reference(const Scene& scene);
+
 // Renders the four variants of `scene` `rounds` times each (interleaved, so drift of the
 // machine's speed spreads over all), timing the clouds pass, and writes the four images side
 // by side to `image_path` (PNG). Returns baseline_ms, sdf_march_ms, sdf_shadow_ms,

@@ -195,8 +195,6 @@ TEST_F(TemporalTest, LightVolumeMatchesAFullLightMarch) {
   EXPECT_GT(short_error, volume_error);
 }
 
-// Moving the sun rebuilds the light volume: a frame after the move equals a fresh renderer's
-// image of the new sun.
 // The light volume depends on the clouds, not on the image: a new output size (the viewer's
 // dynamic resolution) or march quality keeps it, where a new coverage rebuilds it.
 TEST_F(TemporalTest, ResizingKeepsTheLightVolume) {
@@ -218,6 +216,8 @@ TEST_F(TemporalTest, ResizingKeepsTheLightVolume) {
   EXPECT_TRUE(rebuilds(shared_renderer().render_next(s)));
 }
 
+// Moving the sun rebuilds the light volume: a frame after the move equals a fresh renderer's
+// image of the new sun.
 TEST_F(TemporalTest, SunMoveRebuildsTheLightVolume) {
   Scene s = view();
   render(s);

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "bench_ablation.h"
 #include "nephele/image.h"
 #include "render/frame_params.h"
 #include "render/glsl.h"
@@ -118,18 +119,15 @@ std::pair<double, double> cloud_luminance(const nephele::Frame& f) {
 
 // The four variants of seed 002's ablation draw the same cloud: the same pixels opaque
 // (opacity differing by under 0.1 on 95% of them), and a mean luminance within 4% of what
-// they all converge to, the plain march with every light ray marched in 64 steps (no light
-// volume) and 4 times the primary steps. (Measured: the light march 2.5-3% below it, the SDF
-// cone 3% above.)
+// they all converge to (the ablation's reference: the plain march with every light ray marched
+// in 64 steps, no light volume, 4 times the primary steps). Measured: the light march 2.5-3%
+// below it, the SDF cone 3% above.
 TEST_F(VoxelRender, MarchAndShadowModesDrawTheSameCloud) {
   Scene s = ball_scene({0.0f, 3000.0f, 1500.0f});
   s.camera.view_dir = {0.0f, 1.0f, 0.5f};
   s.camera.fov_deg = 40.0f;
-  Scene reference = s;
-  reference.quality.voxel_march = nephele::VoxelMarch::Plain;
-  reference.quality.light_steps = 64;
-  reference.quality.primary_steps *= 4;
-  const double reference_luminance = cloud_luminance(render(reference)).first;
+  const double reference_luminance =
+      cloud_luminance(render(nephele::cli::ablation_reference(s))).first;
   s.quality.light_volume_km = nephele::QualityParams{}.light_volume_km;  // as shipped
   std::vector<float> base_opacity;
   for (int v = 0; v < 4; ++v) {
