@@ -103,8 +103,8 @@ nlohmann::json run_ablation(Renderer& renderer, const Scene& scene, int rounds,
   }
   write_image(strip, image_path, scene.output.exposure);
 
-  const Frame reference = renderer.render(ablation_reference(scene));
-  const double reference_luminance = reference.stats.mean_luminance;
+  const Scene reference = ablation_reference(scene);
+  const double reference_luminance = renderer.render(reference).stats.mean_luminance;
 
   nlohmann::json out;
   out["device"] = renderer.device_name();
@@ -140,8 +140,7 @@ nlohmann::json run_ablation(Renderer& renderer, const Scene& scene, int rounds,
                 100.0 * (luminance[v] / reference_luminance - 1.0));
   std::printf("  reference (plain march, %d primary and %d light steps, no light volume): mean "
               "luminance %.4f\n",
-              ablation_reference(scene).quality.primary_steps,
-              ablation_reference(scene).quality.light_steps, reference_luminance);
+              reference.quality.primary_steps, reference.quality.light_steps, reference_luminance);
   std::printf("  images: %s\n", image_path.c_str());
   return out;
 }
