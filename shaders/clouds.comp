@@ -234,137 +234,136 @@ void main() {
     // Voxel clouds (seed 002, New Three-Phases Raymarching): phase 1 the adaptive steps above
     // in the noise clouds; phase 2, in a voxel cloud's box (where the noise clouds have faded
     // out) but outside the cloud, sphere tracing through its signed distance field, at least
-    // min_step_m a step near surfaces and box edges, never past the box's exit; phase 3,
+    // voxel_min_step_m a step near surfaces and box edges, never past the box's exit; phase 3,
     // inside the cloud, the fine steps, entered by stepping back. Leaving the cloud inside the
     // box returns to sphere tracing at once, leaving the box to phase 1.
     bool three_phase = frame.voxel_info.x > 0 && frame.voxel_info.y == VOXEL_MARCH_THREE_PHASE;
     bool sdf_shadow = frame.voxel_info.x > 0 && frame.voxel_info.z == VOXEL_SHADOW_SDF_CONE;
     float traced_step = 0.0f;  // the last view-ray step, when it was sphere traced (phase 2)
+    int slow = 0;              // phase 2 steps in a row at the shortest step (voxel_min_step_m)
     float lit_visibility = 1.0f;  // the SDF cone's soft shadow of the sample being lit
     for (int i = 0; i < budget && t < segment.y && transmittance.x >= 0.01f; ++i) {
       bool lighting = light_k > 0;
-      // A sample lit by the SDF cone is shaded without another look-up.
-      bool coned = light_k > light_n;
       // Light march steps grow linearly: step k is k units long and starts k (k - 1) / 2 units in.
       float seg_m = lit_unit_m * float(light_k);
       float mid_m = lit_unit_m * 0.5f * float(light_k * (light_k - 1)) + 0.5f * seg_m;
       vec3 pos = lighting ? lit_pos + sun * mid_m : eye + dir * t;
       VoxelSample vox = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f, 0);
-      vec2 field = vec2(0.0f);
-      if (!coned) field = cloud_field(pos, vox);
+      vec2 field = cloud_field(pos, vox);
       bool in_region = vox.region_m <= 0.0f;
       // Fine steps from the thickness of the layer the ray is in.
       float fine_step = max(layer_thickness_m(pos) / float(frame.steps.x), FINE_PER_M * t);
       float coarse_step = COARSE_STEPS * fine_step;
 
       if (lighting) {
-        if (!coned) {
-          lit_depth += field.y * seg_m;
-          if (light_k < light_n) {
-            ++light_k;
-            continue;
-          }
-        }
-        // The light march is done: shade the sample and step on along the view ray.
-        light_k = 0;
-        float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
-        float tau_light = depth * sigma_scale * light_atten;
-        float energy = multiple_scattering(tau_light, mu, powder, phases) * lit_visibility;
-        // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
-        float h = saturate(layer_fraction(lit_pos));
-        // With voxel clouds, where the ray first meets cloud: the shell's entry may lie far
-        // from a voxel cloud, and the light volume's voxels there would draw facets on it.
-        if (below_share < 0.0f) below_share = below_light_share(lit_pos, length(lit_pos) - frame.radii_m.x);
-        // What the cloud between the sample and the light lets through: the sunlight it has
-        // scattered forward, no longer a beam but a diffuse flux (radiance = flux / pi, the
-        // flux through a horizontal deck mu_sun times the sun's), and the sky's light through
-        // the same cloud; from below, the light of the ground around, itself under the
-        // clouds' shadow, less the higher the sample is in the layer.
-        float t_d = cloud_diffuse_transmittance(tau_light);
-        float diffuse = (t_d - exp(-tau_light)) * max(dot(sun, normalize(lit_pos)), 0.0f) / PI;
-        vec3 luminance = albedo * (sun_light * (energy + diffuse) +
-                                   ambient_above * t_d + ambient_below * ((1.0f - h) * below_share));
-        float step_t = exp(-lit_sigma_t * lit_step_m);
-        vec3 air = air_transmittance(eye_alt_m, length(lit_pos) - frame.radii_m.x, t);
-        // Energy-conserving integration over the step (Hillaire 2016).
-        scattered += transmittance * air * luminance * (1.0f - step_t);
-        haze += transmittance.x * (1.0f - air.g) * (1.0f - step_t);
-        weighted_t += t * transmittance.x * (1.0f - step_t);
-        transmittance *= step_t;
-        t += lit_step_m;
-        continue;
-      }
-
-      if (++primary > 4 * frame.steps.x) break;
-      bool tracing = three_phase && in_region;
-      if (!fine) {
-        if (field.x <= 0.0f) {
-          traced_step = 0.0f;
-          if (tracing)  // phase 2
-            traced_step = min(voxel_sphere_step(vox.sdf_m, vox.voxel_m, fine_step),
-                              voxel_region_exit_m(pos, dir) + 0.5f * fine_step);
-          t += tracing ? traced_step : coarse_step;
+        lit_depth += field.y * seg_m;
+        if (light_k < light_n) {
+          ++light_k;
           continue;
         }
-        fine = true;
+      } else {
+        if (++primary > 4 * frame.steps.x) break;
+        bool tracing = three_phase && in_region;
+        if (!fine) {
+          if (field.x <= 0.0f) {
+            traced_step = 0.0f;
+            if (tracing) {  // phase 2
+              float min_step = voxel_min_step_m(fine_step, coarse_step, slow);
+              slow = vox.sdf_m - vox.voxel_m < min_step ? slow + 1 : 0;
+              traced_step = min(voxel_sphere_step(vox.sdf_m, vox.voxel_m, min_step),
+                                voxel_region_exit_m(pos, dir) + 0.5f * fine_step);
+            }
+            t += tracing ? traced_step : coarse_step;
+            continue;
+          }
+          fine = true;
+          misses = 0;
+          fine_until = t;
+          // Step back over what the coarse (or sphere-traced) step skipped, not into what fine
+          // steps have sampled: where the base shape fills space that erosion has emptied (a
+          // deck's thin base seen at a grazing angle) the march would otherwise crawl one fine
+          // step per return.
+          t = max(t - (traced_step > 0.0f ? traced_step : coarse_step), sampled_until);
+          traced_step = 0.0f;
+          continue;
+        }
+        sampled_until = t;
+        if (field.y <= 0.0f) {
+          // Out of a voxel cloud, in its box, past the sample that found it: sphere tracing
+          // again (phase 3 to 2).
+          bool left = tracing && vox.sdf_m > vox.voxel_m;
+          if ((++misses >= 6 || left) && t > fine_until) fine = false;
+          t += fine_step;
+          continue;
+        }
         misses = 0;
-        fine_until = t;
-        // Step back over what the coarse (or sphere-traced) step skipped, not into what fine
-        // steps have sampled: where the base shape fills space that erosion has emptied (a
-        // deck's thin base seen at a grazing angle) the march would otherwise crawl one fine
-        // step per return.
-        t = max(t - (traced_step > 0.0f ? traced_step : coarse_step), sampled_until);
-        traced_step = 0.0f;
-        continue;
+        // Light this sample in the next light_n iterations: march the first voxel of the light
+        // volume towards the sun (where it is too coarse for the light's fast change at a cloud's
+        // surface) and look the rest up where that march ends; without the volume, march all.
+        // In a voxel region with SDF shadows: a cone traced through the cloud's distance field
+        // to its box's edge, and the light volume from there, at once.
+        float sigma_t = field.y * sigma_scale * view_atten;
+        // At most TAU_STEP_96 * 96 / primary_steps of optical depth per step (0.5 at 96 steps).
+        lit_step_m = clamp(TAU_STEP_96 * 96.0f / (float(frame.steps.x) * sigma_t), 1.0f, fine_step);
+        lit_sigma_t = sigma_t;
+        lit_pos = pos;
+        lit_visibility = 1.0f;
+        if (sdf_shadow && in_region) {  // shaded below, in this iteration
+          // Opaque at an optical depth of 100 along the light: the diffuse light through the
+          // cloud, 1 / (1 + 0.11 tau), still counts at 40.
+          vec4 cone = sdf_cone_trace(pos, sun, vox.cloud, 100.0f / (sigma_scale * light_atten), field.y);
+          lit_depth = cone.x;
+          lit_visibility = cone.y;
+          // The light volume from where the cone ended: inside the box, the rest of the cloud
+          // from its coarse voxels; past the box, from a voxel beyond it (see below), what lies
+          // between being the noise clouds' fade, nearly empty.
+          lit_near_m = cone.z + cone.w * light_volume_voxel_at(pos);
+          lit_volume = light_volume_covers(pos + sun * lit_near_m);
+        } else {
+          float length_m = light_ray_length(pos, sun);
+          lit_volume = light_volume_covers(pos);
+          lit_near_m = lit_volume ? min(light_volume_voxel_at(pos), length_m) : length_m;
+          // In a voxel region, across the region and one of the light volume's voxels beyond:
+          // the volume is too coarse for a voxel cloud's sharp shapes (its trilinear voxels, which
+          // straddle the region's edge, would draw facets on them).
+          if (in_region)
+            lit_near_m = min(max(lit_near_m, voxel_region_exit_m(pos, sun) + light_volume_voxel_at(pos)),
+                             length_m);
+          lit_volume = lit_volume && lit_near_m < length_m;
+          lit_unit_m = lit_near_m / float(light_n * (light_n + 1) / 2);
+          lit_depth = 0.0f;
+          light_k = 1;
+          continue;
+        }
       }
-      sampled_until = t;
-      if (field.y <= 0.0f) {
-        // Out of a voxel cloud, in its box, past the sample that found it: sphere tracing
-        // again (phase 3 to 2).
-        bool left = tracing && vox.sdf_m > vox.voxel_m;
-        if ((++misses >= 6 || left) && t > fine_until) fine = false;
-        t += fine_step;
-        continue;
-      }
-      misses = 0;
-      // Light this sample in the next light_n iterations: march the first voxel of the light
-      // volume towards the sun (where it is too coarse for the light's fast change at a cloud's
-      // surface) and look the rest up where that march ends; without the volume, march all.
-      // In a voxel region with SDF shadows: a cone traced through the cloud's distance field
-      // to its box's edge, and the light volume from there, at once.
-      float sigma_t = field.y * sigma_scale * view_atten;
-      // At most TAU_STEP_96 * 96 / primary_steps of optical depth per step (0.5 at 96 steps).
-      lit_step_m = clamp(TAU_STEP_96 * 96.0f / (float(frame.steps.x) * sigma_t), 1.0f, fine_step);
-      lit_sigma_t = sigma_t;
-      lit_pos = pos;
-      lit_visibility = 1.0f;
-      if (sdf_shadow && in_region) {
-        // Opaque at an optical depth of 100 along the light: the diffuse light through the
-        // cloud, 1 / (1 + 0.11 tau), still counts at 40.
-        vec4 cone = sdf_cone_trace(pos, sun, vox.cloud, 100.0f / (sigma_scale * light_atten));
-        lit_depth = cone.x;
-        lit_visibility = cone.y;
-        // The light volume from where the cone ended: inside the box, the rest of the cloud
-        // from its coarse voxels; past the box, from a voxel beyond it (see below), what lies
-        // between being the noise clouds' fade, nearly empty.
-        lit_near_m = cone.z + cone.w * light_volume_voxel_at(pos);
-        lit_volume = light_volume_covers(pos + sun * lit_near_m);
-        light_k = light_n + 1;
-        continue;
-      }
-      float length_m = light_ray_length(pos, sun);
-      lit_volume = light_volume_covers(pos);
-      lit_near_m = lit_volume ? min(light_volume_voxel_at(pos), length_m) : length_m;
-      // In a voxel region, across the region and one of the light volume's voxels beyond:
-      // the volume is too coarse for a voxel cloud's sharp shapes (its trilinear voxels, which
-      // straddle the region's edge, would draw facets on them).
-      if (in_region)
-        lit_near_m = min(max(lit_near_m, voxel_region_exit_m(pos, sun) + light_volume_voxel_at(pos)),
-                         length_m);
-      lit_volume = lit_volume && lit_near_m < length_m;
-      lit_unit_m = lit_near_m / float(light_n * (light_n + 1) / 2);
-      lit_depth = 0.0f;
-      light_k = 1;
+      // The sample's light is known (its light march done, or its SDF cone traced in this
+      // iteration): shade it and step on along the view ray.
+      light_k = 0;
+      float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
+      float tau_light = depth * sigma_scale * light_atten;
+      float energy = multiple_scattering(tau_light, mu, powder, phases) * lit_visibility;
+      // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
+      float h = saturate(layer_fraction(lit_pos));
+      // With voxel clouds, where the ray first meets cloud: the shell's entry may lie far
+      // from a voxel cloud, and the light volume's voxels there would draw facets on it.
+      if (below_share < 0.0f) below_share = below_light_share(lit_pos, length(lit_pos) - frame.radii_m.x);
+      // What the cloud between the sample and the light lets through: the sunlight it has
+      // scattered forward, no longer a beam but a diffuse flux (radiance = flux / pi, the
+      // flux through a horizontal deck mu_sun times the sun's), and the sky's light through
+      // the same cloud; from below, the light of the ground around, itself under the
+      // clouds' shadow, less the higher the sample is in the layer.
+      float t_d = cloud_diffuse_transmittance(tau_light);
+      float diffuse = (t_d - exp(-tau_light)) * max(dot(sun, normalize(lit_pos)), 0.0f) / PI;
+      vec3 luminance = albedo * (sun_light * (energy + diffuse) +
+                                 ambient_above * t_d + ambient_below * ((1.0f - h) * below_share));
+      float step_t = exp(-lit_sigma_t * lit_step_m);
+      vec3 air = air_transmittance(eye_alt_m, length(lit_pos) - frame.radii_m.x, t);
+      // Energy-conserving integration over the step (Hillaire 2016).
+      scattered += transmittance * air * luminance * (1.0f - step_t);
+      haze += transmittance.x * (1.0f - air.g) * (1.0f - step_t);
+      weighted_t += t * transmittance.x * (1.0f - step_t);
+      transmittance *= step_t;
+      t += lit_step_m;
     }
     if (transmittance.x < 0.01f) transmittance = vec3(0.0f);
   }

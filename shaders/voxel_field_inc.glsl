@@ -109,10 +109,10 @@ const int SDF_SHADOW_STEPS = 16;
 // the step's length times the mean of the densities at its two ends (the trapezoid rule: the
 // density at the start alone under-counts a path going deeper). It ends where the path leaves
 // the cloud's box, after SDF_SHADOW_STEPS, or once the cloud is opaque (optical depth
-// `opaque`). Returns (x) the optical depth (density field x m), (y) the visibility, (z) how far
+// `opaque`). density_p is the density field at p. Returns (x) the optical depth (density field x m), (y) the visibility, (z) how far
 // it went (m), (w) 1 if it left the box: the rest of the light's path (other clouds, the noise
 // clouds) is looked up from there.
-vec4 sdf_cone_trace(vec3 p, vec3 sun, int cloud, float opaque) {
+vec4 sdf_cone_trace(vec3 p, vec3 sun, int cloud, float opaque, float density_p) {
   VoxelCloudGpu c = frame.voxel_clouds[cloud];
   vec3 u = voxel_grid_coord(c, p);
   vec3 du = vec3(dot(c.to_grid_x.xyz, sun), dot(c.to_grid_y.xyz, sun), dot(c.to_grid_z.xyz, sun));
@@ -126,8 +126,10 @@ vec4 sdf_cone_trace(vec3 p, vec3 sun, int cloud, float opaque) {
       break;
     }
     vec2 v = voxel_lookup(c, q);
-    // Eroded at the surface as voxel_field erodes it: the light's path through the skin counts.
-    float density = voxel_surface_erosion(v.x, v.y, q, c.dims.w, p + sun * t) * c.anchor_m.w;
+    // At p the density the march found there (eroded); beyond, the grid's own: the steps are
+    // a voxel or longer, too far apart for the erosion's fine detail, which they would alias
+    // (and its reads were a sixth of the frame on a CPU device).
+    float density = k == 0 ? density_p : v.x * c.anchor_m.w;
     depth += 0.5f * (last_density + density) * last_step_m;
     float sdf_m = v.y * c.dims.w;
     if (sdf_m >= 0.0f && t > 0.0f && sdf_m < previous)

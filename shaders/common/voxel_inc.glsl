@@ -18,6 +18,15 @@ float voxel_sphere_step(float sdf_m, float voxel_m, float min_step_m) {
   return max(sdf_m - voxel_m, min_step_m);
 }
 
+// The sphere tracer's shortest step (m) after `slow_steps` steps in a row that the distance
+// field could not lengthen past it (a ray running along a surface): fine_step_m at first,
+// doubling with each, at most coarse_step_m (seed 002: "after stepping slowly for a while,
+// enlarge the step manually"). A ray grazing a cloud then crosses it as the noise clouds'
+// coarse steps would, instead of crawling along it at the fine step.
+float voxel_min_step_m(float fine_step_m, float coarse_step_m, int slow_steps) {
+  return min(fine_step_m * exp2(float(min(slow_steps, 16))), coarse_step_m);
+}
+
 // The SDF cone's visibility (seed 002, SDF Shadow): a cone of half-angle tangent `tangent`
 // around the light ray that passes an occluder at distance sdf_m, t_m along the ray, is left
 // open by saturate(sdf / (t tangent)); the soft shadow is the least over the trace.
