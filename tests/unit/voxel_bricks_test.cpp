@@ -72,9 +72,10 @@ TEST(VoxelBricks, SamplingMatchesTheGridAndEmptyBricksBoundTheDistance) {
 
 // Sphere tracing with voxel_sphere_step never steps over the ball that a fine fixed-step march
 // finds: over random rays, many grazing it, the tracer stops (at density > 0, as the clouds
-// pass does) no later than where the fine march first finds the cloud (density 1/2: the
-// binary ball's surface; it may stop earlier, in the filtered density's fringe), in a tenth of
-// the fine march's steps.
+// pass does) with the sample before the hit no later than where the fine march first finds the
+// cloud (density 1/2: the binary ball's surface; it may stop earlier, in the filtered density's
+// fringe), so stepping back from the hit refines the right surface, in a tenth of the fine
+// march's steps.
 TEST(VoxelBricks, SphereTracingNeverSkipsWhatAFineMarchFinds) {
   const int n = 64;
   const float r = 12.0f;
@@ -102,15 +103,20 @@ TEST(VoxelBricks, SphereTracingNeverSkipsWhatAFineMarchFinds) {
         reference = t;
         break;
       }
-    float traced = -1.0f;
-    int steps = 0;
+    // The shader's tracer: its shortest step doubles while the ray runs along the surface
+    // (voxel_min_step_m), up to a coarse step of six.
+    float traced = -1.0f, before = 0.0f;  // the hit, and the sample before it
+    int steps = 0, slow = 0;
     for (float t = 0.0f; t < length;) {
       if (density(t) > 0.0f) {
         traced = t;
         break;
       }
+      before = t;
       const float sdf = nephele::voxel::sample_bricks(pool, 0, from + dir * t).y;
-      t += nephele::glsl::voxel_sphere_step(sdf, 1.0f, min_step);
+      const float shortest = nephele::glsl::voxel_min_step_m(min_step, 6.0f * min_step, slow);
+      slow = sdf - 1.0f < shortest ? slow + 1 : 0;
+      t += nephele::glsl::voxel_sphere_step(sdf, 1.0f, shortest);
       ++steps;
     }
     if (reference < 0.0f) continue;  // missed, or only the fringe: either may stop there
@@ -119,13 +125,23 @@ TEST(VoxelBricks, SphereTracingNeverSkipsWhatAFineMarchFinds) {
     const float closest = glm::length(glm::cross(centre - from, dir));
     if (closest > r - 2.0f) ++grazing;
     ASSERT_GE(traced, 0.0f) << "ray " << ray << " skipped the ball (closest approach " << closest << ")";
-    EXPECT_LE(traced, reference + fine) << "ray " << ray;
+    // The march steps back to the sample before the hit and refines: it lies before the surface.
+    EXPECT_LE(before, reference + fine) << "ray " << ray;
     traced_steps += steps;
     reference_steps += int(reference / fine);
   }
   EXPECT_GT(hits, 500);
   EXPECT_GT(grazing, 50);
   EXPECT_LT(traced_steps * 10, reference_steps);
+}
+
+TEST(VoxelBricks, TheShortestStepDoublesAlongASurfaceUpToTheCoarseStep) {
+  namespace g = nephele::glsl;
+  EXPECT_FLOAT_EQ(g::voxel_min_step_m(10.0f, 60.0f, 0), 10.0f);
+  EXPECT_FLOAT_EQ(g::voxel_min_step_m(10.0f, 60.0f, 1), 20.0f);
+  EXPECT_FLOAT_EQ(g::voxel_min_step_m(10.0f, 60.0f, 2), 40.0f);
+  EXPECT_FLOAT_EQ(g::voxel_min_step_m(10.0f, 60.0f, 3), 60.0f);
+  EXPECT_FLOAT_EQ(g::voxel_min_step_m(10.0f, 60.0f, 1000), 60.0f);
 }
 
 TEST(VoxelSdfCone, VisibilityFollowsTheSeedsFormula) {
