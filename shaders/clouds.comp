@@ -230,6 +230,7 @@ void main() {
     float lit_sigma_t = 0.0f, lit_step_m = 0.0f, lit_unit_m = 0.0f, lit_near_m = 0.0f;
     float lit_depth = 0.0f;   // optical depth gathered so far (density field x m)
     bool lit_volume = false;  // look the rest up in the light volume
+    bool lit_doubling = false;  // the light march's steps double (else grow linearly)
     int budget = 4 * frame.steps.x * (light_n + 1);
     // Voxel clouds (seed 002, New Three-Phases Raymarching): phase 1 the adaptive steps above
     // in the noise clouds; phase 2, in a voxel cloud's box (where the noise clouds have faded
@@ -244,9 +245,11 @@ void main() {
     float lit_visibility = 1.0f;  // the SDF cone's soft shadow of the sample being lit
     for (int i = 0; i < budget && t < segment.y && transmittance.x >= 0.01f; ++i) {
       bool lighting = light_k > 0;
-      // Light march steps grow linearly: step k is k units long and starts k (k - 1) / 2 units in.
-      float seg_m = lit_unit_m * float(light_k);
-      float mid_m = lit_unit_m * 0.5f * float(light_k * (light_k - 1)) + 0.5f * seg_m;
+      // Light march steps grow linearly (step k is k units long and starts k (k - 1) / 2 units
+      // in) or, across a voxel region, geometrically (2^(k-1) units, starting 2^(k-1) - 1 in).
+      float seg_m = lit_unit_m * (lit_doubling ? exp2(float(light_k - 1)) : float(light_k));
+      float mid_m = lit_unit_m * (lit_doubling ? exp2(float(light_k - 1)) - 1.0f
+                                               : 0.5f * float(light_k * (light_k - 1))) + 0.5f * seg_m;
       vec3 pos = lighting ? lit_pos + sun * mid_m : eye + dir * t;
       VoxelSample vox = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f, 0);
       vec2 field = cloud_field(pos, vox);
@@ -330,7 +333,13 @@ void main() {
             lit_near_m = min(max(lit_near_m, voxel_region_exit_m(pos, sun) + light_volume_voxel_at(pos)),
                              length_m);
           lit_volume = lit_volume && lit_near_m < length_m;
-          lit_unit_m = lit_near_m / float(light_n * (light_n + 1) / 2);
+          // A voxel cloud's light changes fastest just inside its sharp surface, and the march
+          // crosses its whole region: doubling steps put the first short step there (linear
+          // ones left a 6-step baseline 6.5% darker than a converged march, doubling 2%); the
+          // noise clouds' soft edges and one light-volume voxel keep the linear steps.
+          lit_doubling = in_region;
+          lit_unit_m = lit_near_m / (lit_doubling ? exp2(float(light_n)) - 1.0f
+                                                  : float(light_n * (light_n + 1) / 2));
           lit_depth = 0.0f;
           light_k = 1;
           continue;

@@ -118,10 +118,11 @@ std::pair<double, double> cloud_luminance(const nephele::Frame& f) {
 }
 
 // The four variants of seed 002's ablation draw the same cloud: the same pixels opaque
-// (opacity differing by under 0.1 on 95% of them), and a mean luminance within 4% of what
-// they all converge to (the ablation's reference: the plain march with every light ray marched
-// in 64 steps, no light volume, 4 times the primary steps). Measured: the light march 2.5-3%
-// below it, the SDF cone 3% above.
+// (opacity differing by under 0.1 on 95% of them), and a mean luminance within 2% (the seed
+// ablation's bound) of what they all converge to (the ablation's reference: the plain march
+// with every light ray marched in 64 steps, no light volume, 4 times the primary steps).
+// Measured: all four 0.6-0.8% below it; the light march with linearly growing steps was 2.5-3%
+// below, the SDF cone reading the eroded skin 3% above.
 TEST_F(VoxelRender, MarchAndShadowModesDrawTheSameCloud) {
   Scene s = ball_scene({0.0f, 3000.0f, 1500.0f});
   s.camera.view_dir = {0.0f, 1.0f, 0.5f};
@@ -139,7 +140,7 @@ TEST_F(VoxelRender, MarchAndShadowModesDrawTheSameCloud) {
     ASSERT_GT(pixels, 100.0);
     std::printf("variant %d: luminance %.4f, %+.2f%% from the reference\n", v, luminance,
                 100.0 * (luminance / reference_luminance - 1.0));
-    EXPECT_NEAR(luminance / reference_luminance, 1.0, 0.04) << "variant " << v;
+    EXPECT_NEAR(luminance / reference_luminance, 1.0, 0.02) << "variant " << v;
     if (v == 0) {
       base_opacity = o;
       continue;
