@@ -1,0 +1,126 @@
+// The reference path tracer's pure functions (issue 21): random numbers, Henyey-Greenstein
+// sampling, and null-collision tracking through a heterogeneous medium (Woodcock's delta
+// tracking to sample collisions, ratio tracking to estimate transmittance; Novák et al. 2014),
+// shared by the GPU pass and the CPU tests (tests/unit/path_test.cpp), which check them
+// against closed forms.
+//
+// The includer defines, before including this file, the medium:
+//   float pt_sigma_t(vec3 p)            extinction (1/m) at p
+//   vec2 pt_bounds(vec3 origin, vec3 d) where a ray enters and leaves the medium (t_in >= 0;
+//                                        t_out <= t_in: it misses)
+// and pt_majorant, a bound on pt_sigma_t (1/m) along every ray. No include guard: a CPU test
+// includes it once per medium, each in its own namespace.
+// Keeps to the GLSL subset that GLM accepts (see math_inc.glsl): no out parameters.
+
+// Pseudo-random numbers without state: a hash of (stream, index). PCG's output permutation as
+// a hash (Jarzynski and Olano 2020, "Hash Functions for GPU Rendering").
+uint pt_hash(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+// A stream of random numbers for one purpose of one sample of one pixel.
+uint pt_stream(uint a, uint b, uint c) { return pt_hash(a ^ pt_hash(b ^ pt_hash(c))); }
+
+// The i-th number of a stream, uniform in [0, 1).
+float pt_uniform(uint stream, uint i) {
+  return float(pt_hash(stream ^ pt_hash(i + 0x9E3779B9u)) >> 8u) * (1.0f / 16777216.0f);
+}
+
+// A direction whose angle to d has a Henyey-Greenstein distribution of eccentricity g (the
+// inverse of its cumulative distribution, Pharr et al., PBRT 3, 15.2.3): the scattered
+// direction of a path that travelled along d; its pdf is henyey_greenstein(g, dot(d, result)).
+vec3 pt_sample_hg(vec3 d, float g, float u1, float u2) {
+  float cos_theta;
+  if (abs(g) < 1e-3f) {
+    cos_theta = 1.0f - 2.0f * u1;
+  } else {
+    float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u1);
+    cos_theta = (1.0f + g * g - s * s) / (2.0f * g);
+  }
+  cos_theta = clamp(cos_theta, -1.0f, 1.0f);
+  float sin_theta = sqrt(max(1.0f - cos_theta * cos_theta, 0.0f));
+  float phi = 2.0f * PI * u2;
+  // An orthonormal frame around d (Duff et al. 2017).
+  float s = d.z >= 0.0f ? 1.0f : -1.0f;
+  float a = -1.0f / (s + d.z);
+  float b = d.x * d.y * a;
+  vec3 t1 = vec3(1.0f + s * d.x * d.x * a, s * b, -s * d.x);
+  vec3 t2 = vec3(b, s + d.y * d.y * a, -d.y);
+  return normalize(sin_theta * (cos(phi) * t1 + sin(phi) * t2) + cos_theta * d);
+}
+
+// Most tentative collisions a tracking loop takes: a bound on a loop, never reached with a
+// majorant within a few times the medium's extinction.
+const int PT_MAX_COLLISIONS = 65536;
+
+// Delta tracking from p along d over [0, t_max]: the distance to a real collision, sampled
+// with probability density sigma_t(t) T(t), or a value above t_max when the path leaves the
+// medium unscattered (probability T(t_max)). Tentative collisions at the majorant's rate are
+// real with probability sigma_t / majorant, null otherwise.
+float pt_delta_tracking(vec3 p, vec3 d, float t_max, float majorant, uint stream) {
+  float t = 0.0f;
+  for (int i = 0; i < PT_MAX_COLLISIONS; ++i) {
+    t -= log(1.0f - pt_uniform(stream, uint(2 * i))) / majorant;
+    if (t >= t_max) break;
+    if (pt_uniform(stream, uint(2 * i + 1)) * majorant < pt_sigma_t(p + d * t)) return t;
+  }
+  return t_max + 1.0f;
+}
+
+// Ratio tracking from p along d over [0, t_max]: an unbiased estimate of the transmittance
+// exp(-integral of sigma_t), the product of (1 - sigma_t / majorant) over the tentative
+// collisions, with Russian roulette once it falls under 0.1 (each survivor weighs 2).
+float pt_ratio_tracking(vec3 p, vec3 d, float t_max, float majorant, uint stream) {
+  float t = 0.0f;
+  float transmittance = 1.0f;
+  for (int i = 0; i < PT_MAX_COLLISIONS; ++i) {
+    t -= log(1.0f - pt_uniform(stream, uint(2 * i))) / majorant;
+    if (t >= t_max) break;
+    transmittance *= 1.0f - pt_sigma_t(p + d * t) / majorant;
+    if (transmittance < 0.1f) {
+      if (pt_uniform(stream, uint(2 * i + 1)) < 0.5f) return 0.0f;
+      transmittance *= 2.0f;
+    }
+  }
+  return transmittance;
+}
+
+// What the medium lets through towards the light from p (inside it or on its surface).
+float pt_transmittance_to(vec3 p, vec3 d, float majorant, uint stream) {
+  vec2 bounds = pt_bounds(p, d);
+  if (bounds.y <= bounds.x) return 1.0f;
+  return pt_ratio_tracking(p + d * bounds.x, d, bounds.y - bounds.x, majorant, stream);
+}
+
+// Radiance along the ray (eye, dir) through the medium (single albedo, Henyey-Greenstein phase
+// g) lit by a distant light of irradiance E from direction `light` (next-event estimation at
+// every collision) and a uniform environment of radiance `environment` (met by paths that
+// leave). max_bounces scatterings after the first (0: single scattering only). One path;
+// `stream` seeds it. Every path that is not cut by max_bounces leaves the medium, so with
+// albedo 1 and no light but the environment it returns the environment exactly (a furnace).
+float pt_path_radiance(vec3 eye, vec3 dir, vec3 light, float irradiance, float environment,
+                       float albedo, float g, int max_bounces, float majorant, uint stream) {
+  float radiance = 0.0f;
+  float weight = 1.0f;
+  vec3 x = eye;
+  vec3 d = dir;
+  for (int bounce = 0; bounce <= max_bounces; ++bounce) {
+    uint s = pt_hash(stream ^ pt_hash(uint(bounce)));
+    vec2 bounds = pt_bounds(x, d);
+    float t = bounds.y > bounds.x
+                  ? pt_delta_tracking(x + d * bounds.x, d, bounds.y - bounds.x, majorant, pt_hash(s ^ 1u))
+                  : 1.0f;
+    if (bounds.y <= bounds.x || t > bounds.y - bounds.x) {  // left the medium
+      radiance += weight * environment;
+      break;
+    }
+    x += d * (bounds.x + t);
+    weight *= albedo;  // sigma_s / sigma_t at a collision sampled in proportion to sigma_t T
+    radiance += weight * irradiance * henyey_greenstein(g, dot(d, light)) *
+                pt_transmittance_to(x, light, majorant, pt_hash(s ^ 2u));
+    d = pt_sample_hg(d, g, pt_uniform(s, 3u), pt_uniform(s, 4u));
+  }
+  return radiance;
+}

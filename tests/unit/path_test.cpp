@@ -1,0 +1,167 @@
+// The reference path tracer's functions (shaders/common/path_inc.glsl) against known answers:
+// transmittance through a heterogeneous slab, a furnace, single scattering in a homogeneous
+// sphere against a numerical integral, and the error falling as 1/sqrt(samples).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "render/glsl.h"
+
+namespace {
+
+using namespace nephele::glsl;
+
+// A slab 0 <= z <= 100 m whose extinction varies along z: 0.02 (1 + 0.8 sin(z / 7 m)) per m.
+// Its optical depth along z over [0, 100] has a closed form.
+namespace slab {
+using namespace nephele::glsl;
+constexpr float kThickness = 100.0f;
+float pt_sigma_t(vec3 p) { return 0.02f * (1.0f + 0.8f * std::sin(p.z / 7.0f)); }
+vec2 pt_bounds(vec3 o, vec3 d) {
+  // Only rays along +z are used.
+  (void)d;
+  return vec2(std::max(-o.z, 0.0f), kThickness - o.z);
+}
+#include "common/path_inc.glsl"
+double optical_depth() {  // integral of 0.02 (1 + 0.8 sin(z/7)) over [0, 100]
+  return 0.02 * (kThickness + 0.8 * 7.0 * (1.0 - std::cos(kThickness / 7.0)));
+}
+}  // namespace slab
+
+// A homogeneous sphere of radius 50 m at the origin, sigma_t 0.03 per m.
+namespace sphere {
+using namespace nephele::glsl;
+constexpr float kRadius = 50.0f;
+constexpr float kSigma = 0.03f;
+float pt_sigma_t(vec3 p) { return dot(p, p) <= kRadius * kRadius ? kSigma : 0.0f; }
+vec2 pt_bounds(vec3 o, vec3 d) {
+  vec2 t = ray_sphere(o, d, kRadius);
+  return vec2(std::max(t.x, 0.0f), t.y);
+}
+#include "common/path_inc.glsl"
+}  // namespace sphere
+
+TEST(PathTracer, RatioTrackingMatchesTheSlabsTransmittance) {
+  const double exact = std::exp(-slab::optical_depth());  // about 0.13
+  double sum = 0.0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i)
+    sum += slab::pt_ratio_tracking(vec3(0.0f), vec3(0.0f, 0.0f, 1.0f), slab::kThickness, 0.05f,
+                                   slab::pt_stream(1u, uint(i), 0u));
+  EXPECT_NEAR(sum / n, exact, 0.01 * exact + 0.003) << "exact " << exact;
+}
+
+TEST(PathTracer, DeltaTrackingLetsThroughTheSlabsTransmittance) {
+  const double exact = std::exp(-slab::optical_depth());
+  int through = 0;
+  double first_half = 0.0;  // collisions in z < 50, against 1 - T(50)
+  const int n = 40000;
+  for (int i = 0; i < n; ++i) {
+    float t = slab::pt_delta_tracking(vec3(0.0f), vec3(0.0f, 0.0f, 1.0f), slab::kThickness, 0.05f,
+                                      slab::pt_stream(2u, uint(i), 0u));
+    through += t > slab::kThickness;
+    first_half += t < 50.0f;
+  }
+  const double half_depth = 0.02 * (50.0 + 0.8 * 7.0 * (1.0 - std::cos(50.0 / 7.0)));
+  // Binomial standard error at n = 40000: under 0.0025; 4 sigma.
+  EXPECT_NEAR(double(through) / n, exact, 0.01);
+  EXPECT_NEAR(first_half / n, 1.0 - std::exp(-half_depth), 0.01);
+}
+
+TEST(PathTracer, HenyeyGreensteinSamplesHaveTheMeanCosineG) {
+  // The mean cosine of Henyey-Greenstein is g; the samples are unit vectors.
+  for (float g : {-0.5f, 0.0f, 0.3f, 0.85f}) {
+    const vec3 d = normalize(vec3(0.3f, -0.5f, 0.8f));
+    double sum = 0.0;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      uint s = sphere::pt_stream(3u, uint(i), 0u);
+      vec3 w = sphere::pt_sample_hg(d, g, sphere::pt_uniform(s, 0u), sphere::pt_uniform(s, 1u));
+      ASSERT_NEAR(length(w), 1.0f, 1e-4f);
+      sum += dot(w, d);
+    }
+    EXPECT_NEAR(sum / n, g, 0.01) << "g " << g;
+  }
+}
+
+// Albedo 1, lit only by a uniform environment of radiance 1: every path leaves the sphere
+// with its weight intact, so every pixel sees exactly 1 (any lost or created energy shows).
+TEST(PathTracer, AFurnaceReturnsTheEnvironment) {
+  const vec3 eye(0.0f, -200.0f, 10.0f);
+  for (float g : {0.0f, 0.85f}) {
+    double sum = 0.0;
+    const int n = 2000;
+    for (int i = 0; i < n; ++i)
+      sum += sphere::pt_path_radiance(eye, normalize(vec3(0.05f, 1.0f, 0.0f)), vec3(0.0f, 0.0f, 1.0f),
+                                      0.0f, 1.0f, 1.0f, g, 100000, sphere::kSigma, sphere::pt_stream(4u, uint(i), 0u));
+    EXPECT_NEAR(sum / n, 1.0, 1e-5) << "g " << g;
+  }
+  // With albedo 0.5 light is lost at each collision: less comes out.
+  double dim = 0.0;
+  for (int i = 0; i < 2000; ++i)
+    dim += sphere::pt_path_radiance(eye, vec3(0.0f, 1.0f, 0.0f), vec3(0.0f, 0.0f, 1.0f), 0.0f, 1.0f,
+                                    0.5f, 0.0f, 100000, sphere::kSigma, sphere::pt_stream(5u, uint(i), 0u));
+  EXPECT_LT(dim / 2000, 0.6);
+}
+
+// Single scattering in the homogeneous sphere, integrated along the view ray with 20000
+// midpoint steps: sigma_s T(eye, x) p(mu) E T(x, light).
+double single_scattering(vec3 eye, vec3 dir, vec3 light, float irradiance, float albedo, float g) {
+  vec2 b = sphere::pt_bounds(eye, dir);
+  if (b.y <= b.x) return 0.0;
+  const int n = 20000;
+  const double dt = double(b.y - b.x) / n;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double t = b.x + (i + 0.5) * dt;
+    const vec3 x = eye + dir * float(t);
+    const double to_light = sphere::pt_bounds(x, light).y;
+    sum += std::exp(-sphere::kSigma * (t - b.x)) * std::exp(-sphere::kSigma * to_light) * dt;
+  }
+  return albedo * sphere::kSigma * henyey_greenstein(g, dot(dir, light)) * irradiance * sum;
+}
+
+double path_mean(vec3 eye, vec3 dir, vec3 light, float albedo, float g, int n, uint seed) {
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    sum += sphere::pt_path_radiance(eye, dir, light, 3.0f, 0.0f, albedo, g, 0, 0.04f,
+                                    sphere::pt_stream(seed, uint(i), 7u));
+  return sum / n;
+}
+
+TEST(PathTracer, SingleScatteringMatchesANumericalIntegral) {
+  const vec3 eye(0.0f, -150.0f, 0.0f);
+  const vec3 light = normalize(vec3(0.3f, -0.4f, 0.8f));
+  // Through the middle and through the rim, forward and isotropic scattering.
+  for (float x : {0.0f, 30.0f, 45.0f})
+    for (float g : {0.0f, 0.7f}) {
+      const vec3 dir = normalize(vec3(x, 150.0f, 5.0f));
+      const double exact = single_scattering(eye, dir, light, 3.0f, 0.9f, g);
+      const double estimate = path_mean(eye, dir, light, 0.9f, g, 40000, 11u);
+      EXPECT_NEAR(estimate, exact, 0.02 * exact) << "x " << x << " g " << g;
+    }
+}
+
+// The root-mean-square error of a pixel's mean over N paths falls as 1/sqrt(N): 4 times the
+// paths halve it.
+TEST(PathTracer, ErrorFallsAsOneOverTheRootOfTheSamples) {
+  const vec3 eye(0.0f, -150.0f, 0.0f);
+  const vec3 light = normalize(vec3(0.3f, -0.4f, 0.8f));
+  const vec3 dir = normalize(vec3(20.0f, 150.0f, 5.0f));
+  const double exact = single_scattering(eye, dir, light, 3.0f, 0.9f, 0.5f);
+  std::vector<double> rms;
+  for (int n : {16, 64, 256}) {
+    double sq = 0.0;
+    const int trials = 400;
+    for (int k = 0; k < trials; ++k) {
+      const double e = path_mean(eye, dir, light, 0.9f, 0.5f, n, 100u + uint(k) * 7919u + uint(n)) - exact;
+      sq += e * e;
+    }
+    rms.push_back(std::sqrt(sq / trials));
+  }
+  EXPECT_NEAR(rms[0] / rms[1], 2.0, 0.3);
+  EXPECT_NEAR(rms[1] / rms[2], 2.0, 0.3);
+}
+
+}  // namespace
