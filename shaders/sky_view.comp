@@ -31,7 +31,7 @@ void main() {
   vec3 eye = frame.camera_pos_m.xyz;
   vec3 sun = frame.sun_dir.xyz;
   SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_build_up, frame.sky_view_build_forward);
-  vec2 uv = (vec2(texel) + 0.5f) / vec2(size.x, rows);
+  vec2 uv = vec2((float(texel.x) + 0.5f) / float(size.x), sky_view_row_v(texel.y, rows));
   vec3 dir = sky_view_texel_dir(sky_frame, uv, eye, frame.radii_m.x);
   Atmosphere a = frame_atmosphere();
   SkySample sky = sky_hillaire(a, transmittance_lut, ms_lut, false, eye, dir, sun, frame.steps.z,

@@ -103,14 +103,39 @@ vec3 sky_view_texel_dir(SkyViewFrame f, vec2 uv, vec3 eye, float planet_radius_m
 // texel away from the horizon on uv's side of it and from the table's ends, so the bilinear
 // filter never blends ground into sky nor one table into the other; u wraps (the sampler
 // repeats), so the columns at u = 0 and u = 1 blend across the anti-key-light azimuth.
+// sky_view_v_clamped is the aerial-perspective volume's (rows at (k + 1/2) / rows);
+// sky_view_texcoord the sky-view LUT's (sky_view_row_v).
 float sky_view_v_clamped(vec2 uv, float rows) {
   float half_texel = 0.5f / rows;
   return uv.y < 0.5f ? clamp(uv.y, half_texel, 0.5f - half_texel)
                      : clamp(uv.y, 0.5f + half_texel, 1.0f - half_texel);
 }
 
+// The LUT's rows (sky_view.comp) on each side of the horizon: row k of the n = rows / 2 rows
+// of a side (k = 0 next to the horizon) holds s = (k + 1/2) / (n - 1/2) of the way (in
+// sky_view_uv's sqrt-spaced v) from the horizon to the zenith or nadir, so its last row is the
+// zenith (nadir) itself, the same direction at every azimuth: the sky does not jump across it.
+// (Rows at (k + 1/2) / n, as in Hillaire's code, put the last row 88.35 degrees up with 108
+// rows; the few degrees above it read it at their own azimuth, and the two sides of the
+// zenith differed by up to 6.8%.) The first row stays half a row off the horizon.
+float sky_view_row_v(int row, int rows) {
+  int n = rows / 2;
+  bool above = row >= n;
+  float k = float(above ? row - n : n - 1 - row);
+  float s = (k + 0.5f) / (float(n) - 0.5f);
+  return above ? 0.5f + 0.5f * s : 0.5f - 0.5f * s;
+}
+
+// The inverse, between rows: the row coordinate (in [0, 1] over the table's rows) of LUT
+// coordinate v, kept within the rows of v's side of the horizon.
+float sky_view_row_coordinate(float v, float rows) {
+  float n = 0.5f * rows;
+  float k = clamp(abs(2.0f * v - 1.0f) * (n - 0.5f) - 0.5f, 0.0f, n - 1.0f);
+  return (v >= 0.5f ? n + k + 0.5f : n - k - 0.5f) / rows;
+}
+
 vec2 sky_view_texcoord(vec2 uv, float rows, float table) {
-  return vec2(uv.x, 0.5f * (table + sky_view_v_clamped(uv, rows)));
+  return vec2(uv.x, 0.5f * (table + sky_view_row_coordinate(uv.y, rows)));
 }
 
 // Aerial-perspective volume (Hillaire 2020, section 5.4): the in-scattered radiance and the

@@ -120,6 +120,23 @@ TEST_F(SkyViewTest, GroundFromTenKilometresMatchesThePerPixelSky) {
   EXPECT_LT(e.mean, kMeanTolerance);
 }
 
+// Looking straight up (issue 21: the LUT's top row held the sky 88.35 degrees up, so the
+// last 1.65 degrees read it at their own azimuth and the two sides of the zenith differed by
+// 6.8%): every pixel within 10 degrees of the zenith matches the per-pixel sky.
+TEST_F(SkyViewTest, TheZenithHasNoSeam) {
+  for (float elevation_deg : {15.0f, 45.0f}) {
+    Scene s = cloudless("default");
+    const float e = glm::radians(elevation_deg);
+    s.sun.direction = {0.0f, std::cos(e), std::sin(e)};
+    s.camera.view_dir = {0.0f, 1e-3f, 1.0f};
+    s.camera.fov_deg = 20.0f;
+    const SkyError err = sky_error(s);
+    EXPECT_GT(err.pixels, 15000);
+    EXPECT_LT(err.max, 0.005) << "sun " << elevation_deg << " deg";
+    EXPECT_LT(err.mean, 0.002) << "sun " << elevation_deg << " deg";
+  }
+}
+
 namespace {
 
 bool has_pass(const nephele::Frame& frame, const std::string& name) {

@@ -163,7 +163,7 @@ TEST(SkyView, TexelsBelowTheHorizonAndOnlyThoseSeeTheGround) {
       int wrong = 0, moved = 0;
       for (int j = 0; j < h; ++j)
         for (int i = 0; i < w; i += 5) {
-          const vec2 uv((float(i) + 0.5f) / float(w), (float(j) + 0.5f) / float(h));
+          const vec2 uv((float(i) + 0.5f) / float(w), g::sky_view_row_v(j, h));
           const vec3 d = g::sky_view_texel_dir(f, uv, eye, kEarth.planet_radius_m);
           if (angle(d, g::sky_view_dir(f, uv)) > 0.0) ++moved;
           const g::SkySample sky =
@@ -174,6 +174,24 @@ TEST(SkyView, TexelsBelowTheHorizonAndOnlyThoseSeeTheGround) {
       // Only texels of the two rows next to the horizon ever move.
       EXPECT_LE(moved, 2 * (w / 5 + 1)) << "altitude " << altitude << " m, eye.x " << eye.x;
     }
+}
+
+// The LUT's rows: a lookup at a row's own v reads that row's centre, and the last row on
+// each side is the zenith (nadir) at every azimuth, so the sky is continuous across it.
+TEST(SkyView, RowsRoundTripAndTheLastRowIsTheZenith) {
+  const int h = int(nephele::kSkyViewHeight);
+  for (int j = 0; j < h; ++j)
+    EXPECT_NEAR(g::sky_view_row_coordinate(g::sky_view_row_v(j, h), float(h)),
+                (float(j) + 0.5f) / float(h), 1e-6f) << "row " << j;
+  const vec3 eye = eye_at(2.0f);
+  const g::SkyViewFrame f = g::sky_view_frame(eye, suns(eye)[0], kEarth.planet_radius_m);
+  for (float u : {0.0f, 0.3f, 0.5f, 0.9f}) {
+    EXPECT_LT(angle(g::sky_view_dir(f, vec2(u, g::sky_view_row_v(h - 1, h))), f.up), 1e-3);
+    EXPECT_LT(angle(g::sky_view_dir(f, vec2(u, g::sky_view_row_v(0, h))), -f.up), 1e-3);
+  }
+  // The first row above the horizon stays off it: half a row in v.
+  EXPECT_GT(g::sky_view_row_v(h / 2, h), 0.5f + 0.4f / float(h));
+  EXPECT_LT(g::sky_view_row_v(h / 2 - 1, h), 0.5f - 0.4f / float(h));
 }
 
 TEST(SkyView, TexcoordsStayOnTheirSideOfTheHorizonAndInTheirTable) {
