@@ -83,6 +83,22 @@ struct CloudProfile {
   std::vector<float> cloud_fraction;
 };
 
+// Renderer::render_reference: how long to trace.
+struct ReferenceOptions {
+  int spp = 64;               // samples per pixel, [1, 1000000]
+  double time_limit_s = 0.0;  // stop once this much time has passed (0: none), at a pass's end
+  uint32_t seed = 1;          // the same seed, scene and spp give the same image
+  ProgressCallback progress;  // "reference", samples per pixel done, of spp
+};
+
+// A path-traced image: the mean radiance per pixel and the variance of that mean.
+struct ReferenceImage {
+  Image mean;      // radiance (W m^-2 sr^-1 for a sun irradiance in W/m^2); a = 1
+  Image variance;  // rgb: the variance of each pixel's mean (the sample variance / spp)
+  int spp = 0;     // samples per pixel taken
+  double seconds = 0.0;
+};
+
 class Renderer {
  public:
   explicit Renderer(const RendererOptions& options = {});
@@ -109,6 +125,13 @@ class Renderer {
   // the camera, one weather-map tile (clouds.weather_period_m) on a side: how the clouds are
   // distributed in height (each cloud type's vertical profile). Validates the scene.
   CloudProfile cloud_profile(const Scene& scene);
+
+  // The reference path tracer (unbiased: delta and ratio tracking, next-event estimation
+  // towards the sun, the phase function sampled exactly) of the scene's lab (Scene::lab: a
+  // density grid in vacuum). Progressive: options.spp samples per pixel, or fewer when
+  // options.time_limit_s runs out. Throws InputError for an invalid scene, one without a lab
+  // grid, or spp out of range.
+  ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options = {});
 
   const std::string& device_name() const;
   // Number of validation-layer messages (warnings and errors) seen so far.

@@ -279,6 +279,21 @@ struct VoxelCloudParams {
 };
 constexpr int kMaxVoxelClouds = 16;
 
+// The lab scene (issue 21): one density grid in vacuum (no planet, no air, a black background)
+// lit by a distant sun, for comparing nephele's reference path tracer (Renderer::render_reference)
+// with other renderers. The grid keeps its file's frame (x east, y north, z up, metres) and
+// densities; the camera is the scene's.
+struct LabParams {
+  std::string grid;             // OpenVDB or NanoVDB file (as voxel clouds'); empty = no lab
+  float sigma_t_per_m = 0.05f;  // extinction at density 1 (1/m), (0, 1000]
+  float albedo = 1.0f;          // single-scattering albedo, [0, 1]
+  float g = 0.8f;               // Henyey-Greenstein asymmetry, (-1, 1)
+  int max_bounces = 64;         // scatterings after the first, [0, 100000]; 0 = single scattering
+  float sun_elevation_deg = 45.0f;   // [-90, 90]
+  float sun_azimuth_deg = 0.0f;      // from north through east, [-360, 360]
+  float sun_irradiance = 1.0f;       // W/m^2, perpendicular to the light, [0, 1e6]
+};
+
 struct Scene {
   CameraParams camera;
   SunParams sun;
@@ -296,6 +311,7 @@ struct Scene {
   float time_s = 0.0f;       // animation time (s): moves clouds with the wind, [-1e6, 1e6]
   uint32_t noise_seed = 1;   // seeds the noise textures and the procedural weather map
   std::vector<VoxelCloudParams> voxel_clouds;
+  LabParams lab;
 };
 
 const char* to_string(MarchMode mode);

@@ -80,5 +80,9 @@ layout(set = 0, binding = 41, rgba16) uniform writeonly image2D weather_map_out;
 // distance in voxels; trilinear) and the page table (texelFetch).
 layout(set = 0, binding = 42) uniform sampler3D voxel_atlas;
 layout(set = 0, binding = 43) uniform sampler3D voxel_pages;
+// The reference path tracer's accumulation (path_trace.comp): per pixel the sum of its
+// samples' radiance (rgb; a the count) and the sum of their squares (rgb).
+layout(set = 0, binding = 44, rgba32f) uniform image2D path_sum;
+layout(set = 0, binding = 45, rgba32f) uniform image2D path_squares;
 
 #endif

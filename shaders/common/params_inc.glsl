@@ -163,6 +163,13 @@ struct FrameParams {
   // erodes a voxel cloud's surface [0, 1], w the detail noise's frequency there, as a multiple
   // of the noise clouds'
   vec4 voxel_light;
+  // The reference path tracer (path_trace.comp): the medium of voxel cloud 0 in vacuum (the
+  // lab scene). x sigma_t (1/m) at grid density 1, y albedo, z Henyey-Greenstein g, w the
+  // majorant (1/m): sigma_t's largest value.
+  vec4 path_medium;
+  vec4 path_light;  // xyz unit direction towards the sun (planet frame), w its irradiance (W/m^2)
+  // x the first sample of this dispatch, y samples per pixel in it, z the seed, w max_bounces
+  ivec4 path_info;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

@@ -58,6 +58,8 @@ enum Binding : uint32_t {
   kWeatherMapOut = 41,
   kVoxelAtlas = 42,
   kVoxelPages = 43,
+  kPathSum = 44,
+  kPathSquares = 45,
   kBindingCount
 };
 

@@ -20,8 +20,6 @@
 
 namespace nephele {
 
-namespace {
-
 // Reads an RGBA image of 32-bit (or, with `half`, 16-bit) float texels back to the host.
 Image download(gpu::Context& ctx, const gpu::Texture& texture, bool half) {
   Image image(int(texture.width()), int(texture.height()));
@@ -37,6 +35,8 @@ Image download(gpu::Context& ctx, const gpu::Texture& texture, bool half) {
     image.pixels[i] = glm::vec4(glm::unpackHalf2x16(src[2 * i]), glm::unpackHalf2x16(src[2 * i + 1]));
   return image;
 }
+
+namespace {
 
 // Bilinear resampling to width x height, both grids spanning the same field of view (as
 // compose.comp reads the cloud buffer).
@@ -287,7 +287,8 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       light_volume(ctx, state.set),
       voxel_clouds(ctx, state.set),
       sky_view(ctx, state.set),
-      clouds(ctx, state.set) {}
+      clouds(ctx, state.set),
+      path_tracer(ctx, state.set) {}
 
 FrameRenderer::FrameRenderer(const RendererOptions& options)
     : impl_(std::make_unique<Impl>(options)) {}

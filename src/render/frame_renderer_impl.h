@@ -12,6 +12,7 @@
 #include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
+#include "render/modules/path_tracer.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/voxel_clouds.h"
 #include "render/modules/weather.h"
@@ -47,6 +48,7 @@ struct FrameRenderer::Impl {
   VoxelCloudsModule voxel_clouds;
   SkyViewModule sky_view;
   CloudsModule clouds;
+  PathTracerModule path_tracer;
 
   void update_atmosphere_luts(const Scene& scene);
   // The brute-force reference sky, tile by tile (one submission each), into state.reference_sky.
@@ -66,6 +68,7 @@ struct FrameRenderer::Impl {
   // the share of the observer's upper hemisphere with cloud T < 0.5, and the pass's time.
   double measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms);
   CloudProfile cloud_profile(const Scene& scene);
+  ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options);
   gpu::FrameParams last_params{};  // of the last frame recorded
 
   void update_noise(const Scene& scene, const gpu::FrameParams& params);

@@ -9,12 +9,16 @@
 #include "gpu/context.h"
 #include "gpu/kernel.h"
 #include "gpu/resources.h"
+#include "nephele/image.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
 
 namespace nephele {
 
 // Everything the passes read and write.
+// Reads an RGBA image of 32-bit (or, with `half`, 16-bit) float texels back to the host.
+Image download(gpu::Context& ctx, const gpu::Texture& texture, bool half);
+
 struct GpuState {
   // Per frame in flight (slots 0 .. kFramesInFlight - 1), and one more for one-off work.
   static constexpr int kOneOff = gpu::DescriptorSet::kOneOff;

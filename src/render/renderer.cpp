@@ -59,6 +59,10 @@ CloudProfile Renderer::cloud_profile(const Scene& scene) {
   return impl_->frames.impl_->cloud_profile(scene);
 }
 
+ReferenceImage Renderer::render_reference(const Scene& scene, const ReferenceOptions& options) {
+  return impl_->frames.impl_->render_reference(scene, options);
+}
+
 int sky_cover_oktas(double fraction) {
   if (fraction < 0.01) return 0;
   if (fraction > 0.99) return 8;

@@ -283,6 +283,16 @@ const std::vector<Section>& scene_sections() {
         FIELD(conditions, weather, "[0, 1]: 1 good weather, 0 bad"),
         FIELD(conditions, hour, "local solar time [0, 24); -1 = from time and location")},
        {"good", "bad"}},
+      {"lab",
+       {FIELD(lab, grid, "a density grid (.vdb, .nvdb) in vacuum for render --reference; empty = none"),
+        FIELD(lab, sigma_t_per_m, "extinction at density 1 (1/m), (0, 1000]"),
+        FIELD(lab, albedo, "single-scattering albedo, [0, 1]"),
+        FIELD(lab, g, "Henyey-Greenstein asymmetry, (-1, 1)"),
+        FIELD(lab, max_bounces, "scatterings after the first, [0, 100000]; 0 = single scattering"),
+        FIELD(lab, sun_elevation_deg, "[-90, 90]"),
+        FIELD(lab, sun_azimuth_deg, "from north through east, [-360, 360]"),
+        FIELD(lab, sun_irradiance, "W/m^2 perpendicular to the light, [0, 1e6]")},
+       {}},
   };
   std::vector<std::string_view> names;
   for (int k = 0; k < kKeyframeCount; ++k) names.push_back(keyframe_name(k));

@@ -363,6 +363,7 @@ class SceneReader {
     std::visit([&](auto access) { read_value(node, key, access(scene)); }, field.access);
     if (key == "clouds.weather_map")
       scene.clouds.weather_map = resolve_path(scene.clouds.weather_map);
+    if (key == "lab.grid") scene.lab.grid = resolve_path(scene.lab.grid);
   }
 
   // A relative path in a file is relative to the file's folder.

@@ -343,6 +343,17 @@ void check_quality(const Checker& check, const QualityParams& quality) {
   check.in_range("quality.sdf_light_tangent", quality.sdf_light_tangent, 0.001f, 10.0f);
 }
 
+void check_lab(const Checker& check, const LabParams& lab) {
+  check.in_range("lab.sigma_t_per_m", lab.sigma_t_per_m, 0.0f, 1000.0f, true);
+  check.in_range("lab.albedo", lab.albedo, 0.0f, 1.0f);
+  check.in_range("lab.g", lab.g, -1.0f, 1.0f, true, true);
+  check.in_range("lab.max_bounces", lab.max_bounces, 0, 100000);
+  check.in_range("lab.sun_elevation_deg", lab.sun_elevation_deg, -90.0f, 90.0f);
+  check.in_range("lab.sun_azimuth_deg", lab.sun_azimuth_deg, -360.0f, 360.0f);
+  check.in_range("lab.sun_irradiance", lab.sun_irradiance, 0.0f, 1e6f);
+  if (!lab.grid.empty()) check.readable_file("lab.grid", lab.grid);
+}
+
 // A string value as messages show it: quoted for a scene key, as typed for a flag.
 std::string string_text(const Checker& check, const std::string& key, const std::string& value) {
   return check.is_flag(key) ? value : scene_detail::toml_quote(value);
@@ -456,6 +467,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_quality(check, scene.quality);
   check_output(check, scene.output);
   check_voxel_clouds(check, scene.voxel_clouds);
+  check_lab(check, scene.lab);
   check_conditions(check, scene);
   check.in_range("time_s", scene.time_s, -kMaxTimeS, kMaxTimeS);
   check_time(check, scene);

@@ -309,8 +309,10 @@ VoxelGrid to_dense(const std::string& path, const Source& source, int max_dim) {
   // renderer's density scale sets the extinction.
   const float peak = *std::max_element(grid.density.begin(), grid.density.end());
   if (!(peak > 0.0f)) fail(path, "grid \"density\" is zero everywhere (density > 0 is required)");
-  if (peak > 1.0f)
+  if (peak > 1.0f) {
     for (float& v : grid.density) v /= peak;
+    grid.file_density_scale = peak;
+  }
   bool sdf_bounds_density = false;
   if (source.sdf && source.sdf->evalActiveVoxelBoundingBox().empty() == false) {
     grid.sdf_m.assign(count, 0.0f);
@@ -334,7 +336,8 @@ VoxelGrid to_dense(const std::string& path, const Source& source, int max_dim) {
   }
   if (!sdf_bounds_density) compute_sdf_from_density(grid);
   // The cloud's frame: the anchor is the centre of the active box's base.
-  grid.origin_m = origin_world - glm::vec3(0.5f * (lo.x + hi.x), 0.5f * (lo.y + hi.y), lo.z);
+  grid.file_anchor_m = glm::vec3(0.5f * (lo.x + hi.x), 0.5f * (lo.y + hi.y), lo.z);
+  grid.origin_m = origin_world - grid.file_anchor_m;
   return grid;
 }
 

@@ -19,6 +19,11 @@ struct VoxelGrid {
   glm::ivec3 dims{0};
   float voxel_m = 0.0f;
   glm::vec3 origin_m{0.0f};      // min corner, relative to the cloud's anchor (its base centre)
+  // Where the anchor lies in the file's own frame (m), and the factor the file's densities
+  // were divided by to bring them into [0, 1] (1 when they were): the lab scene renders the
+  // grid where and as dense as the file has it.
+  glm::vec3 file_anchor_m{0.0f};
+  float file_density_scale = 1.0f;
   std::vector<float> density;    // in [0, 1]: sigma_t = density x the cloud's density scale
   std::vector<float> sdf_m;      // signed distance (m) to the surface of the cloud (where
                                  // density > 0): negative inside, exact to within one voxel

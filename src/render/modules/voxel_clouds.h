@@ -27,13 +27,15 @@ class VoxelCloudsModule {
   void prepare(const Scene& scene, gpu::FrameParams& params);
 
   const std::vector<VoxelCloudMemory>& memory() const { return memory_; }
+
+  // A cloud's grid, loaded (or generated) once and kept.
+  const voxel::VoxelGrid& grid(const VoxelCloudParams& cloud);
   size_t device_bytes() const { return device_bytes_; }
 
   // The source key of a scene's cloud: its file, or "preset:NAME:SEED", and the resolution.
   static std::string source_of(const VoxelCloudParams& cloud);
 
  private:
-  const voxel::VoxelGrid& grid(const VoxelCloudParams& cloud);
   void upload(const std::vector<const voxel::VoxelGrid*>& grids);
 
   gpu::Context& ctx_;

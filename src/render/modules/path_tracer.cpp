@@ -1,0 +1,26 @@
+#include "render/modules/path_tracer.h"
+
+namespace nephele {
+
+PathTracerModule::PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : ctx_(ctx), set_(set), kernel_(ctx, set, "path_trace.comp.spv") {}
+
+void PathTracerModule::resize(int width, int height) {
+  if (int(sum_.width()) == width && int(sum_.height()) == height) return;
+  for (gpu::Texture* t : {&sum_, &squares_})
+    *t = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  set_.bind_storage_image(gpu::kPathSum, sum_);
+  set_.bind_storage_image(gpu::kPathSquares, squares_);
+}
+
+void PathTracerModule::clear(VkCommandBuffer cmd) const {
+  sum_.record_clear(cmd);
+  squares_.record_clear(cmd);
+}
+
+void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) const {
+  gpu::dispatch(cmd, kernel_, set_, timer, "path_trace", sum_.width(), sum_.height(), 1, 8, 8, 1);
+}
+
+}  // namespace nephele

@@ -1,0 +1,171 @@
+// The reference path tracer on the device (path_trace.comp, Renderer::render_reference) in the
+// lab scene: single scattering in a grid of constant density against a numerical integral of
+// the same trilinear field (the CPU twin of the device's brick look-up; at 65536 samples per
+// pixel all five pixels lie within 1% of it), the variance of the
+// mean falling as 1/spp, determinism, and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "nephele/error.h"
+#include "nephele/scene_io.h"
+#include "render/frame_params.h"
+#include "render/glsl.h"
+#include "render_fixture.h"
+#include "voxel/bricks.h"
+#include "voxel/voxel_grid.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nephele::Scene;
+
+// A 24^3 grid of 10 m voxels, density 1 everywhere, its base centre at the file's origin.
+std::string constant_grid_file() {
+  const std::string file = (fs::path(testing::TempDir()) / "nephele_lab_cube.vdb").string();
+  nephele::voxel::VoxelGrid g;
+  g.dims = glm::ivec3(24);
+  g.voxel_m = 10.0f;
+  g.origin_m = glm::vec3(-120.0f, -120.0f, 0.0f);
+  g.density.assign(24 * 24 * 24, 1.0f);
+  g.sdf_m.assign(g.density.size(), -10.0f);
+  nephele::voxel::write_vdb(g, file);
+  return file;
+}
+
+Scene lab_scene(const std::string& grid) {
+  Scene s;
+  s.lab.grid = grid;
+  s.lab.sigma_t_per_m = 0.01f;  // 2.4 across the cube
+  s.lab.albedo = 0.8f;
+  s.lab.g = 0.5f;
+  s.lab.max_bounces = 0;
+  s.lab.sun_elevation_deg = 50.0f;
+  s.lab.sun_azimuth_deg = 200.0f;
+  s.lab.sun_irradiance = 2.0f;
+  s.camera.position_m = {0.0f, -400.0f, 120.0f};
+  s.camera.view_dir = {0.0f, 1.0f, 0.0f};
+  s.camera.fov_deg = 40.0f;
+  s.output.width = 24;
+  s.output.height = 24;
+  return s;
+}
+
+// The same field on the CPU: the grid as the renderer loads it, sampled trilinearly as the
+// device does (voxel::sample_bricks), the anchor where the file has it.
+struct Field {
+  nephele::voxel::VoxelGrid grid;
+  nephele::voxel::BrickPool pool;
+  float sigma_per_density;
+  double sigma(glm::vec3 p) const {
+    const glm::vec3 u = (p - grid.file_anchor_m - grid.origin_m) / grid.voxel_m;
+    const glm::vec3 dims(grid.dims);
+    if (glm::any(glm::lessThan(u, glm::vec3(0.0f))) || glm::any(glm::greaterThan(u, dims))) return 0.0;
+    return nephele::voxel::sample_bricks(pool, 0, u).x * grid.file_density_scale * sigma_per_density;
+  }
+  // Optical depth from p along d over [0, length] (metre steps, midpoints).
+  double depth(glm::vec3 p, glm::vec3 d, double length) const {
+    double sum = 0.0;
+    const int n = int(length) + 1;
+    const double dt = length / n;
+    for (int i = 0; i < n; ++i) sum += sigma(p + d * float((i + 0.5) * dt)) * dt;
+    return sum;
+  }
+};
+
+// Single scattering along the ray from the camera through the point (x, y) of the image
+// (pixel (i, j) spans [i - 1/2, i + 1/2) x [j - 1/2, j + 1/2)).
+double single_scattering(const Field& f, const Scene& s, float x, float y) {
+  const nephele::CameraBasis basis = nephele::camera_basis(s.camera.view_dir);
+  const float tan_half = std::tan(glm::radians(0.5f * s.camera.fov_deg));
+  const glm::vec3 dir = nephele::glsl::camera_ray(basis.forward, basis.right, basis.up, tan_half,
+                                                  float(s.output.width) / float(s.output.height),
+                                                  x, y, float(s.output.width),
+                                                  float(s.output.height));
+  const glm::vec3 sun =
+      nephele::sun_direction_from_angles(s.lab.sun_elevation_deg, s.lab.sun_azimuth_deg);
+  const float mu = glm::dot(dir, sun);
+  double radiance = 0.0, view_depth = 0.0;
+  const double dt = 0.5;
+  for (double t = 0.0; t < 900.0; t += dt) {
+    const glm::vec3 p = s.camera.position_m + dir * float(t + 0.5 * dt);
+    const double sigma = f.sigma(p);
+    if (sigma > 0.0)
+      radiance += std::exp(-view_depth) * sigma * s.lab.albedo *
+                  nephele::glsl::henyey_greenstein(s.lab.g, mu) * s.lab.sun_irradiance *
+                  std::exp(-f.depth(p, sun, 500.0)) * dt;
+    view_depth += sigma * dt;
+  }
+  return radiance;
+}
+
+class ReferenceTest : public RenderTest {};
+
+TEST_F(ReferenceTest, SingleScatteringMatchesANumericalIntegral) {
+  const std::string file = constant_grid_file();
+  const Scene s = lab_scene(file);
+  nephele::ReferenceOptions options;
+  options.spp = 4096;
+  const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
+  ASSERT_EQ(image.spp, 4096);
+  Field f{nephele::voxel::load_voxel_cloud(file, 256), {}, s.lab.sigma_t_per_m};
+  f.pool = nephele::voxel::pack_bricks({&f.grid});
+  // Pixels through the middle, near the edges and the corner (the cube fills the view).
+  for (auto [x, y] : {std::pair{12, 12}, {6, 14}, {17, 9}, {12, 20}, {2, 2}}) {
+    // Over the pixel's footprint, as its paths are (3 x 3 points).
+    double exact = 0.0;
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i)
+        exact += single_scattering(f, s, float(x) + (float(i) - 1.0f) / 3.0f,
+                                   float(y) + (float(j) - 1.0f) / 3.0f) / 9.0;
+    const double got = image.mean.at(x, y).r;
+    const double sigma = std::sqrt(double(image.variance.at(x, y).r));
+    std::printf("pixel (%d, %d): path traced %.5f +- %.5f, integral %.5f\n", x, y, got, sigma, exact);
+    EXPECT_NEAR(got, exact, 3.0 * sigma + 0.01 * exact) << "pixel " << x << ", " << y;
+    EXPECT_LT(sigma, 0.025 * exact) << "pixel " << x << ", " << y;
+  }
+}
+
+TEST_F(ReferenceTest, VarianceFallsAsOneOverTheSamplesAndTheSeedFixesTheImage) {
+  const Scene s = lab_scene(constant_grid_file());
+  nephele::ReferenceOptions options;
+  options.spp = 16;
+  const nephele::ReferenceImage a = shared_renderer().render_reference(s, options);
+  const nephele::ReferenceImage again = shared_renderer().render_reference(s, options);
+  options.spp = 64;
+  const nephele::ReferenceImage b = shared_renderer().render_reference(s, options);
+  double var_a = 0.0, var_b = 0.0;
+  bool same = true;
+  for (size_t i = 0; i < a.mean.pixels.size(); ++i) {
+    var_a += a.variance.pixels[i].r;
+    var_b += b.variance.pixels[i].r;
+    same = same && a.mean.pixels[i] == again.mean.pixels[i];
+  }
+  EXPECT_TRUE(same) << "the same seed gave another image";
+  EXPECT_NEAR(var_a / var_b, 4.0, 1.0);
+  options.seed = 2;
+  options.spp = 16;
+  const nephele::ReferenceImage other = shared_renderer().render_reference(s, options);
+  EXPECT_NE(other.mean.pixels[12 * 24 + 12], a.mean.pixels[12 * 24 + 12]);
+}
+
+TEST_F(ReferenceTest, BadInputIsRefusedWithOneLine) {
+  Scene s = lab_scene("");
+  try {
+    shared_renderer().render_reference(s);
+    ADD_FAILURE() << "no lab grid accepted";
+  } catch (const nephele::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lab.grid"), std::string::npos) << e.what();
+  }
+  s = lab_scene(constant_grid_file());
+  nephele::ReferenceOptions options;
+  options.spp = 0;
+  EXPECT_THROW(shared_renderer().render_reference(s, options), nephele::InputError);
+  s.lab.albedo = 1.5f;
+  EXPECT_THROW(shared_renderer().render_reference(s), nephele::InputError);
+  s = lab_scene((fs::path(testing::TempDir()) / "nephele_no_such.vdb").string());
+  EXPECT_THROW(shared_renderer().render_reference(s), nephele::InputError);
+}
+
+}  // namespace
