@@ -71,6 +71,14 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
   cmd.add_flag("--still-frames", options.still_frames,
                "render every frame of a --camera-path flight as a still image (every pixel "
                "marched, slower) instead of as an animation");
+  cmd.add_flag("--reference", options.reference,
+               "path trace the scene's [lab] grid (unbiased, progressive; --seed seeds the paths); "
+               "an .exr output gets the mean (R, G, B) and its variance (variance.R, .G, .B)");
+  cmd.add_option("--spp", options.spp, "--reference: samples per pixel, [1, 1000000]")
+      ->capture_default_str();
+  cmd.add_option("--time-limit", options.time_limit_s,
+                 "--reference: stop after this many seconds (at the end of a pass; 0 = none)")
+      ->capture_default_str();
   add_device_flags(cmd, options.device, options.verbose, options.validation);
   add_progress_flags(cmd, options.progress, options.quiet);
 }
@@ -306,9 +314,57 @@ Sequence plan_sequence(const Scene& scene, const RenderOptions& options) {
 
 }  // namespace
 
+namespace {
+
+// `nephele render --reference`: the lab's path-traced image, with progress.
+int run_reference(const Scene& scene, const RenderOptions& options) {
+  if (options.frames_given || !options.camera_path.empty())
+    throw InputError("--reference renders one image (not with --frames or --camera-path)");
+  if (options.spp < 1 || options.spp > 1000000)
+    throw InputError("--spp " + std::to_string(options.spp) + ": must be in [1, 1000000]");
+  if (!(options.time_limit_s >= 0.0 && std::isfinite(options.time_limit_s)))
+    throw InputError("--time-limit " + number_text(options.time_limit_s) +
+                     ": must be a finite number of seconds, at least 0 (0 = none)");
+  if (scene.lab.grid.empty())
+    throw InputError("--reference needs the scene's [lab] grid (lab.grid = \"cloud.vdb\")");
+  check_output_path(options.output, "--output");
+  Renderer renderer({options.device, options.validation, options.verbose, {}});
+  std::unique_ptr<Progress> bar;
+  // The scene's seed (--seed) seeds the paths: the same seed, scene and --spp, the same image.
+  ReferenceOptions reference{options.spp, options.time_limit_s, scene.noise_seed, {}};
+  if (progress_wanted(options.progress, options.quiet, options.verbose))
+    reference.progress = [&](std::string_view stage, int done, int total) {
+      if (!bar) bar = std::make_unique<Progress>(std::string(stage), total, true);
+      bar->step(done);
+    };
+  const ReferenceImage image = renderer.render_reference(scene, reference);
+  bar.reset();
+  const bool exr = std::filesystem::path(options.output).extension() == ".exr" ||
+                   std::filesystem::path(options.output).extension() == ".EXR";
+  const ExrPixels pixels = options.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf;
+  if (exr)
+    write_exr_layers({{"", &image.mean, 4}, {"variance", &image.variance, 3}}, options.output,
+                     pixels);
+  else
+    write_image(image.mean, options.output, scene.output.exposure, pixels);
+  if (!options.quiet)
+    std::fprintf(stderr, "nephele: reference %dx%d, %d samples per pixel in %.1f s on %s\n",
+                 image.mean.width, image.mean.height, image.spp, image.seconds,
+                 renderer.device_name().c_str());
+  if (options.validation && renderer.validation_messages() > 0) {
+    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
+    return 1;
+  }
+  std::cout << options.output << std::endl;
+  return 0;
+}
+
+}  // namespace
+
 int run_render(const RenderOptions& options) {
   // Everything the user typed is checked before any work, so a bad flag writes nothing.
   const Scene scene = resolve_scene(options.scene);
+  if (options.reference) return run_reference(scene, options);
   const Sequence seq = plan_sequence(scene, options);
   if (options.verbose) std::cerr << "# resolved scene\n" << scene_to_toml(scene);
 

@@ -31,6 +31,11 @@ struct RenderOptions {
   double fps = 30.0;
   bool fps_given = false;
   bool still_frames = false;
+  // The reference path tracer (Renderer::render_reference) of the scene's [lab] grid: the mean
+  // (PNG tone-mapped, or EXR) and, in an EXR, its variance as the layer "variance".
+  bool reference = false;
+  int spp = 64;
+  double time_limit_s = 0.0;
   bool progress = false;   // a progress bar even when standard error is not a terminal
   bool quiet = false;      // no progress and no informational lines on standard error
   std::string device;      // substring of the Vulkan device name

@@ -47,6 +47,19 @@ enum class ExrPixels { kHalf, kFloat };
 void write_image(const Image& image, const std::string& path, float exposure = 1.0f,
                  ExrPixels exr = ExrPixels::kHalf);
 
+// One layer of a multi-layer EXR: `image`'s first `channels` channels (1 to 4: R, G, B, A),
+// named "R", "G", ... or, with a prefix, "prefix.R", ... (OpenEXR's layer convention).
+struct ExrLayer {
+  std::string prefix;
+  const Image* image = nullptr;
+  int channels = 4;
+};
+
+// Writes the layers (all of one size) into one EXR file, atomically, as write_image does.
+// Throws InputError for a path that is not .exr, no layers, or layers of different sizes.
+void write_exr_layers(const std::vector<ExrLayer>& layers, const std::string& path,
+                      ExrPixels exr = ExrPixels::kHalf);
+
 // Throws InputError naming `parameter` if `path` cannot be written as an image (unknown
 // extension, or any reason of check_output_file in output_file.h). Writes nothing.
 // The message reads e.g. "--output 'x.jpg': unsupported image format (allowed: .png, .exr)".

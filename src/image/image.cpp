@@ -128,30 +128,37 @@ float storable(float v, float largest) {
   return std::isnan(v) ? 0.0f : std::clamp(v, -largest, largest);
 }
 
-// Linear RGBA, ZIP-compressed (the Header default), half or float. Exposure is not applied:
+// Linear layers, ZIP-compressed (the Header default), half or float. Exposure is not applied:
 // an EXR keeps the radiance as rendered (half clamped to its largest value, 65504).
-std::vector<unsigned char> encode_exr(const Image& image, ExrPixels pixels) {
+std::vector<unsigned char> encode_exr(const std::vector<ExrLayer>& layers, ExrPixels pixels) {
   const bool as_half = pixels == ExrPixels::kHalf;
   const float largest = as_half ? float(HALF_MAX) : std::numeric_limits<float>::max();
-  std::vector<float> channels[4];
-  for (std::vector<float>& c : channels) c.resize(image.pixels.size());
-  for (size_t i = 0; i < image.pixels.size(); ++i)
-    for (int c = 0; c < 4; ++c) channels[c][i] = storable(image.pixels[i][c], largest);
-  Imf::Header header(image.width, image.height);
+  const int width = layers.front().image->width, height = layers.front().image->height;
+  const size_t count = layers.front().image->pixels.size();
+  Imf::Header header(width, height);
   const Imf::PixelType type = as_half ? Imf::HALF : Imf::FLOAT;
   static const char* const kNames[4] = {"R", "G", "B", "A"};
-  for (const char* name : kNames) header.channels().insert(name, Imf::Channel(type));
-  std::vector<Imath::half> halves[4];
+  // Every channel's values and name, kept alive until the pixels are written.
+  std::vector<std::vector<float>> floats;
+  std::vector<std::vector<Imath::half>> halves;
+  std::vector<std::string> names;
+  for (const ExrLayer& layer : layers)
+    for (int c = 0; c < layer.channels; ++c) {
+      std::vector<float> values(count);
+      for (size_t i = 0; i < count; ++i) values[i] = storable(layer.image->pixels[i][c], largest);
+      floats.push_back(std::move(values));
+      names.push_back(layer.prefix.empty() ? kNames[c] : layer.prefix + "." + kNames[c]);
+    }
   Imf::FrameBuffer frame;
-  for (int c = 0; c < 4; ++c) {
+  for (size_t k = 0; k < names.size(); ++k) {
+    header.channels().insert(names[k], Imf::Channel(type));
     if (as_half) {
-      halves[c].assign(channels[c].begin(), channels[c].end());
-      frame.insert(kNames[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves[c].data()),
-                                         sizeof(Imath::half),
-                                         sizeof(Imath::half) * size_t(image.width)));
+      halves.emplace_back(floats[k].begin(), floats[k].end());
+      frame.insert(names[k], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.back().data()),
+                                        sizeof(Imath::half), sizeof(Imath::half) * size_t(width)));
     } else {
-      frame.insert(kNames[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(channels[c].data()),
-                                         sizeof(float), sizeof(float) * size_t(image.width)));
+      frame.insert(names[k], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(floats[k].data()),
+                                        sizeof(float), sizeof(float) * size_t(width)));
     }
   }
   MemoryOStream stream;
@@ -159,7 +166,7 @@ std::vector<unsigned char> encode_exr(const Image& image, ExrPixels pixels) {
     // The line offset table is written when the file object is destroyed.
     Imf::OutputFile file(stream, header);
     file.setFrameBuffer(frame);
-    file.writePixels(image.height);
+    file.writePixels(height);
   }
   return stream.take();
 }
@@ -262,11 +269,34 @@ void write_image(const Image& image, const std::string& path, float exposure, Ex
   check_writable_image(image, path);
   std::vector<unsigned char> bytes;
   try {
-    bytes = format == ImageFormat::kPng ? encode_png(image, exposure) : encode_exr(image, exr);
+    bytes = format == ImageFormat::kPng ? encode_png(image, exposure)
+                                        : encode_exr({ExrLayer{"", &image, 4}}, exr);
   } catch (const std::exception& e) {
     throw RuntimeError("cannot encode image " + quoted(path) + ": " + e.what());
   }
   if (bytes.empty()) throw RuntimeError("cannot encode image " + quoted(path));
+  write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+void write_exr_layers(const std::vector<ExrLayer>& layers, const std::string& path,
+                      ExrPixels exr) {
+  if (format_of(path) != ImageFormat::kExr)
+    throw InputError("image path " + quoted(path) + ": layers need an .exr file");
+  if (layers.empty()) throw InputError("image " + quoted(path) + ": no layers to write");
+  for (const ExrLayer& layer : layers) {
+    if (!layer.image || layer.channels < 1 || layer.channels > 4)
+      throw InputError("image " + quoted(path) + ": layer \"" + layer.prefix + "\" is malformed");
+    if (layer.image->width != layers.front().image->width ||
+        layer.image->height != layers.front().image->height)
+      throw InputError("image " + quoted(path) + ": its layers differ in size");
+    check_writable_image(*layer.image, path);
+  }
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = encode_exr(layers, exr);
+  } catch (const std::exception& e) {
+    throw RuntimeError("cannot encode image " + quoted(path) + ": " + e.what());
+  }
   write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 

@@ -17,6 +17,10 @@
 #include <stb/stb_image_write.h>
 
 #include "nephele/image.h"
+#include "voxel/voxel_grid.h"
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 
 #include "support/process_run.h"
 
@@ -258,6 +262,39 @@ TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
   expect_rejected("--coverag 0.5", {"--coverag"});
   expect_rejected("--coverage abc", {"--coverage", "abc"});
   expect_rejected("--view-dir 1,2", {"--view-dir", "1,2"});
+}
+
+// `render --reference` path traces the scene's [lab] grid into an EXR with the mean (R, G, B,
+// A) and its variance (variance.R, .G, .B); without a lab grid, or with a bad --spp, one line
+// and no file.
+TEST_F(CliTest, ReferenceWritesTheMeanAndItsVariance) {
+  nephele::voxel::VoxelGrid g;
+  g.dims = glm::ivec3(8);
+  g.voxel_m = 10.0f;
+  g.origin_m = glm::vec3(-40.0f, -40.0f, 0.0f);
+  g.density.assign(8 * 8 * 8, 1.0f);
+  g.sdf_m.assign(g.density.size(), -10.0f);
+  nephele::voxel::write_vdb(g, path("cube.vdb"));
+  const std::string scene = write_scene(
+      "[lab]\ngrid = \"cube.vdb\"\nsigma_t_per_m = 0.02\nmax_bounces = 4\n"
+      "[camera]\nposition_m = [0.0, -200.0, 40.0]\nview_dir = [0.0, 1.0, 0.0]\nfov_deg = 40\n");
+  const std::string out = path("ref.exr");
+  const CliRun r = run_cli("render --reference --spp 8 --width 16 --height 12 --exr-float "
+                           "--validation -q --scene " + scene + " -o " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  Imf::InputFile file(out.c_str());
+  std::vector<std::string> names;
+  for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c)
+    names.push_back(c.name());
+  for (const char* name : {"R", "G", "B", "A", "variance.R", "variance.G", "variance.B"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  EXPECT_EQ(file.header().channels().findChannel("R")->type, Imf::FLOAT);
+  const nephele::Image mean = nephele::read_image(out);
+  EXPECT_GT(mean.at(8, 6).r, 0.0f);  // the cube, lit
+
+  expect_rejected("--reference --spp 4", {"--reference", "lab"});
+  expect_rejected("--reference --spp 0 --scene " + scene, {"--spp", "0"});
+  expect_rejected("--reference --time-limit -1 --scene " + scene, {"--time-limit"});
 }
 
 // `bench --ablation` renders seed 002's four variants of one voxel-heavy view: the JSON holds
