@@ -150,6 +150,28 @@ TEST_F(ReferenceTest, VarianceFallsAsOneOverTheSamplesAndTheSeedFixesTheImage) {
   EXPECT_NE(other.mean.pixels[12 * 24 + 12], a.mean.pixels[12 * 24 + 12]);
 }
 
+// A time limit stops the passes early (after at least one), with progress reported per pass.
+TEST_F(ReferenceTest, ATimeLimitStopsEarlyAndProgressIsReported) {
+  const Scene s = lab_scene(constant_grid_file());
+  nephele::ReferenceOptions options;
+  options.spp = 1000000;
+  options.time_limit_s = 0.5;
+  int last_done = 0, calls = 0;
+  options.progress = [&](std::string_view stage, int done, int total) {
+    EXPECT_EQ(stage, "reference");
+    EXPECT_EQ(total, 1000000);
+    EXPECT_GT(done, last_done);
+    last_done = done;
+    ++calls;
+  };
+  const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
+  EXPECT_GE(image.spp, 1);
+  EXPECT_LT(image.spp, 1000000);
+  EXPECT_EQ(last_done, image.spp);
+  EXPECT_GE(calls, 1);
+  EXPECT_LT(image.seconds, 30.0);  // a pass or two past the limit, not a million samples
+}
+
 TEST_F(ReferenceTest, BadInputIsRefusedWithOneLine) {
   Scene s = lab_scene("");
   try {
