@@ -83,12 +83,19 @@ struct CloudProfile {
   std::vector<float> cloud_fraction;
 };
 
+// Whether the path tracer's null collisions use the grid's bricks as a majorant grid (empty
+// bricks crossed in one step) or one majorant for the whole box. Both are unbiased; kAuto takes
+// the grid when under a quarter of the bricks are stored (on a CPU device each brick's edge
+// costs a step: a cumulus with half its bricks stored was 1.5x slower with the grid).
+enum class MajorantGrid { kAuto, kBricks, kNone };
+
 // Renderer::render_reference: how long to trace.
 struct ReferenceOptions {
   int spp = 64;               // samples per pixel, [1, 1000000]
   double time_limit_s = 0.0;  // stop once this much time has passed (0: none), at a pass's end
   uint32_t seed = 1;          // the same seed, scene and spp give the same image
   ProgressCallback progress;  // "reference", samples per pixel done, of spp
+  MajorantGrid majorant_grid = MajorantGrid::kAuto;
 };
 
 // A path-traced image: the mean radiance per pixel and the variance of that mean.

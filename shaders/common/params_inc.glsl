@@ -170,6 +170,11 @@ struct FrameParams {
   vec4 path_light;  // xyz unit direction towards the sun (planet frame), w its irradiance (W/m^2)
   // x the first sample of this dispatch, y samples per pixel in it, z the seed, w max_bounces
   ivec4 path_info;
+  // xyz the camera in the lab's own frame (m: x east, y north, z up, from voxel cloud 0's
+  // anchor; the cloud's to_grid rows map that frame, its anchor_m.xyz is not used): small
+  // numbers, full float precision, where the planet frame's are 0.5 m apart; w 1 to use the
+  // bricks as the majorant grid, 0 one majorant for the whole box
+  vec4 path_eye_m;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

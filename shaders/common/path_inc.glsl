@@ -8,8 +8,11 @@
 //   float pt_sigma_t(vec3 p)            extinction (1/m) at p
 //   vec2 pt_bounds(vec3 origin, vec3 d) where a ray enters and leaves the medium (t_in >= 0;
 //                                        t_out <= t_in: it misses)
-// and pt_majorant, a bound on pt_sigma_t (1/m) along every ray. No include guard: a CPU test
-// includes it once per medium, each in its own namespace.
+//   vec2 pt_majorant_segment(vec3 origin, vec3 d, float t)
+//                                        a majorant grid along the ray: (x) a bound on
+//                                        pt_sigma_t over [t, y) (0 where the medium is empty,
+//                                        which the tracking crosses in one step), y > t
+// No include guard: a CPU test includes it once per medium, each in its own namespace.
 // Keeps to the GLSL subset that GLM accepts (see math_inc.glsl): no out parameters.
 
 // Pseudo-random numbers without state: a hash of (stream, index). PCG's output permutation as
@@ -57,27 +60,42 @@ const int PT_MAX_COLLISIONS = 65536;
 
 // Delta tracking from p along d over [0, t_max]: the distance to a real collision, sampled
 // with probability density sigma_t(t) T(t), or a value above t_max when the path leaves the
-// medium unscattered (probability T(t_max)). Tentative collisions at the majorant's rate are
-// real with probability sigma_t / majorant, null otherwise.
-float pt_delta_tracking(vec3 p, vec3 d, float t_max, float majorant, uint stream) {
+// medium unscattered (probability T(t_max)). Tentative collisions at the local majorant's rate
+// are real with probability sigma_t / majorant, null otherwise; where a segment of the
+// majorant grid ends, the next draw starts afresh at its end (the exponential distribution
+// forgets), so an empty segment costs one step.
+float pt_delta_tracking(vec3 p, vec3 d, float t_max, uint stream) {
   float t = 0.0f;
+  vec2 segment = pt_majorant_segment(p, d, 0.0f);
   for (int i = 0; i < PT_MAX_COLLISIONS; ++i) {
-    t -= log(1.0f - pt_uniform(stream, uint(2 * i))) / majorant;
+    float step = segment.x > 0.0f ? -log(1.0f - pt_uniform(stream, uint(2 * i))) / segment.x : 1e30f;
+    bool crossing = t + step >= segment.y;
+    t = crossing ? segment.y : t + step;
     if (t >= t_max) break;
-    if (pt_uniform(stream, uint(2 * i + 1)) * majorant < pt_sigma_t(p + d * t)) return t;
+    // The next segment as a loop of one trip or none: a CPU device runs both sides of a
+    // branch for every lane, but skips a loop no lane enters (most draws cross no edge).
+    for (int k = 0; k < (crossing ? 1 : 0); ++k) segment = pt_majorant_segment(p, d, t);
+    if (!crossing && pt_uniform(stream, uint(2 * i + 1)) * segment.x < pt_sigma_t(p + d * t)) return t;
   }
   return t_max + 1.0f;
 }
 
 // Ratio tracking from p along d over [0, t_max]: an unbiased estimate of the transmittance
 // exp(-integral of sigma_t), the product of (1 - sigma_t / majorant) over the tentative
-// collisions, with Russian roulette once it falls under 0.1 (each survivor weighs 2).
-float pt_ratio_tracking(vec3 p, vec3 d, float t_max, float majorant, uint stream) {
+// collisions (drawn as delta tracking draws them), with Russian roulette once it falls under
+// 0.1 (each survivor weighs 2).
+float pt_ratio_tracking(vec3 p, vec3 d, float t_max, uint stream) {
   float t = 0.0f;
   float transmittance = 1.0f;
+  vec2 segment = pt_majorant_segment(p, d, 0.0f);
   for (int i = 0; i < PT_MAX_COLLISIONS; ++i) {
-    t -= log(1.0f - pt_uniform(stream, uint(2 * i))) / majorant;
+    float step = segment.x > 0.0f ? -log(1.0f - pt_uniform(stream, uint(2 * i))) / segment.x : 1e30f;
+    bool crossing = t + step >= segment.y;
+    t = crossing ? segment.y : t + step;
     if (t >= t_max) break;
+    float majorant = segment.x;
+    for (int k = 0; k < (crossing ? 1 : 0); ++k) segment = pt_majorant_segment(p, d, t);
+    if (crossing) continue;
     transmittance *= 1.0f - pt_sigma_t(p + d * t) / majorant;
     if (transmittance < 0.1f) {
       if (pt_uniform(stream, uint(2 * i + 1)) < 0.5f) return 0.0f;
@@ -88,10 +106,10 @@ float pt_ratio_tracking(vec3 p, vec3 d, float t_max, float majorant, uint stream
 }
 
 // What the medium lets through towards the light from p (inside it or on its surface).
-float pt_transmittance_to(vec3 p, vec3 d, float majorant, uint stream) {
+float pt_transmittance_to(vec3 p, vec3 d, uint stream) {
   vec2 bounds = pt_bounds(p, d);
   if (bounds.y <= bounds.x) return 1.0f;
-  return pt_ratio_tracking(p + d * bounds.x, d, bounds.y - bounds.x, majorant, stream);
+  return pt_ratio_tracking(p + d * bounds.x, d, bounds.y - bounds.x, stream);
 }
 
 // Radiance along the ray (eye, dir) through the medium (single albedo, Henyey-Greenstein phase
@@ -101,7 +119,7 @@ float pt_transmittance_to(vec3 p, vec3 d, float majorant, uint stream) {
 // `stream` seeds it. Every path that is not cut by max_bounces leaves the medium, so with
 // albedo 1 and no light but the environment it returns the environment exactly (a furnace).
 float pt_path_radiance(vec3 eye, vec3 dir, vec3 light, float irradiance, float environment,
-                       float albedo, float g, int max_bounces, float majorant, uint stream) {
+                       float albedo, float g, int max_bounces, uint stream) {
   float radiance = 0.0f;
   float weight = 1.0f;
   vec3 x = eye;
@@ -110,7 +128,7 @@ float pt_path_radiance(vec3 eye, vec3 dir, vec3 light, float irradiance, float e
     uint s = pt_hash(stream ^ pt_hash(uint(bounce)));
     vec2 bounds = pt_bounds(x, d);
     float t = bounds.y > bounds.x
-                  ? pt_delta_tracking(x + d * bounds.x, d, bounds.y - bounds.x, majorant, pt_hash(s ^ 1u))
+                  ? pt_delta_tracking(x + d * bounds.x, d, bounds.y - bounds.x, pt_hash(s ^ 1u))
                   : 1.0f;
     if (bounds.y <= bounds.x || t > bounds.y - bounds.x) {  // left the medium
       radiance += weight * environment;
@@ -119,7 +137,7 @@ float pt_path_radiance(vec3 eye, vec3 dir, vec3 light, float irradiance, float e
     x += d * (bounds.x + t);
     weight *= albedo;  // sigma_s / sigma_t at a collision sampled in proportion to sigma_t T
     radiance += weight * irradiance * henyey_greenstein(g, dot(d, light)) *
-                pt_transmittance_to(x, light, majorant, pt_hash(s ^ 2u));
+                pt_transmittance_to(x, light, pt_hash(s ^ 2u));
     d = pt_sample_hg(d, g, pt_uniform(s, 3u), pt_uniform(s, 4u));
   }
   return radiance;

@@ -51,6 +51,22 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   voxel_clouds.prepare(s, params);
   // The grid's densities as the file has them: what the import scaled into [0, 1] scales back.
   params.voxel_clouds[0].anchor_m.w = grid.file_density_scale;
+  // The lab's own frame (x east, y north, z up, from the grid's anchor): the camera and the
+  // grid's axes there, without the planet frame's large coordinates.
+  gpu::VoxelCloudGpu& c = params.voxel_clouds[0];
+  for (int k = 0; k < 3; ++k) {
+    glm::vec3 axis(0.0f);
+    axis[k] = 1.0f / grid.voxel_m;
+    (k == 0 ? c.to_grid_x : k == 1 ? c.to_grid_y : c.to_grid_z) =
+        glm::vec4(axis, -grid.origin_m[k] / grid.voxel_m);
+  }
+  // The brick grid (MajorantGrid).
+  const VoxelCloudMemory& memory = voxel_clouds.memory()[0];
+  const bool brick_grid =
+      options.majorant_grid == MajorantGrid::kBricks ||
+      (options.majorant_grid == MajorantGrid::kAuto && memory.stored_bricks < memory.total_bricks / 4);
+  params.path_eye_m =
+      glm::vec4(scene.camera.position_m - grid.file_anchor_m, brick_grid ? 1.0f : 0.0f);
   const float peak = *std::max_element(grid.density.begin(), grid.density.end());
   // Trilinear interpolation never exceeds the largest voxel: a majorant.
   const float majorant = std::max(peak * grid.file_density_scale * scene.lab.sigma_t_per_m, 1e-6f);

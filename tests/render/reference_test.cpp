@@ -102,17 +102,19 @@ double single_scattering(const Field& f, const Scene& s, float x, float y) {
 
 class ReferenceTest : public RenderTest {};
 
-TEST_F(ReferenceTest, SingleScatteringMatchesANumericalIntegral) {
-  const std::string file = constant_grid_file();
-  const Scene s = lab_scene(file);
+// Renders the lab at 4096 samples per pixel and compares the pixels with single scattering
+// integrated over each one's footprint (3 x 3 points) through the same field.
+void expect_single_scattering(const std::string& file, const Scene& s,
+                              std::initializer_list<std::pair<int, int>> pixels,
+                              nephele::MajorantGrid grid = nephele::MajorantGrid::kAuto) {
   nephele::ReferenceOptions options;
   options.spp = 4096;
+  options.majorant_grid = grid;
   const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
   ASSERT_EQ(image.spp, 4096);
   Field f{nephele::voxel::load_voxel_cloud(file, 256), {}, s.lab.sigma_t_per_m};
   f.pool = nephele::voxel::pack_bricks({&f.grid});
-  // Pixels through the middle, near the edges and the corner (the cube fills the view).
-  for (auto [x, y] : {std::pair{12, 12}, {6, 14}, {17, 9}, {12, 20}, {2, 2}}) {
+  for (auto [x, y] : pixels) {
     // Over the pixel's footprint, as its paths are (3 x 3 points).
     double exact = 0.0;
     for (int j = 0; j < 3; ++j)
@@ -125,6 +127,45 @@ TEST_F(ReferenceTest, SingleScatteringMatchesANumericalIntegral) {
     EXPECT_NEAR(got, exact, 3.0 * sigma + 0.01 * exact) << "pixel " << x << ", " << y;
     EXPECT_LT(sigma, 0.025 * exact) << "pixel " << x << ", " << y;
   }
+}
+
+TEST_F(ReferenceTest, SingleScatteringMatchesANumericalIntegral) {
+  // Pixels through the middle, near the edges and the corner (the cube fills the view).
+  const std::string file = constant_grid_file();
+  expect_single_scattering(file, lab_scene(file), {{12, 12}, {6, 14}, {17, 9}, {12, 20}, {2, 2}});
+}
+
+// Two cubes 320 m apart along the view: the bricks between them are empty (majorant 0, crossed
+// in one step each) and the light through both still matches the integral, with the brick
+// grid and with one majorant for the box.
+TEST_F(ReferenceTest, EmptyBricksBetweenCloudsAreCrossedUnbiased) {
+  const std::string file = (fs::path(testing::TempDir()) / "nephele_lab_two_cubes.vdb").string();
+  nephele::voxel::VoxelGrid g;
+  g.dims = glm::ivec3(8, 48, 8);
+  g.voxel_m = 10.0f;
+  g.origin_m = glm::vec3(-40.0f, -240.0f, 0.0f);
+  g.density.assign(size_t(8) * 48 * 8, 0.0f);
+  g.sdf_m.assign(g.density.size(), 0.0f);
+  for (int k = 0; k < 8; ++k)
+    for (int j = 0; j < 48; ++j)
+      for (int i = 0; i < 8; ++i) {
+        const bool in = j < 8 || j >= 40;
+        g.density[g.index(i, j, k)] = in ? 1.0f : 0.0f;
+        g.sdf_m[g.index(i, j, k)] = in ? -10.0f : 10.0f * float(std::min(j - 7, 40 - j));
+      }
+  nephele::voxel::write_vdb(g, file);
+  {  // The test is of empty bricks: there are some along the view.
+    const nephele::voxel::VoxelGrid loaded = nephele::voxel::load_voxel_cloud(file, 256);
+    const nephele::voxel::BrickPool pool = nephele::voxel::pack_bricks({&loaded});
+    const glm::ivec3 b = pool.clouds[0].bricks;
+    ASSERT_LT(pool.clouds[0].stored_bricks, size_t(b.x) * b.y * b.z);
+  }
+  Scene s = lab_scene(file);
+  s.lab.sigma_t_per_m = 0.02f;
+  s.camera.position_m = {0.0f, -500.0f, 40.0f};
+  s.camera.fov_deg = 16.0f;
+  for (nephele::MajorantGrid grid : {nephele::MajorantGrid::kBricks, nephele::MajorantGrid::kNone})
+    expect_single_scattering(file, s, {{12, 12}, {8, 15}, {15, 9}}, grid);
 }
 
 TEST_F(ReferenceTest, VarianceFallsAsOneOverTheSamplesAndTheSeedFixesTheImage) {
