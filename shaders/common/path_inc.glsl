@@ -58,24 +58,33 @@ vec3 pt_sample_hg(vec3 d, float g, float u1, float u2) {
 // majorant within a few times the medium's extinction.
 const int PT_MAX_COLLISIONS = 65536;
 
+// One draw of a walk from p along d through the majorant grid, from t in `segment`: the next
+// tentative collision at the segment's majorant rate, or, where the draw passes the segment's
+// end, that end and the next segment (the exponential distribution forgets, so the draw starts
+// afresh there, and an empty segment costs one step). Returns (x) the new t, (y) 1 for a
+// tentative collision, 0 for a segment's end, (zw) the segment from there on.
+vec4 pt_walk(vec3 p, vec3 d, float t, vec2 segment, float u) {
+  float step = segment.x > 0.0f ? -log(1.0f - u) / segment.x : 1e30f;
+  bool crossing = t + step >= segment.y;
+  t = crossing ? segment.y : t + step;
+  // The next segment as a loop of one trip or none: a CPU device runs both sides of a branch
+  // for every lane, but skips a loop no lane enters (most draws cross no edge).
+  for (int k = 0; k < (crossing ? 1 : 0); ++k) segment = pt_majorant_segment(p, d, t);
+  return vec4(t, crossing ? 0.0f : 1.0f, segment);
+}
+
 // Delta tracking from p along d over [0, t_max]: the distance to a real collision, sampled
 // with probability density sigma_t(t) T(t), or a value above t_max when the path leaves the
-// medium unscattered (probability T(t_max)). Tentative collisions at the local majorant's rate
-// are real with probability sigma_t / majorant, null otherwise; where a segment of the
-// majorant grid ends, the next draw starts afresh at its end (the exponential distribution
-// forgets), so an empty segment costs one step.
+// medium unscattered (probability T(t_max)). Tentative collisions are real with probability
+// sigma_t / majorant, null otherwise.
 float pt_delta_tracking(vec3 p, vec3 d, float t_max, uint stream) {
-  float t = 0.0f;
-  vec2 segment = pt_majorant_segment(p, d, 0.0f);
+  vec4 walk = vec4(0.0f, 0.0f, pt_majorant_segment(p, d, 0.0f));
   for (int i = 0; i < PT_MAX_COLLISIONS; ++i) {
-    float step = segment.x > 0.0f ? -log(1.0f - pt_uniform(stream, uint(2 * i))) / segment.x : 1e30f;
-    bool crossing = t + step >= segment.y;
-    t = crossing ? segment.y : t + step;
-    if (t >= t_max) break;
-    // The next segment as a loop of one trip or none: a CPU device runs both sides of a
-    // branch for every lane, but skips a loop no lane enters (most draws cross no edge).
-    for (int k = 0; k < (crossing ? 1 : 0); ++k) segment = pt_majorant_segment(p, d, t);
-    if (!crossing && pt_uniform(stream, uint(2 * i + 1)) * segment.x < pt_sigma_t(p + d * t)) return t;
+    float majorant = walk.z;
+    walk = pt_walk(p, d, walk.x, vec2(walk.z, walk.w), pt_uniform(stream, uint(2 * i)));
+    if (walk.x >= t_max) break;
+    if (walk.y > 0.0f && pt_uniform(stream, uint(2 * i + 1)) * majorant < pt_sigma_t(p + d * walk.x))
+      return walk.x;
   }
   return t_max + 1.0f;
 }
@@ -85,18 +94,14 @@ float pt_delta_tracking(vec3 p, vec3 d, float t_max, uint stream) {
 // collisions (drawn as delta tracking draws them), with Russian roulette once it falls under
 // 0.1 (each survivor weighs 2).
 float pt_ratio_tracking(vec3 p, vec3 d, float t_max, uint stream) {
-  float t = 0.0f;
   float transmittance = 1.0f;
-  vec2 segment = pt_majorant_segment(p, d, 0.0f);
+  vec4 walk = vec4(0.0f, 0.0f, pt_majorant_segment(p, d, 0.0f));
   for (int i = 0; i < PT_MAX_COLLISIONS; ++i) {
-    float step = segment.x > 0.0f ? -log(1.0f - pt_uniform(stream, uint(2 * i))) / segment.x : 1e30f;
-    bool crossing = t + step >= segment.y;
-    t = crossing ? segment.y : t + step;
-    if (t >= t_max) break;
-    float majorant = segment.x;
-    for (int k = 0; k < (crossing ? 1 : 0); ++k) segment = pt_majorant_segment(p, d, t);
-    if (crossing) continue;
-    transmittance *= 1.0f - pt_sigma_t(p + d * t) / majorant;
+    float majorant = walk.z;
+    walk = pt_walk(p, d, walk.x, vec2(walk.z, walk.w), pt_uniform(stream, uint(2 * i)));
+    if (walk.x >= t_max) break;
+    if (walk.y == 0.0f) continue;
+    transmittance *= 1.0f - pt_sigma_t(p + d * walk.x) / majorant;
     if (transmittance < 0.1f) {
       if (pt_uniform(stream, uint(2 * i + 1)) < 0.5f) return 0.0f;
       transmittance *= 2.0f;

@@ -17,7 +17,7 @@
 #include <stb/stb_image_write.h>
 
 #include "nephele/image.h"
-#include "voxel/voxel_grid.h"
+#include "support/vdb_files.h"
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
@@ -268,13 +268,7 @@ TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
 // A) and its variance (variance.R, .G, .B); without a lab grid, or with a bad --spp, one line
 // and no file.
 TEST_F(CliTest, ReferenceWritesTheMeanAndItsVariance) {
-  nephele::voxel::VoxelGrid g;
-  g.dims = glm::ivec3(8);
-  g.voxel_m = 10.0f;
-  g.origin_m = glm::vec3(-40.0f, -40.0f, 0.0f);
-  g.density.assign(8 * 8 * 8, 1.0f);
-  g.sdf_m.assign(g.density.size(), -10.0f);
-  nephele::voxel::write_vdb(g, path("cube.vdb"));
+  nephele::test::write_constant_cube_vdb(path("cube.vdb"), 8, 10.0f);
   const std::string scene = write_scene(
       "[lab]\ngrid = \"cube.vdb\"\nsigma_t_per_m = 0.02\nmax_bounces = 4\n"
       "[camera]\nposition_m = [0.0, -200.0, 40.0]\nview_dir = [0.0, 1.0, 0.0]\nfov_deg = 40\n");

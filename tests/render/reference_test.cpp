@@ -13,6 +13,7 @@
 #include "render/frame_params.h"
 #include "render/glsl.h"
 #include "render_fixture.h"
+#include "support/vdb_files.h"
 #include "voxel/bricks.h"
 #include "voxel/voxel_grid.h"
 
@@ -24,13 +25,7 @@ using nephele::Scene;
 // A 24^3 grid of 10 m voxels, density 1 everywhere, its base centre at the file's origin.
 std::string constant_grid_file() {
   const std::string file = (fs::path(testing::TempDir()) / "nephele_lab_cube.vdb").string();
-  nephele::voxel::VoxelGrid g;
-  g.dims = glm::ivec3(24);
-  g.voxel_m = 10.0f;
-  g.origin_m = glm::vec3(-120.0f, -120.0f, 0.0f);
-  g.density.assign(24 * 24 * 24, 1.0f);
-  g.sdf_m.assign(g.density.size(), -10.0f);
-  nephele::voxel::write_vdb(g, file);
+  nephele::test::write_constant_cube_vdb(file, 24, 10.0f);
   return file;
 }
 

@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include "voxel/voxel_grid.h"
+
 namespace nephele::test {
 namespace {
 
@@ -72,6 +74,16 @@ void write_far_apart_density_vdb(const std::string& path) {
   grid->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
   grid->tree().setValue(openvdb::Coord(100000, 0, 0), 1.0f);
   write(path, grid);
+}
+
+void write_constant_cube_vdb(const std::string& path, int n, float voxel_m) {
+  voxel::VoxelGrid g;
+  g.dims = glm::ivec3(n);
+  g.voxel_m = voxel_m;
+  g.origin_m = glm::vec3(-0.5f * float(n) * voxel_m, -0.5f * float(n) * voxel_m, 0.0f);
+  g.density.assign(size_t(n) * size_t(n) * size_t(n), 1.0f);
+  g.sdf_m.assign(g.density.size(), -voxel_m);
+  voxel::write_vdb(g, path);
 }
 
 }  // namespace nephele::test

@@ -21,4 +21,8 @@ void write_nan_density_vdb(const std::string& path);
 // Two active voxels 100000 voxels apart on x.
 void write_far_apart_density_vdb(const std::string& path);
 
+// A cube of n^3 voxels of voxel_m, density 1 throughout, its base centre at the file's
+// origin (nephele's own writer, voxel::write_vdb): a homogeneous medium for the lab.
+void write_constant_cube_vdb(const std::string& path, int n, float voxel_m);
+
 }  // namespace nephele::test
