@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -78,6 +79,10 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
       ->capture_default_str();
   cmd.add_option("--time-limit", options.time_limit_s,
                  "--reference: stop after this many seconds (at the end of a pass; 0 = none)")
+      ->capture_default_str();
+  cmd.add_option("--majorant-grid", options.majorant_grid,
+                 "--reference: auto (the bricks where under a quarter of them are stored), "
+                 "bricks (empty bricks crossed in one step) or none (one majorant for the box)")
       ->capture_default_str();
   add_device_flags(cmd, options.device, options.verbose, options.validation);
   add_progress_flags(cmd, options.progress, options.quiet);
@@ -327,11 +332,16 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
                      ": must be a finite number of seconds, at least 0 (0 = none)");
   if (scene.lab.grid.empty())
     throw InputError("--reference needs the scene's [lab] grid (lab.grid = \"cloud.vdb\")");
+  const std::map<std::string, MajorantGrid> grids{
+      {"auto", MajorantGrid::kAuto}, {"bricks", MajorantGrid::kBricks}, {"none", MajorantGrid::kNone}};
+  const auto grid = grids.find(options.majorant_grid);
+  if (grid == grids.end())
+    throw InputError("--majorant-grid " + options.majorant_grid + ": must be auto, bricks or none");
   check_output_path(options.output, "--output");
   Renderer renderer({options.device, options.validation, options.verbose, {}});
   std::unique_ptr<Progress> bar;
   // The scene's seed (--seed) seeds the paths: the same seed, scene and --spp, the same image.
-  ReferenceOptions reference{options.spp, options.time_limit_s, scene.noise_seed, {}};
+  ReferenceOptions reference{options.spp, options.time_limit_s, scene.noise_seed, {}, grid->second};
   if (progress_wanted(options.progress, options.quiet, options.verbose))
     reference.progress = [&](std::string_view stage, int done, int total) {
       if (!bar) bar = std::make_unique<Progress>(std::string(stage), total, true);

@@ -36,6 +36,7 @@ struct RenderOptions {
   bool reference = false;
   int spp = 64;
   double time_limit_s = 0.0;
+  std::string majorant_grid = "auto";  // auto, bricks or none (MajorantGrid)
   bool progress = false;   // a progress bar even when standard error is not a terminal
   bool quiet = false;      // no progress and no informational lines on standard error
   std::string device;      // substring of the Vulkan device name

@@ -289,6 +289,8 @@ TEST_F(CliTest, ReferenceWritesTheMeanAndItsVariance) {
   expect_rejected("--reference --spp 4", {"--reference", "lab"});
   expect_rejected("--reference --spp 0 --scene " + scene, {"--spp", "0"});
   expect_rejected("--reference --time-limit -1 --scene " + scene, {"--time-limit"});
+  expect_rejected("--reference --majorant-grid dense --scene " + scene,
+                  {"--majorant-grid", "dense", "auto, bricks or none"});
 }
 
 // `bench --ablation` renders seed 002's four variants of one voxel-heavy view: the JSON holds
