@@ -39,9 +39,11 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   if (scene.lab.grid.empty())
     throw InputError("lab.grid: \"\" is empty: render --reference needs a [lab] grid (.vdb or .nvdb)");
   if (options.spp < 1 || options.spp > 1000000)
-    throw InputError("--spp: " + std::to_string(options.spp) + " must be in [1, 1000000]");
-  if (!(options.time_limit_s >= 0.0))
-    throw InputError("--time-limit: must be at least 0 (seconds; 0 = none)");
+    throw InputError("ReferenceOptions::spp " + std::to_string(options.spp) +
+                     ": must be in [1, 1000000]");
+  if (!(options.time_limit_s >= 0.0 && std::isfinite(options.time_limit_s)))
+    throw InputError("ReferenceOptions::time_limit_s: must be a finite number of seconds, at "
+                     "least 0 (0 = none)");
   const auto start = std::chrono::steady_clock::now();
   Scene s = lab_as_voxel_cloud(scene);
   update_atmosphere_luts(s);
