@@ -107,8 +107,9 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     const double n = sum.pixels[i].a;
     for (int c = 0; c < 3; ++c) {
       const double mean = sum.pixels[i][c] / n;
-      // The sample variance (n - 1 in the denominator) over n: the variance of the mean.
-      const double var = n > 1.0 ? std::max(squares.pixels[i][c] / n - mean * mean, 0.0) * n / (n - 1.0) / n : 0.0;
+      // The sample variance (sum of squared deviations over n - 1) over n: the variance of
+      // the mean, (sum x^2 / n - mean^2) / (n - 1).
+      const double var = n > 1.0 ? std::max(squares.pixels[i][c] / n - mean * mean, 0.0) / (n - 1.0) : 0.0;
       out.mean.pixels[i][c] = float(mean);
       out.variance.pixels[i][c] = float(var);
     }
