@@ -11,6 +11,7 @@
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
+#include "common/sun_disk_inc.glsl"
 #include "common/atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"
 #include "common/sky_view_inc.glsl"
@@ -20,20 +21,6 @@
 
 layout(constant_id = 0) const int REFERENCE = 0;
 layout(local_size_x = 8, local_size_y = 8) in;
-
-// Solar disk radiance per unit illuminance, with limb darkening I(m)/I(1) = 1 - u (1 - m),
-// m = cos of the angle at the sun's surface, u = 0.6 (a visible-band average); normalised so
-// the disk integrates to the illuminance.
-float sun_disk(vec3 dir, vec3 sun, float cos_radius) {
-  float cos_angle = dot(dir, sun);
-  if (cos_angle < cos_radius) return 0.0f;
-  float sin_radius_sq = 1.0f - cos_radius * cos_radius;
-  float r = sqrt(saturate((1.0f - cos_angle * cos_angle) / max(sin_radius_sq, 1e-12f)));
-  float m = sqrt(1.0f - r * r);
-  const float u = 0.6f;
-  float solid_angle = 2.0f * PI * (1.0f - cos_radius);
-  return (1.0f - u * (1.0f - m)) / ((1.0f - u / 3.0f) * solid_angle);
-}
 
 // Moon disk radiance as a share of the full moon's (params_inc.glsl). Its regolith scatters
 // by the Lommel-Seeliger law, L ~ mu0 / (mu0 + mu) (mu0, mu: cosines of the sun's and the

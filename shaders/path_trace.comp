@@ -1,16 +1,31 @@
 #version 450
-// The reference path tracer (issue 21), lab scene: voxel cloud 0's density grid in vacuum
-// (no planet, no air, black background) with sigma_t = grid density x path_medium.x, lit by
-// a distant sun of irradiance path_light.w. Unbiased: delta tracking samples collisions,
-// ratio tracking estimates the sun's transmittance at each (next-event estimation), the
-// phase function (Henyey-Greenstein) is sampled exactly (common/path_inc.glsl). Each
-// invocation adds path_info.y paths to its pixel's sums in path_sum and path_squares; the host
-// dispatches until it has the samples or the time it was asked for.
+// The reference path tracer (issue 21). Unbiased: delta tracking samples collisions, ratio
+// tracking estimates each light's transmittance (next-event estimation at every collision),
+// the phase functions are sampled exactly or with their ratio to a sampled one as a weight
+// (common/path_inc.glsl). Each invocation adds path_info.y paths to its pixel's sums in
+// path_sum and path_squares; the host dispatches until it has the samples or the time it was
+// asked for. Two scenes (PLANET, a specialization constant):
+//  0 the lab: voxel cloud 0's density grid in vacuum (no planet, no air, black background)
+//    with sigma_t = grid density x path_medium.x, lit by a distant sun of irradiance
+//    path_light.w;
+//  1 the planet: what the fast mode renders (the atmosphere's Rayleigh, Mie and ozone, the
+//    noise and voxel clouds' density field and phase function, a Lambertian ground), lit by
+//    the key light and the second light (sun and moon, FrameParams::sun_dir, second_light),
+//    the sun's disk seen directly. One colour channel per path (sample index mod 3, so each
+//    gets a third of the samples, weighted by 3): the air's extinction differs per channel.
 #extension GL_GOOGLE_include_directive : require
+
+layout(constant_id = 0) const int PLANET = 0;
+// The cloud field's variant (cloud_field_inc.glsl): the scene's march mode, as the fast mode
+// renders it.
+layout(constant_id = 1) const int MARCH_MODE = 0;
+
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
-#include "voxel_field_inc.glsl"
+#include "common/sun_disk_inc.glsl"
+#include "cloud_field_inc.glsl"
+#include "frame_atmosphere_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -26,7 +41,7 @@ vec3 lab_grid_dir(VoxelCloudGpu c, vec3 d) {
 
 // The medium for path_inc.glsl: the grid's box and its trilinear density, as the fast mode
 // samples them (voxel_lookup), without the surface erosion the clouds pass adds.
-float pt_sigma_t(vec3 p) {
+float lab_sigma_t(vec3 p) {
   VoxelCloudGpu c = frame.voxel_clouds[0];
   vec3 u = lab_grid_coord(c, p);
   if (voxel_box_distance(u, c.dims.xyz) > 0.0f) return 0.0f;
@@ -35,7 +50,7 @@ float pt_sigma_t(vec3 p) {
 
 // Where the ray (o, d) is inside the grid's box: slabs in grid coordinates (voxels, the map
 // being a rotation and a scale, t stays in metres).
-vec2 pt_bounds(vec3 o, vec3 d) {
+vec2 lab_bounds(vec3 o, vec3 d) {
   VoxelCloudGpu c = frame.voxel_clouds[0];
   vec3 u = lab_grid_coord(c, o);
   vec3 du = lab_grid_dir(c, d);
@@ -50,7 +65,7 @@ vec2 pt_bounds(vec3 o, vec3 d) {
 // within it or its filter's reach) has majorant 0 and is crossed in one step; a stored one the
 // grid's largest extinction (path_medium.w). Along the line u(o) + t du, so that successive
 // calls agree on where a boundary is. Without the grid (path_eye_m.w = 0), one segment.
-vec2 pt_majorant_segment(vec3 o, vec3 d, float t) {
+vec2 lab_majorant_segment(vec3 o, vec3 d, float t) {
   if (frame.path_eye_m.w == 0.0f) return vec2(frame.path_medium.w, 1e30f);
   VoxelCloudGpu c = frame.voxel_clouds[0];
   vec3 du = lab_grid_dir(c, d);
@@ -68,7 +83,198 @@ vec2 pt_majorant_segment(vec3 o, vec3 d, float t) {
   return vec2(page < 0.0f ? 0.0f : frame.path_medium.w, end);
 }
 
+// The planet's medium for one colour channel (pt_channel, per path): the air, plus the clouds
+// inside their shells.
+int pt_channel = 0;
+// The clouds' extinction at the last point pt_sigma_t evaluated (1/m): where delta tracking
+// stops, the collision's, which the path then scatters by.
+float pt_cloud_sigma_t = 0.0f;
+
+// The shells (radii, m) where clouds can be, each padded by PLANET_SHELL_PAD_M: the majorant
+// grid's cells are the spherical shells between their radii. x, y the main layer's, z, w the
+// high layer's (a layer that is off lies beyond the atmosphere); path_voxels.yz the voxel
+// clouds' boxes'.
+const float PLANET_SHELL_PAD_M = 100.0f;
+
+vec4 planet_layer_radii() {
+  return vec4(frame.cloud_layers[0].radii_m.xy, frame.cloud_layers[1].radii_m.xy) +
+         vec4(-PLANET_SHELL_PAD_M, PLANET_SHELL_PAD_M, -PLANET_SHELL_PAD_M, PLANET_SHELL_PAD_M);
+}
+
+// A bound on a layer's density field (shape: CloudLayerGpu::shape): twice its density (the
+// weather map's density channel doubles it), none without coverage or precipitation (a storm
+// cell's coverage and its anvil come from the precipitation).
+float planet_layer_bound(vec4 shape) {
+  return shape.x > 0.0f || shape.w > 0.0f ? 2.0f * shape.y : 0.0f;
+}
+
+// The bound on the clouds' extinction (1/m) at radius r (0 where no cloud can be).
+float planet_cloud_bound(float r) {
+  vec4 layers = planet_layer_radii();
+  float bound = 0.0f;
+  if (r > layers.x && r < layers.y) bound += planet_layer_bound(frame.cloud_layers[0].shape);
+  if (r > layers.z && r < layers.w) bound += planet_layer_bound(frame.cloud_layers[1].shape);
+  bound *= frame.cloud_shape.z;
+  if (r > frame.path_voxels.y && r < frame.path_voxels.z) bound += frame.path_voxels.x;
+  return bound;
+}
+
+float planet_sigma_t(vec3 p) {
+  float r = length(p);
+  vec3 air = atmosphere_sigma_t(frame_atmosphere(), r - frame.radii_m.x);
+  float cloud = 0.0f;
+  // A branch, not a loop of one trip (which a CPU device would skip when no lane is in a
+  // shell): lavapipe ends every loop of an invocation once all its loops together have run
+  // 65535 iterations, and tracking through clouds runs thousands.
+  if (planet_cloud_bound(r) > 0.0f) cloud = cloud_density(p, true) * frame.cloud_shape.z;
+  pt_cloud_sigma_t = cloud;
+  return air[pt_channel] + cloud;
+}
+
+// Where the ray is in the air: from where it enters the atmosphere (or its origin) to where it
+// leaves it or meets the ground.
+vec2 planet_bounds(vec3 o, vec3 d) {
+  vec2 top = ray_sphere(o, d, frame.radii_m.y);
+  if (top.y <= 0.0f) return vec2(0.0f, -1.0f);
+  vec2 ground = ray_sphere(o, d, frame.radii_m.x);
+  return vec2(max(top.x, 0.0f), ground.x > 0.0f ? min(ground.x, top.y) : top.y);
+}
+
+// The air's largest extinction in this channel: Rayleigh and Mie at sea level, ozone at its peak.
+float planet_air_majorant() {
+  return frame.rayleigh[pt_channel] + frame.mie.y + frame.ozone[pt_channel];
+}
+
+// The majorant grid along the ray: spherical shells. From o + d t to the next crossing of a
+// shell's radius, the air's majorant plus, in a cloud layer's shell, the bound on its density
+// field (the noise field is at most twice the layer's density: cloud_field_inc.glsl) and, in
+// the voxel clouds' shell, theirs (path_voxels.x).
+vec2 planet_majorant_segment(vec3 o, vec3 d, float t) {
+  vec3 p = o + d * t;
+  vec4 layers = planet_layer_radii();
+  float radii[6] = float[6](layers.x, layers.y, layers.z, layers.w, frame.path_voxels.y,
+                            frame.path_voxels.z);
+  float end = 1e30f;
+  for (int i = 0; i < 6; ++i) {
+    vec2 hit = ray_sphere(p, d, radii[i]);
+    // Crossings closer than a metre are the one the segment starts on (the frame's floats
+    // are half a metre apart out here); the shells' padding keeps a majorant over them.
+    float next = hit.x > 1.0f ? hit.x : (hit.y > 1.0f ? hit.y : 1e30f);
+    end = min(end, next);
+  }
+  end = t + max(end, 1.0f);
+  float r = length(o + d * (0.5f * (t + min(end, t + 1e7f))));
+  return vec2(planet_air_majorant() + planet_cloud_bound(r), end);
+}
+
+float pt_sigma_t(vec3 p) { return PLANET == 1 ? planet_sigma_t(p) : lab_sigma_t(p); }
+vec2 pt_bounds(vec3 o, vec3 d) { return PLANET == 1 ? planet_bounds(o, d) : lab_bounds(o, d); }
+vec2 pt_majorant_segment(vec3 o, vec3 d, float t) {
+  return PLANET == 1 ? planet_majorant_segment(o, d, t) : lab_majorant_segment(o, d, t);
+}
+
 #include "common/path_inc.glsl"
+
+// A unit direction with density cos(angle to n) / pi (Malley's method).
+vec3 pt_sample_cosine(vec3 n, float u1, float u2) {
+  float r = sqrt(u1);
+  float phi = 2.0f * PI * u2;
+  vec3 t1 = normalize(abs(n.z) < 0.9f ? cross(n, vec3(0.0f, 0.0f, 1.0f)) : cross(n, vec3(1.0f, 0.0f, 0.0f)));
+  vec3 t2 = cross(n, t1);
+  return normalize(r * cos(phi) * t1 + r * sin(phi) * t2 + sqrt(max(1.0f - u1, 0.0f)) * n);
+}
+
+// The lights of the planet: xyz towards it, w its illuminance at the top of the atmosphere in
+// this channel (0: none).
+vec4 planet_light(int i) {
+  vec3 key = frame.sun_illuminance.rgb;
+  return i == 0 ? vec4(frame.sun_dir.xyz, key[pt_channel])
+                : vec4(frame.second_light.xyz, key[pt_channel] * frame.second_light.w);
+}
+
+// The light reaching p from light i: its illuminance times the transmittance (ratio tracking;
+// 0 where the planet is in the way).
+float planet_light_at(vec3 p, int i, uint stream) {
+  vec4 light = planet_light(i);
+  if (light.w <= 0.0f || ray_sphere(p, light.xyz, frame.radii_m.x).x > 0.0f) return 0.0f;
+  return light.w * pt_transmittance_to(p, light.xyz, stream);
+}
+
+// Radiance in channel pt_channel along the ray (eye, dir), one path of at most max_bounces
+// scatterings after the first (at the medium or the ground); `stream` seeds it. At a real
+// collision the path continues as one of the scatterers (Rayleigh, Mie, the clouds) chosen in
+// proportion to its sigma_s, with the albedo sigma_s / sigma_t as a weight; Rayleigh is
+// sampled uniformly and Mie (Cornette-Shanks) as Henyey-Greenstein, each weighted by its
+// phase's ratio to the density sampled (at most 1.5). The ground reflects as a Lambertian
+// surface of albedo sky_model.y. Russian roulette ends paths whose weight falls under 1.
+float planet_path_radiance(vec3 eye, vec3 dir, int max_bounces, uint stream) {
+  Atmosphere atmo = frame_atmosphere();
+  float radiance = 0.0f;
+  float weight = 1.0f;
+  vec3 x = eye;
+  vec3 d = dir;
+  for (int bounce = 0; bounce <= max_bounces; ++bounce) {
+    uint s = pt_hash(stream ^ pt_hash(uint(bounce)));
+    vec2 bounds = pt_bounds(x, d);
+    bool in_air = bounds.y > bounds.x;
+    float t = in_air ? pt_delta_tracking(x + d * bounds.x, d, bounds.y - bounds.x, pt_hash(s ^ 1u))
+                     : 1.0f;
+    bool collided = in_air && t <= bounds.y - bounds.x;
+    bool ground = !collided && in_air && ray_sphere(x, d, frame.radii_m.x).x > 0.0f;
+    if (!collided && !ground) {  // left the atmosphere: space is black but for the sun
+      if (bounce == 0 && frame.sun_illuminance.w == 0.0f)
+        radiance += weight * planet_light(0).w * sun_disk(d, frame.sun_dir.xyz, frame.sun_dir.w);
+      break;
+    }
+    vec3 light_sum = vec3(0.0f);  // per light: its illuminance at x, times the phase or BRDF
+    if (ground) {
+      vec3 n = normalize(x + d * bounds.y);
+      x = n * (frame.radii_m.x + 1.0f);  // lifted a metre, clear of its own sphere
+      float albedo = frame.sky_model.y;
+      for (int i = 0; i < 2; ++i)
+        radiance += weight * albedo / PI * max(dot(n, planet_light(i).xyz), 0.0f) *
+                    planet_light_at(x, i, pt_hash(s ^ (2u + uint(i))));
+      weight *= albedo;
+      d = pt_sample_cosine(n, pt_uniform(s, 3u), pt_uniform(s, 4u));
+    } else {
+      x += d * (bounds.x + t);
+      AtmosphereMedium air = atmosphere_medium(atmo, length(x) - frame.radii_m.x);
+      float sigma_r = air.scattering_r[pt_channel];
+      float sigma_m = air.scattering_m;
+      float sigma_c = pt_cloud_sigma_t * frame.cloud_shape.w;
+      float sigma_t = air.extinction[pt_channel] + pt_cloud_sigma_t;
+      for (int i = 0; i < 2; ++i) {
+        float mu = dot(d, planet_light(i).xyz);
+        float phase = sigma_r * rayleigh_phase(mu) + sigma_m * cornette_shanks_phase(atmo.mie_g, mu) +
+                      sigma_c * dual_lobe_hg(frame.cloud_phase.x, frame.cloud_phase.y, frame.cloud_phase.z, mu);
+        radiance += weight * phase / sigma_t * planet_light_at(x, i, pt_hash(s ^ (2u + uint(i))));
+      }
+      float sigma_s = sigma_r + sigma_m + sigma_c;
+      weight *= sigma_s / sigma_t;
+      // Which scatterer, and its direction.
+      float pick = pt_uniform(s, 5u) * sigma_s;
+      vec3 next;
+      if (pick < sigma_c) {
+        bool forward = pt_uniform(s, 6u) < frame.cloud_phase.z;
+        next = pt_sample_hg(d, forward ? frame.cloud_phase.x : frame.cloud_phase.y, pt_uniform(s, 3u),
+                            pt_uniform(s, 4u));
+      } else if (pick < sigma_c + sigma_m) {
+        next = pt_sample_hg(d, atmo.mie_g, pt_uniform(s, 3u), pt_uniform(s, 4u));
+        float mu = dot(d, next);
+        weight *= cornette_shanks_phase(atmo.mie_g, mu) / henyey_greenstein(atmo.mie_g, mu);
+      } else {
+        next = pt_sample_hg(d, 0.0f, pt_uniform(s, 3u), pt_uniform(s, 4u));
+        weight *= rayleigh_phase(dot(d, next)) * (4.0f * PI);
+      }
+      d = next;
+    }
+    if (bounce >= 2 && weight < 1.0f) {  // Russian roulette
+      if (pt_uniform(s, 7u) >= weight) break;
+      weight = 1.0f;
+    }
+  }
+  return radiance;
+}
 
 void main() {
   ivec2 size = imageSize(path_sum);
@@ -77,6 +283,7 @@ void main() {
   vec4 sum = imageLoad(path_sum, pixel);
   vec4 squares = imageLoad(path_squares, pixel);
   uint pixel_key = uint(pixel.y * size.x + pixel.x);
+  vec3 eye = PLANET == 1 ? frame.camera_pos_m.xyz : frame.path_eye_m.xyz;
   for (int k = 0; k < frame.path_info.y; ++k) {
     uint sample_index = uint(frame.path_info.x + k);
     uint stream = pt_stream(pixel_key, sample_index, uint(frame.path_info.z));
@@ -85,13 +292,24 @@ void main() {
     vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                           frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x) + jx - 0.5f,
                           float(pixel.y) + jy - 0.5f, float(size.x), float(size.y));
-    float radiance = pt_path_radiance(frame.path_eye_m.xyz, dir, frame.path_light.xyz,
-                                      frame.path_light.w, 0.0f, frame.path_medium.y,
-                                      frame.path_medium.z, frame.path_info.w,
-                                      pt_hash(stream ^ 0x68bc21ebu));
-    sum += vec4(vec3(radiance), 1.0f);
-    squares += vec4(vec3(radiance * radiance), 0.0f);
+    vec3 value;
+    if (PLANET == 1) {
+      pt_channel = int(sample_index % 3u);
+      float radiance = planet_path_radiance(eye, dir, frame.path_info.w, pt_hash(stream ^ 0x68bc21ebu));
+      value = vec3(0.0f);
+      value[pt_channel] = 3.0f * radiance;
+    } else {
+      value = vec3(pt_path_radiance(eye, dir, frame.path_light.xyz, frame.path_light.w, 0.0f,
+                                    frame.path_medium.y, frame.path_medium.z, frame.path_info.w,
+                                    pt_hash(stream ^ 0x68bc21ebu)));
+    }
+    sum += vec4(value, 1.0f);
+    squares += vec4(value * value, 0.0f);
+    // Stored after every sample: on lavapipe, a path whose loops (with those of the other
+    // lanes of its batch) pass 65535 iterations is cut off with everything after it in this
+    // invocation; the samples stored before it count, and the host counts what was lost
+    // (path_sum's alpha is the samples a pixel got).
+    imageStore(path_sum, pixel, sum);
+    imageStore(path_squares, pixel, squares);
   }
-  imageStore(path_sum, pixel, sum);
-  imageStore(path_squares, pixel, squares);
 }

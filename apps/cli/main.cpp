@@ -10,6 +10,7 @@
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
 #include "render_command.h"
+#include "validate.h"
 #include "voxel_commands.h"
 
 namespace {
@@ -48,6 +49,12 @@ int main(int argc, char** argv) {
       "gallery", "the sky-cover presets (clear to overcast, stratus, storm, cirrus, sunset) side by side, labelled with their measured oktas");
   nephele::cli::add_gallery_flags(*gallery_cmd, gallery);
 
+  nephele::cli::ValidateOptions validate;
+  CLI::App* validate_cmd = app.add_subcommand(
+      "validate", "the fast mode against the reference path tracer on a suite of views, each "
+                  "with its tolerance (data/validation.toml)");
+  nephele::cli::add_validate_flags(*validate_cmd, validate);
+
   CLI::App* presets_cmd = app.add_subcommand("presets", "list the built-in scene presets");
 
   nephele::cli::MakeCloudOptions make_cloud;
@@ -78,6 +85,7 @@ int main(int argc, char** argv) {
   try {
     if (render_cmd->parsed()) return nephele::cli::run_render(render);
     if (bench_cmd->parsed()) return nephele::cli::run_bench(bench);
+    if (validate_cmd->parsed()) return nephele::cli::run_validate(validate);
     if (gallery_cmd->parsed()) return nephele::cli::run_gallery(gallery);
     if (make_cloud_cmd->parsed()) return nephele::cli::run_make_cloud(make_cloud);
     if (voxelize_cmd->parsed()) return nephele::cli::run_voxelize(voxelize);

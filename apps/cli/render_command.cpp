@@ -73,15 +73,20 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
                "render every frame of a --camera-path flight as a still image (every pixel "
                "marched, slower) instead of as an animation");
   cmd.add_flag("--reference", options.reference,
-               "path trace the scene's [lab] grid (unbiased, progressive; --seed seeds the paths); "
+               "path trace the scene (its [lab] grid when it has one; unbiased, progressive; --seed "
+               "seeds the paths); "
                "an .exr output gets the mean (R, G, B) and its variance (variance.R, .G, .B)");
   cmd.add_option("--spp", options.spp, "--reference: samples per pixel, [1, 1000000]")
       ->capture_default_str();
   cmd.add_option("--time-limit", options.time_limit_s,
                  "--reference: stop after this many seconds (at the end of a pass; 0 = none)")
       ->capture_default_str();
+  cmd.add_option("--max-bounces", options.max_bounces,
+                 "--reference: scatterings after the first, [0, 1024] (0 = single scattering); -1: "
+                 "the lab's max_bounces, or all that matter on the planet")
+      ->capture_default_str();
   cmd.add_option("--majorant-grid", options.majorant_grid,
-                 "--reference: auto (the bricks where under a quarter of them are stored), "
+                 "--reference, the lab: auto (the bricks where under a quarter of them are stored), "
                  "bricks (empty bricks crossed in one step) or none (one majorant for the box)")
       ->capture_default_str();
   add_device_flags(cmd, options.device, options.verbose, options.validation);
@@ -321,7 +326,8 @@ Sequence plan_sequence(const Scene& scene, const RenderOptions& options) {
 
 namespace {
 
-// `nephele render --reference`: the lab's path-traced image, with progress.
+// `nephele render --reference`: the path-traced image (of the lab, or of the planet's scene),
+// with progress.
 int run_reference(const Scene& scene, const RenderOptions& options) {
   if (options.frames_given || !options.camera_path.empty())
     throw InputError("--reference renders one image (not with --frames or --camera-path)");
@@ -330,8 +336,9 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
   if (!(options.time_limit_s >= 0.0 && std::isfinite(options.time_limit_s)))
     throw InputError("--time-limit " + number_text(options.time_limit_s) +
                      ": must be a finite number of seconds, at least 0 (0 = none)");
-  if (scene.lab.grid.empty())
-    throw InputError("--reference needs the scene's [lab] grid (lab.grid = \"cloud.vdb\")");
+  if (options.max_bounces < -1 || options.max_bounces > kMaxReferenceBounces)
+    throw InputError("--max-bounces " + std::to_string(options.max_bounces) + ": must be in [0, " +
+                     std::to_string(kMaxReferenceBounces) + "] or -1 (auto)");
   const std::map<std::string, MajorantGrid> grids{
       {"auto", MajorantGrid::kAuto}, {"bricks", MajorantGrid::kBricks}, {"none", MajorantGrid::kNone}};
   const auto grid = grids.find(options.majorant_grid);
@@ -341,7 +348,8 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
   Renderer renderer({options.device, options.validation, options.verbose, {}});
   std::unique_ptr<Progress> bar;
   // The scene's seed (--seed) seeds the paths: the same seed, scene and --spp, the same image.
-  ReferenceOptions reference{options.spp, options.time_limit_s, scene.noise_seed, {}, grid->second};
+  ReferenceOptions reference{options.spp, options.time_limit_s, scene.noise_seed, {}, grid->second,
+                             options.max_bounces};
   if (progress_wanted(options.progress, options.quiet, options.verbose))
     reference.progress = [&](std::string_view stage, int done, int total) {
       if (!bar) bar = std::make_unique<Progress>(std::string(stage), total, true);
@@ -361,6 +369,12 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
     std::fprintf(stderr, "nephele: reference %dx%d, %d samples per pixel in %.1f s on %s\n",
                  image.mean.width, image.mean.height, image.spp, image.seconds,
                  renderer.device_name().c_str());
+  if (image.lost_fraction > 0.0)
+    std::fprintf(stderr,
+                 "nephele: warning: the device dropped %.3g%% of the paths (lavapipe's limit of "
+                 "65535 loop iterations per invocation): the image is biased where paths are "
+                 "long; trace it on a GPU\n",
+                 100.0 * image.lost_fraction);
   if (options.validation && renderer.validation_messages() > 0) {
     std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
     return 1;

@@ -36,6 +36,7 @@ struct RenderOptions {
   bool reference = false;
   int spp = 64;
   double time_limit_s = 0.0;
+  int max_bounces = -1;                  // --reference: scatterings after the first (-1 auto)
   std::string majorant_grid = "auto";  // auto, bricks or none (MajorantGrid)
   bool progress = false;   // a progress bar even when standard error is not a terminal
   bool quiet = false;      // no progress and no informational lines on standard error

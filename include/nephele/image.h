@@ -70,4 +70,9 @@ void check_output_path(const std::string& path, const std::string& parameter);
 // Throws InputError naming the path if it cannot be read.
 Image read_image(const std::string& path);
 
+// Reads the layer `layer` of an EXR (channels layer.R, .G, .B, and .A, which reads as 1 when
+// missing; "" the unnamed R, G, B, A). Throws InputError naming the path if it cannot be read
+// or has no such layer.
+Image read_exr_layer(const std::string& path, const std::string& layer);
+
 }  // namespace nephele

@@ -53,4 +53,25 @@ namespace nephele {
 // (throws InputError otherwise); a zero-luminance reference gives the mean absolute difference.
 double luminance_error(const Image& image, const Image& reference);
 
+// An image against a reference at the scale of blocks of pixels (the reference path
+// tracer's comparisons, issue 21): the relative luminance of each block's mean, which averages
+// the reference's noise and the images' sub-pixel differences away.
+struct BlockLuminanceError {
+  double mean_bias = 0.0;   // mean luminance of the image over the reference's, minus 1
+  double mean_error = 0.0;  // sum over blocks of |L_image - L_reference| / sum of L_reference
+  double p95_error = 0.0;   // the 95th percentile of the blocks' |L_image / L_reference - 1|
+  double max_error = 0.0;   // the largest block's
+  // The reference's own noise in the same measure (its standard error summed over blocks, over
+  // the sum of its luminance) when the variance of its pixels' means is given, else 0.
+  double reference_noise = 0.0;
+  Image map;  // one pixel per block: |L_image / L_reference - 1| in r, g and b; a 1
+};
+
+// Blocks of block x block pixels (the last row and column of blocks may be smaller). Same
+// sizes required (throws InputError otherwise); `reference_variance` empty, or the variance of
+// each reference pixel's mean per channel (ReferenceImage::variance). A block whose reference
+// is black counts its relative error as 0 when the image is black too, else 1.
+BlockLuminanceError block_luminance_error(const Image& image, const Image& reference,
+                                          const Image& reference_variance, int block = 8);
+
 }  // namespace nephele

@@ -95,14 +95,24 @@ struct ReferenceOptions {
   double time_limit_s = 0.0;  // stop once this much time has passed (0: none), at a pass's end
   uint32_t seed = 1;          // the same seed, scene and spp give the same image
   ProgressCallback progress;  // "reference", samples per pixel done, of spp
-  MajorantGrid majorant_grid = MajorantGrid::kAuto;
+  MajorantGrid majorant_grid = MajorantGrid::kAuto;  // the lab's
+  // Scatterings after the first, [0, kMaxReferenceBounces] (0: single scattering); -1: the
+  // lab's lab.max_bounces, or all that matter on the planet (Russian roulette ends paths).
+  int max_bounces = -1;
 };
+
+constexpr int kMaxReferenceBounces = 1024;
 
 // A path-traced image: the mean radiance per pixel and the variance of that mean.
 struct ReferenceImage {
   Image mean;      // radiance (W m^-2 sr^-1 for a sun irradiance in W/m^2); a = 1
   Image variance;  // rgb: the variance of each pixel's mean (the sample variance / spp)
   int spp = 0;     // samples per pixel taken
+  // The share of the samples the device dropped (0 on a GPU). Lavapipe ends all of an
+  // invocation's loops once they have run 65535 iterations together (its loop limiter), which
+  // long paths through thick clouds can reach; their samples are lost, so where this is not 0
+  // the image is biased (dark where the paths are long): trace it on a GPU.
+  double lost_fraction = 0.0;
   double seconds = 0.0;
 };
 
@@ -134,10 +144,14 @@ class Renderer {
   CloudProfile cloud_profile(const Scene& scene);
 
   // The reference path tracer (unbiased: delta and ratio tracking, next-event estimation
-  // towards the sun, the phase function sampled exactly) of the scene's lab (Scene::lab: a
-  // density grid in vacuum). Progressive: options.spp samples per pixel, or fewer when
-  // options.time_limit_s runs out. Throws InputError for an invalid scene, one without a lab
-  // grid, or spp out of range.
+  // towards the lights, the phase functions sampled). Of the scene's lab when it has one
+  // (Scene::lab: a density grid in vacuum), else of what the fast mode renders: the
+  // atmosphere (Rayleigh, Mie, ozone; all orders), the noise and voxel clouds, the Lambertian
+  // ground, the sun and the moon (no cirrus, no stars, no moon disk; conditions off).
+  // Progressive: options.spp samples per pixel (on the planet rounded up to a multiple of 3:
+  // each path carries one colour channel), or fewer when options.time_limit_s runs out.
+  // Throws InputError for an invalid scene, one the tracer cannot render (cirrus,
+  // conditions), or options out of range.
   ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options = {});
 
   const std::string& device_name() const;

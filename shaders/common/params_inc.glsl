@@ -175,6 +175,10 @@ struct FrameParams {
   // numbers, full float precision, where the planet frame's are 0.5 m apart; w 1 to use the
   // bricks as the majorant grid, 0 one majorant for the whole box
   vec4 path_eye_m;
+  // The planet's voxel clouds for the path tracer's majorant grid: x the largest extinction
+  // their density fields add (1/m), y, z the radii (m, planet frame) between which their boxes
+  // lie (y > z: none)
+  vec4 path_voxels;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

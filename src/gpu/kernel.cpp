@@ -44,11 +44,14 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
   pipeline_info.pSetLayouts = &layout_;
   NEPHELE_VK(vkCreatePipelineLayout(device_, &pipeline_info, nullptr, &pipeline_layout_));
 
+  // Room for every set (one per frame in flight) and all their descriptors: lavapipe allocates
+  // beyond a pool's sizes, a GPU's driver does not.
+  const uint32_t set_count = uint32_t(std::size(sets_));
   std::vector<VkDescriptorPoolSize> sizes;
   for (uint32_t t = 0; t <= VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT; ++t)
-    if (count_of[t] > 0) sizes.push_back({VkDescriptorType(t), count_of[t]});
+    if (count_of[t] > 0) sizes.push_back({VkDescriptorType(t), count_of[t] * set_count});
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pool_info.maxSets = 1;
+  pool_info.maxSets = set_count;
   pool_info.poolSizeCount = uint32_t(sizes.size());
   pool_info.pPoolSizes = sizes.data();
   NEPHELE_VK(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_));

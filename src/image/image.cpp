@@ -197,7 +197,7 @@ Image decode_png(const std::string& path) {
 
 // Read as 32-bit floats whatever the file stores (half or float), so float32 values beyond
 // the half range come back as written; a missing alpha reads as 1.
-Image decode_exr(const std::string& path) {
+Image decode_exr(const std::string& path, const std::string& layer = "") {
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();
@@ -209,8 +209,11 @@ Image decode_exr(const std::string& path) {
                                            ptrdiff_t(window.min.y) * w);
     Imf::FrameBuffer frame;
     const char* const names[4] = {"R", "G", "B", "A"};
+    const std::string prefix = layer.empty() ? "" : layer + ".";
+    if (!layer.empty() && !file.header().channels().findChannel(prefix + "R"))
+      throw std::runtime_error("no layer \"" + layer + "\" (no channel " + prefix + "R)");
     for (int c = 0; c < 4; ++c)
-      frame.insert(names[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), sizeof(glm::vec4),
+      frame.insert(prefix + names[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), sizeof(glm::vec4),
                                         sizeof(glm::vec4) * size_t(w), 1, 1, c == 3 ? 1.0 : 0.0));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
@@ -317,6 +320,11 @@ Image read_image(const std::string& path) {
       break;
   }
   throw_read_error(path, std::string("not a PNG or EXR file ") + kAllowedFormats);
+}
+
+Image read_exr_layer(const std::string& path, const std::string& layer) {
+  if (sniff_format(path) != ImageFormat::kExr) throw_read_error(path, "not an EXR file");
+  return decode_exr(path, layer);
 }
 
 }  // namespace nephele

@@ -9,6 +9,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "nephele/error.h"
 
@@ -159,6 +160,57 @@ double luminance_error(const Image& image, const Image& reference) {
     sum += l_ref;
   }
   return sum > 0.0 ? diff / sum : diff / double(std::max<size_t>(image.pixels.size(), 1));
+}
+
+BlockLuminanceError block_luminance_error(const Image& image, const Image& reference,
+                                          const Image& reference_variance, int block) {
+  if (image.width != reference.width || image.height != reference.height)
+    throw InputError("block_luminance_error: image " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + " and reference " +
+                     std::to_string(reference.width) + "x" + std::to_string(reference.height) +
+                     " differ in size");
+  const bool with_variance = !reference_variance.pixels.empty();
+  if (with_variance && (reference_variance.width != reference.width ||
+                        reference_variance.height != reference.height))
+    throw InputError("block_luminance_error: the reference's variance differs from it in size");
+  if (block < 1) throw InputError("block_luminance_error: block " + std::to_string(block) + ": must be >= 1");
+  const int bw = (image.width + block - 1) / block, bh = (image.height + block - 1) / block;
+  BlockLuminanceError out;
+  out.map = Image(bw, bh);
+  std::vector<double> relative;
+  double sum_image = 0.0, sum_reference = 0.0, sum_abs = 0.0, sum_noise = 0.0;
+  for (int by = 0; by < bh; ++by)
+    for (int bx = 0; bx < bw; ++bx) {
+      double l_image = 0.0, l_reference = 0.0, variance = 0.0;
+      int n = 0;
+      for (int y = by * block; y < std::min((by + 1) * block, image.height); ++y)
+        for (int x = bx * block; x < std::min((bx + 1) * block, image.width); ++x, ++n) {
+          l_image += luminance(image.at(x, y));
+          l_reference += luminance(reference.at(x, y));
+          if (with_variance) {
+            // The channels' estimates are independent (one channel per path): the luminance's
+            // variance is the weighted sum of theirs.
+            const glm::vec4& v = reference_variance.at(x, y);
+            variance += 0.2126 * 0.2126 * v.r + 0.7152 * 0.7152 * v.g + 0.0722 * 0.0722 * v.b;
+          }
+        }
+      l_image /= n;
+      l_reference /= n;
+      sum_image += l_image;
+      sum_reference += l_reference;
+      sum_abs += std::abs(l_image - l_reference);
+      sum_noise += std::sqrt(variance) / n;
+      const double r = l_reference > 0.0 ? std::abs(l_image / l_reference - 1.0) : (l_image > 0.0 ? 1.0 : 0.0);
+      relative.push_back(r);
+      out.map.at(bx, by) = glm::vec4(float(r), float(r), float(r), 1.0f);
+    }
+  out.mean_bias = sum_reference > 0.0 ? sum_image / sum_reference - 1.0 : 0.0;
+  out.mean_error = sum_reference > 0.0 ? sum_abs / sum_reference : (sum_abs > 0.0 ? 1.0 : 0.0);
+  out.reference_noise = sum_reference > 0.0 ? sum_noise / sum_reference : 0.0;
+  std::sort(relative.begin(), relative.end());
+  out.p95_error = relative[std::min(relative.size() - 1, size_t(0.95 * double(relative.size())))];
+  out.max_error = relative.back();
+  return out;
 }
 
 }  // namespace nephele

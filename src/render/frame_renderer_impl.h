@@ -69,6 +69,8 @@ struct FrameRenderer::Impl {
   double measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms);
   CloudProfile cloud_profile(const Scene& scene);
   ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options);
+  gpu::FrameParams lab_reference_params(const Scene& scene, const ReferenceOptions& options);
+  gpu::FrameParams planet_reference_params(const Scene& scene);
   gpu::FrameParams last_params{};  // of the last frame recorded
 
   void update_noise(const Scene& scene, const gpu::FrameParams& params);

@@ -42,6 +42,7 @@ inline vec4 textureLod(const sampler2D& s, vec2 uv, float /*lod*/) {
 namespace {
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
+#include "common/sun_disk_inc.glsl"
 #include "common/noise_inc.glsl"
 #include "common/atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"

@@ -1,6 +1,7 @@
-// The reference path tracer's driver (issue 21): the lab scene's grid placed as voxel cloud 0,
-// path_trace.comp dispatched pass after pass, each adding samples to every pixel, until the
-// samples or the time asked for; then the mean and the variance of the mean per pixel.
+// The reference path tracer's driver (issue 21): the lab's grid placed as voxel cloud 0, or the
+// planet's frame as the fast mode prepares it; path_trace.comp dispatched pass after pass, each
+// adding samples to every pixel, until the samples or the time asked for; then the mean and
+// the variance of the mean per pixel.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -33,18 +34,9 @@ Scene lab_as_voxel_cloud(const Scene& scene) {
 
 }  // namespace
 
-ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
-                                                     const ReferenceOptions& options) {
-  validate_scene(scene);
-  if (scene.lab.grid.empty())
-    throw InputError("lab.grid: \"\" is empty: render --reference needs a [lab] grid (.vdb or .nvdb)");
-  if (options.spp < 1 || options.spp > 1000000)
-    throw InputError("ReferenceOptions::spp " + std::to_string(options.spp) +
-                     ": must be in [1, 1000000]");
-  if (!(options.time_limit_s >= 0.0 && std::isfinite(options.time_limit_s)))
-    throw InputError("ReferenceOptions::time_limit_s: must be a finite number of seconds, at "
-                     "least 0 (0 = none)");
-  const auto start = std::chrono::steady_clock::now();
+// The lab's parameters: its grid as voxel cloud 0 in the lab's own frame.
+gpu::FrameParams FrameRenderer::Impl::lab_reference_params(const Scene& scene,
+                                                           const ReferenceOptions& options) {
   Scene s = lab_as_voxel_cloud(scene);
   update_atmosphere_luts(s);
   gpu::FrameParams params = make_frame_params(s, 0, sky_lights(s), atmosphere.tables());
@@ -76,6 +68,63 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   params.path_light = glm::vec4(
       sun_direction_from_angles(scene.lab.sun_elevation_deg, scene.lab.sun_azimuth_deg),
       scene.lab.sun_irradiance);
+  return params;
+}
+
+// The planet's parameters: the fast mode's frame (its atmosphere, lights, camera, noise and
+// voxel clouds, weather map), and the voxel clouds' shell and density bound for the majorant
+// grid (path_trace.comp).
+gpu::FrameParams FrameRenderer::Impl::planet_reference_params(const Scene& scene) {
+  if (scene.cirrus.coverage > 0.0f)
+    throw InputError("cirrus.coverage " + std::to_string(scene.cirrus.coverage) +
+                     ": the reference path tracer has no cirrus sheet; must be 0 for --reference");
+  if (scene.conditions.mode != ConditionsMode::Off)
+    throw InputError("conditions.mode: the reference path tracer renders the physical model; "
+                     "must be \"off\" for --reference");
+  update_atmosphere_luts(scene);
+  gpu::FrameParams params = make_frame_params(scene, 0, sky_lights(scene), atmosphere.tables());
+  voxel_clouds.prepare(scene, params);
+  update_noise(scene, params);
+  weather.prepare(scene, params);
+  const float planet_m = params.radii_m.x;
+  glm::vec4 voxels(0.0f, 1.0f, 0.0f, 0.0f);  // no voxel clouds: an empty shell
+  for (int i = 0; i < params.voxel_info.x; ++i) {
+    const VoxelCloudParams& c = scene.voxel_clouds[size_t(i)];
+    const voxel::VoxelGrid& g = voxel_clouds.grid(c);
+    const float bottom_m = planet_m + c.position_m.z + g.origin_m.z * c.scale;
+    const float top_m = bottom_m + g.extent_m().z * c.scale;
+    voxels.x += c.density * params.cloud_shape.z;  // the density field is at most 1 x density
+    voxels.y = i == 0 ? bottom_m : std::min(voxels.y, bottom_m);
+    voxels.z = std::max(voxels.z, top_m);
+  }
+  // Padded: an upright box's corners lie a little higher than its top's centre.
+  if (params.voxel_info.x > 0) voxels += glm::vec4(0.0f, -100.0f, 100.0f, 0.0f);
+  params.path_voxels = voxels;
+  return params;
+}
+
+ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
+                                                     const ReferenceOptions& options) {
+  validate_scene(scene);
+  if (options.spp < 1 || options.spp > 1000000)
+    throw InputError("ReferenceOptions::spp " + std::to_string(options.spp) +
+                     ": must be in [1, 1000000]");
+  if (!(options.time_limit_s >= 0.0 && std::isfinite(options.time_limit_s)))
+    throw InputError("ReferenceOptions::time_limit_s: must be a finite number of seconds, at "
+                     "least 0 (0 = none)");
+  if (options.max_bounces < -1 || options.max_bounces > kMaxReferenceBounces)
+    throw InputError("ReferenceOptions::max_bounces " + std::to_string(options.max_bounces) +
+                     ": must be in [0, " + std::to_string(kMaxReferenceBounces) + "] or -1 (auto)");
+  const auto start = std::chrono::steady_clock::now();
+  const bool planet = scene.lab.grid.empty();
+  gpu::FrameParams params =
+      planet ? planet_reference_params(scene) : lab_reference_params(scene, options);
+  const int max_bounces = options.max_bounces >= 0 ? options.max_bounces
+                          : planet               ? kMaxReferenceBounces
+                                                 : scene.lab.max_bounces;
+  // The planet's paths take one colour channel each, in turn: samples in threes.
+  const int step = planet ? 3 : 1;
+  const int spp = (options.spp + step - 1) / step * step;
   const int width = scene.output.width, height = scene.output.height;
   path_tracer.resize(width, height);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { path_tracer.clear(cmd); });
@@ -83,19 +132,29 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   // Passes of a few samples each, doubled while a pass takes under half a second, so a time
   // limit is kept to within about a pass and progress is reported often.
   int taken = 0, per_pass = 1;
-  while (taken < options.spp) {
+  bool weather_built = false;
+  while (taken < spp) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (taken > 0 && options.time_limit_s > 0.0 && elapsed >= options.time_limit_s) break;
-    const int n = std::min(per_pass, options.spp - taken);
-    params.path_info = glm::ivec4(taken, n, int(options.seed), scene.lab.max_bounces);
+    // (On the planet only after whole threes, so that every channel has as many samples.)
+    if (taken > 0 && taken % step == 0 && options.time_limit_s > 0.0 &&
+        elapsed >= options.time_limit_s)
+      break;
+    const int n = std::min(per_pass, spp - taken);
+    params.path_info = glm::ivec4(taken, n, int(options.seed), max_bounces);
     const auto pass_start = std::chrono::steady_clock::now();
-    state.run_once(params, [&](VkCommandBuffer cmd) { path_tracer.record(cmd, *state.timer); });
+    state.run_once(params, [&](VkCommandBuffer cmd) {
+      if (planet && !weather_built) weather.record(cmd, *state.timer);
+      path_tracer.record(cmd, *state.timer, planet, scene.quality.mode);
+    });
+    weather_built = true;
     const double pass_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
     taken += n;
-    if (pass_s < 0.5) per_pass = std::min(per_pass * 2, 64);
-    if (options.progress) options.progress("reference", taken, options.spp);
+    // The planet's paths one sample a pass: a device that limits an invocation's loops (see
+    // ReferenceImage::lost_fraction) then drops only the paths that are long themselves.
+    if (pass_s < 0.5 && !planet) per_pass = std::min(per_pass * 2, 64);
+    if (options.progress) options.progress("reference", taken, spp);
   }
 
   const Image sum = download(ctx, path_tracer.sum(), false);
@@ -103,10 +162,12 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   ReferenceImage out;
   out.mean = Image(width, height);
   out.variance = Image(width, height);
+  double completed = 0.0;
   for (size_t i = 0; i < sum.pixels.size(); ++i) {
     const double n = sum.pixels[i].a;
+    completed += n;
     for (int c = 0; c < 3; ++c) {
-      const double mean = sum.pixels[i][c] / n;
+      const double mean = n > 0.0 ? sum.pixels[i][c] / n : 0.0;
       // The sample variance (sum of squared deviations over n - 1) over n: the variance of
       // the mean, (sum x^2 / n - mean^2) / (n - 1).
       const double var = n > 1.0 ? std::max(squares.pixels[i][c] / n - mean * mean, 0.0) / (n - 1.0) : 0.0;
@@ -117,6 +178,7 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     out.variance.pixels[i].a = 1.0f;
   }
   out.spp = taken;
+  out.lost_fraction = 1.0 - completed / (double(taken) * double(sum.pixels.size()));
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -265,8 +265,8 @@ TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
 }
 
 // `render --reference` path traces the scene's [lab] grid into an EXR with the mean (R, G, B,
-// A) and its variance (variance.R, .G, .B); without a lab grid, or with a bad --spp, one line
-// and no file.
+// A) and its variance (variance.R, .G, .B); a scene it cannot trace (cirrus), or a bad --spp
+// or --max-bounces, gets one line and no file.
 TEST_F(CliTest, ReferenceWritesTheMeanAndItsVariance) {
   nephele::test::write_constant_cube_vdb(path("cube.vdb"), 8, 10.0f);
   const std::string scene = write_scene(
@@ -286,7 +286,8 @@ TEST_F(CliTest, ReferenceWritesTheMeanAndItsVariance) {
   const nephele::Image mean = nephele::read_image(out);
   EXPECT_GT(mean.at(8, 6).r, 0.0f);  // the cube, lit
 
-  expect_rejected("--reference --spp 4", {"--reference", "lab"});
+  expect_rejected("--reference --spp 3 --preset cirrus", {"cirrus.coverage", "must be 0"});
+  expect_rejected("--reference --max-bounces 2000 --scene " + scene, {"--max-bounces", "2000"});
   expect_rejected("--reference --spp 0 --scene " + scene, {"--spp", "0"});
   expect_rejected("--reference --time-limit -1 --scene " + scene, {"--time-limit"});
   expect_rejected("--reference --majorant-grid dense --scene " + scene,

@@ -3,7 +3,7 @@
 namespace nephele {
 
 PathTracerModule::PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set), kernel_(ctx, set, "path_trace.comp.spv") {}
+    : ctx_(ctx), set_(set) {}
 
 void PathTracerModule::resize(int width, int height) {
   if (int(sum_.width()) == width && int(sum_.height()) == height) return;
@@ -19,8 +19,14 @@ void PathTracerModule::clear(VkCommandBuffer cmd) const {
   squares_.record_clear(cmd);
 }
 
-void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) const {
-  gpu::dispatch(cmd, kernel_, set_, timer, "path_trace", sum_.width(), sum_.height(), 1, 8, 8, 1);
+void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet,
+                              MarchMode mode) const {
+  const int baseline = mode == MarchMode::Baseline ? 1 : 0;
+  const int variant = planet ? 1 + baseline : 0;
+  if (!kernels_[variant])
+    kernels_[variant] = std::make_unique<gpu::Kernel>(ctx_, set_, "path_trace.comp.spv",
+                                                      std::vector<int32_t>{planet ? 1 : 0, baseline});
+  gpu::dispatch(cmd, *kernels_[variant], set_, timer, "path_trace", sum_.width(), sum_.height(), 1, 8, 8, 1);
 }
 
 }  // namespace nephele

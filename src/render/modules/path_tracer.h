@@ -2,7 +2,10 @@
 // path_trace.comp. FrameRenderer::Impl::render_reference (src/render/reference.cpp) drives it.
 #pragma once
 
+#include <memory>
+
 #include "gpu/kernel.h"
+#include "nephele/scene.h"
 
 namespace nephele {
 
@@ -14,8 +17,9 @@ class PathTracerModule {
   // uses them starts recording), then clear() records setting them to zero.
   void resize(int width, int height);
   void clear(VkCommandBuffer cmd) const;
-  // Adds FrameParams::path_info.y samples to every pixel.
-  void record(VkCommandBuffer cmd, gpu::PassTimer& timer) const;
+  // Adds FrameParams::path_info.y samples to every pixel: of the lab (`planet` false), or of
+  // the planet's scene with the noise clouds' field of `mode`.
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode) const;
 
   const gpu::Texture& sum() const { return sum_; }
   const gpu::Texture& squares() const { return squares_; }
@@ -23,7 +27,9 @@ class PathTracerModule {
  private:
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
-  gpu::Kernel kernel_;
+  // Built on first use (a pipeline costs a CPU device its compilation at creation): the lab,
+  // the planet with the default and with the baseline field.
+  mutable std::unique_ptr<gpu::Kernel> kernels_[3];
   gpu::Texture sum_, squares_;
 };
 

@@ -1,0 +1,14 @@
+// Text drawn into an image (the gallery's and the validation's labels).
+#pragma once
+
+#include <string>
+
+#include "nephele/image.h"
+
+namespace nephele::cli {
+
+// Draws `text` at (x, y), `scale` pixels per font unit, white on a darkened box, in HDR values
+// (white after any tone mapping with an exposure of at least 0.02).
+void draw_label(Image& image, int x, int y, const std::string& text, int scale);
+
+}  // namespace nephele::cli

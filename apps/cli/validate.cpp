@@ -1,0 +1,309 @@
+#include "validate.h"
+
+#include <CLI/CLI.hpp>
+#include <toml++/toml.h>
+
+#include <cstdio>
+#include <glm/glm.hpp>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "label.h"
+#include "nephele_embedded.h"
+#include "nephele/error.h"
+#include "nephele/image.h"
+#include "nephele/image_compare.h"
+#include "nephele/output_file.h"
+#include "nephele/renderer.h"
+#include "nephele/scene_io.h"
+#include "progress.h"
+#include "render_command.h"
+
+namespace nephele_cli_data {  // defined by the generated embedded_cli_data.cpp
+extern const EmbeddedFile kFiles[];
+extern const size_t kFileCount;
+}  // namespace nephele_cli_data
+
+namespace nephele::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int int_key(const toml::table& t, const char* key, int fallback, int lo, int hi,
+            const std::string& where) {
+  const toml::node* node = t.get(key);
+  if (!node) return fallback;
+  const auto value = node->value<int64_t>();
+  if (!value || *value < lo || *value > hi)
+    throw InputError(where + key + ": must be an integer in [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
+  return int(*value);
+}
+
+std::string string_key(const toml::table& t, const char* key, const std::string& where) {
+  const auto value = t.get(key) ? t.get(key)->value<std::string>() : std::nullopt;
+  if (!value || value->empty()) throw InputError(where + key + ": must be a non-empty string");
+  return *value;
+}
+
+// An image tone-mapped for the side-by-side picture: exposed, then the ACES fit and sRGB in
+// write_image (exposure 1).
+void paste(Image& canvas, const Image& image, int x0, int y0, int scale, float exposure) {
+  for (int y = 0; y < image.height * scale; ++y)
+    for (int x = 0; x < image.width * scale; ++x)
+      canvas.at(x0 + x, y0 + y) =
+          glm::vec4(glm::vec3(image.at(x / scale, y / scale)) * exposure, 1.0f);
+}
+
+// The blocks' relative errors as colours: black 0, red at the tolerance, white at 4 times it.
+Image error_colours(const Image& map, double tolerance) {
+  Image out(map.width, map.height);
+  for (size_t i = 0; i < map.pixels.size(); ++i) {
+    const float e = float(map.pixels[i].r / tolerance);
+    const glm::vec3 c = e <= 1.0f ? glm::vec3(e, 0.0f, 0.0f)
+                                  : glm::mix(glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(1.0f), std::min((e - 1.0f) / 3.0f, 1.0f));
+    // Values the tone map shows as themselves, near enough: display-referred, exposure 1.
+    out.pixels[i] = glm::vec4(c * 2.0f, 1.0f);
+  }
+  return out;
+}
+
+}  // namespace
+
+ValidationSuite parse_validation_suite(const std::string& text, const std::string& source) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream line;
+    line << source << ":" << e.source().begin.line << ": " << e.description();
+    throw InputError(line.str());
+  }
+  const std::string where = source + ": ";
+  ValidationSuite suite;
+  suite.width = int_key(root, "width", suite.width, 8, 4096, where);
+  suite.height = int_key(root, "height", suite.height, 8, 4096, where);
+  suite.block = int_key(root, "block", suite.block, 1, 256, where);
+  const toml::array* views = root.get_as<toml::array>("view");
+  if (!views || views->empty()) throw InputError(where + "view: needs at least one [[view]]");
+  for (size_t i = 0; i < views->size(); ++i) {
+    const toml::table* t = views->get(i)->as_table();
+    const std::string at = where + "view[" + std::to_string(i) + "].";
+    if (!t) throw InputError(at + ": must be a table");
+    ValidationView v;
+    v.name = string_key(*t, "name", at);
+    for (char c : v.name)
+      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'))
+        throw InputError(at + "name \"" + v.name + "\": letters, digits, - and _ only");
+    for (const ValidationView& other : suite.views)
+      if (other.name == v.name) throw InputError(at + "name \"" + v.name + "\": used twice");
+    v.description = t->get("description") ? t->get("description")->value_or(std::string()) : "";
+    v.scene_toml = string_key(*t, "scene", at);
+    const auto tol = t->get("max_mean_error") ? t->get("max_mean_error")->value<double>() : std::nullopt;
+    if (!tol || !(*tol > 0.0 && *tol <= 1.0))
+      throw InputError(at + "max_mean_error: must be a number in (0, 1]");
+    v.max_mean_error = *tol;
+    suite.views.push_back(v);
+  }
+  return suite;
+}
+
+ValidationSuite default_validation_suite() {
+  const EmbeddedFile* file =
+      find_embedded(nephele_cli_data::kFiles, nephele_cli_data::kFileCount, "validation.toml");
+  if (!file) throw RuntimeError("validation.toml is not embedded in this build");
+  return parse_validation_suite(std::string(reinterpret_cast<const char*>(file->data), file->size),
+                                "validation.toml");
+}
+
+void add_validate_flags(CLI::App& cmd, ValidateOptions& options) {
+  cmd.add_option("--suite", options.suite,
+                 "suite of views and tolerances (TOML, as data/validation.toml); default: the one "
+                 "nephele ships");
+  cmd.add_option("--views", options.views, "comma-separated names of the views to run (default: all)");
+  cmd.add_option("--width", options.width, "image width (pixels; default: the suite's)");
+  cmd.add_option("--height", options.height, "image height (pixels; default: the suite's)");
+  cmd.add_option("--spp", options.spp, "the reference's samples per pixel, [3, 1000000]")
+      ->capture_default_str();
+  cmd.add_option("--time-limit", options.time_limit_s,
+                 "stop each view's reference after this many seconds (0 = none)")
+      ->capture_default_str();
+  cmd.add_option("--references", options.references,
+                 "folder of references (NAME.exr with a variance layer): read when there and of "
+                 "the same size, else path traced and written there");
+  cmd.add_option("--out", options.out_dir,
+                 "folder for each view's images (NAME.png: fast | reference | block errors; "
+                 "NAME_fast.exr) and results.md, results.json")
+      ->capture_default_str();
+  cmd.add_option("--json", options.json, "also write the results as JSON here");
+  add_device_flags(cmd, options.device, options.verbose, options.validation);
+  add_progress_flags(cmd, options.progress, options.quiet);
+}
+
+int run_validate(const ValidateOptions& options) {
+  ValidationSuite suite;
+  if (options.suite.empty()) {
+    suite = default_validation_suite();
+  } else {
+    std::ifstream in(options.suite, std::ios::binary);
+    if (!in) throw InputError("--suite \"" + options.suite + "\": cannot be read");
+    std::stringstream text;
+    text << in.rdbuf();
+    suite = parse_validation_suite(text.str(), options.suite);
+  }
+  if (options.width < 0 || options.width > 4096 || options.height < 0 || options.height > 4096)
+    throw InputError("--width, --height: must be in [8, 4096] (0: the suite's)");
+  if (options.width > 0) suite.width = std::max(options.width, 8);
+  if (options.height > 0) suite.height = std::max(options.height, 8);
+  if (options.spp < 3 || options.spp > 1000000)
+    throw InputError("--spp " + std::to_string(options.spp) + ": must be in [3, 1000000]");
+  if (!(options.time_limit_s >= 0.0 && std::isfinite(options.time_limit_s)))
+    throw InputError("--time-limit: must be a finite number of seconds, at least 0 (0 = none)");
+  // The views asked for, in the suite's order; each name must exist.
+  std::vector<ValidationView> views;
+  if (options.views.empty()) {
+    views = suite.views;
+  } else {
+    std::stringstream names(options.views);
+    std::string name;
+    while (std::getline(names, name, ',')) {
+      const auto it = std::find_if(suite.views.begin(), suite.views.end(),
+                                   [&](const ValidationView& v) { return v.name == name; });
+      if (it == suite.views.end()) {
+        std::string all;
+        for (const ValidationView& v : suite.views) all += (all.empty() ? "" : ", ") + v.name;
+        throw InputError("--views \"" + name + "\": no such view (the suite has " + all + ")");
+      }
+      views.push_back(*it);
+    }
+  }
+  // Every scene parsed and checked before anything is rendered.
+  std::vector<Scene> scenes;
+  for (const ValidationView& v : views) {
+    scenes.push_back(parse_scene_toml(v.scene_toml, "view " + v.name));
+    scenes.back().output.width = suite.width;
+    scenes.back().output.height = suite.height;
+    validate_scene(scenes.back());
+  }
+  fs::create_directories(options.out_dir);
+  if (!options.references.empty()) fs::create_directories(options.references);
+
+  Renderer renderer({options.device, options.validation, options.verbose, {}});
+  const bool show = progress_wanted(options.progress, options.quiet, options.verbose);
+  nlohmann::json results;
+  results["device"] = renderer.device_name();
+  results["width"] = suite.width;
+  results["height"] = suite.height;
+  results["block"] = suite.block;
+  std::ostringstream table;
+  table << "| view | mean error | tolerance | bias | p95 block | reference noise | spp | fast ms | "
+           "reference s | |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+  bool all_pass = true;
+  for (size_t i = 0; i < views.size(); ++i) {
+    const ValidationView& view = views[i];
+    const Scene& scene = scenes[i];
+    const Frame fast = renderer.render(scene);
+    // The reference: the folder's when it holds one of this size, else path traced.
+    ReferenceImage reference;
+    const std::string cached =
+        options.references.empty() ? "" : (fs::path(options.references) / (view.name + ".exr")).string();
+    bool read = false;
+    if (!cached.empty() && fs::exists(cached)) {
+      reference.mean = read_exr_layer(cached, "");
+      reference.variance = read_exr_layer(cached, "variance");
+      read = reference.mean.width == suite.width && reference.mean.height == suite.height;
+    }
+    if (!read) {
+      std::unique_ptr<Progress> bar;
+      ReferenceOptions ro;
+      ro.spp = options.spp;
+      ro.time_limit_s = options.time_limit_s;
+      ro.seed = scene.noise_seed;
+      if (show)
+        ro.progress = [&](std::string_view, int done, int total) {
+          if (!bar) bar = std::make_unique<Progress>(view.name, total, true);
+          bar->step(done);
+        };
+      reference = renderer.render_reference(scene, ro);
+      bar.reset();
+      const std::string path =
+          cached.empty() ? (fs::path(options.out_dir) / (view.name + "_reference.exr")).string() : cached;
+      write_exr_layers({{"", &reference.mean, 4}, {"variance", &reference.variance, 3}}, path,
+                       ExrPixels::kFloat);
+    }
+    const BlockLuminanceError e =
+        block_luminance_error(fast.color, reference.mean, reference.variance, suite.block);
+    const bool pass = e.mean_error <= view.max_mean_error;
+    all_pass = all_pass && pass;
+
+    // fast | reference | block errors, each at twice the size, labelled.
+    double mean_l = 0.0;
+    for (const glm::vec4& p : reference.mean.pixels) mean_l += luminance(p);
+    mean_l /= double(reference.mean.pixels.size());
+    const float exposure = scene.output.auto_exposure ? auto_exposure(scene.output.exposure, mean_l)
+                                                      : scene.output.exposure;
+    const int s = 2, w = suite.width * s, h = suite.height * s, gap = 4;
+    Image side(3 * w + 2 * gap, h);
+    for (glm::vec4& p : side.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    paste(side, fast.color, 0, 0, s, exposure);
+    paste(side, reference.mean, w + gap, 0, s, exposure);
+    const Image colours = error_colours(e.map, view.max_mean_error);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        side.at(2 * (w + gap) + x, y) =
+            colours.at(std::min(x / (suite.block * s), colours.width - 1),
+                       std::min(y / (suite.block * s), colours.height - 1));
+    char label[200];
+    std::snprintf(label, sizeof label, "%s: fast", view.name.c_str());
+    draw_label(side, 0, 0, label, 1);
+    std::snprintf(label, sizeof label, "reference, %d spp", reference.spp);
+    draw_label(side, w + gap, 0, label, 1);
+    std::snprintf(label, sizeof label, "8x8 error %.1f%% (red: %.0f%%)", 100.0 * e.mean_error,
+                  100.0 * view.max_mean_error);
+    draw_label(side, 2 * (w + gap), 0, label, 1);
+    write_image(side, (fs::path(options.out_dir) / (view.name + ".png")).string(), 1.0f);
+    write_image(fast.color, (fs::path(options.out_dir) / (view.name + "_fast.exr")).string(), 1.0f,
+                ExrPixels::kFloat);
+
+    char row[400];
+    std::snprintf(row, sizeof row, "| %s | %.1f%% | %.0f%% | %+.1f%% | %.1f%% | %.2f%% | %d | %.0f | %.0f | %s |\n",
+                  view.name.c_str(), 100.0 * e.mean_error, 100.0 * view.max_mean_error,
+                  100.0 * e.mean_bias, 100.0 * e.p95_error, 100.0 * e.reference_noise,
+                  reference.spp, fast.stats.wall_ms, reference.seconds, pass ? "pass" : "**miss**");
+    table << row;
+    if (!options.quiet) std::fprintf(stderr, "%s", row);
+    if (reference.lost_fraction > 0.0)
+      std::fprintf(stderr,
+                   "nephele: warning: %s: the device dropped %.3g%% of the reference's paths "
+                   "(lavapipe's loop limit): it is biased; trace it on a GPU\n",
+                   view.name.c_str(), 100.0 * reference.lost_fraction);
+    results["views"][view.name] = {{"description", view.description},
+                                   {"mean_error", e.mean_error},
+                                   {"max_mean_error", view.max_mean_error},
+                                   {"mean_bias", e.mean_bias},
+                                   {"p95_block_error", e.p95_error},
+                                   {"max_block_error", e.max_error},
+                                   {"reference_noise", e.reference_noise},
+                                   {"reference_spp", reference.spp},
+                                   {"reference_lost_fraction", reference.lost_fraction},
+                                   {"reference_s", read ? 0.0 : reference.seconds},
+                                   {"fast_ms", fast.stats.wall_ms},
+                                   {"pass", pass}};
+  }
+  results["pass"] = all_pass;
+  write_file_atomically((fs::path(options.out_dir) / "results.md").string(), table.str());
+  write_file_atomically((fs::path(options.out_dir) / "results.json").string(), results.dump(2) + "\n");
+  if (!options.json.empty()) write_file_atomically(options.json, results.dump(2) + "\n");
+  std::cout << table.str();
+  if (options.validation && renderer.validation_messages() > 0) {
+    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
+    return 1;
+  }
+  return all_pass ? 0 : 1;
+}
+
+}  // namespace nephele::cli
