@@ -15,6 +15,7 @@
 
 #include "nephele/camera_path.h"
 #include "nephele/error.h"
+#include "nephele/exposure.h"
 #include "nephele/image.h"
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
@@ -97,7 +98,7 @@ void write_text_output(const std::string& path, const std::string& text) {
   write_file_atomically(path, text);
 }
 
-std::string stats_to_json(const FrameStats& stats, const std::string& image_path) {
+std::string stats_to_json(const FrameStats& stats, const std::string& image_path, double ev100) {
   nlohmann::json j;
   j["image"] = image_path;
   j["device"] = stats.device;
@@ -105,7 +106,8 @@ std::string stats_to_json(const FrameStats& stats, const std::string& image_path
   j["height"] = stats.height;
   j["frame_ms"] = stats.frame_ms;
   j["wall_ms"] = stats.wall_ms;
-  j["mean_luminance"] = stats.mean_luminance;
+  j["mean_luminance"] = stats.mean_luminance;  // cd/m^2
+  j["ev100"] = ev100;
   j["cloud_cover_fraction"] = stats.cloud_cover_fraction;
   if (stats.sky_cover_fraction) {  // still images
     j["sky_cover_fraction"] = *stats.sky_cover_fraction;
@@ -356,7 +358,7 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
     write_exr_layers({{"", &image.mean, 4}, {"variance", &image.variance, 3}}, options.output,
                      pixels);
   else
-    write_image(image.mean, options.output, scene.output.exposure, pixels);
+    write_image(image.mean, options.output, still_exposure(scene.output, image.mean), pixels);
   if (!options.quiet)
     std::fprintf(stderr, "nephele: reference %dx%d, %d samples per pixel in %.1f s on %s\n",
                  image.mean.width, image.mean.height, image.spp, image.seconds,
@@ -399,25 +401,30 @@ int run_render(const RenderOptions& options) {
   Progress progress(
       "render", seq.frames,
       seq.numbered && progress_wanted(options.progress, options.quiet, options.verbose));
+  // Auto exposure adapts from frame to frame over the scene time between them.
+  std::optional<double> ev100;
+  double previous_time_s = 0.0;
   for (int i = 0; i < seq.frames; ++i) {
     const Scene frame_scene = seq.scene(scene, options, i);
     const Frame frame =
         animation && i > 0 ? renderer.render_next(frame_scene) : renderer.render(frame_scene);
-    const float exposure = scene.output.auto_exposure
-                               ? auto_exposure(scene.output.exposure, frame.stats.mean_luminance)
-                               : scene.output.exposure;
+    const double dt_s = std::abs(double(frame_scene.time_s) - previous_time_s);
+    ev100 = frame_ev100(scene.output, frame.color, ev100 ? &*ev100 : nullptr, dt_s);
+    previous_time_s = frame_scene.time_s;
+    const float exposure = float(exposure_from_ev100(*ev100));
     const std::string path = seq.output(options.output, options, i, "--output");
     write_image(frame.color, path, exposure, exr);
     if (!options.stats_json.empty())
       write_text_output(stats_to_stdout
                             ? options.stats_json
                             : seq.output(options.stats_json, options, i, "--stats-json"),
-                        stats_to_json(frame.stats, path));
+                        stats_to_json(frame.stats, path, *ev100));
     progress.clear();
     if (options.verbose)
-      std::fprintf(stderr, "nephele: %dx%d on %s: %.1f ms GPU, %.1f ms wall, exposure %g\n",
+      std::fprintf(stderr, "nephele: %dx%d on %s: %.1f ms GPU, %.1f ms wall, EV100 %.2f%s\n",
                    frame.stats.width, frame.stats.height, frame.stats.device.c_str(),
-                   frame.stats.frame_ms, frame.stats.wall_ms, exposure);
+                   frame.stats.frame_ms, frame.stats.wall_ms, *ev100,
+                   scene.output.auto_exposure ? " (auto)" : "");
     if (options.validation && renderer.validation_messages() > 0) {
       std::fprintf(stderr, "nephele: %d Vulkan validation messages\n",
                    renderer.validation_messages());
