@@ -17,6 +17,8 @@ struct RenderOptions {
   std::string output = "nephele.png";
   std::string stats_json;  // empty: none; "-": standard output, instead of the image paths
   bool exr_float = false;  // EXR as 32-bit floats (default half, clamped to 65504)
+  bool layers = false;     // a multi-layer EXR: the image, sky, clouds, clouds.depth_m (film.h)
+  bool holdout = false;    // with layers: the image is the sky with the clouds cut out
   int frames = 1;          // a sequence: frame i at time_s + i step_s, files numbered _0000 ...
   float step_s = 1.0f;
   bool frames_given = false, step_given = false;  // whether --frames, --step were typed
