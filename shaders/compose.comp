@@ -164,7 +164,25 @@ void main() {
                           0.0f);
     background = background * cirrus.a + (1.0f - cirrus.a) * air.rgb + cirrus.rgb * air.a;
   }
-  vec3 color = background * cloud.a * illuminance + cloud_light;
-  if (cirrus_in_front) color = color * cirrus.a + cirrus.rgb * illuminance;
-  imageStore(color_out, pixel, vec4(color, 1.0f));
+  // The film layers (frame.display.y, render --layers): everything behind the clouds (sky,
+  // sun, moon, the ground and the cirrus seen from below), and what lies in front of it,
+  // premultiplied: the clouds' light with the haze in front of them, and the cirrus seen from
+  // above over both; alpha = 1 - their transmittance. The image is their "over": exactly
+  // front + (1 - alpha) sky.
+  vec3 sky_layer = background * illuminance;
+  vec3 front = cloud_light;
+  float alpha = 1.0f - cloud.a;
+  if (cirrus_in_front) {
+    front = front * cirrus.a + cirrus.rgb * illuminance;
+    alpha = 1.0f - cloud.a * cirrus.a;
+  }
+  vec3 color = front + (1.0f - alpha) * sky_layer;
+  int layer = int(frame.display.y);
+  // The clouds' opacity-weighted distance (clouds.comp), where they are not clear; 0 elsewhere.
+  float depth_m = cloud.a < 0.999f ? cloud_b.z * 1000.0f : 0.0f;
+  vec4 out_value = layer == 1   ? vec4(sky_layer, 1.0f)
+                   : layer == 2 ? vec4(front, alpha)
+                   : layer == 3 ? vec4(depth_m, depth_m, depth_m, 1.0f)
+                                : vec4(color, 1.0f);
+  imageStore(color_out, pixel, out_value);
 }

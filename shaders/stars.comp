@@ -29,7 +29,10 @@ void main() {
   ivec2 pixel = ivec2(floor(q + 0.5f));
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(width, height)))) return;
   vec3 air = transmittance_to_light(frame_atmosphere(), transmittance_lut, false, eye, dir);
-  float cloud = textureLod(clouds_a, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f).a;
+  // The clouds in front hide it, except in the sky layer (frame.display.y 1: what is behind them).
+  float cloud = int(frame.display.y) == 1
+                    ? 1.0f
+                    : textureLod(clouds_a, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f).a;
   float visibility = frame.conditions_sky_fog.w;  // the keyframes' star visibility, 1 when off
   vec3 radiance = star.irradiance.rgb * frame.stars.x / frame.stars.z * air * cloud * visibility;
   imageStore(color_rw, pixel, imageLoad(color_rw, pixel) + vec4(radiance, 0.0f));

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bench_realtime.h"
+#include "nephele/exposure.h"
 #include "nephele/image.h"
 
 namespace nephele::cli {
@@ -101,7 +102,7 @@ nlohmann::json run_ablation(Renderer& renderer, const Scene& scene, int rounds,
       ms[v].push_back(clouds_pass_ms(frame.stats));
     }
   }
-  write_image(strip, image_path, scene.output.exposure);
+  write_image(strip, image_path, still_exposure(scene.output, strip));
 
   const Scene reference = ablation_reference(scene);
   const double reference_luminance = renderer.render(reference).stats.mean_luminance;

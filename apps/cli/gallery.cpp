@@ -6,8 +6,11 @@
 #include <cstdio>
 #include <iostream>
 
+#include <optional>
+
 #include "label.h"
 #include "nephele/error.h"
+#include "nephele/exposure.h"
 #include "nephele/image.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
@@ -94,17 +97,18 @@ int run_gallery(const GalleryOptions& options) {
   // A step a preset (--verbose prints a line a preset instead, unless --progress).
   Progress progress("gallery", int(names.size()),
                     progress_wanted(options.progress, options.quiet, options.verbose));
+  // One exposure for every tile, the first's (auto exposure would brighten an overcast to the
+  // clear sky's grey), so that the covers compare as the eye would see them side by side.
+  std::optional<float> exposure;
   for (size_t i = 0; i < names.size(); ++i) {
     const Scene& scene = scenes[i];
     const Frame frame = renderer.render(scene);
-    const float exposure = scene.output.auto_exposure
-                               ? auto_exposure(scene.output.exposure, frame.stats.mean_luminance)
-                               : scene.output.exposure;
+    if (!exposure) exposure = still_exposure(scene.output, frame.color);
     const int x0 = int(i % columns) * (options.tile_width + gap);
     const int y0 = int(i / columns) * (options.tile_height + gap);
     for (int y = 0; y < options.tile_height; ++y)
       for (int x = 0; x < options.tile_width; ++x)
-        gallery.at(x0 + x, y0 + y) = glm::vec4(glm::vec3(frame.color.at(x, y)) * exposure, 1.0f);
+        gallery.at(x0 + x, y0 + y) = glm::vec4(glm::vec3(frame.color.at(x, y)) * *exposure, 1.0f);
     const double cover = frame.stats.sky_cover_fraction.value_or(0.0);
     char label[160];
     std::snprintf(label, sizeof label, "%s  %d/8 (%.2f)", names[i].c_str(),

@@ -7,6 +7,7 @@
 #include "bench.h"
 #include "gallery.h"
 #include "nephele/error.h"
+#include "nephele/version.h"
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
 #include "render_command.h"
@@ -32,7 +33,7 @@ void print_error(const std::string& kind, const std::string& message, const std:
 int main(int argc, char** argv) {
   CLI::App app{"nephele: physically based skies and volumetric clouds, rendered with Vulkan"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "nephele 0.1.0");
+  app.set_version_flag("--version", std::string("nephele ") + nephele::kVersion);
 
   nephele::cli::RenderOptions render;
   CLI::App* render_cmd = app.add_subcommand(

@@ -15,6 +15,8 @@
 
 #include "nephele/camera_path.h"
 #include "nephele/error.h"
+#include "nephele/exposure.h"
+#include "nephele/film.h"
 #include "nephele/image.h"
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
@@ -51,6 +53,14 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
   cmd.add_flag("--exr-float", options.exr_float,
                "write EXR as 32-bit floats (the sun's true radiance); the default half floats "
                "clamp at 65504");
+  cmd.add_flag("--layers", options.layers,
+               "write a multi-layer EXR for compositing: the image (R, G, B, A), sky (what is "
+               "behind the clouds), clouds (premultiplied, A = 1 - transmittance) and "
+               "clouds.depth_m, with the camera, place, time and exposure in the header; each "
+               "frame a still");
+  cmd.add_flag("--holdout", options.holdout,
+               "with --layers: the image is the sky with the clouds cut out ((1 - clouds.A) "
+               "sky, A = 1 - clouds.A), for clouds composited over it");
   cmd.add_option("--frames", options.frames,
                  "render a sequence of N frames, numbered name_0000.png ... (default 1; with "
                  "--camera-path, up to the path's end)")
@@ -102,7 +112,7 @@ void write_text_output(const std::string& path, const std::string& text) {
   write_file_atomically(path, text);
 }
 
-std::string stats_to_json(const FrameStats& stats, const std::string& image_path) {
+std::string stats_to_json(const FrameStats& stats, const std::string& image_path, double ev100) {
   nlohmann::json j;
   j["image"] = image_path;
   j["device"] = stats.device;
@@ -110,7 +120,8 @@ std::string stats_to_json(const FrameStats& stats, const std::string& image_path
   j["height"] = stats.height;
   j["frame_ms"] = stats.frame_ms;
   j["wall_ms"] = stats.wall_ms;
-  j["mean_luminance"] = stats.mean_luminance;
+  j["mean_luminance"] = stats.mean_luminance;  // cd/m^2
+  j["ev100"] = ev100;
   j["cloud_cover_fraction"] = stats.cloud_cover_fraction;
   if (stats.sky_cover_fraction) {  // still images
     j["sky_cover_fraction"] = *stats.sky_cover_fraction;
@@ -258,6 +269,19 @@ void check_sequence_flags(const RenderOptions& options) {
                      "frame)");
 }
 
+// --layers and --holdout: an EXR of stills.
+void check_layer_flags(const RenderOptions& options) {
+  if (options.holdout && !options.layers)
+    throw InputError("--holdout needs --layers (it shapes the multi-layer EXR's image)");
+  if (!options.layers) return;
+  const std::string ext = fs::path(options.output).extension().string();
+  if (ext != ".exr" && ext != ".EXR" && ext != ".Exr")
+    throw InputError("--layers '" + shorten_path_for_message(options.output) +
+                     "': needs an .exr output (-o name.exr)");
+  if (!options.camera_path.empty() && !options.still_frames)
+    throw InputError("--layers renders stills: add --still-frames to a --camera-path flight");
+}
+
 // A flight without --frames runs to the path's end: frames start ... floor(end x fps).
 int flight_frames(const CameraPath& path, const RenderOptions& options) {
   const double last = std::floor(path.end_s() * options.fps + 1e-9);
@@ -279,6 +303,7 @@ int flight_frames(const CameraPath& path, const RenderOptions& options) {
 // camera path, every frame's scene and every output's name.
 Sequence plan_sequence(const Scene& scene, const RenderOptions& options) {
   check_sequence_flags(options);
+  check_layer_flags(options);
   Sequence seq;
   seq.frames = options.frames;
   if (!options.camera_path.empty()) {
@@ -364,7 +389,7 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
     write_exr_layers({{"", &image.mean, 4}, {"variance", &image.variance, 3}}, options.output,
                      pixels);
   else
-    write_image(image.mean, options.output, scene.output.exposure, pixels);
+    write_image(image.mean, options.output, still_exposure(scene.output, image.mean), pixels);
   if (!options.quiet)
     std::fprintf(stderr, "nephele: reference %dx%d, %d samples per pixel in %.1f s on %s\n",
                  image.mean.width, image.mean.height, image.spp, image.seconds,
@@ -388,6 +413,9 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
 int run_render(const RenderOptions& options) {
   // Everything the user typed is checked before any work, so a bad flag writes nothing.
   const Scene scene = resolve_scene(options.scene);
+  if (options.reference && (options.layers || options.holdout))
+    throw InputError("--layers and --holdout are the fast renderer's; --reference writes its "
+                     "own layers (the mean and its variance)");
   if (options.reference) return run_reference(scene, options);
   const Sequence seq = plan_sequence(scene, options);
   if (options.verbose) std::cerr << "# resolved scene\n" << scene_to_toml(scene);
@@ -413,25 +441,36 @@ int run_render(const RenderOptions& options) {
   Progress progress(
       "render", seq.frames,
       seq.numbered && progress_wanted(options.progress, options.quiet, options.verbose));
+  // Auto exposure adapts from frame to frame over the scene time between them.
+  std::optional<double> ev100;
+  double previous_time_s = 0.0;
   for (int i = 0; i < seq.frames; ++i) {
     const Scene frame_scene = seq.scene(scene, options, i);
-    const Frame frame =
-        animation && i > 0 ? renderer.render_next(frame_scene) : renderer.render(frame_scene);
-    const float exposure = scene.output.auto_exposure
-                               ? auto_exposure(scene.output.exposure, frame.stats.mean_luminance)
-                               : scene.output.exposure;
+    std::optional<FilmLayers> layers;
+    if (options.layers) layers = renderer.render_layers(frame_scene);
+    const Frame frame = layers                 ? layers->frame
+                        : animation && i > 0 ? renderer.render_next(frame_scene)
+                                             : renderer.render(frame_scene);
+    const double dt_s = std::abs(double(frame_scene.time_s) - previous_time_s);
+    ev100 = frame_ev100(scene.output, frame.color, ev100 ? &*ev100 : nullptr, dt_s);
+    previous_time_s = frame_scene.time_s;
+    const float exposure = float(exposure_from_ev100(*ev100));
     const std::string path = seq.output(options.output, options, i, "--output");
-    write_image(frame.color, path, exposure, exr);
+    if (layers)
+      write_film_exr(*layers, frame_scene, path, {exr, options.holdout, *ev100});
+    else
+      write_image(frame.color, path, exposure, exr);
     if (!options.stats_json.empty())
       write_text_output(stats_to_stdout
                             ? options.stats_json
                             : seq.output(options.stats_json, options, i, "--stats-json"),
-                        stats_to_json(frame.stats, path));
+                        stats_to_json(frame.stats, path, *ev100));
     progress.clear();
     if (options.verbose)
-      std::fprintf(stderr, "nephele: %dx%d on %s: %.1f ms GPU, %.1f ms wall, exposure %g\n",
+      std::fprintf(stderr, "nephele: %dx%d on %s: %.1f ms GPU, %.1f ms wall, EV100 %.2f%s\n",
                    frame.stats.width, frame.stats.height, frame.stats.device.c_str(),
-                   frame.stats.frame_ms, frame.stats.wall_ms, exposure);
+                   frame.stats.frame_ms, frame.stats.wall_ms, *ev100,
+                   scene.output.auto_exposure ? " (auto)" : "");
     if (options.validation && renderer.validation_messages() > 0) {
       std::fprintf(stderr, "nephele: %d Vulkan validation messages\n",
                    renderer.validation_messages());

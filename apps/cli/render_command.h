@@ -17,6 +17,8 @@ struct RenderOptions {
   std::string output = "nephele.png";
   std::string stats_json;  // empty: none; "-": standard output, instead of the image paths
   bool exr_float = false;  // EXR as 32-bit floats (default half, clamped to 65504)
+  bool layers = false;     // a multi-layer EXR: the image, sky, clouds, clouds.depth_m (film.h)
+  bool holdout = false;    // with layers: the image is the sky with the clouds cut out
   int frames = 1;          // a sequence: frame i at time_s + i step_s, files numbered _0000 ...
   float step_s = 1.0f;
   bool frames_given = false, step_given = false;  // whether --frames, --step were typed
@@ -69,6 +71,7 @@ void write_text_output(const std::string& path, const std::string& text);
 // The stats of a frame as JSON (image: the image written, device, width, height, frame_ms,
 // mean_luminance, cloud_cover_fraction, sky_cover_fraction and oktas for still images,
 // wall_ms, passes).
-std::string stats_to_json(const FrameStats& stats, const std::string& image_path);
+// `ev100`: the exposure the image was written with (auto exposure's, or output.ev100).
+std::string stats_to_json(const FrameStats& stats, const std::string& image_path, double ev100);
 
 }  // namespace nephele::cli

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "nephele/error.h"
+#include "nephele/exposure.h"
 #include "nephele/scene_io.h"
 
 namespace nephele::cli {
@@ -64,7 +65,14 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--view-dir", &F::view_dir, "camera.view_dir", TO(camera.view_dir), "E,N,U",
        "looking direction: east, north, up"},
       {"--fov-deg", &F::fov_deg, "camera.fov_deg", TO(camera.fov_deg), "F",
-       "vertical field of view (deg), (0, 180)"},
+       "vertical field of view (deg), [0.01, 180); one of --fov-deg, --hfov, --focal-length-mm"},
+      {"--hfov", &F::hfov_deg, "camera.horizontal_fov_deg", TO(camera.horizontal_fov_deg), "F",
+       "horizontal field of view (deg), [0.01, 180): the vertical follows the image's aspect"},
+      {"--focal-length-mm", &F::focal_length_mm, "camera.focal_length_mm",
+       TO(camera.focal_length_mm), "MM",
+       "lens focal length (mm), [0.1, 1e5]: horizontal fov 2 atan(sensor width / 2f)"},
+      {"--sensor-width-mm", &F::sensor_width_mm, "camera.sensor_width_mm",
+       TO(camera.sensor_width_mm), "MM", "sensor (film gate) width (mm), [1, 1000], default 36"},
       {"--roll-deg", &F::roll_deg, "camera.roll_deg", TO(camera.roll_deg), "DEG",
        "camera roll about the view direction (deg), [-180, 180]; positive turns the camera "
        "clockwise, so the horizon rises to the right"},
@@ -82,8 +90,11 @@ const std::vector<FlagSpec>& flag_specs() {
        {},
        "A",
        "sun azimuth from north through east (deg)"},
-      {"--sun-illuminance", &F::sun_illuminance, "sun.illuminance", TO(sun.illuminance), "X",
-       "sunlight scale at the top of the atmosphere, >= 0"},
+      {"--sun-illuminance-lux", &F::sun_illuminance_lux, "sun.illuminance_lux",
+       TO(sun.illuminance_lux), "LUX",
+       "sunlight at the top of the atmosphere (lux), [0, 1e10]; 128000 the solar constant"},
+      {"--sun-illuminance", &F::sun_illuminance, "", {}, "X",
+       "the old radiance scale (20 the sun): X x 6400 lux; use --sun-illuminance-lux"},
       {"--coverage", &F::coverage, "clouds.coverage", TO(clouds.coverage), "C",
        "cloud coverage, [0, 1]"},
       {"--cloud-type", &F::cloud_type, "clouds.type", TO(clouds.type), "T",
@@ -189,9 +200,25 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--hour", &F::hour, "conditions.hour", TO(conditions.hour), "H",
        "keyframes' local solar time [0, 24); default: from --time and --lon-deg"},
       {"--auto-exposure", &F::auto_exposure, "output.auto_exposure", TO(output.auto_exposure),
-       "true|false", "scale the exposure by each frame's brightness (day-to-night sequences)"},
-      {"--exposure", &F::exposure, "output.exposure", TO(output.exposure), "X",
-       "linear exposure before tone mapping, > 0"},
+       "true|false",
+       "expose each frame by a meter within --ev100-min..--ev100-max (true, the default) or at "
+       "--ev100 (false)"},
+      {"--ev100", &F::ev100, "output.ev100", TO(output.ev100), "EV",
+       "manual exposure at ISO 100, [-20, 30] (15 sunny day, 9 sunset, 4 civil twilight, -2.5 "
+       "full moon); turns auto exposure off unless --auto-exposure true"},
+      {"--ev100-min", &F::ev100_min, "output.ev100_min", TO(output.ev100_min), "EV",
+       "auto exposure's lower limit, [-20, 30]"},
+      {"--ev100-max", &F::ev100_max, "output.ev100_max", TO(output.ev100_max), "EV",
+       "auto exposure's upper limit, [-20, 30]"},
+      {"--exposure-compensation-ev", &F::exposure_compensation_ev,
+       "output.exposure_compensation_ev", TO(output.exposure_compensation_ev), "EV",
+       "auto exposure's compensation, [-10, 10]; + brightens"},
+      {"--adaptation-ev-per-s", &F::adaptation_ev_per_s, "output.adaptation_ev_per_s",
+       TO(output.adaptation_ev_per_s), "R",
+       "auto exposure's adaptation between the frames of a sequence (EV per second of scene "
+       "time), [0, 1e6]; 0 = at once"},
+      {"--exposure", &F::exposure, "", {}, "X",
+       "the old linear exposure: --ev100 log2(5333 / X), manual; use --ev100"},
   };
   return specs;
 }
@@ -325,6 +352,51 @@ void check_conflicts(const SceneFlags& flags) {
     throw InputError(
         "--sun-dir cannot be combined with --sun-elevation-deg or --sun-azimuth-deg (both set the "
         "sun direction)");
+  if (flags.sun_illuminance && flags.sun_illuminance_lux)
+    throw InputError(
+        "--sun-illuminance cannot be combined with --sun-illuminance-lux (the old scale is "
+        "lux / 6400)");
+  if (flags.exposure && flags.ev100)
+    throw InputError("--exposure cannot be combined with --ev100 (the old exposure X is EV100 "
+                     "log2(5333 / X))");
+  const int fov_forms = int(flags.fov_deg.has_value()) + int(flags.hfov_deg.has_value()) +
+                        int(flags.focal_length_mm.has_value());
+  if (fov_forms > 1)
+    throw InputError(
+        "--fov-deg, --hfov and --focal-length-mm each set the field of view; give one of them");
+}
+
+// --sun-illuminance and --exposure, the old scales, read as scene files read their keys.
+void apply_legacy_light(const SceneFlags& flags, Scene& scene) {
+  if (flags.sun_illuminance) {
+    const std::string& text = *flags.sun_illuminance;
+    const float value = to_float("--sun-illuminance", text, text);
+    if (!(value >= 0.0f && value <= 1.0e6f))
+      fail("--sun-illuminance", text,
+           "must be in [0, 1e+06] (the old radiance scale, read as x 6400 lux; "
+           "--sun-illuminance-lux replaces it)");
+    scene.sun.illuminance_lux = value * kLegacyLuxPerUnit;
+  }
+  if (flags.exposure) {
+    const std::string& text = *flags.exposure;
+    const float value = to_float("--exposure", text, text);
+    if (!(value >= 5.0e-6f && value <= 1.0e6f))
+      fail("--exposure", text,
+           "must be in [5e-06, 1e+06] (the old linear exposure, read as --ev100 log2(5333 / X) "
+           "in [-7.55, 30])");
+    scene.output.ev100 = float(ev100_from_legacy_exposure(value));
+  }
+  // A manual exposure turns the meter off unless --auto-exposure says otherwise.
+  if ((flags.exposure || flags.ev100) && !flags.auto_exposure) scene.output.auto_exposure = false;
+}
+
+// One of --fov-deg, --hfov, --focal-length-mm replaces the scene's field of view, whatever
+// form the scene gave it in.
+void apply_fov_form(const SceneFlags& flags, Scene& scene) {
+  CameraParams& c = scene.camera;
+  if (flags.fov_deg) c.horizontal_fov_deg = c.focal_length_mm = 0.0f;
+  if (flags.hfov_deg) c.focal_length_mm = 0.0f;
+  if (flags.focal_length_mm) c.horizontal_fov_deg = 0.0f;
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -464,6 +536,8 @@ Scene resolve_scene(const SceneFlags& flags) {
         spec.target);
   }
   apply_sun_angles(flags, scene);
+  apply_legacy_light(flags, scene);
+  apply_fov_form(flags, scene);
   // A sun flag places the sun; otherwise a --time does.
   if (flags.sun_dir || flags.sun_elevation_deg || flags.sun_azimuth_deg)
     scene.sun.from_time = false;

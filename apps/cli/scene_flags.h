@@ -20,7 +20,9 @@ struct SceneFlags {
   std::optional<std::string> preset;      // --preset NAME; "default" when neither is given
   std::optional<std::string> width, height;
   std::optional<std::string> camera_altitude_m, camera_pos, view_dir, fov_deg, roll_deg;
-  std::optional<std::string> sun_dir, sun_elevation_deg, sun_azimuth_deg, sun_illuminance;
+  std::optional<std::string> hfov_deg, focal_length_mm, sensor_width_mm;
+  std::optional<std::string> sun_dir, sun_elevation_deg, sun_azimuth_deg, sun_illuminance,
+      sun_illuminance_lux;
   std::optional<std::string> coverage, cloud_type, precipitation, density, cloud_bottom_m, cloud_top_m, extinction_per_m;
   std::optional<std::string> attenuation, light_attenuation, albedo, g_forward, g_backward;
   std::optional<std::string> lobe_weight, powder, ambient, wind_mps, weather_map,
@@ -31,6 +33,8 @@ struct SceneFlags {
   std::optional<std::string> time_s, seed, steps, light_steps, march_stride, cloud_downsample,
       light_volume_km, mode, sky, turbidity, conditions, weather, hour, exposure, auto_exposure,
       voxel_march, voxel_shadow;
+  std::optional<std::string> ev100, ev100_min, ev100_max, exposure_compensation_ev,
+      adaptation_ev_per_s;
   // --voxel-cloud SPEC, repeatable: FILE@E,N,U or preset:NAME[:SEED]@E,N,U, each appended to
   // the scene's voxel clouds in the order given.
   std::vector<std::string> voxel_clouds;

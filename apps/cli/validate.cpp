@@ -14,6 +14,7 @@
 #include "label.h"
 #include "nephele_embedded.h"
 #include "nephele/error.h"
+#include "nephele/exposure.h"
 #include "nephele/image.h"
 #include "nephele/image_compare.h"
 #include "nephele/output_file.h"
@@ -241,11 +242,8 @@ int run_validate(const ValidateOptions& options) {
     all_pass = all_pass && pass;
 
     // fast | reference | block errors, each at twice the size, labelled.
-    double mean_l = 0.0;
-    for (const glm::vec4& p : reference.mean.pixels) mean_l += luminance(p);
-    mean_l /= double(reference.mean.pixels.size());
-    const float exposure = scene.output.auto_exposure ? auto_exposure(scene.output.exposure, mean_l)
-                                                      : scene.output.exposure;
+    // Both exposed as the scene's camera would expose the reference.
+    const float exposure = still_exposure(scene.output, reference.mean);
     const int s = 2, w = suite.width * s, h = suite.height * s, gap = 4;
     Image side(3 * w + 2 * gap, h);
     for (glm::vec4& p : side.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);

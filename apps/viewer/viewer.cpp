@@ -22,6 +22,7 @@
 #include "nephele/camera_path.h"
 #include "nephele/error.h"
 #include "nephele/frame.h"
+#include "nephele/exposure.h"
 #include "nephele/image.h"
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
@@ -389,12 +390,7 @@ bool Viewer::take_screenshot(const std::string& path) {
   vk_check(vkQueueSubmit(vk_.queue(), 1, &submit, fence), "vkQueueSubmit");
   const Frame frame = renderer_->read_back();
   const Scene& scene = editor_.scene();
-  double mean_luminance = 0.0;
-  for (const glm::vec4& p : frame.color.pixels) mean_luminance += luminance(p);
-  if (!frame.color.pixels.empty()) mean_luminance /= double(frame.color.pixels.size());
-  const float exposure = scene.output.auto_exposure
-                             ? auto_exposure(scene.output.exposure, mean_luminance)
-                             : scene.output.exposure;
+  const float exposure = still_exposure(scene.output, frame.color);
   try {
     write_image(frame.color, path, exposure);
   } catch (const std::exception& e) {

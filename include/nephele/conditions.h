@@ -3,8 +3,9 @@
 // in two tables (good and bad weather) blended by a weather factor. Pure data and arithmetic:
 // no Vulkan, no scene file; the renderer decides what to do with the result.
 //
-// Colour units: linear HDR radiance in the renderer's units, where a clear daytime zenith sky
-// is about 1.0 and direct sunlight on a white surface about 20 (SunParams::illuminance). The
+// Colour units: linear HDR radiance on the old radiance scale, where a clear daytime zenith sky
+// is about 1.0 and direct sunlight on a white surface about 20; one unit is 6400 cd/m^2
+// (kLegacyLuxPerUnit, nephele/exposure.h), so the sun's 20 is the solar constant. The
 // values are what the scene should look like at one fixed exposure over the whole day: the
 // eye's adaptation is baked in, so night is dark (about 1/50 of day) but not the physical
 // 1e-6 of day, which no single exposure would show.

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <glm/vec4.hpp>
+#include <array>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -26,14 +28,6 @@ float luminance(const glm::vec4& rgb);
 // NaN and negative values give 0, large ones 255.
 std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure);
 
-// The exposure for a frame of mean luminance `mean_luminance` when `exposure` suits a clear
-// day (mean luminance kDayMeanLuminance): exposure (kDayMeanLuminance / mean)^0.85, at most
-// 1e7 times `exposure`. The power below 1 compensates a darker frame only in part, as the eye
-// adapts: a moonlit frame (1e-5 of the day) comes out about 5x darker than the day, not as
-// bright.
-constexpr double kDayMeanLuminance = 0.4;
-float auto_exposure(float exposure, double mean_luminance);
-
 // What an EXR stores: half floats (the default; values beyond the largest half, 65504, are
 // clamped to it, so the sun's disk does not become inf) or 32-bit floats (the true values).
 enum class ExrPixels { kHalf, kFloat };
@@ -48,17 +42,39 @@ void write_image(const Image& image, const std::string& path, float exposure = 1
                  ExrPixels exr = ExrPixels::kHalf);
 
 // One layer of a multi-layer EXR: `image`'s first `channels` channels (1 to 4: R, G, B, A),
-// named "R", "G", ... or, with a prefix, "prefix.R", ... (OpenEXR's layer convention).
+// named "R", "G", ... or, with a prefix, "prefix.R", ... (OpenEXR's layer convention); with
+// `names`, those names instead (one a channel: "depth_m" gives "prefix.depth_m").
 struct ExrLayer {
   std::string prefix;
   const Image* image = nullptr;
   int channels = 4;
+  std::vector<std::string> names;
 };
 
-// Writes the layers (all of one size) into one EXR file, atomically, as write_image does.
-// Throws InputError for a path that is not .exr, no layers, or layers of different sizes.
+// Attributes for an EXR's header (OpenEXR's standard ones where they exist, else named
+// nephele.* by convention): text, numbers, and a 4x4 matrix (row-major as OpenEXR's M44f,
+// which transforms row vectors: p' = p M).
+struct ExrAttributes {
+  std::vector<std::pair<std::string, std::string>> strings;
+  std::vector<std::pair<std::string, float>> floats;
+  std::vector<std::pair<std::string, std::array<float, 16>>> matrices;
+};
+
+// Writes the layers (all of one size) into one EXR file, atomically, as write_image does, with
+// `attributes` in its header. Throws InputError for a path that is not .exr, no layers, layers
+// of different sizes, a `names` list whose size is not `channels`, or an attribute name that
+// OpenEXR reserves (channels, compression, ...).
 void write_exr_layers(const std::vector<ExrLayer>& layers, const std::string& path,
-                      ExrPixels exr = ExrPixels::kHalf);
+                      ExrPixels exr = ExrPixels::kHalf, const ExrAttributes& attributes = {});
+
+// The attributes of an EXR file's header as text ("name" -> "value"; numbers as written by
+// the shortest round trip, matrices as 16 numbers), for tests and tools. Throws InputError
+// naming the path if it cannot be read.
+std::vector<std::pair<std::string, std::string>> read_exr_attributes(const std::string& path);
+
+// The named channels of an EXR file ("R", "clouds.A", ...), each as an image whose r, g, b
+// hold it (a = 1). Throws InputError naming the path and the channel if one is missing.
+Image read_exr_channel(const std::string& path, const std::string& channel);
 
 // Throws InputError naming `parameter` if `path` cannot be written as an image (unknown
 // extension, or any reason of check_output_file in output_file.h). Writes nothing.

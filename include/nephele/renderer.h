@@ -74,6 +74,22 @@ struct Frame {
   FrameStats stats;
 };
 
+// Renderer::render_layers: a still and its layers for compositing (film output). The image is
+// the layers' "over", exactly: color = clouds.rgb + (1 - clouds.a) sky, within float rounding.
+struct FilmLayers {
+  Frame frame;  // as render() returns it: color is the image (cd/m^2)
+  // Everything behind the clouds: the sky with the sun, moon and stars, the ground (under the
+  // clouds' shadows), the cirrus seen from below; a = 1.
+  Image sky;
+  // What lies in front of it, premultiplied: the clouds' light with the haze of the air in
+  // front of them (aerial perspective), and the cirrus seen from above; a = 1 - their
+  // transmittance.
+  Image clouds;
+  // r (= g = b): the clouds' distance from the camera along the view ray (m), weighted by the
+  // opacity each sample added; 0 where the clouds are clear (a < 0.001). a = 1.
+  Image clouds_depth_m;
+};
+
 // Renderer::cloud_profile: per altitude bin, from the bottom of the lowest cloud layer to the
 // top of the highest, the mean density field (sigma_t / clouds.extinction_per_m) and the share
 // of the region in cloud.
@@ -127,6 +143,10 @@ class Renderer {
   // marched, at full resolution. Noise and weather textures are cached and rebuilt only when their parameters
   // change. The frame also starts the history that render_next() continues from.
   Frame render(const Scene& scene);
+
+  // render() and the film layers of the same still (FilmLayers), each composed again over the
+  // same clouds: a few compose passes more than render().
+  FilmLayers render_layers(const Scene& scene);
 
   // Renders the next frame of an animation (the scene's camera, time and sun may change from
   // call to call): marches one cloud pixel of every quality.march_stride^2 block and

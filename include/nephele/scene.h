@@ -25,7 +25,14 @@ struct CameraParams {
   // ENU, metres: east and north in [-1e9, 1e9], up in [0, 1e9] (2.6 times the Moon's distance)
   glm::vec3 position_m{0.0f, 0.0f, 2.0f};
   glm::vec3 view_dir{0.0f, 1.0f, 0.25f};   // ENU, looking direction
-  float fov_deg = 70.0f;                   // vertical field of view, [0.01, 180)
+  // The field of view, in one of three forms (vertical_fov_deg() gives the vertical one for an
+  // image's aspect): fov_deg, vertical, unless horizontal_fov_deg (then the vertical follows the
+  // aspect) or focal_length_mm (horizontal: 2 atan(sensor_width_mm / (2 focal_length_mm))) is
+  // given (> 0). At most one of those two.
+  float fov_deg = 70.0f;             // vertical field of view, [0.01, 180)
+  float horizontal_fov_deg = 0.0f;   // 0 (not given) or [0.01, 180)
+  float focal_length_mm = 0.0f;      // 0 (not given) or [0.1, 1e5]
+  float sensor_width_mm = 36.0f;     // the sensor's (film gate's) width, [1, 1000]: 36 full frame
   // Rotation about the looking direction (deg), [-180, 180]. Positive turns the camera
   // clockwise as its viewer sees it (an aircraft banking right, right wing down), so the image
   // turns counter-clockwise: the horizon rises to the right. 0 keeps the image's up in the
@@ -35,7 +42,10 @@ struct CameraParams {
 
 struct SunParams {
   glm::vec3 direction{0.0f, 0.7f, 0.35f};  // ENU, towards the sun
-  float illuminance = 20.0f;  // radiance scale of sunlight at the top of the atmosphere, [0, 1e6]
+  // Sunlight's illuminance at the top of the atmosphere, perpendicular to it (lux), [0, 1e10]:
+  // 128 klx is the luminous solar constant (nephele/exposure.h). Radiances come out in cd/m^2.
+  // (The old key sun.illuminance, a radiance scale with 20 for the sun, is read as x 6400 lux.)
+  float illuminance_lux = 128000.0f;
   float disk_angular_radius_deg = 0.2666f;  // apparent radius of the sun disk, [0, 20]
   // Place the sun by the ephemeris for Scene::time and Scene::location instead of direction.
   // Set by a scene file or flags that give a time without a sun direction.
@@ -221,10 +231,21 @@ struct QualityParams {
 struct OutputParams {
   int width = 900;    // pixels, [1, 16384]
   int height = 600;   // pixels, [1, 16384]
-  float exposure = 0.5f;  // linear scale before tone mapping, (0, 1e6]
-  // Scale the exposure with the frame's brightness (auto_exposure()), so that a day-to-night
-  // sequence shows the night, darker than the day as the eye sees it.
-  bool auto_exposure = false;
+  // The camera's exposure (nephele/exposure.h): luminance (cd/m^2) is scaled by
+  // 1 / (1.2 x 2^EV100) before the tone map. A photographer's EV100: about 15 on a sunny day
+  // ("sunny 16"), 12 overcast, 8 to 10 at sunset, 3 to 5 in civil twilight, -2 to -3 under a
+  // full moon. The old key output.exposure (a linear scale) is read as
+  // ev100 = log2(6400 / (1.2 x exposure)) with auto_exposure false.
+  // Auto exposure (the default): a reflected-light meter (K = 12.5) reads the frame's
+  // log-average luminance L and exposes at log2(8 L) - exposure_compensation_ev, held within
+  // [ev100_min, ev100_max]; in a sequence (and the viewer) the exposure moves towards that at
+  // most adaptation_ev_per_s per second (of scene time between frames; the viewer's clock).
+  bool auto_exposure = true;
+  float ev100 = 15.0f;                    // manual exposure, when auto_exposure is false, [-20, 30]
+  float ev100_min = -4.0f;                // auto exposure's limits, [-20, 30], min <= max: below
+  float ev100_max = 17.0f;                // ev100_min a night stays dark, as the eye sees it
+  float exposure_compensation_ev = 0.0f;  // auto: + brightens, [-10, 10]
+  float adaptation_ev_per_s = 2.0f;       // auto, sequences and viewer, [0, 1e6]; 0 = at once
 };
 
 // Where the scene is on the earth: the ENU origin (on the ground below the start position).
@@ -313,6 +334,14 @@ struct Scene {
   std::vector<VoxelCloudParams> voxel_clouds;
   LabParams lab;
 };
+
+// The camera's vertical field of view (deg) for an image of width / height `aspect`, from
+// whichever form CameraParams gives it in: the vertical keeps its tangent's ratio to the
+// horizontal, tan(v / 2) = tan(h / 2) / aspect.
+float vertical_fov_deg(const CameraParams& camera, float aspect);
+float vertical_fov_deg(const Scene& scene);  // for scene.output's aspect
+// The horizontal field of view (deg) of a focal length on a sensor: 2 atan(width / (2 f)).
+float horizontal_fov_from_focal_deg(float focal_length_mm, float sensor_width_mm);
 
 const char* to_string(MarchMode mode);
 const char* to_string(VoxelMarch mode);

@@ -8,6 +8,9 @@
 #include "nephele/image.h"
 
 #include <ImfChannelList.h>
+#include <ImfFloatAttribute.h>
+#include <ImfMatrixAttribute.h>
+#include <ImfStringAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
@@ -130,12 +133,20 @@ float storable(float v, float largest) {
 
 // Linear layers, ZIP-compressed (the Header default), half or float. Exposure is not applied:
 // an EXR keeps the radiance as rendered (half clamped to its largest value, 65504).
-std::vector<unsigned char> encode_exr(const std::vector<ExrLayer>& layers, ExrPixels pixels) {
+std::vector<unsigned char> encode_exr(const std::vector<ExrLayer>& layers, ExrPixels pixels,
+                                      const ExrAttributes& attributes = {}) {
   const bool as_half = pixels == ExrPixels::kHalf;
   const float largest = as_half ? float(HALF_MAX) : std::numeric_limits<float>::max();
   const int width = layers.front().image->width, height = layers.front().image->height;
   const size_t count = layers.front().image->pixels.size();
   Imf::Header header(width, height);
+  for (const auto& [name, value] : attributes.strings)
+    header.insert(name, Imf::StringAttribute(value));
+  for (const auto& [name, value] : attributes.floats) header.insert(name, Imf::FloatAttribute(value));
+  for (const auto& [name, m] : attributes.matrices)
+    header.insert(name, Imf::M44fAttribute(Imath::M44f(m[0], m[1], m[2], m[3], m[4], m[5], m[6],
+                                                       m[7], m[8], m[9], m[10], m[11], m[12],
+                                                       m[13], m[14], m[15])));
   const Imf::PixelType type = as_half ? Imf::HALF : Imf::FLOAT;
   static const char* const kNames[4] = {"R", "G", "B", "A"};
   // Every channel's values and name, kept alive until the pixels are written.
@@ -147,7 +158,8 @@ std::vector<unsigned char> encode_exr(const std::vector<ExrLayer>& layers, ExrPi
       std::vector<float> values(count);
       for (size_t i = 0; i < count; ++i) values[i] = storable(layer.image->pixels[i][c], largest);
       floats.push_back(std::move(values));
-      names.push_back(layer.prefix.empty() ? kNames[c] : layer.prefix + "." + kNames[c]);
+      const std::string name = layer.names.empty() ? kNames[c] : layer.names[size_t(c)];
+      names.push_back(layer.prefix.empty() ? name : layer.prefix + "." + name);
     }
   Imf::FrameBuffer frame;
   for (size_t k = 0; k < names.size(); ++k) {
@@ -258,11 +270,6 @@ std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure) {
   return out;
 }
 
-float auto_exposure(float exposure, double mean_luminance) {
-  const double gain = std::pow(kDayMeanLuminance / std::max(mean_luminance, 1e-30), 0.85);
-  return float(exposure * std::min(gain, 1e7));
-}
-
 void write_image(const Image& image, const std::string& path, float exposure, ExrPixels exr) {
   const ImageFormat format = format_of(path);
   if (format == ImageFormat::kUnsupported) {
@@ -282,21 +289,35 @@ void write_image(const Image& image, const std::string& path, float exposure, Ex
 }
 
 void write_exr_layers(const std::vector<ExrLayer>& layers, const std::string& path,
-                      ExrPixels exr) {
+                      ExrPixels exr, const ExrAttributes& attributes) {
   if (format_of(path) != ImageFormat::kExr)
     throw InputError("image path " + quoted(path) + ": layers need an .exr file");
   if (layers.empty()) throw InputError("image " + quoted(path) + ": no layers to write");
   for (const ExrLayer& layer : layers) {
-    if (!layer.image || layer.channels < 1 || layer.channels > 4)
+    if (!layer.image || layer.channels < 1 || layer.channels > 4 ||
+        (!layer.names.empty() && layer.names.size() != size_t(layer.channels)))
       throw InputError("image " + quoted(path) + ": layer \"" + layer.prefix + "\" is malformed");
     if (layer.image->width != layers.front().image->width ||
         layer.image->height != layers.front().image->height)
       throw InputError("image " + quoted(path) + ": its layers differ in size");
     check_writable_image(*layer.image, path);
   }
+  static const char* const kReserved[] = {"channels", "compression", "dataWindow",
+                                          "displayWindow", "lineOrder", "pixelAspectRatio",
+                                          "screenWindowCenter", "screenWindowWidth", "type",
+                                          "tiles", "version", "chunkCount", "name"};
+  const auto check_name = [&](const std::string& name) {
+    for (const char* reserved : kReserved)
+      if (name == reserved || name.empty())
+        throw InputError("image " + quoted(path) + ": header attribute \"" + name +
+                         "\" is reserved by OpenEXR");
+  };
+  for (const auto& a : attributes.strings) check_name(a.first);
+  for (const auto& a : attributes.floats) check_name(a.first);
+  for (const auto& a : attributes.matrices) check_name(a.first);
   std::vector<unsigned char> bytes;
   try {
-    bytes = encode_exr(layers, exr);
+    bytes = encode_exr(layers, exr, attributes);
   } catch (const std::exception& e) {
     throw RuntimeError("cannot encode image " + quoted(path) + ": " + e.what());
   }

@@ -1,4 +1,5 @@
 #include "render/frame_params.h"
+#include "nephele/exposure.h"
 #include "nephele/image.h"
 #include "nephele/sky.h"
 #include "sky/stars.h"
@@ -183,7 +184,7 @@ static void set_moon(gpu::FrameParams& f, const Scene& scene, const glsl::Atmosp
                        lommel_seeliger_phase(phase_angle_rad(k));
   const glm::vec3 eye = planet_from_enu(scene, scene.camera.position_m);
   const glm::vec3 t = glsl::atmosphere_transmittance_to_top(atmosphere, eye, e->moon.direction, 256);
-  f.moon_radiance = glm::vec4(t * float(full_disk * std::min(phase, 50.0) * scene.sun.illuminance /
+  f.moon_radiance = glm::vec4(t * float(full_disk * std::min(phase, 50.0) * scene.sun.illuminance_lux /
                                         std::max(lights.key.illuminance, 1e-30f)),
                               0.0f);
 }
@@ -197,7 +198,7 @@ static void set_stars(gpu::FrameParams& f, const Scene& scene, const std::option
   f.star_north = glm::vec4(m[0][1], m[1][1], m[2][1], 0.0f);
   f.star_up = glm::vec4(m[0][2], m[1][2], m[2][2], 0.0f);
   const float pixel_rad = 2.0f * tan_half_fov / float(scene.output.height);
-  f.stars = glm::vec4(scene.sun.illuminance, float(star_catalogue().size()), pixel_rad * pixel_rad, 0.0f);
+  f.stars = glm::vec4(scene.sun.illuminance_lux, float(star_catalogue().size()), pixel_rad * pixel_rad, 0.0f);
 }
 
 // The time-of-day keyframes' set for this frame, per unit of the key light's illuminance; the
@@ -207,7 +208,9 @@ static std::optional<ConditionSet> set_conditions(gpu::FrameParams& f, const Sce
   f.conditions_sky_fog.w = 1.0f;  // stars fully visible
   const std::optional<ConditionSet> c = scene_conditions(scene, lights.ephemeris);
   if (!c) return c;
-  const float per_unit = 1.0f / std::max(lights.key.illuminance, 1e-30f);
+  // The keyframes' colours are on the old radiance scale (conditions.h): x kLegacyLuxPerUnit in
+  // cd/m^2.
+  const float per_unit = kLegacyLuxPerUnit / std::max(lights.key.illuminance, 1e-30f);
   f.conditions_sky = glm::vec4(c->sky_zenith_rgb * per_unit,
                                scene.conditions.mode == ConditionsMode::Artist ? 1.0f : 2.0f);
   f.conditions_sky_fog = glm::vec4(c->sky_fog_rgb * per_unit, c->star_visibility);
@@ -233,16 +236,16 @@ SkyLights sky_lights(const Scene& scene) {
   SkyLights lights{scene_ephemeris(scene), {}};
   const std::optional<Ephemeris>& e = lights.ephemeris;
   const glm::vec3 sun = scene_sun_direction(scene, e);
-  lights.key = {sun, scene.sun.illuminance, false};
+  lights.key = {sun, scene.sun.illuminance_lux, false};
   if (!e || sun.z > 0.0f) return lights;  // by day the moon's sky is a millionth of the sun's
   const float moon_share =
       float(moon_illuminance_ratio(e->moon_illuminated_fraction, e->moon.distance_km));
-  const KeyLight moon{e->moon.direction, scene.sun.illuminance * moon_share, true};
+  const KeyLight moon{e->moon.direction, scene.sun.illuminance_lux * moon_share, true};
   const float min_z = std::sin(glm::radians(kSecondLightMinElevationDeg));
   if (direct_luminance_at_clouds(scene, sun) <
       moon_share * direct_luminance_at_clouds(scene, moon.direction)) {
     lights.key = moon;
-    if (sun.z > min_z) lights.second = {sun, scene.sun.illuminance, false};
+    if (sun.z > min_z) lights.second = {sun, scene.sun.illuminance_lux, false};
   } else if (moon.direction.z > min_z) {
     lights.second = moon;
   }
@@ -255,7 +258,7 @@ void set_previous_frame(gpu::FrameParams& f, const Scene& scene, const Scene& pr
   // without the rounding of positions 6.4e6 m from the planet's centre.
   const glm::vec3 eye_offset = previous.camera.position_m - scene.camera.position_m;
   f.prev_camera_pos_m =
-      glm::vec4(eye_offset, std::tan(glm::radians(previous.camera.fov_deg) * 0.5f));
+      glm::vec4(eye_offset, std::tan(glm::radians(vertical_fov_deg(previous)) * 0.5f));
   f.prev_camera_forward =
       glm::vec4(basis.forward, float(previous.output.width) / float(previous.output.height));
   f.prev_camera_right = glm::vec4(basis.right, 0.0f);
@@ -316,7 +319,7 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   const KeyLight& key = lights.key;
   const glm::vec3 sun = key.direction;  // the key light's: the sun's, or at night the moon's
   const float aspect = float(scene.output.width) / float(scene.output.height);
-  const float tan_half_fov = std::tan(glm::radians(scene.camera.fov_deg) * 0.5f);
+  const float tan_half_fov = std::tan(glm::radians(vertical_fov_deg(scene)) * 0.5f);
 
   gpu::FrameParams f{};
   f.camera_pos_m = glm::vec4(planet_from_enu(scene, scene.camera.position_m), tan_half_fov);
@@ -367,8 +370,10 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   set_atmosphere(f, scene);
   if (scene.conditions.mode == ConditionsMode::Artist) {  // the keyframes light clouds and ground
     const ConditionSet& set = *conditions;
-    f.sun_at_clouds = glm::vec4(key.moon ? set.moon_light_rgb : set.sun_light_rgb, 0.0f);
-    f.ambient_at_clouds = glm::vec4(set.ambient_rgb, 0.0f);
+    // (On the old radiance scale: x kLegacyLuxPerUnit in cd/m^2.)
+    f.sun_at_clouds =
+        glm::vec4((key.moon ? set.moon_light_rgb : set.sun_light_rgb) * kLegacyLuxPerUnit, 0.0f);
+    f.ambient_at_clouds = glm::vec4(set.ambient_rgb * kLegacyLuxPerUnit, 0.0f);
     f.ambient_below_clouds = f.ambient_at_clouds;
     f.ground_sky_light = f.ambient_at_clouds;
   }
@@ -412,7 +417,9 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
                       int(scene.noise_seed & 0x7fffffff));
   f.steps = glm::ivec4(scene.quality.primary_steps, scene.quality.light_steps,
                        scene.atmosphere.view_samples, 0);
-  f.display = glm::vec4(scene.output.exposure, 0.0f, 0.0f, 0.0f);
+  // The display's exposure: the manual EV100 (a host with auto exposure passes its own,
+  // FrameOptions::display_ev100).
+  f.display = glm::vec4(float(exposure_from_ev100(scene.output.ev100)), 0.0f, 0.0f, 0.0f);
   return f;
 }
 

@@ -75,7 +75,8 @@ std::string history_key(Scene scene) {
   scene.camera = CameraParams{};
   scene.sun = SunParams{};
   scene.time_s = 0.0f;
-  scene.output.exposure = 1.0f;
+  scene.output.ev100 = 0.0f;  // the exposure does not touch the HDR image
+  scene.output.auto_exposure = false;
   return scene_to_toml(scene);
 }
 
@@ -107,7 +108,7 @@ int layer_side(const Scene& scene) {
 bool history_usable(const Scene& scene, const Scene& previous, const glm::vec3& light_dir,
                     const glm::vec3& previous_light_dir) {
   const float cos_sun = glm::dot(light_dir, previous_light_dir);
-  return cos_sun > std::cos(glm::radians(0.5f)) && scene.sun.illuminance == previous.sun.illuminance &&
+  return cos_sun > std::cos(glm::radians(0.5f)) && scene.sun.illuminance_lux == previous.sun.illuminance_lux &&
          glm::distance(scene.camera.position_m, previous.camera.position_m) < 1000.0f &&
          layer_side(scene) == layer_side(previous);
 }
@@ -116,7 +117,7 @@ bool history_usable(const Scene& scene, const Scene& previous, const glm::vec3& 
 // cloud transmittance is below 0.5.
 double cloud_cover_fraction(const Scene& scene, const Image& clouds) {
   const CameraBasis basis = camera_basis(scene.camera);
-  const float tan_half_fov = std::tan(glm::radians(scene.camera.fov_deg) * 0.5f);
+  const float tan_half_fov = std::tan(glm::radians(vertical_fov_deg(scene)) * 0.5f);
   const float aspect = float(clouds.width) / float(clouds.height);
   const glm::vec3 up = glm::normalize(planet_from_enu(scene, scene.camera.position_m));
   size_t above = 0, covered = 0;
@@ -215,6 +216,18 @@ void FrameRenderer::Impl::render_reference_sky(gpu::FrameParams params) {
         ms += pass_ms;
     }
   if (verbose) std::fprintf(stderr, "nephele: pass %-12s %8.2f ms\n", "reference", ms);
+}
+
+Image FrameRenderer::Impl::compose_layer(const Scene& scene, int layer) {
+  gpu::FrameParams params = last_params;
+  params.display.y = float(layer);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    state.begin(cmd, last_slot, params);
+    pass_compose(cmd, state, scene.atmosphere.model);
+    if (layer == 1) pass_stars(cmd, state);  // the stars are behind the clouds
+    gpu::frame_end_barrier(cmd, ctx.has_graphics());
+  });
+  return download(ctx, state.color[last_slot], false);
 }
 
 double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode mode,

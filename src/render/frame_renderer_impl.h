@@ -67,6 +67,10 @@ struct FrameRenderer::Impl {
   // The clouds pass over the sky dome (after a frame, with its parameters and textures):
   // the share of the observer's upper hemisphere with cloud T < 0.5, and the pass's time.
   double measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms);
+  // After the last frame completed: compose again over its resolved clouds, writing film layer
+  // `layer` (params_inc.glsl, FrameParams::display.y: 1 sky, 2 clouds, 3 depth) into its final
+  // image, and read it back. The frame's own image must have been read back before.
+  Image compose_layer(const Scene& scene, int layer);
   CloudProfile cloud_profile(const Scene& scene);
   ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options);
   gpu::FrameParams lab_reference_params(const Scene& scene, const ReferenceOptions& options);

@@ -25,6 +25,16 @@ int Renderer::validation_messages() const { return impl_->frames.validation_mess
 
 Frame Renderer::render(const Scene& scene) { return render_frame(scene, true, true); }
 
+FilmLayers Renderer::render_layers(const Scene& scene) {
+  FilmLayers layers;
+  layers.frame = render(scene);
+  FrameRenderer::Impl& f = *impl_->frames.impl_;
+  layers.sky = f.compose_layer(scene, 1);
+  layers.clouds = f.compose_layer(scene, 2);
+  layers.clouds_depth_m = f.compose_layer(scene, 3);
+  return layers;
+}
+
 Frame Renderer::render_next(const Scene& scene, bool read_back) {
   return render_frame(scene, false, read_back);
 }

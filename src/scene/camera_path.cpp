@@ -392,7 +392,7 @@ class PathReader {
     key.time_s = number(i, table, "time_s");
     key.position_m = read_position(i, table);
     read_orientation(i, table, key);
-    key.fov_deg = optional_number(i, table, "fov_deg").value_or(scene_.camera.fov_deg);
+    key.fov_deg = optional_number(i, table, "fov_deg").value_or(vertical_fov_deg(scene_));
     return key;
   }
 

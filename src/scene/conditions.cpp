@@ -68,7 +68,7 @@ class TableChecker {
     if (error_.empty()) error_ = key + " = " + value + ": " + allowed;
   }
 
-  // HDR colours, on the scale of the sun's radiance scale (sun.illuminance, at most 1e6).
+  // HDR colours, on the old radiance scale (6400 cd/m^2 a unit; at most 1e6).
   void colour(int index, const char* field, const glm::vec3& v) {
     for (int c = 0; c < 3; ++c)
       if (!(v[c] >= 0.0f && v[c] <= 1.0e6f)) {

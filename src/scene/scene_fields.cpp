@@ -184,7 +184,14 @@ const std::vector<Section>& scene_sections() {
       {"camera",
        {FIELD(camera, position_m, "east, north, up (m); east and north in [-1e9, 1e9], up in [0, 1e9]"),
         FIELD(camera, view_dir, "looking direction, ENU, length in [1e-6, 1e6]"),
-        FIELD(camera, fov_deg, "vertical field of view, [0.01, 180)"),
+        FIELD(camera, fov_deg,
+              "vertical field of view, [0.01, 180); unless horizontal_fov_deg or "
+              "focal_length_mm is given"),
+        FIELD(camera, horizontal_fov_deg,
+              "0 or [0.01, 180): horizontal field of view, the vertical from the aspect"),
+        FIELD(camera, focal_length_mm,
+              "0 or [0.1, 1e5]: lens, horizontal fov 2 atan(sensor_width_mm / 2f)"),
+        FIELD(camera, sensor_width_mm, "[1, 1000]; 36 = full frame"),
         FIELD(camera, roll_deg,
               "about view_dir, [-180, 180]; positive turns the camera clockwise (the horizon "
               "rises to the right)")},
@@ -192,9 +199,11 @@ const std::vector<Section>& scene_sections() {
       {"sun",
        {FIELD(sun, from_time, "true: placed by the ephemeris for time and location"),
         FIELD(sun, direction, "towards the sun, ENU (when from_time is false)"),
-        FIELD(sun, illuminance, "radiance scale of sunlight at the top of the atmosphere, [0, 1e6]"),
+        FIELD(sun, illuminance_lux,
+              "sunlight at the top of the atmosphere (lux), [0, 1e10]; 128000 the solar constant; "
+              "radiances are then in cd/m^2"),
         FIELD(sun, disk_angular_radius_deg, "apparent radius of the sun disk, [0, 20]")},
-       {"elevation_deg", "azimuth_deg"}},
+       {"elevation_deg", "azimuth_deg", "illuminance"}},
       {"atmosphere",
        {FIELD(atmosphere, model,
               "hillaire (LUTs, multiple scattering), preetham (analytic, seed 002) or reference "
@@ -273,9 +282,18 @@ const std::vector<Section>& scene_sections() {
        {}},
       {"output",
        {FIELD(output, width, "pixels, [1, 16384]"), FIELD(output, height, "pixels, [1, 16384]"),
-        FIELD(output, exposure, "linear scale before tone mapping, (0, 1e6]"),
-        FIELD(output, auto_exposure, "true: scale the exposure by the frame's brightness")},
-       {}},
+        FIELD(output, auto_exposure,
+              "true: expose by a meter (log-average luminance) within ev100_min..ev100_max; "
+              "false: at ev100"),
+        FIELD(output, ev100, "manual exposure value at ISO 100, [-20, 30]: 15 sunny day, 12 "
+                             "overcast, 9 sunset, 4 civil twilight, -2.5 full moon"),
+        FIELD(output, ev100_min, "auto exposure's lower limit, [-20, 30]: darker nights stay dark"),
+        FIELD(output, ev100_max, "auto exposure's upper limit, [-20, 30], >= ev100_min"),
+        FIELD(output, exposure_compensation_ev, "auto exposure: + brightens, [-10, 10]"),
+        FIELD(output, adaptation_ev_per_s,
+              "auto exposure's adaptation in sequences and the viewer (EV/s), [0, 1e6]; 0 = at "
+              "once")},
+       {"exposure"}},
       {"conditions",
        {FIELD(conditions, mode,
               "off, artist (keyframes instead of the physical sky and lights) or overlay "

@@ -16,6 +16,7 @@
 
 #include "nephele/camera_path.h"
 #include "nephele/error.h"
+#include "nephele/exposure.h"
 #include "nephele_embedded.h"
 #include "scene/scene_fields.h"
 
@@ -355,7 +356,67 @@ class SceneReader {
       assign(*field, full_key, node, scene);
     }
     if (section.name == "camera") read_camera_altitude(table, scene);
+    if (section.name == "camera") read_fov_form(table, scene);
     if (section.name == "sun") read_sun_angles(table, scene);
+    if (section.name == "sun") read_legacy_illuminance(table, scene);
+    if (section.name == "output") read_legacy_exposure(table, scene);
+  }
+
+  // The field of view's form: at most one of fov_deg, horizontal_fov_deg and focal_length_mm
+  // in a table (the last two given when not 0), and the one given replaces the form of a preset
+  // underneath.
+  void read_fov_form(const toml::table& table, Scene& scene) const {
+    const char* const forms[] = {"fov_deg", "horizontal_fov_deg", "focal_length_mm"};
+    std::vector<const char*> given;
+    for (const char* form : forms) {
+      const toml::node* node = table.get(form);
+      if (!node) continue;
+      if (form != forms[0] && node->is_number() && read_number(*node, form) == 0.0) continue;
+      given.push_back(form);
+    }
+    if (given.size() > 1)
+      fail(table.get(given[1])->source(),
+           std::string("camera.") + given[0] + " and camera." + given[1] +
+               " are both given; give one of fov_deg, horizontal_fov_deg, focal_length_mm");
+    if (given.empty()) return;
+    CameraParams& c = scene.camera;
+    if (given[0] != forms[1]) c.horizontal_fov_deg = 0.0f;
+    if (given[0] != forms[2]) c.focal_length_mm = 0.0f;
+  }
+
+  // sun.illuminance, the old radiance scale (20 for the sun): X x 6400 lux, the same light.
+  void read_legacy_illuminance(const toml::table& table, Scene& scene) const {
+    const toml::node* old = table.get("illuminance");
+    if (!old) return;
+    if (table.contains("illuminance_lux"))
+      fail(old->source(),
+           "sun.illuminance and sun.illuminance_lux are both given; give illuminance_lux (the "
+           "old illuminance is illuminance_lux / 6400)");
+    const double value = read_number(*old, "sun.illuminance");
+    if (!(value >= 0.0 && value <= 1.0e6))
+      fail_value(*old, "sun.illuminance",
+                 "must be in [0, 1e+06] (the old radiance scale, read as x 6400 lux; "
+                 "sun.illuminance_lux replaces it)");
+    scene.sun.illuminance_lux = float(value * double(kLegacyLuxPerUnit));
+  }
+
+  // output.exposure, the old linear exposure: the EV100 that exposes the image as it did, manual
+  // unless the table turns auto_exposure on.
+  void read_legacy_exposure(const toml::table& table, Scene& scene) const {
+    const toml::node* old = table.get("exposure");
+    if (!old) return;
+    if (table.contains("ev100"))
+      fail(old->source(),
+           "output.exposure and output.ev100 are both given; give ev100 (the old exposure e is "
+           "ev100 = log2(5333 / e))");
+    const double value = read_number(*old, "output.exposure");
+    const double ev100 = ev100_from_legacy_exposure(value);
+    if (!(value >= 5.0e-6 && value <= 1.0e6))
+      fail_value(*old, "output.exposure",
+                 "must be in [5e-06, 1e+06] (the old linear exposure, read as output.ev100 = "
+                 "log2(5333 / exposure) in [-7.55, 30])");
+    scene.output.ev100 = float(ev100);
+    if (!table.contains("auto_exposure")) scene.output.auto_exposure = false;
   }
 
   void assign(const Field& field, const std::string& key, const toml::node& node,

@@ -65,12 +65,27 @@ std::string scene_detail::field_value_text(const Scene& scene, const scene_detai
   return text;
 }
 
+// fov_deg is written when it is the form the camera gives its field of view in (the reader
+// refuses fov_deg with a non-zero horizontal_fov_deg or focal_length_mm); the others always, 0
+// when not given.
+static bool fov_form_written(const CameraParams& camera, std::string_view name) {
+  return name != "fov_deg" || (camera.focal_length_mm == 0.0f && camera.horizontal_fov_deg == 0.0f);
+}
+
 std::string scene_to_toml(const Scene& scene) {
   Scene copy = scene;  // the field table hands out mutable references
   std::string out = "# nephele scene, fully resolved\n";
   for (const scene_detail::Section& section : scene_detail::scene_sections()) {
     if (!section.name.empty()) out += "\n[" + std::string(section.name) + "]\n";
     for (const scene_detail::Field& field : section.fields) {
+      // The field of view in its one given form (the reader refuses two); the others as a
+      // comment.
+      if (section.name == "camera" && !fov_form_written(scene.camera, field.name)) {
+        if (field.name == "fov_deg")
+          out += "# fov_deg = " + toml_float(vertical_fov_deg(scene)) +
+                 "  # the vertical field of view this gives at output's aspect\n";
+        continue;
+      }
       std::string line = std::string(field.name) + " = ";
       std::visit([&](auto access) { line += toml_value(access(copy)); }, field.access);
       std::string note(field.note);

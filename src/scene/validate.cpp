@@ -22,7 +22,9 @@ constexpr float kMaxCameraDistanceM = 1.0e9f;   // 2.6 times the Moon's distance
 constexpr float kMaxAltitudeM = 1.0e6f;         // cloud layers and cirrus (and below the top)
 constexpr float kMinDirectionLength = 1.0e-6f;  // directions are normalised in float
 constexpr float kMaxDirectionLength = 1.0e6f;
-constexpr float kMaxLight = 1.0e6f;              // sun.illuminance, output.exposure
+constexpr float kMaxIlluminanceLux = 1.0e10f;    // sun.illuminance_lux (the old scale's 1e6 and more)
+constexpr float kMinEv100 = -20.0f;              // output.ev100 and its auto limits
+constexpr float kMaxEv100 = 30.0f;
 constexpr float kMaxFactor = 100.0f;             // extinction and light multipliers on clouds
 constexpr float kMaxAirCoefficientPerM = 0.01f;  // 100 m of air has optical depth 1
 constexpr float kMaxWindMps = 200.0f;
@@ -197,12 +199,22 @@ void check_camera(const Checker& check, const CameraParams& camera) {
   check.in_range("camera.altitude_m", camera.position_m.z, 0.0f, kMaxCameraDistanceM);
   check.direction("camera.view_dir", camera.view_dir);
   check.in_range("camera.fov_deg", camera.fov_deg, 0.01f, 180.0f, false, true);
+  if (camera.horizontal_fov_deg != 0.0f)
+    check.in_range("camera.horizontal_fov_deg", camera.horizontal_fov_deg, 0.01f, 180.0f, false,
+                   true);
+  if (camera.focal_length_mm != 0.0f)
+    check.in_range("camera.focal_length_mm", camera.focal_length_mm, 0.1f, 1.0e5f);
+  check.in_range("camera.sensor_width_mm", camera.sensor_width_mm, 1.0f, 1000.0f);
+  if (camera.horizontal_fov_deg != 0.0f && camera.focal_length_mm != 0.0f)
+    check.fail("camera.focal_length_mm", format_float(camera.focal_length_mm),
+               "camera.horizontal_fov_deg (" + format_float(camera.horizontal_fov_deg) +
+                   ") is given too; give one of fov_deg, horizontal_fov_deg, focal_length_mm");
   check.in_range("camera.roll_deg", camera.roll_deg, -180.0f, 180.0f);
 }
 
 void check_sun(const Checker& check, const SunParams& sun) {
   check.direction("sun.direction", sun.direction);
-  check.in_range("sun.illuminance", sun.illuminance, 0.0f, kMaxLight);
+  check.in_range("sun.illuminance_lux", sun.illuminance_lux, 0.0f, kMaxIlluminanceLux);
   check.in_range("sun.disk_angular_radius_deg", sun.disk_angular_radius_deg, 0.0f, 20.0f);
 }
 
@@ -419,7 +431,14 @@ void check_voxel_clouds(const Checker& check, const std::vector<VoxelCloudParams
 void check_output(const Checker& check, const OutputParams& output) {
   check.in_range("output.width", output.width, 1, 16384);
   check.in_range("output.height", output.height, 1, 16384);
-  check.in_range("output.exposure", output.exposure, 0.0f, kMaxLight, true);
+  check.in_range("output.ev100", output.ev100, kMinEv100, kMaxEv100);
+  check.in_range("output.ev100_min", output.ev100_min, kMinEv100, kMaxEv100);
+  check.in_range("output.ev100_max", output.ev100_max, kMinEv100, kMaxEv100);
+  if (!(output.ev100_min <= output.ev100_max))
+    check.fail("output.ev100_min", format_float(output.ev100_min),
+               "must be <= output.ev100_max (" + format_float(output.ev100_max) + ")");
+  check.in_range("output.exposure_compensation_ev", output.exposure_compensation_ev, -10.0f, 10.0f);
+  check.in_range("output.adaptation_ev_per_s", output.adaptation_ev_per_s, 0.0f, 1.0e6f);
 }
 
 void check_conditions(const Checker& check, const Scene& scene) {

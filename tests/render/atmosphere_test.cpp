@@ -166,7 +166,7 @@ TEST_F(AtmosphereTest, PreethamModelDrawsPreethamsSky) {
                                                       float(y), 40.0f, 30.0f);
       const glm::vec3 expected = nephele::glsl::preetham_sky_radiance(
                                      3.0f, dir, glm::vec3(f.sun_dir), glm::vec3(0, 0, 1)) *
-                                 s.sun.illuminance;
+                                 s.sun.illuminance_lux;
       const float got = nephele::luminance(frame.color.at(x, y));
       error += std::abs(got - nephele::luminance(glm::vec4(expected, 1))) /
                nephele::luminance(glm::vec4(expected, 1));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "nephele/error.h"
+#include "nephele/exposure.h"
 #include "nephele/frame.h"
 #include "nephele/image.h"
 #include "nephele/renderer.h"
@@ -220,7 +221,7 @@ TEST(FrameApi, TwoFramesInFlightOnTheHostsDeviceWithSynchronisationValidation) {
     const nephele::Frame frame = sky.read_back();
     ASSERT_EQ(frame.color.width, scene.output.width);
     const std::vector<unsigned char> expected =
-        nephele::tonemap_srgb8(frame.color, scene.output.exposure);
+        nephele::tonemap_srgb8(frame.color, float(nephele::exposure_from_ev100(scene.output.ev100)));
     const auto* got = static_cast<const unsigned char*>(display.mapped);
     int worst = 0;
     for (size_t i = 0; i < expected.size(); ++i)

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "nephele/exposure.h"
 #include "nephele/image_compare.h"
 #include "nephele/scene_io.h"
 #include "render_fixture.h"
@@ -37,7 +38,8 @@ TEST_P(GoldenTest, MatchesReference) {
   const fs::path out_dir = fs::path(NEPHELE_TEST_OUTPUT_DIR) / "golden";
   fs::create_directories(out_dir);
   const fs::path actual_png = out_dir / (name + ".png");
-  nephele::write_image(frame.color, actual_png.string(), scene.output.exposure);
+  nephele::write_image(frame.color, actual_png.string(),
+                       nephele::still_exposure(scene.output, frame.color));
 
   const fs::path reference_png = kGoldenDir / (name + ".png");
   const char* update = std::getenv("NEPHELE_UPDATE_GOLDEN");

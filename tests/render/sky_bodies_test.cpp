@@ -121,10 +121,10 @@ TEST(MoonLight, FullAndQuarterMoonIlluminance) {
 TEST(MoonLight, TheMoonTakesOverAtNightAndNotByDay) {
   Scene s = moon_view("2026-06-24T21:30:00Z");  // sun -11 deg, moon 18.5 deg up
   EXPECT_TRUE(key_light(s).moon);
-  EXPECT_LT(key_light(s).illuminance, s.sun.illuminance * 3e-6f);
+  EXPECT_LT(key_light(s).illuminance, s.sun.illuminance_lux * 3e-6f);
   s.time = "2026-06-24T15:30:00Z";  // afternoon: the sun
   EXPECT_FALSE(key_light(s).moon);
-  EXPECT_EQ(key_light(s).illuminance, s.sun.illuminance);
+  EXPECT_EQ(key_light(s).illuminance, s.sun.illuminance_lux);
   s.time = "2026-06-24T20:00:00Z";  // sun -1 deg: it still lights the clouds, reddened
   EXPECT_FALSE(key_light(s).moon);
 }
@@ -164,14 +164,14 @@ TEST(MoonLight, TheOtherBodyLightsTheSkyTooUntilItIsFarBelowTheHorizon) {
   SkyLights lights = sky_lights(s);
   ASSERT_TRUE(lights.key.moon);
   EXPECT_FALSE(lights.second.moon);
-  EXPECT_EQ(lights.second.illuminance, s.sun.illuminance);
+  EXPECT_EQ(lights.second.illuminance, s.sun.illuminance_lux);
   EXPECT_NEAR(glm::dot(lights.second.direction, scene_sun_direction(s, lights.ephemeris)), 1.0f,
               1e-6f);
   s.time = "2026-06-24T20:00:00Z";  // sun key at -1 deg, moon up: the moon is the second
   lights = sky_lights(s);
   ASSERT_FALSE(lights.key.moon);
   EXPECT_TRUE(lights.second.moon);
-  EXPECT_LT(lights.second.illuminance, s.sun.illuminance * 3e-6f);
+  EXPECT_LT(lights.second.illuminance, s.sun.illuminance_lux * 3e-6f);
   s.time = "2026-06-24T15:30:00Z";  // by day: none
   EXPECT_EQ(sky_lights(s).second.illuminance, 0.0f);
   s.time = "2026-12-10T23:00:00Z";  // sun -63 deg, thin moon -56 deg: none

@@ -126,7 +126,10 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--roll-deg", "-12.5"}, [](const Scene& s) { return s.camera.roll_deg == -12.5f; }},
       {{"--sun-dir", "1,0,1"},
        [](const Scene& s) { return s.sun.direction == glm::vec3(1.0f, 0.0f, 1.0f); }},
-      {{"--sun-illuminance", "3e1"}, [](const Scene& s) { return s.sun.illuminance == 30.0f; }},
+      {{"--sun-illuminance", "3e1"},
+       [](const Scene& s) { return s.sun.illuminance_lux == 30.0f * 6400.0f; }},
+      {{"--sun-illuminance-lux", "1e5"},
+       [](const Scene& s) { return s.sun.illuminance_lux == 1e5f; }},
       {{"--coverage", "0.9"}, [](const Scene& s) { return s.clouds.coverage == 0.9f; }},
       {{"--density", "0.1"}, [](const Scene& s) { return s.clouds.density == 0.1f; }},
       {{"--cloud-bottom-m", "900"},
@@ -173,7 +176,27 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--light-volume-km", "0"}, [](const Scene& s) { return s.quality.light_volume_km == 0; }},
       {{"--mode", "baseline"},
        [](const Scene& s) { return s.quality.mode == MarchMode::Baseline; }},
-      {{"--exposure", "0.25"}, [](const Scene& s) { return s.output.exposure == 0.25f; }},
+      {{"--exposure", "0.25"},  // the old linear exposure: log2(5333 / 0.25), manual
+       [](const Scene& s) {
+         return std::abs(s.output.ev100 - 14.3808f) < 1e-3f && !s.output.auto_exposure;
+       }},
+      {{"--ev100", "9"},
+       [](const Scene& s) { return s.output.ev100 == 9.0f && !s.output.auto_exposure; }},
+      {{"--ev100-min", "-3"}, [](const Scene& s) { return s.output.ev100_min == -3.0f; }},
+      {{"--ev100-max", "16"}, [](const Scene& s) { return s.output.ev100_max == 16.0f; }},
+      {{"--exposure-compensation-ev", "1.5"},
+       [](const Scene& s) { return s.output.exposure_compensation_ev == 1.5f; }},
+      {{"--adaptation-ev-per-s", "0"},
+       [](const Scene& s) { return s.output.adaptation_ev_per_s == 0.0f; }},
+      {{"--hfov", "90"},
+       [](const Scene& s) {
+         return s.camera.horizontal_fov_deg == 90.0f && s.camera.focal_length_mm == 0.0f;
+       }},
+      {{"--focal-length-mm", "50"},
+       [](const Scene& s) {
+         return s.camera.focal_length_mm == 50.0f && s.camera.horizontal_fov_deg == 0.0f;
+       }},
+      {{"--sensor-width-mm", "24"}, [](const Scene& s) { return s.camera.sensor_width_mm == 24.0f; }},
       {{"--voxel-march", "plain"},
        [](const Scene& s) { return s.quality.voxel_march == VoxelMarch::Plain; }},
       {{"--voxel-march", "three-phase"},
@@ -241,7 +264,8 @@ TEST(SceneFlags, ValidationErrorsNameTheFlag) {
   EXPECT_EQ(resolve_error({"--fov-deg", "180"}), "--fov-deg 180: must be in [0.01, 180)");
   EXPECT_EQ(resolve_error({"--roll-deg", "181"}), "--roll-deg 181: must be in [-180, 180]");
   EXPECT_EQ(resolve_error({"--g-backward", "0.5"}), "--g-backward 0.5: must be in (-1, 0]");
-  EXPECT_EQ(resolve_error({"--exposure", "nan"}), "--exposure nan: must be in (0, 1e+06]");
+  EXPECT_EQ(resolve_error({"--exposure", "nan"}), "--exposure nan: must be in [5e-06, 1e+06] (the old linear exposure, read as --ev100 "
+            "log2(5333 / X) in [-7.55, 30])");
   EXPECT_EQ(resolve_error({"--camera-altitude-m", "-1"}),
             "--camera-altitude-m -1: must be >= 0 (the camera is below the ground)");
   EXPECT_EQ(resolve_error({"--cloud-bottom-m", "5000", "--cloud-top-m", "4000"}),

@@ -59,7 +59,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.camera.fov_deg, b.camera.fov_deg);
   EXPECT_EQ(a.camera.roll_deg, b.camera.roll_deg);
   EXPECT_EQ(a.sun.direction, b.sun.direction);
-  EXPECT_EQ(a.sun.illuminance, b.sun.illuminance);
+  EXPECT_EQ(a.sun.illuminance_lux, b.sun.illuminance_lux);
   EXPECT_EQ(a.sun.disk_angular_radius_deg, b.sun.disk_angular_radius_deg);
   EXPECT_EQ(a.sun.from_time, b.sun.from_time);
   EXPECT_EQ(a.time, b.time);
@@ -136,7 +136,15 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   }
   EXPECT_EQ(a.output.width, b.output.width);
   EXPECT_EQ(a.output.height, b.output.height);
-  EXPECT_EQ(a.output.exposure, b.output.exposure);
+  EXPECT_EQ(a.output.ev100, b.output.ev100);
+  EXPECT_EQ(a.output.auto_exposure, b.output.auto_exposure);
+  EXPECT_EQ(a.output.ev100_min, b.output.ev100_min);
+  EXPECT_EQ(a.output.ev100_max, b.output.ev100_max);
+  EXPECT_EQ(a.output.exposure_compensation_ev, b.output.exposure_compensation_ev);
+  EXPECT_EQ(a.output.adaptation_ev_per_s, b.output.adaptation_ev_per_s);
+  EXPECT_EQ(a.camera.horizontal_fov_deg, b.camera.horizontal_fov_deg);
+  EXPECT_EQ(a.camera.focal_length_mm, b.camera.focal_length_mm);
+  EXPECT_EQ(a.camera.sensor_width_mm, b.camera.sensor_width_mm);
   EXPECT_EQ(a.time_s, b.time_s);
   EXPECT_EQ(a.noise_seed, b.noise_seed);
 }
@@ -150,7 +158,7 @@ void expect_near(const glm::vec3& actual, const glm::vec3& expected) {
 // A scene in which every field differs from the defaults, with awkward float values.
 Scene unusual_scene() {
   Scene s;
-  s.camera = {{-12.5f, 3e4f, 123.456f}, {0.1f, -0.2f, 0.3f}, 33.3f, -47.125f};
+  s.camera = {{-12.5f, 3e4f, 123.456f}, {0.1f, -0.2f, 0.3f}, 33.3f, 0.0f, 0.0f, 24.25f, -47.125f};
   s.sun = {{-0.3f, 0.4f, 1e-7f}, 7.25f, 0.55f, true};
   s.time = "1999-12-31T23:59:59.5-03:30";
   s.location = {-33.8688f, 151.2093f, 58.0f};
@@ -202,7 +210,7 @@ Scene unusual_scene() {
   s.voxel_clouds[1].rotation_deg = -33.3f;
   s.voxel_clouds[1].density = 2.5f;
   s.voxel_clouds[1].resolution = 200;
-  s.output = {1920, 1080, 2.5f};
+  s.output = {1920, 1080, false, 9.25f, -3.5f, 16.5f, 0.75f, 3.0f};
   s.time_s = 12.75f;
   s.noise_seed = 4294967295u;
   return s;
@@ -887,8 +895,20 @@ const BadValue kBadValues[] = {
      [](Scene& s) {
        s.sun.direction = {0.0f, -kInf, 1.0f};
      }},
-    {"sun.illuminance = -1", [](Scene& s) { s.sun.illuminance = -1.0f; }},
-    {"sun.illuminance = inf", [](Scene& s) { s.sun.illuminance = kInf; }},
+    {"sun.illuminance_lux = -1", [](Scene& s) { s.sun.illuminance_lux = -1.0f; }},
+    {"sun.illuminance_lux = inf", [](Scene& s) { s.sun.illuminance_lux = kInf; }},
+    {"camera.horizontal_fov_deg = 180: must be in [0.01, 180)",
+     [](Scene& s) { s.camera.horizontal_fov_deg = 180.0f; }},
+    {"camera.focal_length_mm = -35: must be in [0.1, 1e+05]",
+     [](Scene& s) { s.camera.focal_length_mm = -35.0f; }},
+    {"camera.sensor_width_mm = 0: must be in [1, 1000]",
+     [](Scene& s) { s.camera.sensor_width_mm = 0.0f; }},
+    {"camera.focal_length_mm = 35: camera.horizontal_fov_deg (60) is given too; give one of "
+     "fov_deg, horizontal_fov_deg, focal_length_mm",
+     [](Scene& s) {
+       s.camera.focal_length_mm = 35.0f;
+       s.camera.horizontal_fov_deg = 60.0f;
+     }},
     {"sun.disk_angular_radius_deg = 90", [](Scene& s) { s.sun.disk_angular_radius_deg = 90.0f; }},
     {"atmosphere.planet_radius_km = 0", [](Scene& s) { s.atmosphere.planet_radius_km = 0.0f; }},
     {"atmosphere.atmosphere_height_km = -5",
@@ -958,8 +978,18 @@ const BadValue kBadValues[] = {
     {"output.width = 0", [](Scene& s) { s.output.width = 0; }},
     {"output.width = 16385: must be in [1, 16384]", [](Scene& s) { s.output.width = 16385; }},
     {"output.height = -1", [](Scene& s) { s.output.height = -1; }},
-    {"output.exposure = 0", [](Scene& s) { s.output.exposure = 0.0f; }},
-    {"output.exposure = nan", [](Scene& s) { s.output.exposure = kNaN; }},
+    {"output.ev100 = 31: must be in [-20, 30]", [](Scene& s) { s.output.ev100 = 31.0f; }},
+    {"output.ev100 = nan", [](Scene& s) { s.output.ev100 = kNaN; }},
+    {"output.ev100_min = 5: must be <= output.ev100_max (4)",
+     [](Scene& s) {
+       s.output.ev100_min = 5.0f;
+       s.output.ev100_max = 4.0f;
+     }},
+    {"output.ev100_max = -21: must be in [-20, 30]", [](Scene& s) { s.output.ev100_max = -21.0f; }},
+    {"output.exposure_compensation_ev = 11: must be in [-10, 10]",
+     [](Scene& s) { s.output.exposure_compensation_ev = 11.0f; }},
+    {"output.adaptation_ev_per_s = -1: must be in [0, 1e+06]",
+     [](Scene& s) { s.output.adaptation_ev_per_s = -1.0f; }},
     {"time_s = inf", [](Scene& s) { s.time_s = kInf; }},
     {"time = \"2026-06-21 18:30\": must be an ISO 8601 date and time with a zone, like "
      "2026-06-21T18:30:00Z",
@@ -982,7 +1012,8 @@ const BadValue kBadValues[] = {
      [](Scene& s) { s.camera.view_dir = glm::vec3(1e20f); }},
     {"camera.fov_deg = 0.001: must be in [0.01, 180)", [](Scene& s) { s.camera.fov_deg = 1e-3f; }},
     {"sun.direction = (0, 0, 1e-07)", [](Scene& s) { s.sun.direction = {0.0f, 0.0f, 1e-7f}; }},
-    {"sun.illuminance = 1e+09: must be in [0, 1e+06]", [](Scene& s) { s.sun.illuminance = 1e9f; }},
+    {"sun.illuminance_lux = 1e+11: must be in [0, 1e+10]",
+     [](Scene& s) { s.sun.illuminance_lux = 1e11f; }},
     {"atmosphere.planet_radius_km = 1e+30", [](Scene& s) { s.atmosphere.planet_radius_km = 1e30f; }},
     {"atmosphere.atmosphere_height_km = 1e+08",
      [](Scene& s) { s.atmosphere.atmosphere_height_km = 1e8f; }},
@@ -1000,7 +1031,7 @@ const BadValue kBadValues[] = {
     {"clouds.weather_evolution_s = 1e-30: must be in [1, 1e+07]",
      [](Scene& s) { s.clouds.weather_evolution_s = 1e-30f; }},
     {"cirrus.altitude_m = 1e+38: must be in [0, 1e+06]", [](Scene& s) { s.cirrus.altitude_m = 1e38f; }},
-    {"output.exposure = 1e+38", [](Scene& s) { s.output.exposure = 1e38f; }},
+    {"output.ev100 = 1e+38", [](Scene& s) { s.output.ev100 = 1e38f; }},
     {"time_s = 3e+38: must be in [-1e+06, 1e+06]", [](Scene& s) { s.time_s = 3e38f; }},
 };
 
@@ -1020,8 +1051,8 @@ TEST(SceneValidateExact, MessagesAreOneCompleteLine) {
             "clouds.coverage = 1.5: must be in [0, 1]");
   EXPECT_EQ(validate_error([](Scene& s) { s.camera.view_dir = glm::vec3(0.0f); }),
             "camera.view_dir = (0, 0, 0): must be a finite vector of length in [1e-06, 1e+06]");
-  EXPECT_EQ(validate_error([](Scene& s) { s.output.exposure = -2.0f; }),
-            "output.exposure = -2: must be in (0, 1e+06]");
+  EXPECT_EQ(validate_error([](Scene& s) { s.output.ev100 = -22.0f; }),
+            "output.ev100 = -22: must be in [-20, 30]");
 }
 
 TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
@@ -1049,7 +1080,9 @@ TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
       [](Scene& s) { s.output.width = 16384; },
       [](Scene& s) { s.output.height = 1; },
       [](Scene& s) { s.atmosphere.view_samples = 256; },
-      [](Scene& s) { s.sun.illuminance = 0.0f; },
+      [](Scene& s) { s.sun.illuminance_lux = 0.0f; },
+      [](Scene& s) { s.camera.focal_length_mm = 0.1f; },
+      [](Scene& s) { s.camera.horizontal_fov_deg = 179.9f; },
       [](Scene& s) { s.time_s = -5.0f; },
       // The far ends of the documented ranges.
       [](Scene& s) { s.camera.position_m = {-1e9f, 1e9f, 1e9f}; },
@@ -1058,13 +1091,15 @@ TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
       [](Scene& s) { s.camera.fov_deg = 0.01f; },
       [](Scene& s) { s.camera.roll_deg = -180.0f; },
       [](Scene& s) { s.camera.roll_deg = 180.0f; },
-      [](Scene& s) { s.sun.illuminance = 1e6f; },
+      [](Scene& s) { s.sun.illuminance_lux = 1e10f; },
       [](Scene& s) { s.atmosphere.mie_scattering_per_m = s.atmosphere.mie_extinction_per_m = 0.01f; },
       [](Scene& s) { s.clouds.ambient_strength = 100.0f; },
       [](Scene& s) { s.clouds.wind_mps = {-200.0f, 200.0f}; },
       [](Scene& s) { s.clouds.weather_evolution_s = 0.0f; },
       [](Scene& s) { s.time_s = 1e6f; },
-      [](Scene& s) { s.output.exposure = 1e6f; },
+      [](Scene& s) { s.output.ev100 = 30.0f; },
+      [](Scene& s) { s.output.ev100_min = s.output.ev100_max = -20.0f; },
+      [](Scene& s) { s.output.adaptation_ev_per_s = 1e6f; },
   };
   for (size_t i = 0; i < fine.size(); ++i) {
     Scene scene;

@@ -120,7 +120,7 @@ TEST(SceneParameters, GetGivesTomlLiterals) {
   EXPECT_EQ(get_scene_value(scene, "clouds.wind_mps"), "[8.0, 2.0]");
   EXPECT_EQ(get_scene_value(scene, "atmosphere.model"), "\"hillaire\"");
   EXPECT_EQ(get_scene_value(scene, "output.width"), "900");
-  EXPECT_EQ(get_scene_value(scene, "output.auto_exposure"), "false");
+  EXPECT_EQ(get_scene_value(scene, "output.auto_exposure"), "true");
   EXPECT_EQ(get_scene_value(scene, "time"), "\"\"");
 }
 
