@@ -135,6 +135,15 @@ void main() {
   float mu = dot(dir, sun);
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   vec2 segment = shell_segment(eye, dir, ground);
+  // Without noise clouds only the voxel clouds' boxes hold anything, and the march spans just
+  // them: a lab's grid, or voxel clouds in a clear sky, make a thin shell that a ray along it
+  // crosses for kilometres.
+  bool noise_clouds = frame.cloud_layers[0].shape.x > 0.0f || frame.cloud_layers[0].shape.w > 0.0f ||
+                      frame.cloud_layers[1].shape.x > 0.0f || frame.cloud_layers[1].shape.w > 0.0f;
+  if (frame.voxel_info.x > 0 && !noise_clouds) {
+    vec2 boxes = voxel_boxes_segment(eye, dir);
+    segment = vec2(max(segment.x, boxes.x), min(segment.y, boxes.y));
+  }
   float shadow = ground_shadow(eye, dir, sun, ground);
   // The sky dome counts cloud of any kind as an observer does: a visible cirrus sheet
   // (vertical optical depth 0.03 or more) covers its direction as thick cloud does.

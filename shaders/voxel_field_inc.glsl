@@ -98,6 +98,24 @@ float voxel_region_exit_m(vec3 p, vec3 dir) {
   return exit_m;
 }
 
+// Where the ray (p, dir) is inside any voxel cloud's box: (its first entry, its last exit)
+// in metres along the ray, from 0 on; empty (y <= x) when it meets no box.
+vec2 voxel_boxes_segment(vec3 p, vec3 dir) {
+  vec2 segment = vec2(1e30f, -1e30f);
+  for (int i = 0; i < frame.voxel_info.x; ++i) {
+    VoxelCloudGpu c = frame.voxel_clouds[i];
+    vec3 u = voxel_grid_coord(c, p);
+    vec3 du = vec3(dot(c.to_grid_x.xyz, dir), dot(c.to_grid_y.xyz, dir), dot(c.to_grid_z.xyz, dir));
+    vec3 inv = 1.0f / mix(vec3(1e-30f), du, greaterThan(abs(du), vec3(1e-30f)));
+    vec3 t0 = -u * inv, t1 = (c.dims.xyz - u) * inv;
+    vec3 near = min(t0, t1), far = max(t0, t1);
+    float enter = max(max(near.x, near.y), max(near.z, 0.0f));
+    float exit = min(far.x, min(far.y, far.z));
+    if (exit > enter) segment = vec2(min(segment.x, enter), max(segment.y, exit));
+  }
+  return segment;
+}
+
 // Steps of an SDF cone trace (sdf_cone_trace).
 const int SDF_SHADOW_STEPS = 16;
 

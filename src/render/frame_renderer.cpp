@@ -16,6 +16,7 @@
 #include "nephele/scene_io.h"
 #include "render/frame_params.h"
 #include "render/frame_renderer_impl.h"
+#include "render/lab_scene.h"
 #include "render/passes.h"
 
 namespace nephele {
@@ -372,9 +373,14 @@ Frame FrameRenderer::Impl::download_last(const Scene& scene) {
   return frame;
 }
 
-FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& scene,
+FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& requested,
                                               const FrameOptions& options) {
-  validate_scene(scene);
+  validate_scene(requested);
+  // A lab (a grid in vacuum) is drawn as the scene lab_fast_scene makes of it.
+  std::optional<Scene> lab;
+  if (!requested.lab.grid.empty())
+    lab = lab_fast_scene(requested, voxel_clouds.grid(lab_voxel_cloud(requested)));
+  const Scene& scene = lab ? *lab : requested;
   const bool still = options.still;
   const auto start = std::chrono::steady_clock::now();
   const int slot = int(frames_recorded % gpu::kFramesInFlight);
@@ -407,6 +413,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   params.cloud_shape.x = 2.0f * params.camera_pos_m.w / float(cloud_h);  // detail noise's LOD
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
   voxel_clouds.prepare(scene, params);
+  if (lab) params.voxel_light.z = 0.0f;  // the grid as the file has it: no surface erosion
   light_volume.prepare(scene, density_key(scene), WeatherModule::weather_time(scene), still, params);
   sky_view.prepare(still, params);
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);

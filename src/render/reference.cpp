@@ -10,6 +10,7 @@
 #include "nephele/scene_io.h"
 #include "render/frame_params.h"
 #include "render/frame_renderer_impl.h"
+#include "render/lab_scene.h"
 #include "render/passes.h"
 
 namespace nephele {
@@ -23,12 +24,7 @@ Scene lab_as_voxel_cloud(const Scene& scene) {
   s.clouds.coverage = 0.0f;
   s.high_clouds.coverage = 0.0f;
   s.cirrus.coverage = 0.0f;
-  VoxelCloudParams cloud;
-  cloud.file = scene.lab.grid;
-  cloud.density = 1.0f;
-  cloud.follow_wind = false;
-  cloud.resolution = voxel::kMaxGridDim;
-  s.voxel_clouds = {cloud};
+  s.voxel_clouds = {lab_voxel_cloud(scene)};
   return s;
 }
 

@@ -223,3 +223,39 @@ TEST_F(ReferenceTest, BadInputIsRefusedWithOneLine) {
 }
 
 }  // namespace
+
+namespace {
+
+// The fast mode draws the lab too: the same grid where the reference has it, on black (no air,
+// no ground light, no sky). Its brightness is the fast model's to answer for (README,
+// "Validation"): printed, not held to a tolerance here.
+TEST_F(ReferenceTest, TheFastModeDrawsTheLabsGridOnBlack) {
+  Scene s = lab_scene(constant_grid_file());
+  s.lab.max_bounces = 16;
+  s.camera.fov_deg = 70.0f;  // black space around the cube
+  nephele::ReferenceOptions options;
+  options.spp = 64;
+  const nephele::ReferenceImage reference = shared_renderer().render_reference(s, options);
+  const nephele::Frame fast = render(s);
+  ASSERT_EQ(fast.color.width, reference.mean.width);
+  int agree = 0, inside = 0;
+  double sum_fast = 0.0, sum_reference = 0.0;
+  for (size_t i = 0; i < fast.color.pixels.size(); ++i) {
+    const bool in_fast = nephele::luminance(fast.color.pixels[i]) > 0.0f;
+    const bool in_reference = nephele::luminance(reference.mean.pixels[i]) > 0.0f;
+    agree += in_fast == in_reference ? 1 : 0;
+    inside += in_reference ? 1 : 0;
+    sum_fast += nephele::luminance(fast.color.pixels[i]);
+    sum_reference += nephele::luminance(reference.mean.pixels[i]);
+  }
+  const int n = int(fast.color.pixels.size());
+  std::printf("fast / reference luminance %.3f; %d of %d pixels agree on the grid's outline\n",
+              sum_fast / sum_reference, agree, n);
+  EXPECT_GT(inside, n / 4);                // the cube fills much of the view
+  EXPECT_LT(inside, n);                    // and black space is around it
+  EXPECT_GE(agree, n - n / 20);            // the outlines agree but for a pixel's width
+  EXPECT_EQ(nephele::luminance(fast.color.at(0, 0)), 0.0f);  // vacuum: black
+  EXPECT_GT(nephele::luminance(fast.color.at(12, 12)), 0.0f);
+}
+
+}  // namespace
