@@ -110,6 +110,30 @@ ValidationSuite parse_validation_suite(const std::string& text, const std::strin
     v.max_mean_error = *tol;
     suite.views.push_back(v);
   }
+  if (const toml::table* sky = root.get_as<toml::table>("sky")) {
+    const std::string at = where + "sky.";
+    const toml::array* elevations = sky->get_as<toml::array>("sun_elevations_deg");
+    if (!elevations || elevations->empty())
+      throw InputError(at + "sun_elevations_deg: must be a non-empty array of numbers in [0, 90]");
+    for (const toml::node& e : *elevations) {
+      const auto value = e.value<double>();
+      if (!value || *value < 0.0 || *value > 90.0)
+        throw InputError(at + "sun_elevations_deg: must be a non-empty array of numbers in [0, 90]");
+      suite.sky.sun_elevations_deg.push_back(*value);
+    }
+    const auto fraction = [&](const char* key, double& out) {
+      const toml::node* node = sky->get(key);
+      if (!node) return;
+      const auto value = node->value<double>();
+      if (!value || !(*value > 0.0 && *value <= 1.0))
+        throw InputError(at + key + ": must be a number in (0, 1]");
+      out = *value;
+    };
+    fraction("max_pattern_mean", suite.sky.max_pattern_mean);
+    fraction("max_pattern_horizon", suite.sky.max_pattern_horizon);
+    fraction("max_colour_ratio", suite.sky.max_colour_ratio);
+    fraction("max_zenith_jump", suite.sky.max_zenith_jump);
+  }
   return suite;
 }
 
@@ -126,6 +150,9 @@ void add_validate_flags(CLI::App& cmd, ValidateOptions& options) {
                  "suite of views and tolerances (TOML, as data/validation.toml); default: the one "
                  "nephele ships");
   cmd.add_option("--views", options.views, "comma-separated names of the views to run (default: all)");
+  cmd.add_flag("--sky", options.sky,
+               "the clear sky against the path-traced atmosphere instead: its pattern and colour "
+               "at each sun elevation of the suite's [sky] table, and the zenith's continuity");
   cmd.add_option("--width", options.width, "image width (pixels; default: the suite's)");
   cmd.add_option("--height", options.height, "image height (pixels; default: the suite's)");
   cmd.add_option("--spp", options.spp, "the reference's samples per pixel, [3, 1000000]")
@@ -145,6 +172,155 @@ void add_validate_flags(CLI::App& cmd, ValidateOptions& options) {
   add_progress_flags(cmd, options.progress, options.quiet);
 }
 
+namespace {
+
+glm::dvec3 mean_rgb(const Image& image) {
+  glm::dvec3 sum(0.0);
+  for (const glm::vec4& p : image.pixels) sum += glm::dvec3(p);
+  return sum / double(image.pixels.size());
+}
+
+double rgb_luminance(glm::dvec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+// The largest relative luminance step between neighbouring pixels.
+double largest_step(const Image& image) {
+  double worst = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const double l = luminance(image.at(x, y));
+      if (x + 1 < image.width)
+        worst = std::max(worst, std::abs(luminance(image.at(x + 1, y)) - l) / std::max(l, 1e-30));
+      if (y + 1 < image.height)
+        worst = std::max(worst, std::abs(luminance(image.at(x, y + 1)) - l) / std::max(l, 1e-30));
+    }
+  return worst;
+}
+
+// `validate --sky`: the clear sky of the fast mode against the path-traced atmosphere.
+int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suite) {
+  const SkyTargets& targets = suite.sky;
+  if (targets.sun_elevations_deg.empty())
+    throw InputError("--sky: the suite has no [sky] table (see data/validation.toml)");
+  fs::create_directories(options.out_dir);
+  Renderer renderer({options.device, options.validation, options.verbose, {}});
+  struct View {
+    const char* name;
+    double relative_azimuth_deg;  // from the sun's azimuth
+    double elevation_deg;         // < 0: 20 deg above the sun (below it above 70 deg)
+    bool horizon;
+  };
+  const View views[] = {{"zenith", 0.0, 90.0, false},
+                        {"horizon-away", 180.0, 1.0, true},
+                        {"horizon-side", 90.0, 1.0, true},
+                        {"horizon-near", 30.0, 1.0, true},
+                        {"towards-sun", 0.0, -1.0, false}};
+  nlohmann::json results;
+  results["device"] = renderer.device_name();
+  std::ostringstream table;
+  table << "| sun elevation | pattern mean | worst at 1 deg | worst colour ratio | zenith jump | "
+           "zenith fast / reference | |\n|---:|---:|---:|---:|---:|---:|---|\n";
+  bool all_pass = true;
+  const bool show = progress_wanted(options.progress, options.quiet, options.verbose);
+  Progress progress("sky", int(targets.sun_elevations_deg.size() * std::size(views)), show);
+  for (double sun_deg : targets.sun_elevations_deg) {
+    Scene base = load_preset("clear");
+    base.time.clear();
+    base.sun.from_time = false;
+    base.sun.direction = sun_direction_from_angles(sun_deg, 180.0);
+    base.sun.disk_angular_radius_deg = 0.0f;  // the sky, not the disk (in view at 90 deg)
+    base.output.width = 16;
+    base.output.height = 16;
+    base.camera.position_m = glm::vec3(0.0f, 0.0f, 2.0f);
+    base.camera.fov_deg = 2.0f;
+    glm::dvec3 zenith_fast(0.0), zenith_reference(0.0);
+    double pattern_sum = 0.0, worst_horizon = 0.0, worst_colour = 0.0;
+    int patterns = 0;
+    nlohmann::json per_view;
+    for (const View& v : views) {
+      Scene s = base;
+      const double elevation = v.elevation_deg >= 0.0 ? v.elevation_deg
+                               : sun_deg <= 70.0     ? sun_deg + 20.0
+                                                     : sun_deg - 20.0;
+      s.camera.view_dir = sun_direction_from_angles(elevation, 180.0 + v.relative_azimuth_deg);
+      validate_scene(s);
+      const glm::dvec3 fast = mean_rgb(renderer.render(s).color);
+      ReferenceOptions ro;
+      ro.spp = options.spp;
+      ro.seed = s.noise_seed;
+      const ReferenceImage reference = renderer.render_reference(s, ro);
+      const glm::dvec3 ref = mean_rgb(reference.mean);
+      if (std::string(v.name) == "zenith") {
+        zenith_fast = fast;
+        zenith_reference = ref;
+      }
+      const double pattern = (rgb_luminance(fast) / rgb_luminance(zenith_fast)) /
+                                 (rgb_luminance(ref) / rgb_luminance(zenith_reference)) - 1.0;
+      const double blue = (fast.b / fast.r) / (ref.b / ref.r) - 1.0;
+      const double green = (fast.g / fast.r) / (ref.g / ref.r) - 1.0;
+      worst_colour = std::max({worst_colour, std::abs(blue), std::abs(green)});
+      if (std::string(v.name) != "zenith") {
+        pattern_sum += std::abs(pattern);
+        ++patterns;
+      }
+      if (v.horizon) worst_horizon = std::max(worst_horizon, std::abs(pattern));
+      per_view[v.name] = {{"elevation_deg", elevation},
+                          {"fast_rgb", {fast.r, fast.g, fast.b}},
+                          {"reference_rgb", {ref.r, ref.g, ref.b}},
+                          {"pattern_error", pattern},
+                          {"blue_red_error", blue},
+                          {"green_red_error", green},
+                          {"reference_spp", reference.spp}};
+      progress.advance();
+    }
+    // The zenith's neighbourhood in the fast mode: a seam would be a step between two pixels.
+    Scene z = base;
+    z.camera.view_dir = glm::vec3(0.0f, 0.0f, 1.0f);
+    z.camera.fov_deg = 10.0f;
+    z.output.width = 64;
+    z.output.height = 64;
+    const double jump = largest_step(renderer.render(z).color);
+    const double pattern_mean = pattern_sum / std::max(patterns, 1);
+    const double zenith_ratio = rgb_luminance(zenith_fast) / rgb_luminance(zenith_reference);
+    const bool pass = pattern_mean <= targets.max_pattern_mean &&
+                      worst_horizon <= targets.max_pattern_horizon &&
+                      worst_colour <= targets.max_colour_ratio && jump <= targets.max_zenith_jump;
+    all_pass = all_pass && pass;
+    char row[300];
+    std::snprintf(row, sizeof row, "| %.0f deg | %.1f%% | %.1f%% | %.1f%% | %.2f%% | %.3f | %s |\n",
+                  sun_deg, 100.0 * pattern_mean, 100.0 * worst_horizon, 100.0 * worst_colour,
+                  100.0 * jump, zenith_ratio, pass ? "pass" : "**miss**");
+    table << row;
+    progress.clear();
+    if (!options.quiet) std::fprintf(stderr, "%s", row);
+    char key[32];
+    std::snprintf(key, sizeof key, "%.1f", sun_deg);
+    results["sun_elevations"][key] = {{"views", per_view},
+                                      {"pattern_mean", pattern_mean},
+                                      {"worst_horizon_pattern", worst_horizon},
+                                      {"worst_colour_ratio", worst_colour},
+                                      {"zenith_jump", jump},
+                                      {"zenith_fast_over_reference", zenith_ratio},
+                                      {"pass", pass}};
+  }
+  progress.finish();
+  results["pass"] = all_pass;
+  results["targets"] = {{"max_pattern_mean", targets.max_pattern_mean},
+                        {"max_pattern_horizon", targets.max_pattern_horizon},
+                        {"max_colour_ratio", targets.max_colour_ratio},
+                        {"max_zenith_jump", targets.max_zenith_jump}};
+  write_file_atomically((fs::path(options.out_dir) / "sky.md").string(), table.str());
+  write_file_atomically((fs::path(options.out_dir) / "sky.json").string(), results.dump(2) + "\n");
+  if (!options.json.empty()) write_file_atomically(options.json, results.dump(2) + "\n");
+  std::cout << table.str();
+  if (options.validation && renderer.validation_messages() > 0) {
+    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
+    return 1;
+  }
+  return all_pass ? 0 : 1;
+}
+
+}  // namespace
+
 int run_validate(const ValidateOptions& options) {
   ValidationSuite suite;
   if (options.suite.empty()) {
@@ -156,12 +332,16 @@ int run_validate(const ValidateOptions& options) {
     text << in.rdbuf();
     suite = parse_validation_suite(text.str(), options.suite);
   }
+  if (options.spp < 3 || options.spp > 1000000)
+    throw InputError("--spp " + std::to_string(options.spp) + ": must be in [3, 1000000]");
+  if (options.sky) {
+    if (!options.views.empty()) throw InputError("--sky and --views cannot be combined");
+    return run_validate_sky(options, suite);
+  }
   if (options.width < 0 || options.width > 4096 || options.height < 0 || options.height > 4096)
     throw InputError("--width, --height: must be in [8, 4096] (0: the suite's)");
   if (options.width > 0) suite.width = std::max(options.width, 8);
   if (options.height > 0) suite.height = std::max(options.height, 8);
-  if (options.spp < 3 || options.spp > 1000000)
-    throw InputError("--spp " + std::to_string(options.spp) + ": must be in [3, 1000000]");
   if (!(options.time_limit_s >= 0.0 && std::isfinite(options.time_limit_s)))
     throw InputError("--time-limit: must be a finite number of seconds, at least 0 (0 = none)");
   // The views asked for, in the suite's order; each name must exist.

@@ -19,10 +19,20 @@ struct ValidationView {
   double max_mean_error = 0.05;  // of BlockLuminanceError::mean_error
 };
 
+// The clear sky's targets (`validate --sky`; the [sky] table of data/validation.toml).
+struct SkyTargets {
+  std::vector<double> sun_elevations_deg;
+  double max_pattern_mean = 0.02;
+  double max_pattern_horizon = 0.05;
+  double max_colour_ratio = 0.03;
+  double max_zenith_jump = 0.01;
+};
+
 struct ValidationSuite {
   int width = 160, height = 100;  // pixels of every view
   int block = 8;                  // pixels per side of the blocks compared
   std::vector<ValidationView> views;
+  SkyTargets sky;
 };
 
 // Parses a suite (the format of data/validation.toml); `source` names it in errors. Throws
@@ -34,6 +44,7 @@ ValidationSuite default_validation_suite();
 struct ValidateOptions {
   std::string suite;       // a suite file; "" the shipped one
   std::string views;       // comma-separated names to run; "" all
+  bool sky = false;        // the clear sky's targets instead of the views
   int width = 0, height = 0;  // 0: the suite's
   int spp = 1024;          // the reference's samples per pixel
   double time_limit_s = 0.0;  // per view's reference (0: none)

@@ -8,7 +8,8 @@
 // the disk integrates to the illuminance.
 float sun_disk(vec3 dir, vec3 sun, float cos_radius) {
   float cos_angle = dot(dir, sun);
-  if (cos_angle < cos_radius) return 0.0f;
+  // No disk at radius 0 (a direction within 0.02 deg of the sun rounds to cos 1).
+  if (cos_angle < cos_radius || cos_radius >= 1.0f) return 0.0f;
   float sin_radius_sq = 1.0f - cos_radius * cos_radius;
   float r = sqrt(saturate((1.0f - cos_angle * cos_angle) / max(sin_radius_sq, 1e-12f)));
   float m = sqrt(1.0f - r * r);

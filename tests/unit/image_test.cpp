@@ -15,6 +15,7 @@
 
 #include "nephele/error.h"
 #include "nephele/image_compare.h"
+#include "nephele/image_compare.h"
 
 namespace nephele {
 namespace {
@@ -395,3 +396,47 @@ TEST_F(ImageTolerance, BadFilesThrowInputError) {
 
 }  // namespace
 }  // namespace nephele
+
+namespace {
+
+nephele::Image filled(int w, int h, glm::vec4 value) {
+  nephele::Image image(w, h);
+  for (glm::vec4& p : image.pixels) p = value;
+  return image;
+}
+
+// The blocks' luminance errors: a uniform 10% excess is 10% in every measure; one block of
+// four off by 40% is 10% on average and 40% at worst; the reference's noise is its standard
+// error per block over its luminance; a black reference counts a lit block as wholly wrong.
+TEST(BlockLuminanceError, MeasuresTheBlocksMeansAgainstTheReference) {
+  const nephele::Image reference = filled(16, 16, glm::vec4(1.0f));
+  nephele::BlockLuminanceError e =
+      nephele::block_luminance_error(filled(16, 16, glm::vec4(1.1f)), reference, {}, 8);
+  EXPECT_NEAR(e.mean_error, 0.1, 1e-6);
+  EXPECT_NEAR(e.mean_bias, 0.1, 1e-6);
+  EXPECT_NEAR(e.p95_error, 0.1, 1e-6);
+  EXPECT_EQ(e.map.width, 2);
+  EXPECT_NEAR(e.map.at(1, 1).r, 0.1f, 1e-6f);
+  EXPECT_EQ(e.reference_noise, 0.0);
+
+  nephele::Image one_block = reference;
+  for (int y = 8; y < 16; ++y)
+    for (int x = 0; x < 8; ++x) one_block.at(x, y) = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+  e = nephele::block_luminance_error(one_block, reference, {}, 8);
+  EXPECT_NEAR(e.mean_error, 0.1, 1e-6);
+  EXPECT_NEAR(e.mean_bias, -0.1, 1e-6);
+  EXPECT_NEAR(e.max_error, 0.4, 1e-6);
+  EXPECT_NEAR(e.map.at(0, 1).r, 0.4f, 1e-6f);
+  EXPECT_NEAR(e.map.at(1, 0).r, 0.0f, 1e-6f);
+
+  // Variance 0.0064 per channel and pixel: a block of 64 has a standard error of 0.01.
+  e = nephele::block_luminance_error(reference, reference, filled(16, 16, glm::vec4(0.0064f)), 8);
+  EXPECT_NEAR(e.reference_noise, 0.01 * std::sqrt(0.2126 * 0.2126 + 0.7152 * 0.7152 + 0.0722 * 0.0722),
+              1e-6);
+  e = nephele::block_luminance_error(reference, filled(16, 16, glm::vec4(0.0f)), {}, 8);
+  EXPECT_EQ(e.mean_error, 1.0);
+  EXPECT_THROW(nephele::block_luminance_error(reference, filled(8, 8, glm::vec4(1.0f)), {}, 8),
+               nephele::InputError);
+}
+
+}  // namespace

@@ -1,0 +1,110 @@
+// `nephele validate` end to end on a small suite: the fast mode and the reference of each view,
+// the table, the JSON and the side-by-side images; a reference folder read back; the clear
+// sky's targets; bad input in one line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/process_run.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using nephele::test::run_cli;
+
+class ValidateCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(NEPHELE_TEST_OUTPUT_DIR) /
+           ("validate_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+// Two clear-sky views: the fast mode's sky is within a few per cent of the path-traced one
+// (README, "Validation"), so a tolerance of 50% passes and one of 0.1% does not.
+const char* kSuite = R"(width = 24
+height = 16
+block = 8
+[[view]]
+name = "up"
+max_mean_error = 0.5
+scene = """
+preset = "clear"
+[camera]
+view_dir = [0.0, 0.3, 1.0]
+"""
+[[view]]
+name = "strict"
+max_mean_error = 0.001
+scene = """
+preset = "clear"
+"""
+[sky]
+sun_elevations_deg = [30.0]
+)";
+
+TEST_F(ValidateCliTest, WritesTheTableTheJsonAndTheImagesAndReadsReferencesBack) {
+  std::ofstream(path("suite.toml")) << kSuite;
+  const std::string out = path("out"), refs = path("refs");
+  const std::string args = "validate --suite " + path("suite.toml") + " --spp 30 --validation -q --out " +
+                           out + " --references " + refs;
+  const auto r = run_cli(args);
+  EXPECT_EQ(r.status, 1) << r.output;  // "strict" misses
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/results.json"));
+  EXPECT_TRUE(j["views"]["up"]["pass"].get<bool>()) << j.dump(1);
+  EXPECT_FALSE(j["views"]["strict"]["pass"].get<bool>()) << j.dump(1);
+  EXPECT_LT(j["views"]["up"]["mean_error"].get<double>(), 0.5);
+  EXPECT_GT(j["views"]["up"]["mean_error"].get<double>(), 0.0);
+  EXPECT_EQ(j["views"]["up"]["reference_spp"].get<int>(), 30);
+  for (const char* f : {"up.png", "up_fast.exr", "strict.png", "results.md"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  EXPECT_TRUE(fs::exists(refs + "/up.exr"));
+  EXPECT_NE(r.output.find("| up |"), std::string::npos) << r.output;
+  // Again: the references are read back (no time spent tracing), the errors the same.
+  const auto again = run_cli("validate --suite " + path("suite.toml") + " --views up --spp 30 -q --out " +
+                             path("out2") + " --references " + refs);
+  EXPECT_EQ(again.status, 0) << again.output;
+  const nlohmann::json k = nlohmann::json::parse(std::ifstream(path("out2") + "/results.json"));
+  EXPECT_EQ(k["views"]["up"]["reference_s"].get<double>(), 0.0);
+  EXPECT_NEAR(k["views"]["up"]["mean_error"].get<double>(), j["views"]["up"]["mean_error"].get<double>(), 1e-6);
+}
+
+TEST_F(ValidateCliTest, TheSkyModeMeasuresThePatternAgainstTheReference) {
+  std::ofstream(path("suite.toml")) << kSuite;
+  const auto r = run_cli("validate --sky --suite " + path("suite.toml") + " --spp 30 -q --out " +
+                         path("out"));
+  ASSERT_TRUE(r.status == 0 || r.status == 1) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/sky.json"));
+  const nlohmann::json& e = j["sun_elevations"]["30.0"];
+  for (const char* v : {"zenith", "horizon-away", "horizon-side", "horizon-near", "towards-sun"})
+    EXPECT_TRUE(e["views"].contains(v)) << v;
+  EXPECT_LT(e["pattern_mean"].get<double>(), 0.2);  // measured: 4.4% at 900 spp
+  EXPECT_LT(e["zenith_jump"].get<double>(), 0.01);
+  EXPECT_NEAR(e["zenith_fast_over_reference"].get<double>(), 1.0, 0.1);
+}
+
+TEST_F(ValidateCliTest, BadInputGetsOneLine) {
+  std::ofstream(path("suite.toml")) << kSuite;
+  for (const auto& [args, expected] :
+       {std::pair<std::string, std::string>{"--views nope", "--views \"nope\": no such view"},
+        {"--spp 1", "--spp 1"},
+        {"--sky --views up", "--sky and --views"}}) {
+    const auto r = run_cli("validate --suite " + path("suite.toml") + " -q --out " + path("o") + " " + args);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
+  const auto missing = run_cli("validate --suite " + path("none.toml"));
+  EXPECT_EQ(missing.status, 2) << missing.output;
+  EXPECT_NE(missing.output.find("none.toml"), std::string::npos) << missing.output;
+}
+
+}  // namespace
