@@ -89,16 +89,20 @@ int pt_channel = 0;
 // The clouds' extinction at the last point pt_sigma_t evaluated (1/m): where delta tracking
 // stops, the collision's, which the path then scatters by.
 float pt_cloud_sigma_t = 0.0f;
+// Tentative collisions where sigma_t exceeded its majorant in this sample (PT_NOTE_MAJORANT):
+// never, if the majorants are right; counted in path_squares' alpha.
+float pt_violations = 0.0f;
+void pt_note_majorant(float sigma, float majorant) {
+  if (sigma > majorant * 1.0001f + 1e-9f) pt_violations += 1.0f;
+}
+#define PT_NOTE_MAJORANT(sigma, majorant) pt_note_majorant(sigma, majorant)
 
-// The shells (radii, m) where clouds can be, each padded by PLANET_SHELL_PAD_M: the majorant
-// grid's cells are the spherical shells between their radii. x, y the main layer's, z, w the
-// high layer's (a layer that is off lies beyond the atmosphere); path_voxels.yz the voxel
-// clouds' boxes'.
-const float PLANET_SHELL_PAD_M = 100.0f;
-
+// The shells (radii, m) where clouds can be, each padded by PATH_SHELL_PAD_M: x, y the main
+// layer's, z, w the high layer's (a layer that is off lies beyond the atmosphere); the voxel
+// clouds' boxes lie between path_voxels.y and .z.
 vec4 planet_layer_radii() {
   return vec4(frame.cloud_layers[0].radii_m.xy, frame.cloud_layers[1].radii_m.xy) +
-         vec4(-PLANET_SHELL_PAD_M, PLANET_SHELL_PAD_M, -PLANET_SHELL_PAD_M, PLANET_SHELL_PAD_M);
+         vec4(-PATH_SHELL_PAD_M, PATH_SHELL_PAD_M, -PATH_SHELL_PAD_M, PATH_SHELL_PAD_M);
 }
 
 // A bound on a layer's density field (shape: CloudLayerGpu::shape): twice its density (the
@@ -108,13 +112,35 @@ float planet_layer_bound(vec4 shape) {
   return shape.x > 0.0f || shape.w > 0.0f ? 2.0f * shape.y : 0.0f;
 }
 
-// The bound on the clouds' extinction (1/m) at radius r (0 where no cloud can be).
-float planet_cloud_bound(float r) {
+// The majorant grid's cell at xy (planet frame), or (-1, -1) outside it or without it.
+ivec2 planet_grid_cell(vec2 xy) {
+  vec2 g = floor((xy - frame.path_grid.xy) / frame.path_grid.z);
+  bool inside = frame.path_grid.w > 0.0f && all(greaterThanEqual(g, vec2(0.0f))) &&
+                all(lessThan(g, vec2(float(PATH_GRID_XY))));
+  return inside ? ivec2(g) : ivec2(-1);
+}
+
+// The bin of radius r in a layer's padded shell `shell` (its lowest and highest radius).
+int planet_grid_bin(float r, vec2 shell) {
+  return clamp(int(floor((r - shell.x) / (shell.y - shell.x) * float(PATH_GRID_BINS))), 0,
+               PATH_GRID_BINS - 1);
+}
+
+// The bound on the clouds' extinction (1/m) at q (0 where no cloud can be): per noise layer
+// whose padded shell holds q, its majorant grid's cell where the grid reaches, else twice the
+// layer's density; plus the voxel clouds' where their shell holds q.
+float planet_cloud_bound(vec3 q) {
+  float r = length(q);
   vec4 layers = planet_layer_radii();
+  ivec2 cell = planet_grid_cell(q.xy);
   float bound = 0.0f;
-  if (r > layers.x && r < layers.y) bound += planet_layer_bound(frame.cloud_layers[0].shape);
-  if (r > layers.z && r < layers.w) bound += planet_layer_bound(frame.cloud_layers[1].shape);
-  bound *= frame.cloud_shape.z;
+  for (int l = 0; l < CLOUD_LAYERS; ++l) {
+    vec2 shell = l == 0 ? layers.xy : layers.zw;
+    if (r <= shell.x || r >= shell.y) continue;
+    bound += cell.x >= 0
+                 ? texelFetch(path_majorant, ivec3(cell, l * PATH_GRID_BINS + planet_grid_bin(r, shell)), 0).r
+                 : planet_layer_bound(frame.cloud_layers[l].shape) * frame.cloud_shape.z;
+  }
   if (r > frame.path_voxels.y && r < frame.path_voxels.z) bound += frame.path_voxels.x;
   return bound;
 }
@@ -126,7 +152,7 @@ float planet_sigma_t(vec3 p) {
   // A branch, not a loop of one trip (which a CPU device would skip when no lane is in a
   // shell): lavapipe ends every loop of an invocation once all its loops together have run
   // 65535 iterations, and tracking through clouds runs thousands.
-  if (planet_cloud_bound(r) > 0.0f) cloud = cloud_density(p, true) * frame.cloud_shape.z;
+  if (planet_cloud_bound(p) > 0.0f) cloud = cloud_density(p, true) * frame.cloud_shape.z;
   pt_cloud_sigma_t = cloud;
   return air[pt_channel] + cloud;
 }
@@ -145,26 +171,50 @@ float planet_air_majorant() {
   return frame.rayleigh[pt_channel] + frame.mie.y + frame.ozone[pt_channel];
 }
 
-// The majorant grid along the ray: spherical shells. From o + d t to the next crossing of a
-// shell's radius, the air's majorant plus, in a cloud layer's shell, the bound on its density
-// field (the noise field is at most twice the layer's density: cloud_field_inc.glsl) and, in
-// the voxel clouds' shell, theirs (path_voxels.x).
+// The next crossing of the sphere of radius `radius` by the ray from p along d, beyond `near`
+// (1e30: none).
+float planet_next_sphere(vec3 p, vec3 d, float radius, float near) {
+  vec2 hit = ray_sphere(p, d, radius);
+  return hit.x > near ? hit.x : (hit.y > near ? hit.y : 1e30f);
+}
+
+// The majorant grid along the ray: spherical shells (each cloud layer's padded shell cut into
+// PATH_GRID_BINS, the voxel clouds'), and the grid's cells horizontally. From o + d t to the
+// next crossing of a shell's sphere or a cell's wall, the air's majorant plus the clouds'
+// bound (planet_cloud_bound) there, the larger of the segment's start and middle: a sphere
+// closer than a metre is not ended at (the planet frame's floats are half a metre apart out
+// there), so a segment may begin just before one.
 vec2 planet_majorant_segment(vec3 o, vec3 d, float t) {
   vec3 p = o + d * t;
   vec4 layers = planet_layer_radii();
-  float radii[6] = float[6](layers.x, layers.y, layers.z, layers.w, frame.path_voxels.y,
-                            frame.path_voxels.z);
-  float end = 1e30f;
-  for (int i = 0; i < 6; ++i) {
-    vec2 hit = ray_sphere(p, d, radii[i]);
-    // Crossings closer than a metre are the one the segment starts on (the frame's floats
-    // are half a metre apart out here); the shells' padding keeps a majorant over them.
-    float next = hit.x > 1.0f ? hit.x : (hit.y > 1.0f ? hit.y : 1e30f);
-    end = min(end, next);
+  float end = min(planet_next_sphere(p, d, frame.path_voxels.y, 1.0f),
+                  planet_next_sphere(p, d, frame.path_voxels.z, 1.0f));
+  float r = length(p);
+  for (int l = 0; l < CLOUD_LAYERS; ++l) {
+    vec2 shell = l == 0 ? layers.xy : layers.zw;
+    // Inside the shell, the spheres of the bin the ray is in; outside, the shell's own.
+    float bin_m = (shell.y - shell.x) / float(PATH_GRID_BINS);
+    bool in_shell = r > shell.x && r < shell.y && frame.path_grid.w > 0.0f;
+    float lo = in_shell ? shell.x + bin_m * float(planet_grid_bin(r, shell)) : shell.x;
+    float hi = in_shell ? lo + bin_m : shell.y;
+    end = min(end, min(planet_next_sphere(p, d, lo, 1.0f), planet_next_sphere(p, d, hi, 1.0f)));
   }
-  end = t + max(end, 1.0f);
-  float r = length(o + d * (0.5f * (t + min(end, t + 1e7f))));
-  return vec2(planet_air_majorant() + planet_cloud_bound(r), end);
+  if (frame.path_grid.w > 0.0f) {
+    // The next wall of the grid's lattice ahead on each axis, within the grid: strictly ahead
+    // of p (by 1e-4 of a cell, which floats resolve here), so that a segment never ends where
+    // it starts however steep the ray.
+    vec2 g = (p.xy - frame.path_grid.xy) / frame.path_grid.z;
+    for (int a = 0; a < 2; ++a) {
+      if (abs(d[a]) < 1e-12f) continue;
+      float wall = d[a] > 0.0f ? max(floor(g[a] + 1e-4f) + 1.0f, 0.0f)
+                               : min(ceil(g[a] - 1e-4f) - 1.0f, float(PATH_GRID_XY));
+      if (wall < 0.0f || wall > float(PATH_GRID_XY)) continue;
+      end = min(end, (frame.path_grid[a] + wall * frame.path_grid.z - p[a]) / d[a]);
+    }
+  }
+  end = t + clamp(end, 1e-3f, 1e7f);
+  float bound = max(planet_cloud_bound(p + d * 1e-3f), planet_cloud_bound(o + d * (0.5f * (t + end))));
+  return vec2(planet_air_majorant() + bound, end);
 }
 
 float pt_sigma_t(vec3 p) { return PLANET == 1 ? planet_sigma_t(p) : lab_sigma_t(p); }
@@ -304,7 +354,8 @@ void main() {
                                     pt_hash(stream ^ 0x68bc21ebu)));
     }
     sum += vec4(value, 1.0f);
-    squares += vec4(value * value, 0.0f);
+    squares += vec4(value * value, pt_violations);
+    pt_violations = 0.0f;
     // Stored after every sample: on lavapipe, a path whose loops (with those of the other
     // lanes of its batch) pass 65535 iterations is cut off with everything after it in this
     // invocation; the samples stored before it count, and the host counts what was lost

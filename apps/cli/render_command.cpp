@@ -96,8 +96,9 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
                  "the lab's max_bounces, or all that matter on the planet")
       ->capture_default_str();
   cmd.add_option("--majorant-grid", options.majorant_grid,
-                 "--reference, the lab: auto (the bricks where under a quarter of them are stored), "
-                 "bricks (empty bricks crossed in one step) or none (one majorant for the box)")
+                 "--reference: auto (the lab: its bricks where under a quarter of them are "
+                 "stored; the planet: the noise clouds' grid), bricks (the lab's bricks always) or "
+                 "none (one majorant for the lab's box, for each cloud layer's shell)")
       ->capture_default_str();
   add_device_flags(cmd, options.device, options.verbose, options.validation);
   add_progress_flags(cmd, options.progress, options.quiet);
@@ -394,6 +395,9 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
     std::fprintf(stderr, "nephele: reference %dx%d, %d samples per pixel in %.1f s on %s\n",
                  image.mean.width, image.mean.height, image.spp, image.seconds,
                  renderer.device_name().c_str());
+  if (image.majorant_violations > 0)
+    std::fprintf(stderr, "nephele: warning: %lld tentative collisions found the extinction above "
+                 "its majorant: the image is biased\n", image.majorant_violations);
   if (image.lost_fraction > 0.0)
     std::fprintf(stderr,
                  "nephele: warning: the device dropped %.3g%% of the paths (lavapipe's limit of "

@@ -111,7 +111,9 @@ struct ReferenceOptions {
   double time_limit_s = 0.0;  // stop once this much time has passed (0: none), at a pass's end
   uint32_t seed = 1;          // the same seed, scene and spp give the same image
   ProgressCallback progress;  // "reference", samples per pixel done, of spp
-  MajorantGrid majorant_grid = MajorantGrid::kAuto;  // the lab's
+  // The lab's brick grid (kAuto: where under a quarter of the bricks are stored); on the
+  // planet, the noise clouds' grid (path_majorant.h) unless kNone.
+  MajorantGrid majorant_grid = MajorantGrid::kAuto;
   // Scatterings after the first, [0, kMaxReferenceBounces] (0: single scattering); -1: the
   // lab's lab.max_bounces, or all that matter on the planet (Russian roulette ends paths).
   int max_bounces = -1;
@@ -129,6 +131,9 @@ struct ReferenceImage {
   // long paths through thick clouds can reach; their samples are lost, so where this is not 0
   // the image is biased (dark where the paths are long): trace it on a GPU.
   double lost_fraction = 0.0;
+  // Tentative collisions where the medium's extinction exceeded its majorant: 0 when the
+  // majorants are right (a test of them; any would bias the image).
+  long long majorant_violations = 0;
   double seconds = 0.0;
 };
 

@@ -84,5 +84,7 @@ layout(set = 0, binding = 43) uniform sampler3D voxel_pages;
 // samples' radiance (rgb; a the count) and the sum of their squares (rgb).
 layout(set = 0, binding = 44, rgba32f) uniform image2D path_sum;
 layout(set = 0, binding = 45, rgba32f) uniform image2D path_squares;
+// The noise clouds' majorant grid (r: sigma_t bound, 1/m; read with texelFetch).
+layout(set = 0, binding = 46) uniform sampler3D path_majorant;
 
 #endif

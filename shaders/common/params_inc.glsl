@@ -182,8 +182,19 @@ struct FrameParams {
   // their density fields add (1/m), y, z the radii (m, planet frame) between which their boxes
   // lie (y > z: none)
   vec4 path_voxels;
+  // The noise clouds' majorant grid (path_majorant, render/path_majorant.h): xy its corner
+  // (planet frame, m), z its cells' edge (m), w 1 when in use
+  vec4 path_grid;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
+
+// The reference path tracer's majorant grid for the noise clouds (path_majorant): cells of
+// FrameParams::path_grid.z metres, PATH_GRID_XY per horizontal axis around the camera; in
+// height, each layer's shell (padded PATH_SHELL_PAD_M above and below) in PATH_GRID_BINS
+// shells, layer l's bins at depth l * PATH_GRID_BINS.
+const int PATH_GRID_XY = 256;
+const int PATH_GRID_BINS = 8;
+const float PATH_SHELL_PAD_M = 100.0f;
 
 // FrameParams::voxel_info.y, z (nephele::VoxelMarch, VoxelShadow).
 const int VOXEL_MARCH_PLAIN = 0;

@@ -15,6 +15,13 @@
 // No include guard: a CPU test includes it once per medium, each in its own namespace.
 // Keeps to the GLSL subset that GLM accepts (see math_inc.glsl): no out parameters.
 
+// The includer may define PT_NOTE_MAJORANT(sigma, majorant), called at every tentative
+// collision, to count the points where sigma_t exceeds its majorant (which would bias the
+// estimates); by default it does nothing.
+#ifndef PT_NOTE_MAJORANT
+#define PT_NOTE_MAJORANT(sigma, majorant)
+#endif
+
 // Pseudo-random numbers without state: a hash of (stream, index). PCG's output permutation as
 // a hash (Jarzynski and Olano 2020, "Hash Functions for GPU Rendering").
 uint pt_hash(uint v) {
@@ -83,8 +90,10 @@ float pt_delta_tracking(vec3 p, vec3 d, float t_max, uint stream) {
     float majorant = walk.z;
     walk = pt_walk(p, d, walk.x, vec2(walk.z, walk.w), pt_uniform(stream, uint(2 * i)));
     if (walk.x >= t_max) break;
-    if (walk.y > 0.0f && pt_uniform(stream, uint(2 * i + 1)) * majorant < pt_sigma_t(p + d * walk.x))
-      return walk.x;
+    if (walk.y == 0.0f) continue;
+    float sigma = pt_sigma_t(p + d * walk.x);
+    PT_NOTE_MAJORANT(sigma, majorant);
+    if (pt_uniform(stream, uint(2 * i + 1)) * majorant < sigma) return walk.x;
   }
   return t_max + 1.0f;
 }
@@ -101,7 +110,9 @@ float pt_ratio_tracking(vec3 p, vec3 d, float t_max, uint stream) {
     walk = pt_walk(p, d, walk.x, vec2(walk.z, walk.w), pt_uniform(stream, uint(2 * i)));
     if (walk.x >= t_max) break;
     if (walk.y == 0.0f) continue;
-    transmittance *= 1.0f - pt_sigma_t(p + d * walk.x) / majorant;
+    float sigma = pt_sigma_t(p + d * walk.x);
+    PT_NOTE_MAJORANT(sigma, majorant);
+    transmittance *= 1.0f - sigma / majorant;
     if (transmittance < 0.1f) {
       if (pt_uniform(stream, uint(2 * i + 1)) < 0.5f) return 0.0f;
       transmittance *= 2.0f;

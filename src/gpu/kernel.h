@@ -60,6 +60,7 @@ enum Binding : uint32_t {
   kVoxelPages = 43,
   kPathSum = 44,
   kPathSquares = 45,
+  kPathMajorant = 46,
   kBindingCount
 };
 

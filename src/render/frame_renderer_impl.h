@@ -17,6 +17,7 @@
 #include "render/modules/voxel_clouds.h"
 #include "render/modules/weather.h"
 #include "render/passes.h"
+#include "render/path_majorant.h"
 
 namespace nephele {
 
@@ -74,7 +75,10 @@ struct FrameRenderer::Impl {
   CloudProfile cloud_profile(const Scene& scene);
   ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options);
   gpu::FrameParams lab_reference_params(const Scene& scene, const ReferenceOptions& options);
-  gpu::FrameParams planet_reference_params(const Scene& scene);
+  gpu::FrameParams planet_reference_params(const Scene& scene, const ReferenceOptions& options);
+  // The base noise's block bounds (path_majorant.h) for the seed they were made for.
+  NoiseBlockBounds noise_bounds;
+  uint32_t noise_bounds_seed = ~0u;
   gpu::FrameParams last_params{};  // of the last frame recorded
 
   void update_noise(const Scene& scene, const gpu::FrameParams& params);

@@ -11,6 +11,7 @@
 #include "render/frame_params.h"
 #include "render/frame_renderer_impl.h"
 #include "render/lab_scene.h"
+#include "render/path_majorant.h"
 #include "render/passes.h"
 
 namespace nephele {
@@ -70,7 +71,8 @@ gpu::FrameParams FrameRenderer::Impl::lab_reference_params(const Scene& scene,
 // The planet's parameters: the fast mode's frame (its atmosphere, lights, camera, noise and
 // voxel clouds, weather map), and the voxel clouds' shell and density bound for the majorant
 // grid (path_trace.comp).
-gpu::FrameParams FrameRenderer::Impl::planet_reference_params(const Scene& scene) {
+gpu::FrameParams FrameRenderer::Impl::planet_reference_params(const Scene& scene,
+                                                              const ReferenceOptions& options) {
   if (scene.cirrus.coverage > 0.0f)
     throw InputError("cirrus.coverage " + std::to_string(scene.cirrus.coverage) +
                      ": the reference path tracer has no cirrus sheet; must be 0 for --reference");
@@ -96,6 +98,27 @@ gpu::FrameParams FrameRenderer::Impl::planet_reference_params(const Scene& scene
   // Padded: an upright box's corners lie a little higher than its top's centre.
   if (params.voxel_info.x > 0) voxels += glm::vec4(0.0f, -100.0f, 100.0f, 0.0f);
   params.path_voxels = voxels;
+  // The noise clouds' majorant grid, from the base noise's bounds (the default march's field;
+  // a flow map displaces the noise by more than the grid allows for, so then none).
+  params.path_grid = glm::vec4(0.0f);
+  const auto has_noise = [](const gpu::CloudLayerGpu& l) { return l.shape.x > 0.0f || l.shape.w > 0.0f; };
+  if (options.majorant_grid != MajorantGrid::kNone && scene.quality.mode == MarchMode::Default &&
+      params.cloud_flow.x == 0.0f &&
+      (has_noise(params.cloud_layers[0]) || has_noise(params.cloud_layers[1]))) {
+    if (noise_bounds_seed != scene.noise_seed) {
+      const gpu::Texture& base = noise.base();
+      const size_t bytes = size_t(base.width()) * base.height() * base.depth() * 4;
+      gpu::Buffer staging(ctx, VkDeviceSize(bytes), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+      ctx.submit_and_wait([&](VkCommandBuffer cmd) { base.record_download(cmd, staging); });
+      const auto* data = static_cast<const uint8_t*>(staging.data());
+      noise_bounds = noise_block_bounds(std::vector<uint8_t>(data, data + bytes), int(base.width()));
+      noise_bounds_seed = scene.noise_seed;
+    }
+    constexpr float kCellM = 500.0f;
+    const glm::vec2 corner = glm::vec2(params.camera_pos_m) - 0.5f * kCellM * float(gpu::PATH_GRID_XY);
+    path_tracer.upload_majorant(noise_majorant_grid(params, noise_bounds, corner, kCellM));
+    params.path_grid = glm::vec4(corner, kCellM, 1.0f);
+  }
   return params;
 }
 
@@ -114,7 +137,7 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   const auto start = std::chrono::steady_clock::now();
   const bool planet = scene.lab.grid.empty();
   gpu::FrameParams params =
-      planet ? planet_reference_params(scene) : lab_reference_params(scene, options);
+      planet ? planet_reference_params(scene, options) : lab_reference_params(scene, options);
   const int max_bounces = options.max_bounces >= 0 ? options.max_bounces
                           : planet               ? kMaxReferenceBounces
                                                  : scene.lab.max_bounces;
@@ -158,10 +181,11 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   ReferenceImage out;
   out.mean = Image(width, height);
   out.variance = Image(width, height);
-  double completed = 0.0;
+  double completed = 0.0, violations = 0.0;
   for (size_t i = 0; i < sum.pixels.size(); ++i) {
     const double n = sum.pixels[i].a;
     completed += n;
+    violations += squares.pixels[i].a;
     for (int c = 0; c < 3; ++c) {
       const double mean = n > 0.0 ? sum.pixels[i][c] / n : 0.0;
       // The sample variance (sum of squared deviations over n - 1) over n: the variance of
@@ -175,6 +199,7 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   }
   out.spp = taken;
   out.lost_fraction = 1.0 - completed / (double(taken) * double(sum.pixels.size()));
+  out.majorant_violations = (long long)(violations);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -1,9 +1,31 @@
 #include "render/modules/path_tracer.h"
 
+#include <cstring>
+
+#include "render/gpu_params.h"
+
 namespace nephele {
 
 PathTracerModule::PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set) {}
+    : ctx_(ctx),
+      set_(set),
+      // Depth 2: a texture of depth 1 is a 2D image, and the shader reads a 3D one.
+      majorant_(ctx, 1, 1, 2, VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+  set_.bind_sampled_image(gpu::kPathMajorant, majorant_);
+}
+
+void PathTracerModule::upload_majorant(const std::vector<float>& grid) {
+  const uint32_t n = gpu::PATH_GRID_XY, depth = gpu::CLOUD_LAYERS * gpu::PATH_GRID_BINS;
+  if (majorant_.width() != n) {
+    ctx_.wait_queue_idle();
+    majorant_ = gpu::Texture(ctx_, n, n, depth, VK_FORMAT_R32_SFLOAT,
+                             VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    set_.bind_sampled_image(gpu::kPathMajorant, majorant_);
+  }
+  gpu::Buffer staging(ctx_, VkDeviceSize(grid.size() * sizeof(float)), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  std::memcpy(staging.data(), grid.data(), grid.size() * sizeof(float));
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) { majorant_.record_upload(cmd, staging); });
+}
 
 void PathTracerModule::resize(int width, int height) {
   if (int(sum_.width()) == width && int(sum_.height()) == height) return;

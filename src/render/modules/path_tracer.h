@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "gpu/kernel.h"
 #include "nephele/scene.h"
@@ -21,6 +22,9 @@ class PathTracerModule {
   // the planet's scene with the noise clouds' field of `mode`.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode) const;
 
+  // Uploads the noise clouds' majorant grid (path_majorant.h's layout) and binds it.
+  void upload_majorant(const std::vector<float>& grid);
+
   const gpu::Texture& sum() const { return sum_; }
   const gpu::Texture& squares() const { return squares_; }
 
@@ -31,6 +35,7 @@ class PathTracerModule {
   // the planet with the default and with the baseline field.
   mutable std::unique_ptr<gpu::Kernel> kernels_[3];
   gpu::Texture sum_, squares_;
+  gpu::Texture majorant_;  // 1 x 1 x 2 texels until a grid is uploaded
 };
 
 }  // namespace nephele
