@@ -192,12 +192,16 @@ vec2 planet_majorant_segment(vec3 o, vec3 d, float t) {
   float r = length(p);
   for (int l = 0; l < CLOUD_LAYERS; ++l) {
     vec2 shell = l == 0 ? layers.xy : layers.zw;
-    // Inside the shell, the spheres of the bin the ray is in; outside, the shell's own.
-    float bin_m = (shell.y - shell.x) / float(PATH_GRID_BINS);
+    // Inside the shell, the spheres of the bin the ray is in; outside, the shell's own. And
+    // a bin further on each side: a sphere within a metre is passed over, and the segment
+    // must then end at the next one, not run on across bins its two points do not see.
+    float bin_m = frame.path_grid.w > 0.0f ? (shell.y - shell.x) / float(PATH_GRID_BINS) : 0.0f;
     bool in_shell = r > shell.x && r < shell.y && frame.path_grid.w > 0.0f;
     float lo = in_shell ? shell.x + bin_m * float(planet_grid_bin(r, shell)) : shell.x;
     float hi = in_shell ? lo + bin_m : shell.y;
     end = min(end, min(planet_next_sphere(p, d, lo, 1.0f), planet_next_sphere(p, d, hi, 1.0f)));
+    end = min(end, min(planet_next_sphere(p, d, lo - bin_m, 1.0f), planet_next_sphere(p, d, lo + bin_m, 1.0f)));
+    end = min(end, min(planet_next_sphere(p, d, hi - bin_m, 1.0f), planet_next_sphere(p, d, hi + bin_m, 1.0f)));
   }
   if (frame.path_grid.w > 0.0f) {
     // The next wall of the grid's lattice ahead on each axis, within the grid: strictly ahead

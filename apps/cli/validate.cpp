@@ -196,6 +196,22 @@ double largest_step(const Image& image) {
   return worst;
 }
 
+// Writes NAME.md (the table) and NAME.json (and --json), prints the table; the exit status: 0
+// when every case passed, 1 when one did not or the validation layer spoke.
+int finish(const ValidateOptions& options, const Renderer& renderer, const std::string& name,
+           const std::string& table, nlohmann::json& results, bool pass) {
+  results["pass"] = pass;
+  write_file_atomically((fs::path(options.out_dir) / (name + ".md")).string(), table);
+  write_file_atomically((fs::path(options.out_dir) / (name + ".json")).string(), results.dump(2) + "\n");
+  if (!options.json.empty()) write_file_atomically(options.json, results.dump(2) + "\n");
+  std::cout << table;
+  if (options.validation && renderer.validation_messages() > 0) {
+    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
+    return 1;
+  }
+  return pass ? 0 : 1;
+}
+
 // `validate --sky`: the clear sky of the fast mode against the path-traced atmosphere.
 int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suite) {
   const SkyTargets& targets = suite.sky;
@@ -303,20 +319,11 @@ int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suit
                                       {"pass", pass}};
   }
   progress.finish();
-  results["pass"] = all_pass;
   results["targets"] = {{"max_pattern_mean", targets.max_pattern_mean},
                         {"max_pattern_horizon", targets.max_pattern_horizon},
                         {"max_colour_ratio", targets.max_colour_ratio},
                         {"max_zenith_jump", targets.max_zenith_jump}};
-  write_file_atomically((fs::path(options.out_dir) / "sky.md").string(), table.str());
-  write_file_atomically((fs::path(options.out_dir) / "sky.json").string(), results.dump(2) + "\n");
-  if (!options.json.empty()) write_file_atomically(options.json, results.dump(2) + "\n");
-  std::cout << table.str();
-  if (options.validation && renderer.validation_messages() > 0) {
-    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
-    return 1;
-  }
-  return all_pass ? 0 : 1;
+  return finish(options, renderer, "sky", table.str(), results, all_pass);
 }
 
 }  // namespace
@@ -472,16 +479,7 @@ int run_validate(const ValidateOptions& options) {
                                    {"fast_ms", fast.stats.wall_ms},
                                    {"pass", pass}};
   }
-  results["pass"] = all_pass;
-  write_file_atomically((fs::path(options.out_dir) / "results.md").string(), table.str());
-  write_file_atomically((fs::path(options.out_dir) / "results.json").string(), results.dump(2) + "\n");
-  if (!options.json.empty()) write_file_atomically(options.json, results.dump(2) + "\n");
-  std::cout << table.str();
-  if (options.validation && renderer.validation_messages() > 0) {
-    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
-    return 1;
-  }
-  return all_pass ? 0 : 1;
+  return finish(options, renderer, "results", table.str(), results, all_pass);
 }
 
 }  // namespace nephele::cli

@@ -12,6 +12,7 @@
 #include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
+#include "render/modules/path_tracer.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/voxel_clouds.h"
 #include "render/modules/weather.h"
@@ -79,7 +80,8 @@ struct Modules {
         light_volume(ctx, s.set),
         voxel_clouds(ctx, s.set),
         sky_view(ctx, s.set),
-        clouds(ctx, s.set) {}
+        clouds(ctx, s.set),
+        path_tracer(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
@@ -87,6 +89,7 @@ struct Modules {
   nephele::VoxelCloudsModule voxel_clouds;
   nephele::SkyViewModule sky_view;
   nephele::CloudsModule clouds;
+  nephele::PathTracerModule path_tracer;
 };
 
 // Runs `passes` with the default scene's parameters.
