@@ -2,7 +2,8 @@
 // Pass 2d: the aerial-perspective volume (Hillaire 2020, section 5.4; layout in
 // common/sky_view_inc.glsl), rebuilt with the sky-view LUT. One invocation per direction
 // marches its slices front to back: in-scattered radiance of the key and the second light
-// (single scattering through the transmittance LUT plus Psi_ms) and the green transmittance
+// (single scattering through the transmittance LUT plus multiple scattering as the sky-view LUT
+// has it) and the green transmittance
 // from the camera to each slice's end. Past the ground nothing is added. compose.comp colours
 // the haze in front of clouds with it.
 #extension GL_GOOGLE_include_directive : require
@@ -61,9 +62,10 @@ void main() {
       vec3 source = vec3(0.0f);
       for (int l = 0; l < lights; ++l) {
         vec3 t_sun = transmittance_to_light(a, transmittance_lut, false, x, light_dir[l]);
-        vec3 psi =
-            multiple_scattering_at(a, transmittance_lut, ms_lut, false, x, light_dir[l], albedo);
-        source += light_share[l] * sky_source(m, phase_r[l], phase_m[l], t_sun, psi);
+        MsScattering ms = multiple_scattering_towards(a, transmittance_lut, ms_lut, ms_field,
+                                                      frame.sky_options.x, false, x, light_dir[l],
+                                                      dir, albedo);
+        source += light_share[l] * sky_source(m, phase_r[l], phase_m[l], t_sun, ms);
       }
       air = sky_accumulate(air, m.extinction, dt, source);
     }

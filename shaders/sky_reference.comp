@@ -36,7 +36,7 @@ void main() {
     vec3 t_sun = transmittance_to_light(a, transmittance_lut, true, x, sun);
     vec3 psi = texelFetch(reference_psi, ivec3(id, i), 0).rgb;
     result = sky_accumulate(result, m.extinction, t.y - t.x,
-                            sky_source(m, phase_r, phase_m, t_sun, psi));
+                            sky_source(m, phase_r, phase_m, t_sun, ms_isotropic(psi)));
   }
   if (ray.hits_ground && n > 0)
     result = sky_add_ground(a, transmittance_lut, true, result, ray.origin + dir * ray.length_m,

@@ -1,7 +1,8 @@
 #version 450
 // Pass 2c: the sky-view LUT (Hillaire 2020, section 5.3), recomputed only when the sun, the
 // camera's position or the atmosphere change. The sky (common/atmosphere_lut_inc.glsl: single
-// and multiple scattering through the transmittance and multiple-scattering LUTs) is integrated
+// and multiple scattering through the transmittance LUT and the multiple-scattering light field
+// or Psi_ms, FrameParams::sky_options.x) is integrated
 // once per texel of a small latitude/longitude table around the camera
 // (common/sky_view_inc.glsl) instead of once per pixel; compose.comp samples it bilinearly.
 // Both of the sky's lights (FrameParams sun_dir and second_light) are summed. With
@@ -34,15 +35,16 @@ void main() {
   vec2 uv = vec2((float(texel.x) + 0.5f) / float(size.x), sky_view_row_v(texel.y, rows));
   vec3 dir = sky_view_texel_dir(sky_frame, uv, eye, frame.radii_m.x);
   Atmosphere a = frame_atmosphere();
-  SkySample sky = sky_hillaire(a, transmittance_lut, ms_lut, false, eye, dir, sun, frame.steps.z,
-                               frame.sky_model.y, frame_ground_sky());
+  int ms_mode = frame.sky_options.x;
+  SkySample sky = sky_hillaire(a, transmittance_lut, ms_lut, ms_field, ms_mode, false, eye, dir,
+                               sun, frame.steps.z, frame.sky_model.y, frame_ground_sky());
   // The second light (the twilight sun under the moon, or the moon in twilight): its sky, and
   // its light on the ground, which the key light's cloud shadow does not darken. The ground's
   // sky light (frame_ground_sky) already holds both lights' and is added once.
   vec4 second = frame.second_light;
   if (second.w > 0.0f) {
-    SkySample s2 = sky_hillaire(a, transmittance_lut, ms_lut, false, eye, dir, second.xyz,
-                                frame.steps.z, frame.sky_model.y, vec3(0.0f));
+    SkySample s2 = sky_hillaire(a, transmittance_lut, ms_lut, ms_field, ms_mode, false, eye, dir,
+                                second.xyz, frame.steps.z, frame.sky_model.y, vec3(0.0f));
     sky.radiance += second.w * (s2.radiance + s2.ground_sun);
   }
   if (int(frame.sky_model.z) == SKY_MODEL_PREETHAM && uv.y >= 0.5f) {

@@ -161,8 +161,9 @@ void add_validate_flags(CLI::App& cmd, ValidateOptions& options) {
                  "stop each view's reference after this many seconds (0 = none)")
       ->capture_default_str();
   cmd.add_option("--references", options.references,
-                 "folder of references (NAME.exr with a variance layer): read when there and of "
-                 "the same size, else path traced and written there");
+                 "folder of references (NAME.exr with a variance layer; with --sky "
+                 "sky_ELEVATION_VIEW.exr): read when there and of the same size, else path traced "
+                 "and written there");
   cmd.add_option("--out", options.out_dir,
                  "folder for each view's images (NAME.png: fast | reference | block errors; "
                  "NAME_fast.exr) and results.md, results.json")
@@ -212,12 +213,46 @@ int finish(const ValidateOptions& options, const Renderer& renderer, const std::
   return pass ? 0 : 1;
 }
 
+// The reference of view `name`: the --references folder's NAME.exr when it holds one of the
+// scene's size, else path traced and written there (or to the output folder as
+// NAME_reference.exr).
+ReferenceImage reference_for(Renderer& renderer, const Scene& scene,
+                             const ValidateOptions& options, const std::string& name, bool show) {
+  ReferenceImage reference;
+  const std::string cached =
+      options.references.empty() ? "" : (fs::path(options.references) / (name + ".exr")).string();
+  if (!cached.empty() && fs::exists(cached)) {
+    reference.mean = read_exr_layer(cached, "");
+    reference.variance = read_exr_layer(cached, "variance");
+    if (reference.mean.width == scene.output.width && reference.mean.height == scene.output.height)
+      return reference;
+  }
+  std::unique_ptr<Progress> bar;
+  ReferenceOptions ro;
+  ro.spp = options.spp;
+  ro.time_limit_s = options.time_limit_s;
+  ro.seed = scene.noise_seed;
+  if (show)
+    ro.progress = [&](std::string_view, int done, int total) {
+      if (!bar) bar = std::make_unique<Progress>(name, total, true);
+      bar->step(done);
+    };
+  reference = renderer.render_reference(scene, ro);
+  bar.reset();
+  const std::string path =
+      cached.empty() ? (fs::path(options.out_dir) / (name + "_reference.exr")).string() : cached;
+  write_exr_layers({{"", &reference.mean, 4, {}}, {"variance", &reference.variance, 3, {}}}, path,
+                   ExrPixels::kFloat);
+  return reference;
+}
+
 // `validate --sky`: the clear sky of the fast mode against the path-traced atmosphere.
 int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suite) {
   const SkyTargets& targets = suite.sky;
   if (targets.sun_elevations_deg.empty())
     throw InputError("--sky: the suite has no [sky] table (see data/validation.toml)");
   fs::create_directories(options.out_dir);
+  if (!options.references.empty()) fs::create_directories(options.references);
   Renderer renderer({options.device, options.validation, options.verbose, {}});
   struct View {
     const char* name;
@@ -260,10 +295,9 @@ int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suit
       s.camera.view_dir = sun_direction_from_angles(elevation, 180.0 + v.relative_azimuth_deg);
       validate_scene(s);
       const glm::dvec3 fast = mean_rgb(renderer.render(s).color);
-      ReferenceOptions ro;
-      ro.spp = options.spp;
-      ro.seed = s.noise_seed;
-      const ReferenceImage reference = renderer.render_reference(s, ro);
+      char name[64];
+      std::snprintf(name, sizeof name, "sky_%g_%s", sun_deg, v.name);
+      const ReferenceImage reference = reference_for(renderer, s, options, name, false);
       const glm::dvec3 ref = mean_rgb(reference.mean);
       if (std::string(v.name) == "zenith") {
         zenith_fast = fast;
@@ -395,34 +429,7 @@ int run_validate(const ValidateOptions& options) {
     const ValidationView& view = views[i];
     const Scene& scene = scenes[i];
     const Frame fast = renderer.render(scene);
-    // The reference: the folder's when it holds one of this size, else path traced.
-    ReferenceImage reference;
-    const std::string cached =
-        options.references.empty() ? "" : (fs::path(options.references) / (view.name + ".exr")).string();
-    bool read = false;
-    if (!cached.empty() && fs::exists(cached)) {
-      reference.mean = read_exr_layer(cached, "");
-      reference.variance = read_exr_layer(cached, "variance");
-      read = reference.mean.width == suite.width && reference.mean.height == suite.height;
-    }
-    if (!read) {
-      std::unique_ptr<Progress> bar;
-      ReferenceOptions ro;
-      ro.spp = options.spp;
-      ro.time_limit_s = options.time_limit_s;
-      ro.seed = scene.noise_seed;
-      if (show)
-        ro.progress = [&](std::string_view, int done, int total) {
-          if (!bar) bar = std::make_unique<Progress>(view.name, total, true);
-          bar->step(done);
-        };
-      reference = renderer.render_reference(scene, ro);
-      bar.reset();
-      const std::string path =
-          cached.empty() ? (fs::path(options.out_dir) / (view.name + "_reference.exr")).string() : cached;
-      write_exr_layers({{"", &reference.mean, 4}, {"variance", &reference.variance, 3}}, path,
-                       ExrPixels::kFloat);
-    }
+    const ReferenceImage reference = reference_for(renderer, scene, options, view.name, show);
     const BlockLuminanceError e =
         block_luminance_error(fast.color, reference.mean, reference.variance, suite.block);
     const bool pass = e.mean_error <= view.max_mean_error;
@@ -475,7 +482,7 @@ int run_validate(const ValidateOptions& options) {
                                    {"reference_noise", e.reference_noise},
                                    {"reference_spp", reference.spp},
                                    {"reference_lost_fraction", reference.lost_fraction},
-                                   {"reference_s", read ? 0.0 : reference.seconds},
+                                   {"reference_s", reference.seconds},
                                    {"fast_ms", fast.stats.wall_ms},
                                    {"pass", pass}};
   }

@@ -80,6 +80,10 @@ struct AtmosphereParams {
   float ground_albedo = 0.1f;                       // Lambertian ground, [0, 1]
   float turbidity = 2.5f;                           // Preetham's haze, [2, 10]
   int view_samples = 32;                            // samples along each sky-view LUT ray
+  // Multiple scattering with its angular dependence (the light field's spherical harmonics
+  // through the true phases; common/atmosphere_lut_inc.glsl), or false: Hillaire 2020's
+  // isotropic Psi_ms, as nephele rendered before.
+  bool angular_multiple_scattering = true;
   bool operator==(const AtmosphereParams&) const = default;
 };
 

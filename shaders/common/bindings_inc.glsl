@@ -86,5 +86,8 @@ layout(set = 0, binding = 44, rgba32f) uniform image2D path_sum;
 layout(set = 0, binding = 45, rgba32f) uniform image2D path_squares;
 // The noise clouds' majorant grid (r: sigma_t bound, 1/m; read with texelFetch).
 layout(set = 0, binding = 46) uniform sampler3D path_majorant;
+// The multiple-scattering light field (atmosphere_lut_inc.glsl, ms_field_texel).
+layout(set = 0, binding = 47, rgba32f) uniform writeonly image2D ms_field_out;
+layout(set = 0, binding = 48) uniform sampler2D ms_field;
 
 #endif

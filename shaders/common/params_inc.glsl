@@ -127,6 +127,8 @@ struct FrameParams {
   vec4 sky_model;           // x ozone half width (m), y ground albedo, z SKY_MODEL_*, w Preetham
                             // turbidity
   ivec4 reference_tile;     // the reference sky's tile: xy its first pixel, z its size (pixels)
+  ivec4 sky_options;        // x how multiple scattering reaches view rays (MS_ANGULAR or
+                            // MS_ISOTROPIC, atmosphere_lut_inc.glsl); yzw unused
   // Time-of-day keyframes (seed 003; nephele/conditions.h), colours per unit key-light
   // illuminance (compose multiplies by sun_illuminance):
   vec4 conditions_sky;       // rgb sky colour; w mode: 0 off, 1 artist, 2 overlay

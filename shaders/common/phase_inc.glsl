@@ -27,4 +27,17 @@ float cornette_shanks_phase(float g, float mu) {
          ((2.0f + gg) * pow(max(1.0f + gg - 2.0f * g * mu, 1e-6f), 1.5f));
 }
 
+// The Cornette-Shanks phase's Legendre moments lambda_l = 2 pi integral of p(mu) P_l(mu) dmu
+// for l = 0, 1, 2: by the Funk-Hecke theorem, scattering an incident radiance field through
+// the phase function scales its spherical harmonics of degree l by lambda_l. The phase is
+// Henyey-Greenstein's (moments g^l) times 3 (1 + mu^2) / (2 (2 + g^2)); mu^2 P_l expands by
+// Legendre's recurrence into P_(l-2), P_l and P_(l+2). g = 0 gives Rayleigh's (1, 0, 1/10).
+vec3 cornette_shanks_moments(float g) {
+  float g2 = g * g;
+  float scale = 3.0f / (2.0f * (2.0f + g2));
+  float l1 = scale * (1.6f * g + 0.4f * g2 * g);
+  float l2 = scale * ((32.0f / 21.0f) * g2 + (12.0f / 35.0f) * g2 * g2 + 2.0f / 15.0f);
+  return vec3(1.0f, l1, l2);
+}
+
 #endif

@@ -61,6 +61,8 @@ enum Binding : uint32_t {
   kPathSum = 44,
   kPathSquares = 45,
   kPathMajorant = 46,
+  kMsFieldOut = 47,
+  kMsField = 48,
   kBindingCount
 };
 

@@ -51,6 +51,21 @@ AtmosphereTables compute_atmosphere_tables(const Scene& scene) {
           glsl::ms_lut_texel(a, t.transmittance_lut(), texel_uv(i, j, mw, mh),
                              scene.atmosphere.ground_albedo),
           1.0f);
+  // The field's iterations, as ms_field.comp runs them: iteration i writes half i mod 2.
+  constexpr int fw = glsl::MS_FIELD_W, fh = glsl::MS_FIELD_H, blocks = glsl::MS_FIELD_COEFFS;
+  t.ms_field.assign(size_t(fw) * blocks * fh * 2, glm::vec4(0.0f));
+  for (int iteration = 0; iteration < glsl::MS_FIELD_ITERATIONS; ++iteration) {
+    const size_t first_row = size_t(iteration % 2) * fh;
+    for (int j = 0; j < fh; ++j)
+      for (int i = 0; i < fw; ++i) {
+        const glsl::MsFieldCoefficients texel =
+            glsl::ms_field_texel(a, t.transmittance_lut(), t.ms_lut(), t.ms_field_lut(), iteration,
+                                 texel_uv(i, j, fw, fh), scene.atmosphere.ground_albedo);
+        for (int k = 0; k < blocks; ++k)
+          t.ms_field[(first_row + j) * fw * blocks + size_t(k) * fw + i] =
+              glm::vec4(texel.c[k], 1.0f);
+      }
+  }
   return t;
 }
 
@@ -84,6 +99,7 @@ struct CpuSky {
   glsl::Atmosphere atmosphere;
   const AtmosphereTables& tables;
   float ground_albedo;
+  int ms_mode;  // MS_ANGULAR or MS_ISOTROPIC
 };
 
 // Mean, over kSkyDirections directions dir_of(i, golden angle), of the sky radiance seen from
@@ -95,7 +111,8 @@ glm::vec3 mean_sky(const CpuSky& sky, const glm::vec3& pos, const glm::vec3& sun
   for (int i = 0; i < kSkyDirections; ++i) {
     const glsl::SkySample s =
         glsl::sky_hillaire(sky.atmosphere, sky.tables.transmittance_lut(), sky.tables.ms_lut(),
-                           false, pos, dir_of(i, golden), sun, 12, sky.ground_albedo, glm::vec3(0.0f));
+                           sky.tables.ms_field_lut(), sky.ms_mode, false, pos, dir_of(i, golden),
+                           sun, 12, sky.ground_albedo, glm::vec3(0.0f));
     sum += s.radiance + s.ground_sun;
   }
   return sum / float(kSkyDirections);
@@ -278,6 +295,8 @@ void set_atmosphere(gpu::FrameParams& f, const Scene& scene) {
   f.ozone = glm::vec4(a.ozone_sigma_a, a.ozone_center_m);
   f.sky_model = glm::vec4(a.ozone_half_width_m, scene.atmosphere.ground_albedo,
                           float(static_cast<int>(scene.atmosphere.model)), scene.atmosphere.turbidity);
+  f.sky_options = glm::ivec4(
+      scene.atmosphere.angular_multiple_scattering ? glsl::MS_ANGULAR : glsl::MS_ISOTROPIC, 0, 0, 0);
 }
 
 glm::vec2 cloud_shell_m(const Scene& scene) {
@@ -353,7 +372,9 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   // cosine-weighted, and the sky light on the ground. An isotropic mean over all directions let
   // the horizon's twilight glow (at sun -12 deg 6,500 times the zenith's radiance, in a band a
   // few degrees high) light whole clouds red.
-  const CpuSky sky{atmosphere, tables, scene.atmosphere.ground_albedo};
+  const CpuSky sky{atmosphere, tables, scene.atmosphere.ground_albedo,
+                   scene.atmosphere.angular_multiple_scattering ? glsl::MS_ANGULAR
+                                                                : glsl::MS_ISOTROPIC};
   const glm::vec3 ground(scene.camera.position_m.x, scene.camera.position_m.y, planet_m + 1.0f);
   for (const KeyLight* light : {&key, &lights.second}) {
     if (light->illuminance <= 0.0f) continue;
@@ -468,6 +489,7 @@ SkyViewKey sky_view_key(const gpu::FrameParams& f) {
           .mie = f.mie,
           .ozone = f.ozone,
           .sky_model = f.sky_model,
+          .sky_options = f.sky_options,
           .radii_m = glm::vec2(f.radii_m),
           .samples = f.steps.z};
 }

@@ -25,11 +25,17 @@ glsl::Atmosphere make_atmosphere(const Scene& scene);
 struct AtmosphereTables {
   std::vector<glm::vec4> transmittance;        // TRANSMITTANCE_LUT_W x TRANSMITTANCE_LUT_H
   std::vector<glm::vec4> multiple_scattering;  // MS_LUT_W x MS_LUT_H (log Psi_ms)
+  // The multiple-scattering light field: MS_FIELD_COEFFS blocks of MS_FIELD_W x MS_FIELD_H side
+  // by side, in two halves (rows [0, H) the field, [H, 2 H) an earlier iteration)
+  std::vector<glm::vec4> ms_field;
   glsl::sampler2D transmittance_lut() const {
     return {transmittance.data(), glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H};
   }
   glsl::sampler2D ms_lut() const {
     return {multiple_scattering.data(), glsl::MS_LUT_W, glsl::MS_LUT_H};
+  }
+  glsl::sampler2D ms_field_lut() const {
+    return {ms_field.data(), glsl::MS_FIELD_COEFFS * glsl::MS_FIELD_W, 2 * glsl::MS_FIELD_H};
   }
 };
 AtmosphereTables compute_atmosphere_tables(const Scene& scene);
@@ -117,6 +123,7 @@ struct SkyViewKey {
   glm::vec3 camera_pos_m, sun_dir, sun_illuminance, ground_sky_light;
   glm::vec4 second_light;
   glm::vec4 rayleigh, mie, ozone, sky_model;
+  glm::ivec4 sky_options;
   glm::vec2 radii_m;   // planet, atmosphere top
   int samples;  // sky view samples (FrameParams::steps.z)
   bool operator==(const SkyViewKey&) const = default;

@@ -221,7 +221,10 @@ const std::vector<Section>& scene_sections() {
         FIELD(atmosphere, ozone_half_width_m, "density falls linearly to 0 this far from the peak, [0, 1e6]"),
         FIELD(atmosphere, ground_albedo, "Lambertian ground, [0, 1]"),
         FIELD(atmosphere, turbidity, "Preetham model's haze, [2, 10]"),
-        FIELD(atmosphere, view_samples, "samples along each sky-view LUT ray, [1, 256]")},
+        FIELD(atmosphere, view_samples, "samples along each sky-view LUT ray, [1, 256]"),
+        FIELD(atmosphere, angular_multiple_scattering,
+              "true: multiple scattering with its angular dependence; false: Hillaire 2020's "
+              "isotropic approximation")},
        {}},
       {"cirrus",
        {FIELD(cirrus, altitude_m, "above ground, [0, 1e6], above the volumetric layers when coverage > 0"),

@@ -88,8 +88,9 @@ TEST_F(AtmosphereTest, MultipleScatteringBrightensTheSky) {
     const nephele::AtmosphereTables t = nephele::compute_atmosphere_tables(s);
     const nephele::glsl::Atmosphere a = frame_atmosphere(f);
     const glm::vec3 eye(f.camera_pos_m), up(0, 0, 1), sun(f.sun_dir);
-    const glm::vec3 total = nephele::glsl::sky_hillaire(a, t.transmittance_lut(), t.ms_lut(), false,
-                                                        eye, up, sun, 64, 0.1f, glm::vec3(0))
+    const glm::vec3 total = nephele::glsl::sky_hillaire(a, t.transmittance_lut(), t.ms_lut(),
+                                                        t.ms_field_lut(), nephele::glsl::MS_ANGULAR,
+                                                        false, eye, up, sun, 64, 0.1f, glm::vec3(0))
                                 .radiance;
     const glm::vec3 single =
         nephele::glsl::sky_single_scattering(a, eye, up, sun, 64, 64, 0.1f, glm::vec3(0)).radiance;

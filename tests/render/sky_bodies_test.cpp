@@ -149,9 +149,9 @@ TEST(CloudLight, TwilightCloudsAreLitByTheSkyAboveNotByTheHorizonGlow) {
   const glsl::Atmosphere a = frame_atmosphere(f);
   const nephele::AtmosphereTables t = compute_atmosphere_tables(s);
   const glm::vec3 mid(0.0f, 0.0f, a.planet_radius_m + 2750.0f);
-  const glm::vec3 zenith = glsl::sky_hillaire(a, t.transmittance_lut(), t.ms_lut(), false, mid,
-                                              glm::vec3(0, 0, 1), glm::vec3(f.sun_dir), 32, 0.3f,
-                                              glm::vec3(0.0f))
+  const glm::vec3 zenith = glsl::sky_hillaire(a, t.transmittance_lut(), t.ms_lut(), t.ms_field_lut(),
+                                              glsl::MS_ANGULAR, false, mid, glm::vec3(0, 0, 1),
+                                              glm::vec3(f.sun_dir), 32, 0.3f, glm::vec3(0.0f))
                                .radiance *
                            glm::vec3(f.sun_illuminance);
   EXPECT_LT(above.g, 10.0f * zenith.g);

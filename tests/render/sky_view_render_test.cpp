@@ -54,7 +54,8 @@ SkyError sky_error(const Scene& scene) {
           float(y), float(frame.color.width), float(frame.color.height));
       if (glm::dot(dir, sun) > cos_disk) continue;
       const nephele::glsl::SkySample sky = nephele::glsl::sky_hillaire(
-          atmosphere, tables.transmittance_lut(), tables.ms_lut(), false, eye, dir, sun,
+          atmosphere, tables.transmittance_lut(), tables.ms_lut(), tables.ms_field_lut(),
+          nephele::glsl::MS_ANGULAR, false, eye, dir, sun,
           scene.atmosphere.view_samples, scene.atmosphere.ground_albedo, ground_sky);
       const glm::vec3 expected = (sky.radiance + sky.ground_sun) * illuminance;
       const glm::vec4 got = frame.color.at(x, y);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "render/glsl.h"
 
@@ -93,6 +94,91 @@ TEST(Phase, DualLobeRayleighAndCornetteShanksIntegrateToOne) {
   EXPECT_NEAR(integrate_sphere([](float mu) { return g::rayleigh_phase(mu); }), 1.0, 1e-4);
   EXPECT_NEAR(integrate_sphere([](float mu) { return g::cornette_shanks_phase(0.8f, mu); }), 1.0,
               3e-3);
+}
+
+// The moments that scatter a light field's spherical harmonics of degree l (Funk-Hecke):
+// 2 pi integral of p(mu) P_l(mu), against the closed form; g = 0 is Rayleigh's phase.
+TEST(Phase, CornetteShanksLegendreMomentsMatchTheIntegrals) {
+  for (float g : {0.0f, 0.3f, 0.76f, 0.9f}) {
+    const vec3 lambda = g::cornette_shanks_moments(g);
+    const auto moment = [g](int l) {
+      return integrate_sphere([g, l](float mu) {
+        const double p_l = l == 0 ? 1.0 : l == 1 ? mu : 0.5 * (3.0 * mu * mu - 1.0);
+        return float(g::cornette_shanks_phase(g, mu) * p_l);
+      });
+    };
+    EXPECT_NEAR(lambda.x, moment(0), 2e-3) << g;
+    EXPECT_NEAR(lambda.y, moment(1), 2e-3) << g;
+    EXPECT_NEAR(lambda.z, moment(2), 2e-3) << g;
+  }
+  const vec3 rayleigh = g::cornette_shanks_moments(0.0f);
+  EXPECT_NEAR(rayleigh.z, integrate_sphere([](float mu) {
+                return float(g::rayleigh_phase(mu) * 0.5 * (3.0 * mu * mu - 1.0));
+              }),
+              1e-4);
+  EXPECT_FLOAT_EQ(rayleigh.z, 0.1f);
+}
+
+// The 6 spherical harmonics of the multiple-scattering field are orthonormal on the sphere.
+TEST(SphericalHarmonics, TheFieldsBasisIsOrthonormal) {
+  const int n = 200;
+  double gram[6][6] = {};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      const double z = 1.0 - (i + 0.5) * 2.0 / n, phi = M_PI * (j + 0.5) / n;
+      const double s = std::sqrt(1.0 - z * z);
+      const g::ShBasis b = g::sh_basis(vec3(float(s * std::cos(phi)), float(s * std::sin(phi)), float(z)));
+      const double y[6] = {b.low.x, b.low.y, b.low.z, b.high.x, b.high.y, b.high.z};
+      const double d_omega = 4.0 * M_PI / (2.0 * n * n);
+      for (int a = 0; a < 6; ++a)
+        for (int c = 0; c < 6; ++c) gram[a][c] += y[a] * y[c] * d_omega;
+    }
+  for (int a = 0; a < 6; ++a)
+    for (int c = 0; c < 6; ++c) EXPECT_NEAR(gram[a][c], a == c ? 1.0 : 0.0, 1e-3) << a << c;
+}
+
+// A view ray scatters the multiple-scattering field through the true phases: with a table
+// holding a known field L (band-limited, so its harmonics are exact), ms_field_scattering
+// gives the integral of L(w) p(w . d) over the sphere for Rayleigh and Cornette-Shanks, for
+// views in every direction and the sun off the frame's axes.
+TEST(MultipleScatteringField, ScattersAKnownFieldThroughBothPhases) {
+  g::Atmosphere a{};
+  a.planet_radius_m = 6360e3f;
+  a.top_radius_m = 6460e3f;
+  a.mie_g = 0.8f;
+  const float c[6] = {1.0f, 0.2f, -0.15f, 0.12f, 0.1f, -0.06f};  // c_k, sh_basis's order
+  std::vector<glm::vec4> table(size_t(6 * g::MS_FIELD_W) * 2 * g::MS_FIELD_H, glm::vec4(0.0f));
+  for (int row = 0; row < g::MS_FIELD_H; ++row)  // half 0
+    for (int k = 0; k < 6; ++k)
+      for (int i = 0; i < g::MS_FIELD_W; ++i)
+        table[size_t(row) * 6 * g::MS_FIELD_W + size_t(k) * g::MS_FIELD_W + i] = glm::vec4(
+            vec3(k == 0 ? std::log(c[0] * 0.2820948f + g::MS_LUT_FLOOR) : c[k] / c[0]), 1.0f);
+  const g::sampler2D field{table.data(), 6 * g::MS_FIELD_W, 2 * g::MS_FIELD_H};
+  const vec3 pos = vec3(0.3f, -0.2f, 1.0f) * (a.planet_radius_m + 3000.0f) / std::sqrt(1.13f);
+  const vec3 sun = glm::normalize(vec3(0.6f, 0.5f, 0.4f));
+  const glm::mat3 frame = g::ms_field_frame(pos, sun);  // columns: x, y, z (up) of the field
+  const auto field_at = [&](vec3 w) {
+    const g::ShBasis b = g::sh_basis(glm::transpose(frame) * w);
+    return c[0] * b.low.x + c[1] * b.low.y + c[2] * b.low.z + c[3] * b.high.x +
+           c[4] * b.high.y + c[5] * b.high.z;
+  };
+  for (vec3 d : {vec3(0, 0, 1), vec3(1, 0, 0), vec3(-0.3f, 0.8f, -0.2f), sun, -sun}) {
+    d = glm::normalize(d);
+    double rayleigh = 0.0, mie = 0.0;
+    const int n = 400;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < 2 * n; ++j) {
+        const double z = 1.0 - (i + 0.5) * 2.0 / n, phi = M_PI * (j + 0.5) / n;
+        const double s = std::sqrt(1.0 - z * z);
+        const vec3 w(float(s * std::cos(phi)), float(s * std::sin(phi)), float(z));
+        const double l = field_at(w) * 4.0 * M_PI / (2.0 * n * n);
+        rayleigh += l * g::rayleigh_phase(glm::dot(w, d));
+        mie += l * g::cornette_shanks_phase(a.mie_g, glm::dot(w, d));
+      }
+    const g::MsScattering got = g::ms_field_scattering(a, field, 0, pos, sun, d);
+    EXPECT_NEAR(got.rayleigh.g, rayleigh, 2e-3 * rayleigh) << d.x << " " << d.y << " " << d.z;
+    EXPECT_NEAR(got.mie.g, mie, 5e-3 * mie) << d.x << " " << d.y << " " << d.z;
+  }
 }
 
 TEST(Noise, PerlinTilesWithItsPeriod) {

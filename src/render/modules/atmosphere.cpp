@@ -21,12 +21,22 @@ AtmosphereModule::AtmosphereModule(gpu::Context& ctx, gpu::DescriptorSet& set)
       set_(set),
       transmittance_kernel_(ctx, set, "transmittance_lut.comp.spv"),
       ms_kernel_(ctx, set, "multiscattering_lut.comp.spv"),
+      field_kernels_([&] {
+        std::vector<std::unique_ptr<gpu::Kernel>> kernels;
+        for (int i = 0; i < glsl::MS_FIELD_ITERATIONS; ++i)
+          kernels.push_back(std::make_unique<gpu::Kernel>(ctx, set, "ms_field.comp.spv",
+                                                          std::vector<int32_t>{i}));
+        return kernels;
+      }()),
       transmittance_(ctx, glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1,
                      VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       ms_(ctx, glsl::MS_LUT_W, glsl::MS_LUT_H, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
+      field_(ctx, glsl::MS_FIELD_COEFFS * glsl::MS_FIELD_W, 2 * glsl::MS_FIELD_H, 1,
+             VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set_.bind_image(gpu::kTransmittanceLutOut, gpu::kTransmittanceLut, transmittance_);
   set_.bind_image(gpu::kMsLutOut, gpu::kMsLut, ms_);
+  set_.bind_image(gpu::kMsFieldOut, gpu::kMsField, field_);
 }
 
 void AtmosphereModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
@@ -34,11 +44,15 @@ void AtmosphereModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
                 glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1, 8, 8, 1);
   gpu::dispatch(cmd, ms_kernel_, set_, timer, "multiscatter", glsl::MS_LUT_W, glsl::MS_LUT_H, 1,
                 8, 8, 1);
+  for (const auto& kernel : field_kernels_)
+    gpu::dispatch(cmd, *kernel, set_, timer, "ms field", glsl::MS_FIELD_W, glsl::MS_FIELD_H, 1,
+                  8, 8, 1);
 }
 
 void AtmosphereModule::made(const AtmosphereParams& atmosphere) {
   tables_.transmittance = read_texels(ctx_, transmittance_);
   tables_.multiple_scattering = read_texels(ctx_, ms_);
+  tables_.ms_field = read_texels(ctx_, field_);
   built_ = atmosphere;
 }
 

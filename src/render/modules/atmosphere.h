@@ -1,9 +1,12 @@
-// The atmosphere module: Hillaire's transmittance and multiple-scattering tables
-// (transmittance_lut.comp, multiscattering_lut.comp), rebuilt when the atmosphere changes (a
+// The atmosphere module: Hillaire's transmittance and multiple-scattering tables and the
+// multiple-scattering light field (transmittance_lut.comp, multiscattering_lut.comp,
+// ms_field.comp), rebuilt when the atmosphere changes (a
 // host wait of about 0.2 s on a CPU) and read back for the lighting computed on the CPU.
 #pragma once
 
+#include <memory>
 #include <optional>
+#include <vector>
 
 #include "gpu/kernel.h"
 #include "nephele/scene.h"
@@ -27,7 +30,8 @@ class AtmosphereModule {
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::Kernel transmittance_kernel_, ms_kernel_;
-  gpu::Texture transmittance_, ms_;
+  std::vector<std::unique_ptr<gpu::Kernel>> field_kernels_;  // one per iteration
+  gpu::Texture transmittance_, ms_, field_;
   std::optional<AtmosphereParams> built_;
   AtmosphereTables tables_;
 };
