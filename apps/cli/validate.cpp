@@ -214,8 +214,8 @@ int finish(const ValidateOptions& options, const Renderer& renderer, const std::
 }
 
 // The reference of view `name`: the --references folder's NAME.exr when it holds one of the
-// scene's size, else path traced and written there (or to the output folder as
-// NAME_reference.exr).
+// scene's size (its samples per pixel from the header's nephele.spp; no time spent), else path
+// traced and written there (or to the output folder as NAME_reference.exr).
 ReferenceImage reference_for(Renderer& renderer, const Scene& scene,
                              const ValidateOptions& options, const std::string& name, bool show) {
   ReferenceImage reference;
@@ -224,6 +224,8 @@ ReferenceImage reference_for(Renderer& renderer, const Scene& scene,
   if (!cached.empty() && fs::exists(cached)) {
     reference.mean = read_exr_layer(cached, "");
     reference.variance = read_exr_layer(cached, "variance");
+    for (const auto& [key, value] : read_exr_attributes(cached))
+      if (key == "nephele.spp") reference.spp = std::atoi(value.c_str());
     if (reference.mean.width == scene.output.width && reference.mean.height == scene.output.height)
       return reference;
   }
@@ -241,8 +243,10 @@ ReferenceImage reference_for(Renderer& renderer, const Scene& scene,
   bar.reset();
   const std::string path =
       cached.empty() ? (fs::path(options.out_dir) / (name + "_reference.exr")).string() : cached;
+  ExrAttributes attributes;
+  attributes.floats.push_back({"nephele.spp", float(reference.spp)});
   write_exr_layers({{"", &reference.mean, 4, {}}, {"variance", &reference.variance, 3, {}}}, path,
-                   ExrPixels::kFloat);
+                   ExrPixels::kFloat, attributes);
   return reference;
 }
 

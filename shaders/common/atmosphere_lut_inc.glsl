@@ -35,10 +35,10 @@ const int EXACT_SUN_SAMPLES = 16;      // sun transmittance integrated in place 
 // MS_FIELD_W columns each), the directions and steps each texel integrates, and the
 // iterations that make it consistent with itself (ms_field_texel).
 const int MS_FIELD_W = 64;
-const int MS_FIELD_H = 64;
+const int MS_FIELD_H = 32;
 const int MS_FIELD_COEFFS = 6;
 const int MS_FIELD_THETA = 12;  // bands in cos(zenith angle)
-const int MS_FIELD_PHI = 16;    // azimuths over the half circle y >= 0 (the field is even in y)
+const int MS_FIELD_PHI = 8;     // azimuths over the half circle y >= 0 (the field is even in y)
 const int MS_FIELD_SAMPLES = 16;
 const int MS_FIELD_ITERATIONS = 3;
 // How multiple scattering reaches a view ray (FrameParams::sky_options.x).

@@ -55,7 +55,7 @@ SkyError sky_error(const Scene& scene) {
       if (glm::dot(dir, sun) > cos_disk) continue;
       const nephele::glsl::SkySample sky = nephele::glsl::sky_hillaire(
           atmosphere, tables.transmittance_lut(), tables.ms_lut(), tables.ms_field_lut(),
-          nephele::glsl::MS_ANGULAR, false, eye, dir, sun,
+          f.sky_options.x, false, eye, dir, sun,
           scene.atmosphere.view_samples, scene.atmosphere.ground_albedo, ground_sky);
       const glm::vec3 expected = (sky.radiance + sky.ground_sun) * illuminance;
       const glm::vec4 got = frame.color.at(x, y);
@@ -107,6 +107,19 @@ TEST_F(SkyViewTest, SunsetMatchesThePerPixelSky) {
   s.sun.direction = {-1.0f, 0.0f, 0.035f};  // 2 degrees
   s.camera.view_dir = {-1.0f, 0.1f, 0.05f};
   s.camera.fov_deg = 60.0f;
+  const SkyError e = sky_error(s);
+  EXPECT_LT(e.mean, kMeanTolerance);
+  EXPECT_LT(e.mean_near_sun, kMeanNearSunTolerance);
+}
+
+// Hillaire's isotropic multiple scattering (atmosphere.angular_multiple_scattering = false)
+// stays selectable and the LUT serves it as well.
+TEST_F(SkyViewTest, IsotropicMultipleScatteringMatchesThePerPixelSky) {
+  Scene s = cloudless("sunset");
+  s.atmosphere.angular_multiple_scattering = false;
+  s.camera.view_dir = {-1.0f, 0.1f, 0.05f};
+  s.camera.fov_deg = 60.0f;
+  ASSERT_EQ(nephele::make_frame_params(s, 0).sky_options.x, nephele::glsl::MS_ISOTROPIC);
   const SkyError e = sky_error(s);
   EXPECT_LT(e.mean, kMeanTolerance);
   EXPECT_LT(e.mean_near_sun, kMeanNearSunTolerance);
