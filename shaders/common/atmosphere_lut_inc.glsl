@@ -38,7 +38,7 @@ const int MS_FIELD_W = 64;
 const int MS_FIELD_H = 32;
 const int MS_FIELD_COEFFS = 6;
 const int MS_FIELD_THETA = 12;  // bands in cos(zenith angle)
-const int MS_FIELD_PHI = 8;     // azimuths over the half circle y >= 0 (the field is even in y)
+const int MS_FIELD_PHI = 6;     // azimuths over the half circle y >= 0 (the field is even in y)
 const int MS_FIELD_SAMPLES = 16;
 const int MS_FIELD_ITERATIONS = 3;
 // How multiple scattering reaches a view ray (FrameParams::sky_options.x).
