@@ -75,7 +75,7 @@ layout(set = 0, binding = 39) uniform sampler2D ground_light;
 // The display image (tonemap.comp): exposed, tone-mapped, sRGB code values, 8 bits.
 layout(set = 0, binding = 40, rgba8) uniform writeonly image2D display_out;
 // The weather map the clouds sample (binding 6), as weather_blend.comp writes it (16 bits).
-layout(set = 0, binding = 41, rgba16) uniform writeonly image2D weather_map_out;
+layout(set = 0, binding = 41, rgba16f) uniform writeonly image2D weather_map_out;
 // Voxel clouds (params_inc.glsl, VoxelCloudGpu): the brick atlas (x density, y signed
 // distance in voxels; trilinear) and the page table (texelFetch).
 layout(set = 0, binding = 42) uniform sampler3D voxel_atlas;

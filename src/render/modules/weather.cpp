@@ -10,8 +10,11 @@ namespace nephele {
 
 namespace {
 // The blended map keeps 16 bits: blends of 8-bit states between 8-bit steps, so that the map
-// moves a little every frame instead of jumping by 1/255 now and then.
-constexpr VkFormat kBlendedFormat = VK_FORMAT_R16G16B16A16_UNORM;
+// moves a little every frame instead of jumping by 1/255 now and then. Half floats (steps of
+// 1/2048 or finer in [0, 1]): a storage format every Vulkan device has, where 16-bit UNORM is
+// an extended one that needs shaderStorageImageExtendedFormats enabled (nephele enables no
+// features, and a host's device need not have it).
+constexpr VkFormat kBlendedFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr int kRowsPerFrame = int(kWeatherMapSize) / kWeatherBuildFrames;
 int layer_of(long long step) { return int(((step % 3) + 3) % 3); }
 }  // namespace
