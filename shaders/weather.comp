@@ -8,6 +8,7 @@
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/noise_inc.glsl"
+#include "common/weather_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -24,16 +25,6 @@ void main() {
   // lattice cell per weather_evolution_s. That axis wraps like the others, so the weather
   // repeats after 6 weather_evolution_s (6 hours at the default hour).
   vec3 uv = vec3((vec2(id) + 0.5f) / vec2(size), time / 6.0f);
-  uint seed = uint(frame.size.w) * 101u + 13u;
-  // Clusters of cumulus cells: Perlin fBm modulated by Worley cells, contrast-stretched.
-  float cells = worley_fbm(uv, 12, seed + 1u);
-  float field = perlin_fbm01(uv, 6, 4, seed + 2u);
-  float low = saturate(remap(field * 0.55f + cells * 0.65f, 0.45f, 1.0f, 0.0f, 1.0f));
-  // A few storm cells, each some 10 km across (three lattice cells a tile: 13 km at the
-  // default 40 km), where precipitation grows cumulonimbus; the type varies by +-0.1 around
-  // the layer's.
-  float storms = smoothstep(0.52f, 0.72f, perlin_fbm01(uv, 3, 2, seed + 3u));
-  float type = mix(0.4f, 0.6f, perlin_fbm01(uv, 8, 2, seed + 4u));
-  float density = mix(0.6f, 1.0f, perlin_fbm01(uv, 5, 2, seed + 5u));
-  imageStore(weather_states, ivec3(id, ((step % 3) + 3) % 3), vec4(low, storms, type, density));
+  vec4 state = weather_state(uv, uint(frame.size.w));
+  imageStore(weather_states, ivec3(id, ((step % 3) + 3) % 3), state);
 }

@@ -44,6 +44,7 @@ namespace {
 #include "common/phase_inc.glsl"
 #include "common/sun_disk_inc.glsl"
 #include "common/noise_inc.glsl"
+#include "common/weather_inc.glsl"
 #include "common/atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"
 #include "common/preetham_inc.glsl"
