@@ -8,6 +8,9 @@
 //     all orders of scattering >= 2 add per unit scattering coefficient, from the second order
 //     computed with an isotropic phase over 64 directions and the geometric series 1/(1 - f_ms)
 //     of its transfer factor f_ms.
+//   - The multiple-scattering light field (below, MS_ANGULAR, the default): the light scattered
+//     at least once, as spherical harmonics at each altitude and sun zenith angle, scattered
+//     towards the eye through the true phase functions instead of Psi_ms's isotropic one.
 //   - sky_hillaire(): the radiance along a view ray (section 5.3 and 5.4), integrated with the
 //     energy-conserving step of section 5.6.3, single scattering lit through the transmittance
 //     and multiple scattering from Psi_ms. With `exact` true it uses no table at all: the sun's
@@ -203,13 +206,12 @@ vec3 multiple_scattering_at(Atmosphere a, sampler2D t_lut, sampler2D ms_lut, boo
 // and scatters it with an isotropic phase. It does not: by day it is brightest from near the
 // horizon and around the sun, and Rayleigh's phase sends horizontal light on horizontally, so
 // the horizon was 11-14% too dark against the zenith and the sunset horizon too red. The field
-// is that light itself: at each altitude and sun zenith angle, the sky seen from the point
-// (sky_hillaire, single scattering with its true phases plus Psi_ms for the higher orders,
-// and the sun-lit ground), projected on spherical harmonics of degree <= 2 in a frame with z
-// up and x towards the sun's azimuth (the field is even in y: 6 functions). A view ray
-// scatters it through the Rayleigh and Cornette-Shanks phases exactly (Funk-Hecke: degree l
-// scaled by the phase's Legendre moment lambda_l), so the isotropic assumption moves one
-// order of scattering further out.
+// is that light itself: at each altitude and sun zenith angle, the sky seen from the point,
+// projected on spherical harmonics of degree <= 2 in a frame with z up and x towards the sun's
+// azimuth (the field is even in y: 6 functions), iterated until the sky it is computed from
+// scatters the field itself (ms_field_texel). A view ray scatters it through the Rayleigh and
+// Cornette-Shanks phases exactly (Funk-Hecke: degree l scaled by the phase's Legendre moment
+// lambda_l; Rayleigh's phase has no degree above 2, so for air nothing is truncated).
 
 // The 6 real orthonormal spherical harmonics even in y, at unit `d` in the field's frame:
 // Y00, Y10 (z), Y11 (x) and Y20, Y21 (xz), Y22 (x^2 - y^2).
