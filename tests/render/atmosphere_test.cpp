@@ -88,8 +88,8 @@ TEST_F(AtmosphereTest, MultipleScatteringBrightensTheSky) {
   for (float elevation : {45.0f, -3.0f}) {
     Scene s = clear_sky(elevation);
     s.camera.view_dir = {0.0f, 0.0f, 1.0f};
-    const nephele::gpu::FrameParams f = nephele::make_frame_params(s, 0);
     const nephele::AtmosphereTables t = nephele::compute_atmosphere_tables(s);
+    const nephele::gpu::FrameParams f = nephele::make_frame_params(s, 0, nephele::sky_lights(s), t);
     const nephele::glsl::Atmosphere a = frame_atmosphere(f);
     const glm::vec3 eye(f.camera_pos_m), up(0, 0, 1), sun(f.sun_dir);
     const glm::vec3 total = nephele::glsl::sky_hillaire(a, t.transmittance_lut(), t.ms_lut(),
@@ -114,8 +114,8 @@ TEST_F(AtmosphereTest, MultipleScatteringBrightensTheSky) {
 // the ground, which Psi_ms leaves out, reflects).
 TEST_F(AtmosphereTest, TheAngularFieldBrightensTheHorizonAgainstTheZenith) {
   Scene s = clear_sky(30.0f);
-  const nephele::gpu::FrameParams f = nephele::make_frame_params(s, 0);
   const nephele::AtmosphereTables t = nephele::compute_atmosphere_tables(s);
+  const nephele::gpu::FrameParams f = nephele::make_frame_params(s, 0, nephele::sky_lights(s), t);
   const nephele::glsl::Atmosphere a = frame_atmosphere(f);
   const glm::vec3 eye(f.camera_pos_m), sun(f.sun_dir);
   const glm::vec3 horizon = glm::normalize(glm::vec3(0.0f, -1.0f, 0.0175f));  // 1 deg, away

@@ -140,14 +140,14 @@ TEST(CloudLight, TwilightCloudsAreLitByTheSkyAboveNotByTheHorizonGlow) {
   s.sun.from_time = true;
   s.location = {48.85f, 2.35f, 35.0f};
   ASSERT_FALSE(sky_lights(s).key.moon);
-  const gpu::FrameParams f = make_frame_params(s, 0);
+  const nephele::AtmosphereTables t = compute_atmosphere_tables(s);
+  const gpu::FrameParams f = make_frame_params(s, 0, sky_lights(s), t);
   ASSERT_NEAR(glm::degrees(std::asin(f.sun_dir.z)), -12.4f, 0.3f);
   const glm::vec3 above(f.ambient_at_clouds), below(f.ambient_below_clouds);
   EXPECT_GT(above.b, 0.0f);
   EXPECT_LT(above.r / above.b, 1.5f);
   // The zenith sky from the cloud layer's middle, per unit illuminance like the ambient.
   const glsl::Atmosphere a = frame_atmosphere(f);
-  const nephele::AtmosphereTables t = compute_atmosphere_tables(s);
   const glm::vec3 mid(0.0f, 0.0f, a.planet_radius_m + 2750.0f);
   const glm::vec3 zenith = glsl::sky_hillaire(a, t.transmittance_lut(), t.ms_lut(), t.ms_field_lut(),
                                               glsl::MS_ANGULAR, false, mid, glm::vec3(0, 0, 1),
