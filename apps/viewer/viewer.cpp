@@ -12,6 +12,7 @@
 #include <array>
 #include <cfloat>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -147,6 +148,12 @@ class Viewer {
   void set_message(const std::string& message, bool is_error);
   void draw_overlay();
   Scene render_scene() const;
+  // The display's EV100 for the next frame: with output.auto_exposure, the meter's reading of
+  // the last completed frame (FrameStats::metered_luminance), adapted from the EV100 shown
+  // before at output.adaptation_ev_per_s over the wall-clock time between frames.
+  double display_ev100(const OutputParams& output);
+  std::optional<double> display_ev_;  // the auto exposure shown, once a frame was metered
+  std::chrono::steady_clock::time_point display_time_;
   bool draw_frame(const std::string& window_capture_path);
 
   ViewerOptions options_;
@@ -287,6 +294,21 @@ bool Viewer::ensure_swapchain() {
     });
   }
   return true;
+}
+
+double Viewer::display_ev100(const OutputParams& output) {
+  const auto now = std::chrono::steady_clock::now();
+  const double dt_s = std::chrono::duration<double>(now - display_time_).count();
+  display_time_ = now;
+  if (!output.auto_exposure) {
+    display_ev_.reset();
+    return output.ev100;
+  }
+  const std::optional<FrameStats>& stats = renderer_->completed_stats();
+  const double metered = stats ? stats->metered_luminance : 0.0;
+  const double ev = live_ev100(output, metered, display_ev_ ? &*display_ev_ : nullptr, dt_s);
+  if (metered > 0.0) display_ev_ = ev;
+  return ev;
 }
 
 Scene Viewer::render_scene() const {
@@ -519,6 +541,10 @@ void Viewer::draw_view_panel() {
       geodetic_from_enu(scene.camera.position_m, scene.location, scene.atmosphere.planet_radius_km);
   ImGui::Text("lat %.5f  lon %.5f  alt %.1f m", where.lat_deg, where.lon_deg, where.altitude_m);
   ImGui::Text("yaw %.1f  pitch %.1f deg", camera_.yaw_deg(), camera_.pitch_deg());
+  if (display_ev_)
+    ImGui::Text("exposure EV100 %.1f (auto)", *display_ev_);
+  else
+    ImGui::Text("exposure EV100 %.1f", scene.output.ev100);
 
   ImGui::Separator();
   if (ImGui::Button(playing_ ? "pause" : "play")) playing_ = !playing_;
@@ -844,7 +870,10 @@ bool Viewer::draw_frame(const std::string& window_capture_path) {
   // The sky; the editor only holds valid scenes, but a refusal must not stop the window.
   std::optional<FrameImages> images;
   try {
-    images = renderer_->record_frame(cmd, render_scene());
+    Scene scene = render_scene();
+    scene.output.ev100 = float(display_ev100(scene.output));  // the live auto exposure
+    scene.output.auto_exposure = false;
+    images = renderer_->record_frame(cmd, scene);
     ++records_;
   } catch (const InputError& e) {
     std::fprintf(stderr, "nephele-view: frame not rendered: %s\n", e.what());
@@ -995,8 +1024,10 @@ bool Viewer::draw_frame(const std::string& window_capture_path) {
                                   rgba.data(), int(extent.width) * 4))
         throw RuntimeError("cannot encode the PNG");
       write_file_atomically(window_capture_path, png);
-      std::fprintf(stderr, "nephele-view: wrote %s (%ux%u, the window)\n",
-                   window_capture_path.c_str(), extent.width, extent.height);
+      std::fprintf(stderr, "nephele-view: wrote %s (%ux%u, the window, EV100 %.2f%s)\n",
+                   window_capture_path.c_str(), extent.width, extent.height,
+                   display_ev_ ? *display_ev_ : double(editor_.scene().output.ev100),
+                   display_ev_ ? " auto" : "");
     } catch (const std::exception& e) {
       std::fprintf(stderr, "nephele-view: window screenshot: %s\n", e.what());
       exit_status_ = 1;

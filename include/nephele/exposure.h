@@ -54,6 +54,11 @@ double adapt_ev100(double current, double target, double rate_ev_per_s, double d
 // or a viewer: the previous frame's EV100 and the scene time or wall time between them).
 double frame_ev100(const OutputParams& output, const Image& image, const double* previous_ev100,
                    double dt_s);
+// The same from a meter's reading (cd/m^2; FrameStats::metered_luminance of a frame already
+// drawn, for the next one of a live display): output.ev100 when auto exposure is off; with no
+// reading yet (0), the previous EV100, or output.ev100 at the first frame.
+double live_ev100(const OutputParams& output, double metered_cd_m2, const double* previous_ev100,
+                  double dt_s);
 // The linear exposure of a still (no adaptation): exposure_from_ev100(frame_ev100(...)).
 float still_exposure(const OutputParams& output, const Image& image);
 

@@ -51,6 +51,11 @@ struct FrameStats {
   double frame_ms = 0.0;         // GPU time of the frame's passes (timestamps)
   double wall_ms = 0.0;          // host wall-clock time of render()
   double mean_luminance = 0.0;   // mean relative luminance of the linear HDR image
+  // What an exposure meter reads of the HDR image, measured on the device for every frame
+  // (frame API included): the log-average luminance (cd/m^2) over 64 x 64 pixels spread over
+  // it, as nephele/exposure.h's metered_luminance reads a whole image; 0 when unknown. A live
+  // display exposes the next frame by it (exposure.h, live_ev100).
+  double metered_luminance = 0.0;
   double cloud_cover_fraction = 0.0;  // share of above-horizon pixels with cloud T < 0.5
   // Still images (render()): the share of the whole sky dome above the observer (the upper
   // hemisphere, wherever the camera looks, 4096 directions of equal solid angle) with cloud

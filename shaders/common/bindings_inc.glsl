@@ -89,5 +89,8 @@ layout(set = 0, binding = 46) uniform sampler3D path_majorant;
 // The multiple-scattering light field (atmosphere_lut_inc.glsl, ms_field_texel).
 layout(set = 0, binding = 47, rgba32f) uniform writeonly image2D ms_field_out;
 layout(set = 0, binding = 48) uniform sampler2D ms_field;
+// The exposure meter (meter.comp), one per frame in flight, read by the host: the mean of
+// log(luminance, cd/m^2) over METER_GRID^2 points of the final image.
+layout(std430, set = 0, binding = 49) writeonly buffer MeterBlock { float meter_mean_log_luminance; };
 
 #endif

@@ -25,7 +25,8 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       kStorage, kSampled, kSampled, kSampled, kSampled, kStorage, kStorage, kStorage,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kStorage, kSampled, kStorage, kSampled, kStorage,
       kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled,
-      kStorage, kStorage, kSampled, kSampled, kStorage, kStorage, kSampled, kStorage, kSampled};
+      kStorage, kStorage, kSampled, kSampled, kStorage, kStorage, kSampled, kStorage, kSampled,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
   static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];

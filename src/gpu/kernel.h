@@ -63,6 +63,7 @@ enum Binding : uint32_t {
   kPathMajorant = 46,
   kMsFieldOut = 47,
   kMsField = 48,
+  kMeter = 49,
   kBindingCount
 };
 

@@ -53,12 +53,19 @@ double adapt_ev100(double current, double target, double rate_ev_per_s, double d
   return current + std::clamp(target - current, -step, step);
 }
 
+double live_ev100(const OutputParams& output, double metered_cd_m2, const double* previous_ev100,
+                  double dt_s) {
+  if (!output.auto_exposure) return output.ev100;
+  if (!(metered_cd_m2 > 0.0)) return previous_ev100 ? *previous_ev100 : output.ev100;
+  const double target = auto_ev100_target(output, metered_cd_m2);
+  if (!previous_ev100) return target;
+  return adapt_ev100(*previous_ev100, target, output.adaptation_ev_per_s, dt_s);
+}
+
 double frame_ev100(const OutputParams& output, const Image& image, const double* previous_ev100,
                    double dt_s) {
   if (!output.auto_exposure) return output.ev100;
-  const double target = auto_ev100_target(output, metered_luminance(image));
-  if (!previous_ev100) return target;
-  return adapt_ev100(*previous_ev100, target, output.adaptation_ev_per_s, dt_s);
+  return live_ev100(output, metered_luminance(image), previous_ev100, dt_s);
 }
 
 float still_exposure(const OutputParams& output, const Image& image) {

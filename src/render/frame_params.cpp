@@ -438,8 +438,9 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
                       int(scene.noise_seed & 0x7fffffff));
   f.steps = glm::ivec4(scene.quality.primary_steps, scene.quality.light_steps,
                        scene.atmosphere.view_samples, 0);
-  // The display's exposure: the manual EV100 (a host with auto exposure passes its own,
-  // FrameOptions::display_ev100).
+  // The display's exposure: output.ev100. A live display with auto exposure sets it each frame
+  // from the device's meter (FrameStats::metered_luminance, exposure.h's live_ev100), as
+  // nephele-view does.
   f.display = glm::vec4(float(exposure_from_ev100(scene.output.ev100)), 0.0f, 0.0f, 0.0f);
   return f;
 }

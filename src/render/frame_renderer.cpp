@@ -349,6 +349,7 @@ void FrameRenderer::Impl::collect(int slot) {
   if (slot < 0 || !pending[slot]) return;
   FrameStats stats = std::move(*pending[slot]);
   pending[slot].reset();
+  stats.metered_luminance = metered_luminance(state, slot);
   for (const auto& [name, ms] : state.timers[slot]->results()) {
     stats.passes.push_back({name, ms});
     stats.frame_ms += ms;
@@ -437,6 +438,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     clouds.record_ground_light(cmd, *s.timer, scene.quality.mode);
   pass_compose(cmd, s, scene.atmosphere.model);
   pass_stars(cmd, s);
+  pass_meter(cmd, s);
   if (options.display) pass_tonemap(cmd, s);
   gpu::frame_end_barrier(cmd, ctx.has_graphics());
 

@@ -1,6 +1,7 @@
 #include "render/passes.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "render/glsl.h"
@@ -18,6 +19,7 @@ GpuState::GpuState(gpu::Context& c)
       reference_psi_kernel(c, set, "sky_reference_psi.comp.spv"),
       reference_sky_kernel(c, set, "sky_reference.comp.spv"),
       tonemap_kernel(c, set, "tonemap.comp.spv"),
+      meter_kernel(c, set, "meter.comp.spv"),
       stars(c, sizeof(gpu::StarGpu) * std::max<size_t>(star_catalogue().size(), 1),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
       reference_psi(c, gpu::REFERENCE_TILE, gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES,
@@ -27,6 +29,8 @@ GpuState::GpuState(gpu::Context& c)
   for (int i = 0; i < kSlots; ++i) {
     timers[i] = std::make_unique<gpu::PassTimer>(c, 16);
     frame_params[i] = gpu::Buffer(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    meter[i] = gpu::Buffer(c, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    *static_cast<float*>(meter[i].data()) = std::nanf("");
   }
   set.bind_buffer(gpu::kStars, stars, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   auto* star_data = static_cast<gpu::StarGpu*>(stars.data());
@@ -57,6 +61,7 @@ void GpuState::begin(VkCommandBuffer cmd, int index, const gpu::FrameParams& par
   slot = index;
   std::memcpy(frame_params[slot].data(), &params, sizeof(params));
   set.bind_buffer(gpu::kFrameParams, frame_params[slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  set.bind_buffer(gpu::kMeter, meter[slot], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   const int image = slot == kOneOff ? 0 : slot;  // one-off work writes no final image
   set.bind_storage_image(gpu::kColorOut, color[image]);
   set.bind_storage_image(gpu::kColor, color[image]);
@@ -90,6 +95,15 @@ void pass_stars(VkCommandBuffer cmd, GpuState& s) {
 void pass_tonemap(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.tonemap_kernel, s.set, *s.timer, "tonemap", uint32_t(s.width),
                 uint32_t(s.height), 1, 8, 8, 1);
+}
+
+void pass_meter(VkCommandBuffer cmd, GpuState& s) {
+  gpu::dispatch(cmd, s.meter_kernel, s.set, *s.timer, "meter", 16, 16, 1, 16, 16, 1);
+}
+
+double metered_luminance(const GpuState& s, int slot) {
+  const float mean_log = *static_cast<const float*>(s.meter[slot].data());
+  return std::isfinite(mean_log) ? std::exp(double(mean_log)) : 0.0;
 }
 
 void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model) {

@@ -45,10 +45,11 @@ struct GpuState {
   gpu::Context& ctx;
   gpu::DescriptorSet set;
   gpu::Kernel compose_kernel, compose_reference_kernel, stars_kernel;
-  gpu::Kernel reference_psi_kernel, reference_sky_kernel, tonemap_kernel;
+  gpu::Kernel reference_psi_kernel, reference_sky_kernel, tonemap_kernel, meter_kernel;
   std::unique_ptr<gpu::PassTimer> timers[kSlots];
   gpu::PassTimer* timer = nullptr;  // the slot's, since begin()
   gpu::Buffer frame_params[kSlots];
+  gpu::Buffer meter[kSlots];  // meter.comp's reading of the slot's last frame (host-visible)
   int slot = kOneOff;               // since begin()
   gpu::Buffer stars;  // the star catalogue (StarGpu), written once
   int star_count = 0;
@@ -68,5 +69,10 @@ void pass_reference_sky(VkCommandBuffer cmd, GpuState& s);
 void pass_stars(VkCommandBuffer cmd, GpuState& s);
 // The display image from the final one: exposure, ACES fit, sRGB.
 void pass_tonemap(VkCommandBuffer cmd, GpuState& s);
+// The exposure meter (meter.comp) of the final image, into s.meter[s.slot].
+void pass_meter(VkCommandBuffer cmd, GpuState& s);
+// Its reading of the last frame recorded in `slot` once that completed: the log-average
+// luminance (cd/m^2).
+double metered_luminance(const GpuState& s, int slot);
 
 }  // namespace nephele

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "nephele/camera_path.h"
+#include "nephele/exposure.h"
 #include "nephele/image.h"
 #include "nephele/image_compare.h"
 #include "nephele/scene_io.h"
@@ -157,6 +158,30 @@ TEST_F(ViewerTest, ScreenshotOfTheDefaultSceneIsTheCliRender) {
   bool varied = false;
   for (const glm::vec4& p : window.pixels) varied = varied || p != window.pixels[0];
   EXPECT_TRUE(varied);
+}
+
+// The window exposes itself (output.auto_exposure, the default) from the device's meter: in
+// civil twilight (the sun 4 degrees down) the live window's EV100 is the one `nephele render`
+// meters for the same frame, within 0.3 EV (the viewer meters its dynamic-resolution frame),
+// where before the window stayed at the manual EV100 of 15 and drew the dusk black.
+TEST_F(ViewerTest, TheWindowExposesItselfAtDusk) {
+  const std::string args = " --preset default --sun-elevation-deg -4 --sun-azimuth-deg 270"
+                           " --view-dir 0,1,0.3";
+  const ProcessRun r = view(args + " --frames 6 --window-screenshot " + path("window.png"));
+  expect_clean(r);
+  const size_t at = r.output.find("EV100 ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const double live = std::atof(r.output.c_str() + at + 6);
+  EXPECT_NE(r.output.find(" auto)", at), std::string::npos) << r.output;
+  const ProcessRun cli = run(std::string(NEPHELE_CLI_PATH) + " render" + args +
+                             " --width 160 --height 120 --exr-float -o " + path("still.exr"));
+  ASSERT_EQ(cli.status, 0) << cli.output;
+  nephele::Scene scene = nephele::load_preset("default");
+  const double expected =
+      nephele::frame_ev100(scene.output, nephele::read_image(path("still.exr")), nullptr, 0.0);
+  std::printf("dusk: window EV100 %.2f, the still's %.2f\n", live, expected);
+  EXPECT_LT(expected, 8.0);  // a dusk, far from the day's 15
+  EXPECT_NEAR(live, expected, 0.3);
 }
 
 TEST_F(ViewerTest, ScriptedCoverageChangesTheImage) {

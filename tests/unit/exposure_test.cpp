@@ -99,6 +99,20 @@ TEST(AutoExposure, AdaptsAtItsRate) {
   EXPECT_FLOAT_EQ(still_exposure(out, dusk), float(exposure_from_ev100(9.5)));
 }
 
+// A live display exposes from the meter's reading of a frame already drawn.
+TEST(AutoExposure, LiveDisplayExposesFromTheMetersReading) {
+  OutputParams out;
+  out.adaptation_ev_per_s = 2.0f;
+  out.ev100 = 11.0f;
+  EXPECT_DOUBLE_EQ(live_ev100(out, 0.0, nullptr, 0.1), 11.0);     // nothing metered yet
+  EXPECT_DOUBLE_EQ(live_ev100(out, 4096.0, nullptr, 0.1), 15.0);  // the first reading: at once
+  const double shown = 15.0;
+  EXPECT_DOUBLE_EQ(live_ev100(out, 16.0, &shown, 0.5), 14.0);     // towards 7, 2 EV/s
+  EXPECT_DOUBLE_EQ(live_ev100(out, 0.0, &shown, 0.5), 15.0);      // no reading: stay
+  out.auto_exposure = false;
+  EXPECT_DOUBLE_EQ(live_ev100(out, 16.0, &shown, 0.5), 11.0);     // manual
+}
+
 // The old keys keep old scenes rendering as they did.
 TEST(OldKeys, IlluminanceAndExposureAreMapped) {
   const Scene s = parse_scene_toml(
