@@ -309,6 +309,14 @@ vec3 ms_field_ground_sky(sampler2D field, int half_index, float cos_sun) {
              vec3(0.0f));
 }
 
+// Psi_ms as MsScattering (isotropic: the same for air and aerosols).
+MsScattering ms_isotropic(vec3 psi) {
+  MsScattering s;
+  s.rayleigh = psi;
+  s.mie = psi;
+  return s;
+}
+
 // Multiple scattering at `pos` towards a view along `dir`: Psi_ms for both (MS_ISOTROPIC, and
 // always when `exact`), or the light field through the phases (MS_ANGULAR).
 MsScattering multiple_scattering_towards(Atmosphere a, sampler2D t_lut, sampler2D ms_lut,
@@ -316,10 +324,7 @@ MsScattering multiple_scattering_towards(Atmosphere a, sampler2D t_lut, sampler2
                                          vec3 sun, vec3 dir, float ground_albedo) {
   if (ms_mode >= MS_ANGULAR && !exact)
     return ms_field_scattering(a, ms_field, ms_mode - MS_ANGULAR, pos, sun, dir);
-  MsScattering s;
-  s.rayleigh = multiple_scattering_at(a, t_lut, ms_lut, exact, pos, sun, ground_albedo);
-  s.mie = s.rayleigh;
-  return s;
+  return ms_isotropic(multiple_scattering_at(a, t_lut, ms_lut, exact, pos, sun, ground_albedo));
 }
 
 // A view ray's stretch of air: from the eye (from space: where it enters the atmosphere) to the
@@ -356,13 +361,6 @@ vec3 sky_source(AtmosphereMedium m, float phase_r, float phase_m, vec3 t_sun, Ms
          m.scattering_r * ms.rayleigh + m.scattering_m * ms.mie;
 }
 
-// Psi_ms as MsScattering (isotropic: the same for air and aerosols).
-MsScattering ms_isotropic(vec3 psi) {
-  MsScattering s;
-  s.rayleigh = psi;
-  s.mie = psi;
-  return s;
-}
 
 // The ground seen at the end of a ray with transmittance `throughput` (sets ground_sun and adds
 // the sky-lit part to radiance; see sky_hillaire).
