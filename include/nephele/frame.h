@@ -105,9 +105,12 @@ class FrameRenderer {
   const std::string& device_name() const;
   int validation_messages() const;
 
+  // The implementation (src/render/frame_renderer_impl.h): opaque to hosts, named for the
+  // library's own tests.
+  struct Impl;
+
  private:
   friend class Renderer;
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -32,6 +32,8 @@ class WeatherModule {
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // The weather's time in units of clouds.weather_evolution_s (0 for a static map).
   static double weather_time(const Scene& scene);
+  // The map the clouds read (for tests: the procedural map against its CPU function).
+  const gpu::Texture& map() const { return map_; }
 
  private:
   void upload_png(const std::string& path);
