@@ -22,6 +22,7 @@ namespace {
 Scene clear_sky(float sun_elevation_deg) {
   Scene s = nephele::load_preset("default");
   s.clouds.coverage = 0.0f;
+  s.quality.light_volume_km = 0;  // no clouds to light: no light volume to build
   s.output.width = 48;
   s.output.height = 32;
   const float e = glm::radians(sun_elevation_deg);
