@@ -206,6 +206,21 @@ float light_volume_lookup(vec3 pos) {
   return textureLod(light_volume, coord, 0.0f).r;
 }
 
+// Optical depth (density field x m) of the clouds behind pos as seen from the sun: along the
+// sun's chord onwards, away from the sun, to the cloud shell's bottom (at most twice the
+// shell's thickness), for the two-stream light (cloud_two_stream_fluxes). Where the light
+// volume holds both ends, the difference of its two depths towards the sun (the chord is the
+// same line); elsewhere a march of the light march's steps (at least 12).
+float depth_behind(vec3 pos, vec3 sun) {
+  vec2 hit = ray_sphere(pos, -sun, frame.radii_m.z);
+  float thickness = frame.radii_m.w - frame.radii_m.z;
+  float length_m = hit.x > 0.0f ? min(hit.x, 2.0f * thickness) : 2.0f * thickness;
+  vec3 far_end = pos - sun * length_m;
+  if (light_volume_covers(pos) && light_volume_covers(far_end))
+    return max(light_volume_lookup(far_end) - light_volume_lookup(pos), 0.0f);
+  return march_light(pos, -sun, 0.0f, length_m, max(frame.steps.y, 12));
+}
+
 // Optical depth (density field x m) of the clouds towards the sun from `base`, a point at the
 // bottom of the cloud shell: from the light volume if `from_volume`, else `samples` samples of
 // the full density over the light ray (coarser sampling turns thin wisps into deep shadow). A

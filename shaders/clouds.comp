@@ -175,6 +175,8 @@ void main() {
   float lobe = frame.cloud_phase.z;
   float thickness = frame.radii_m.w - frame.radii_m.z;
   vec4 phases = octave_phases(mu);
+  bool two_stream = frame.cloud_phase.w > 0.5f;
+  float g1 = lobe * g_f + (1.0f - lobe) * g_b;  // the phase function's mean cosine
 
   vec3 scattered = vec3(0.0f);
   vec3 transmittance = vec3(1.0f);
@@ -359,7 +361,9 @@ void main() {
       light_k = 0;
       float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
       float tau_light = depth * sigma_scale * light_atten;
-      float energy = multiple_scattering(tau_light, mu, powder, phases) * lit_visibility;
+      float energy = (two_stream ? exp(-tau_light) * phases[0]
+                                 : multiple_scattering(tau_light, mu, powder, phases)) *
+                     lit_visibility;
       // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
       float h = saturate(layer_fraction(lit_pos));
       // With voxel clouds, where the ray first meets cloud: the shell's entry may lie far
@@ -370,8 +374,21 @@ void main() {
       // flux through a horizontal deck mu_sun times the sun's), and the sky's light through
       // the same cloud; from below, the light of the ground around, itself under the
       // clouds' shadow, less the higher the sample is in the layer.
-      float t_d = cloud_diffuse_transmittance(tau_light);
-      float diffuse = (t_d - exp(-tau_light)) * max(dot(sun, normalize(lit_pos)), 0.0f) / PI;
+      float mu_sun = max(dot(sun, normalize(lit_pos)), 0.0f);
+      float t_d, diffuse;
+      if (two_stream) {
+        // Single scattering and the two-stream field along the sun's chord (clouds_inc.glsl):
+        // the light going on and the light scattered back towards the sun, which lights the
+        // sunlit faces; per unit of a horizontal deck's flux (mu_sun), as the octaves' diffuse
+        // term below.
+        float tau_behind = depth_behind(lit_pos, sun) * sigma_scale * light_atten;
+        vec2 fluxes = cloud_two_stream_fluxes(tau_light, tau_behind, albedo);
+        diffuse = cloud_two_stream_radiance(fluxes, tau_light, mu, g1) * mu_sun;
+        t_d = fluxes.x;
+      } else {
+        t_d = cloud_diffuse_transmittance(tau_light);
+        diffuse = (t_d - exp(-tau_light)) * mu_sun / PI;
+      }
       vec3 luminance = albedo * (sun_light * (energy + diffuse) +
                                  ambient_above * t_d + ambient_below * ((1.0f - h) * below_share));
       float step_t = exp(-lit_sigma_t * lit_step_m);

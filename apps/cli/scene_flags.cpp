@@ -126,6 +126,10 @@ const std::vector<FlagSpec>& flag_specs() {
        "powder effect strength, [0, 1]"},
       {"--ambient", &F::ambient, "clouds.ambient_strength", TO(clouds.ambient_strength), "X",
        "sky ambient light on clouds, >= 0"},
+      {"--two-stream-light", &F::two_stream_light, "clouds.two_stream_light",
+       TO(clouds.two_stream_light), "true|false",
+       "false: Wrenninge's octaves, powder and a conservative diffuse term (default); true "
+       "(experimental): single scattering and the two-stream field along the sun's chord"},
       {"--wind-mps", &F::wind_mps, "clouds.wind_mps", TO(clouds.wind_mps), "E,N",
        "wind velocity (m/s): east, north"},
       {"--wind-shear-mps", &F::wind_shear_mps, "clouds.wind_shear_mps", TO(clouds.wind_shear_mps),

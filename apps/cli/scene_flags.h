@@ -25,7 +25,7 @@ struct SceneFlags {
       sun_illuminance_lux;
   std::optional<std::string> coverage, cloud_type, precipitation, density, cloud_bottom_m, cloud_top_m, extinction_per_m;
   std::optional<std::string> attenuation, light_attenuation, albedo, g_forward, g_backward;
-  std::optional<std::string> lobe_weight, powder, ambient, wind_mps, weather_map,
+  std::optional<std::string> lobe_weight, powder, ambient, two_stream_light, wind_mps, weather_map,
       weather_evolution_s, cirrus_coverage, cirrus_type, cirrus_altitude_m;
   std::optional<std::string> wind_shear_mps, detail_drift_mps, flow_speed_mps, high_coverage,
       high_cloud_type, high_bottom_m, high_top_m, high_wind_mps;

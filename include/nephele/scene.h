@@ -165,6 +165,14 @@ struct CloudParams {
   // clouds lean. high_clouds, moving with its own wind, reads at each point the map 0.37 tiles
   // east and 0.61 tiles north of it, so its clouds do not stack over the low ones.
   std::string weather_map;
+  // How the clouds' multiple scattering is approximated: false (the default), Wrenninge's four
+  // octaves with the powder term and a conservative diffuse term; true (experimental, stop 33),
+  // single scattering plus the two-stream field along the sun's chord through each sample
+  // (common/clouds_inc.glsl, cloud_two_stream_fluxes: the light going on and the light
+  // scattered back towards the sun, with absorption), closer to the path tracer on six of the
+  // eight validation views but not yet consistent between the light volume and a light march
+  // (README, "Validation").
+  bool two_stream_light = false;
 };
 
 // A second, higher volumetric layer (altocumulus by default) with its own altitude range,

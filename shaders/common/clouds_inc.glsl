@@ -171,6 +171,54 @@ float cloud_diffuse_transmittance(float tau) {
   return 1.0f / (1.0f + 0.75f * (1.0f - CLOUD_DROPLET_G) * max(tau, 0.0f));
 }
 
+// (1 - e^(-2 k x)) / (2 k), which tends to x as k goes to 0 (a conservative medium).
+float two_stream_spread(float k, float x) {
+  float y = 2.0f * k * x;
+  return y < 1e-3f ? x * (1.0f - 0.5f * y) : (1.0f - exp(-y)) / (2.0f * k);
+}
+
+// The diffuse fluxes at a point of a cloud, per unit of the sun's irradiance, in the Eddington
+// two-stream model of a homogeneous slab across the sun's chord through the point (Meador &
+// Weaver 1980): optical depth tau_sun towards the sun, tau_behind onwards to where the chord
+// leaves the cloud, droplets of single-scattering albedo `albedo` and asymmetry
+// CLOUD_DROPLET_G. gamma1 = (7 - w (4 + 3g)) / 4, gamma2 = -(1 - w (4 - 3g)) / 4,
+// k = sqrt(gamma1^2 - gamma2^2), r = gamma2 / (gamma1 + k) (a deep cloud's reflectance); with
+// the light entering at the sunlit end (F_on = 1 there) and none entering at the far end
+// (F_back = 0 there), F_on = a e^(-k tau)(1 - r^2 e^(-2k tau_b)), F_back = a r e^(-k tau)(1 -
+// e^(-2k tau_b)), written in a form that stays finite as w goes to 1, where it gives
+// F_on = (1 + gamma1 tau_b) / (1 + gamma1 T), F_back = gamma1 tau_b / (1 + gamma1 T), T the
+// whole chord. x: the light going on away from the sun (the direct beam included), y: the
+// light scattered back towards the sun.
+vec2 cloud_two_stream_fluxes(float tau_sun, float tau_behind, float albedo) {
+  tau_sun = max(tau_sun, 0.0f);
+  tau_behind = max(tau_behind, 0.0f);
+  float w = clamp(albedo, 0.0f, 1.0f);
+  float g = CLOUD_DROPLET_G;
+  float gamma1 = (7.0f - w * (4.0f + 3.0f * g)) * 0.25f;
+  float gamma2 = -(1.0f - w * (4.0f - 3.0f * g)) * 0.25f;
+  float k = sqrt(max(gamma1 * gamma1 - gamma2 * gamma2, 0.0f));
+  float edge = 1.0f / (gamma1 + k);
+  float chord = tau_sun + tau_behind;
+  float d = two_stream_spread(k, chord) + exp(-2.0f * k * chord) * edge;
+  float decay = exp(-k * tau_sun);
+  float behind = two_stream_spread(k, tau_behind);
+  float on = decay * (behind + exp(-2.0f * k * tau_behind) * edge) / d;
+  float back = gamma2 * edge * decay * behind / d;
+  return vec2(on, back);
+}
+
+// The light a cloud sample scatters from the two-stream field (cloud_two_stream_fluxes) towards
+// a viewer, per unit of the sun's irradiance and of albedo: the diffuse fluxes as a radiance
+// linear in the direction (Eddington: I0 = (F_on + F_back) / 2 pi, I1 = 3 (F_on - F_back) /
+// 4 pi, the direct beam left out of F_on), scattered by a phase function of mean cosine g1:
+// I0 + g1 I1 mu, mu the cosine between the view ray and the direction to the sun.
+float cloud_two_stream_radiance(vec2 fluxes, float tau_sun, float mu, float g1) {
+  float on = max(fluxes.x - exp(-tau_sun), 0.0f);
+  float i0 = (on + fluxes.y) / (2.0f * PI);
+  float i1 = 3.0f * (on - fluxes.y) / (4.0f * PI);
+  return max(i0 + g1 * i1 * mu, 0.0f);
+}
+
 // Share of the clear sky's light that reaches a ground point under clouds: half of a horizontal
 // surface's sky light comes from within 45 deg of the zenith (cosine weighting), where the
 // cloud towards the sun (its diffuse transmittance `local_t`) stands for the cloud overhead;

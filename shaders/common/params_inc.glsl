@@ -72,7 +72,7 @@ struct FrameParams {
                             // finest level everywhere), y unused; z sigma_t at density 1
                             // (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
-  vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w unused
+  vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w 1: two-stream light
   vec4 cloud_weather;       // x, y, z unused; w the
                             // cloud profile's half extent (m; cloud_profile.comp)
   CloudLayerGpu cloud_layers[CLOUD_LAYERS];

@@ -423,7 +423,8 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
                            1.0f / kFlowMapPeriodM);
   f.cloud_light = glm::vec4(c.attenuation, c.light_attenuation, c.powder_strength,
                             c.ambient_strength);
-  f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight, 0.0f);
+  f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight,
+                            c.two_stream_light ? 1.0f : 0.0f);
   const CirrusParams& ci = scene.cirrus;
   const float wind_speed = glm::length(ci.wind_mps);
   f.cirrus = glm::vec4(f.radii_m.x + ci.altitude_m, ci.coverage, ci.type, ci.optical_depth);

@@ -247,6 +247,9 @@ const std::vector<Section>& scene_sections() {
         FIELD(clouds, phase_g_backward, "(-1, 0]"),
         FIELD(clouds, phase_lobe_weight, "weight of the forward lobe, [0, 1]"),
         FIELD(clouds, powder_strength, "[0, 1]"), FIELD(clouds, ambient_strength, "[0, 100]"),
+        FIELD(clouds, two_stream_light,
+              "false: Wrenninge's octaves, the powder term and a conservative diffuse term; true "
+              "(experimental): single scattering and the two-stream field along the sun's chord"),
         FIELD(clouds, wind_mps, "east, north (m/s), at the layer's bottom, [-200, 200] each"),
         FIELD(clouds, wind_shear_mps, "east, north (m/s): the wind's growth up to the top"),
         FIELD(clouds, wind_skew_s, "[0, 3600]: tops lean downwind as if carried h x this longer (seed: 200)"),

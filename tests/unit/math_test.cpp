@@ -261,6 +261,73 @@ TEST(CloudModel, DiffuseTransmittanceFollowsTheTwoStreamSlab) {
   EXPECT_GT(g::cloud_diffuse_transmittance(3.0f), 10.0f * std::exp(-3.0f));
 }
 
+// The two-stream fluxes along a sun chord (cloud_two_stream_fluxes) against the two-stream
+// equations integrated numerically: dF_on/dtau = -gamma1 F_on + gamma2 F_back,
+// dF_back/dtau = gamma1 F_back - gamma2 F_on, with F_on(0) = 1 and F_back(T) = 0, by RK4 and
+// shooting on F_back(0) (the equations are linear).
+glm::dvec2 two_stream_by_rk4(double w, double chord, double at) {
+  const double g = 0.85, gamma1 = (7.0 - w * (4.0 + 3.0 * g)) / 4.0;
+  const double gamma2 = -(1.0 - w * (4.0 - 3.0 * g)) / 4.0;
+  const auto run = [&](double back0, double until) {
+    glm::dvec2 f(1.0, back0);
+    const auto d = [&](glm::dvec2 v) {
+      return glm::dvec2(-gamma1 * v.x + gamma2 * v.y, gamma1 * v.y - gamma2 * v.x);
+    };
+    const int n = 20000;
+    const double h = until / n;
+    for (int i = 0; i < n; ++i) {
+      const glm::dvec2 k1 = d(f), k2 = d(f + 0.5 * h * k1), k3 = d(f + 0.5 * h * k2),
+                       k4 = d(f + h * k3);
+      f += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    return f;
+  };
+  const double b0 = run(0.0, chord).y, b1 = run(1.0, chord).y;
+  return run(-b0 / (b1 - b0), at);
+}
+
+TEST(CloudModel, TwoStreamFluxesSolveTheTwoStreamEquations) {
+  for (float w : {1.0f, 0.9999f, 0.99f, 0.9f})
+    for (float chord : {0.5f, 8.0f, 60.0f})
+      for (float share : {0.0f, 0.3f, 0.8f}) {
+        const float tau = chord * share;
+        const glm::vec2 f = g::cloud_two_stream_fluxes(tau, chord - tau, w);
+        const glm::dvec2 expected = two_stream_by_rk4(w, chord, tau);
+        EXPECT_NEAR(f.x, expected.x, 1e-3 * expected.x + 1e-6)
+            << "on: albedo " << w << ", chord " << chord << ", tau " << tau;
+        EXPECT_NEAR(f.y, expected.y, 1e-3 * expected.y + 1e-6)
+            << "back: albedo " << w << ", chord " << chord << ", tau " << tau;
+      }
+  // The light enters at the sunlit end whole and none comes back from beyond the far end.
+  EXPECT_FLOAT_EQ(g::cloud_two_stream_fluxes(0.0f, 40.0f, 0.99f).x, 1.0f);
+  EXPECT_FLOAT_EQ(g::cloud_two_stream_fluxes(40.0f, 0.0f, 0.99f).y, 0.0f);
+  // Without absorption the net flux is the same all along the chord: what the cloud passes,
+  // 1 / (1 + gamma1 T), gamma1 = 3/4 (1 - 0.85); and a deep cloud sends most light back.
+  for (float tau : {0.0f, 10.0f, 50.0f, 99.0f}) {
+    const glm::vec2 f = g::cloud_two_stream_fluxes(tau, 100.0f - tau, 1.0f);
+    EXPECT_NEAR(f.x - f.y, 1.0f / (1.0f + 0.1125f * 100.0f), 1e-4f) << "tau " << tau;
+  }
+  EXPECT_GT(g::cloud_two_stream_fluxes(0.0f, 100.0f, 1.0f).y, 0.9f);
+  // Droplets absorbing 1% (albedo 0.99) send back a deep cloud's r = gamma2 / (gamma1 + k).
+  EXPECT_NEAR(g::cloud_two_stream_fluxes(0.0f, 1000.0f, 0.99f).y, 0.5506f, 1e-3f);
+}
+
+TEST(CloudModel, TwoStreamRadianceFavoursTheLightsDirection) {
+  // The sunlit face of a deep cloud: no diffuse light going on yet, much coming back. Seen from
+  // the sun's side (the view ray pointing away from the sun, mu = -1) it is brighter than an
+  // isotropic field would make it; seen against the sun (mu = 1) darker; g1 = 0 is isotropic.
+  const float tau = 0.0f;
+  const glm::vec2 f = g::cloud_two_stream_fluxes(tau, 200.0f, 1.0f);
+  const float iso = g::cloud_two_stream_radiance(f, tau, 1.0f, 0.0f);
+  EXPECT_NEAR(iso, (f.x - 1.0f + f.y) / (2.0f * 3.14159265f), 1e-6f);
+  EXPECT_GT(g::cloud_two_stream_radiance(f, tau, -1.0f, 0.5f), 1.5f * iso);
+  EXPECT_LT(g::cloud_two_stream_radiance(f, tau, 1.0f, 0.5f), 0.5f * iso);
+  // The direct beam is single scattering's, not the field's: a clear chord scatters nothing.
+  EXPECT_NEAR(g::cloud_two_stream_radiance(g::cloud_two_stream_fluxes(0.0f, 0.0f, 1.0f), 0.0f,
+                                           0.3f, 0.5f),
+              0.0f, 1e-6f);
+}
+
 TEST(CloudModel, GroundSkyLightComesThroughTheGapsAndTheClouds) {
   // Clear sky, and a closed deck passing 20% everywhere.
   EXPECT_FLOAT_EQ(g::cloud_ground_sky_share(1.0f, 1.0f), 1.0f);
