@@ -20,13 +20,13 @@ void main() {
       int(gl_GlobalInvocationID.z) >= frame.weather_build.y)
     return;
   // The step's time in units of the weather's time scale, as doubles would give it (whole
-  // steps and the remainder; GLSL's % is undefined for a negative step, so no %).
-  int whole = int(floor(float(step) / float(WEATHER_STEPS)));
+  // steps and the remainder, also for a negative step: floor_div).
+  int whole = floor_div(step, WEATHER_STEPS);
   float time = float(whole) + float(step - whole * WEATHER_STEPS) / float(WEATHER_STEPS);
   // The map evolves along the noise's third axis: the coverage field (period 6) moves one
   // lattice cell per weather_evolution_s. That axis wraps like the others, so the weather
   // repeats after 6 weather_evolution_s (6 hours at the default hour).
   vec3 uv = vec3((vec2(id) + 0.5f) / vec2(size), time / 6.0f);
   vec4 state = weather_state(uv, uint(frame.size.w));
-  imageStore(weather_states, ivec3(id, step - 3 * int(floor(float(step) / 3.0f))), state);
+  imageStore(weather_states, ivec3(id, step - 3 * floor_div(step, 3)), state);
 }

@@ -8,6 +8,13 @@ const float PI = 3.14159265358979f;
 // NaN gives 0 (clamp leaves NaN undefined): a table lookup never reads with a NaN coordinate.
 float saturate(float x) { return x >= 0.0f ? min(x, 1.0f) : 0.0f; }
 
+// a / b rounded down (b > 0, |a| < 2^24, where the float quotient is exact enough), also for
+// negative a. Not with GLSL's integer % or /, whose results for a negative operand are left to
+// the device (an H100 wrapped noise cell -1 elsewhere than lavapipe and the CPU, and drew other
+// clouds); a - b floor_div(a, b) is a mod b in [0, b).
+int floor_div(int a, int b) { return int(floor(float(a) / float(b))); }
+ivec3 floor_div(ivec3 a, int b) { return ivec3(floor(vec3(a) / float(b))); }
+
 // Linear map of v from [lo, hi] to [new_lo, new_hi] (seed 000, listing B.1); not clamped.
 float remap(float v, float lo, float hi, float new_lo, float new_hi) {
   return new_lo + (v - lo) / (hi - lo) * (new_hi - new_lo);

@@ -23,12 +23,8 @@ vec3 hash_cell(ivec3 cell, uint seed) {
   return vec3(h) * (1.0f / 4294967295.0f);
 }
 
-// The cell's index modulo the period, in [0, period) also for negative cells. Not with GLSL's
-// %, whose result is undefined for a negative operand (an H100 wrapped cell -1 elsewhere than
-// lavapipe and the CPU, and drew other clouds): the floor of an exact float quotient instead.
-ivec3 wrap_cell(ivec3 cell, int period) {
-  return cell - period * ivec3(floor(vec3(cell) / float(period)));
-}
+// The cell's index modulo the period, in [0, period) also for negative cells (floor_div).
+ivec3 wrap_cell(ivec3 cell, int period) { return cell - period * floor_div(cell, period); }
 
 // Quintic fade (Perlin 2002).
 vec3 fade(vec3 t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }

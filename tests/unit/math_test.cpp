@@ -181,6 +181,20 @@ TEST(MultipleScatteringField, ScattersAKnownFieldThroughBothPhases) {
   }
 }
 
+// floor_div rounds down for negative numbers too, so that a - b floor_div(a, b) wraps into
+// [0, b) as the noise's cells and the weather's steps need (GLSL's % leaves it to the device).
+TEST(Math, FloorDivRoundsDownAndWrapsNegativeNumbers) {
+  EXPECT_EQ(g::floor_div(7, 3), 2);
+  EXPECT_EQ(g::floor_div(6, 3), 2);
+  EXPECT_EQ(g::floor_div(-1, 3), -1);
+  EXPECT_EQ(g::floor_div(-3, 3), -1);
+  EXPECT_EQ(g::floor_div(-4, 3), -2);
+  EXPECT_EQ(g::floor_div(-1, 360), -1);
+  for (int a = -50; a <= 50; ++a)
+    EXPECT_EQ(a - 12 * g::floor_div(a, 12), ((a % 12) + 12) % 12) << a;
+  EXPECT_EQ(g::wrap_cell(glm::ivec3(-1, 12, 25), 12), glm::ivec3(11, 0, 1));
+}
+
 TEST(Noise, PerlinTilesWithItsPeriod) {
   for (int i = 0; i < 50; ++i) {
     vec3 p(0.37f * i, 1.3f + 0.11f * i, 2.9f - 0.07f * i);
