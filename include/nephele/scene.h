@@ -312,6 +312,38 @@ struct VoxelCloudParams {
 };
 constexpr int kMaxVoxelClouds = 16;
 
+// Particle clouds (seed 003, 3.3.2-3.3.4; issue 22): a second cloud model beside the volumetric
+// one. Each cloud is a particle system spawned from Perlin noise (one particle at most per cell
+// of a grid, where the noise under the cloud's envelope exceeds the threshold that gives
+// `coverage`), lit on the CPU by splatting its particles towards the sun (Harris and Lastra
+// 2001) and drawn as camera-facing textured quads, back to front, composited with the sky and
+// the volumetric clouds in depth order. One cloud per square of `cloud_spacing_m` within
+// `field_radius_m` of the origin; the field drifts with `wind_mps`.
+struct ParticleCloudParams {
+  float coverage = 0.0f;               // [0, 1]: share of the grid's cells holding a particle; 0 = none
+  float bottom_altitude_m = 1500.0f;   // the clouds' base above ground, [0, 1e5]
+  float top_altitude_m = 2700.0f;      // their highest tops, > bottom_altitude_m
+  float field_radius_m = 12000.0f;     // [100, 1e6]
+  float cloud_spacing_m = 2000.0f;     // [100, 1e5]
+  float cell_m = 100.0f;               // the particles' grid, [1, 1e4]
+  float particle_radius_m = 140.0f;    // a particle's radius at the noise's largest value, [1, 1e4]
+  float noise_period_m = 900.0f;       // the Perlin noise's lattice spacing, [1, 1e6]
+  // 0: a static sky (3D noise); else [1, 1e7]: time's scale in 4D noise, the sky changes over it.
+  float evolution_s = 0.0f;
+  glm::vec2 wind_mps{0.0f, 0.0f};      // east, north (m/s), [-200, 200] each
+  float opacity = 0.5f;                // a particle's opacity at its centre, [0, 1]
+  float albedo = 0.9f;                 // single-scattering albedo of a particle, [0, 1]
+  float phase_g = 0.6f;                // Henyey-Greenstein asymmetry, (-1, 1)
+  // true: the Rayleigh phase of Harris and Lastra's paper (the seed's reference [5]); false:
+  // Henyey-Greenstein with phase_g.
+  bool rayleigh_phase = false;
+  // gamma of Harris and Lastra's forward scattering: the solid angle (sr) about the light's
+  // direction whose scattered light counts as going on with it, [0, 4 pi].
+  float forward_solid_angle_sr = 0.5f;
+  int light_buffer = 32;               // the lighting splat buffer's side: 32 or 64 texels
+  uint32_t seed = 1;
+};
+
 // The lab scene (issue 21): one density grid in vacuum (no planet, no air, a black background)
 // lit by a distant sun, for comparing nephele's reference path tracer (Renderer::render_reference)
 // with other renderers. The grid keeps its file's frame (x east, y north, z up, metres) and
@@ -344,6 +376,7 @@ struct Scene {
   float time_s = 0.0f;       // animation time (s): moves clouds with the wind, [-1e6, 1e6]
   uint32_t noise_seed = 1;   // seeds the noise textures and the procedural weather map
   std::vector<VoxelCloudParams> voxel_clouds;
+  ParticleCloudParams particle_clouds;
   LabParams lab;
 };
 

@@ -52,6 +52,7 @@ namespace {
 #include "common/clouds_inc.glsl"
 #include "common/light_volume_inc.glsl"
 #include "common/voxel_inc.glsl"
+#include "common/particle_inc.glsl"
 }  // namespace
 }  // namespace nephele::glsl
 #pragma GCC diagnostic pop

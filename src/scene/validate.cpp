@@ -25,6 +25,7 @@ constexpr float kMaxDirectionLength = 1.0e6f;
 constexpr float kMaxIlluminanceLux = 1.0e10f;    // sun.illuminance_lux (the old scale's 1e6 and more)
 constexpr float kMinEv100 = -20.0f;              // output.ev100 and its auto limits
 constexpr float kMaxEv100 = 30.0f;
+constexpr double kMaxParticleCells = 2.0e7;   // particle_clouds: the grid over the field
 constexpr float kMaxFactor = 100.0f;             // extinction and light multipliers on clouds
 constexpr float kMaxAirCoefficientPerM = 0.01f;  // 100 m of air has optical depth 1
 constexpr float kMaxWindMps = 200.0f;
@@ -355,6 +356,40 @@ void check_quality(const Checker& check, const QualityParams& quality) {
   check.in_range("quality.sdf_light_tangent", quality.sdf_light_tangent, 0.001f, 10.0f);
 }
 
+// The particle clouds' grid: bounded so that spawning a field takes seconds, not hours.
+void check_particle_clouds(const Checker& check, const ParticleCloudParams& p) {
+  check.in_range("particle_clouds.coverage", p.coverage, 0.0f, 1.0f);
+  check.in_range("particle_clouds.bottom_altitude_m", p.bottom_altitude_m, 0.0f, 1.0e5f);
+  check.in_range("particle_clouds.top_altitude_m", p.top_altitude_m, 0.0f, 1.0e5f);
+  check.below("particle_clouds.bottom_altitude_m", p.bottom_altitude_m,
+              "particle_clouds.top_altitude_m", p.top_altitude_m);
+  check.in_range("particle_clouds.field_radius_m", p.field_radius_m, 100.0f, 1.0e6f);
+  check.in_range("particle_clouds.cloud_spacing_m", p.cloud_spacing_m, 100.0f, 1.0e5f);
+  check.in_range("particle_clouds.cell_m", p.cell_m, 1.0f, 1.0e4f);
+  check.in_range("particle_clouds.particle_radius_m", p.particle_radius_m, 1.0f, 1.0e4f);
+  check.in_range("particle_clouds.noise_period_m", p.noise_period_m, 1.0f, 1.0e6f);
+  if (p.evolution_s != 0.0f)
+    check.in_range("particle_clouds.evolution_s", p.evolution_s, 1.0f, 1.0e7f);
+  check.wind("particle_clouds.wind_mps", p.wind_mps);
+  check.in_range("particle_clouds.opacity", p.opacity, 0.0f, 1.0f);
+  check.in_range("particle_clouds.albedo", p.albedo, 0.0f, 1.0f);
+  check.in_range("particle_clouds.phase_g", p.phase_g, -1.0f, 1.0f, true, true);
+  check.in_range("particle_clouds.forward_solid_angle_sr", p.forward_solid_angle_sr, 0.0f,
+                 4.0f * 3.14159265f);
+  if (p.light_buffer != 32 && p.light_buffer != 64)
+    check.fail("particle_clouds.light_buffer", std::to_string(p.light_buffer), "must be 32 or 64");
+  if (p.coverage <= 0.0f) return;
+  // The grid's cells over the field: pi R^2 x height / cell^3.
+  const double cells = 3.14159265 * double(p.field_radius_m) * p.field_radius_m *
+                       std::max(double(p.top_altitude_m - p.bottom_altitude_m), double(p.cell_m)) /
+                       (double(p.cell_m) * p.cell_m * p.cell_m);
+  if (cells > kMaxParticleCells)
+    check.fail("particle_clouds.cell_m", format_float(p.cell_m),
+               "the field would hold " + format_float(float(cells)) + " cells, at most " +
+                   format_float(float(kMaxParticleCells)) +
+                   " (raise cell_m or lower field_radius_m)");
+}
+
 void check_lab(const Checker& check, const LabParams& lab) {
   check.in_range("lab.sigma_t_per_m", lab.sigma_t_per_m, 0.0f, 1000.0f, true);
   check.in_range("lab.albedo", lab.albedo, 0.0f, 1.0f);
@@ -487,6 +522,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_output(check, scene.output);
   check_voxel_clouds(check, scene.voxel_clouds);
   check_lab(check, scene.lab);
+  check_particle_clouds(check, scene.particle_clouds);
   check_conditions(check, scene);
   check.in_range("time_s", scene.time_s, -kMaxTimeS, kMaxTimeS);
   check_time(check, scene);
