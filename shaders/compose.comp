@@ -172,14 +172,33 @@ void main() {
   vec3 sky_layer = background * illuminance;
   vec3 front = cloud_light;
   float alpha = 1.0f - cloud.a;
+  // The clouds' opacity-weighted distance (clouds.comp), where they are not clear; 0 elsewhere.
+  float depth_m = cloud.a < 0.999f ? cloud_b.z * 1000.0f : 0.0f;
+  // The particle clouds (particles.vert) in depth order with the volumetric ones: both
+  // premultiplied, the nearer over the farther, at their opacity-weighted distances; the air in
+  // front of the particles scatters as in front of the clouds. A loop of at most one trip, as
+  // the cirrus' below.
+  vec2 pixel_uv = (vec2(pixel) + 0.5f) / vec2(width, height);
+  vec4 particles = textureLod(particle_layer, pixel_uv, 0.0f);
+  for (int i = 0; i < (particles.a > 1e-4f ? 1 : 0); ++i) {
+    float particles_m = textureLod(particle_depth, pixel_uv, 0.0f).x / particles.a * 1000.0f;
+    vec4 air = textureLod(aerial_perspective,
+                          vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)),
+                               aerial_perspective_w(particles_m)),
+                          0.0f);
+    vec3 particle_light = particles.rgb * air.a + air.rgb * illuminance * particles.a;
+    bool in_front = alpha < 1e-3f || particles_m < cloud_b.z * 1000.0f;
+    front = in_front ? particle_light + (1.0f - particles.a) * front
+                     : front + (1.0f - alpha) * particle_light;
+    depth_m = in_front ? particles_m : depth_m;
+    alpha = 1.0f - (1.0f - alpha) * (1.0f - particles.a);
+  }
   if (cirrus_in_front) {
     front = front * cirrus.a + cirrus.rgb * illuminance;
     alpha = 1.0f - cloud.a * cirrus.a;
   }
   vec3 color = front + (1.0f - alpha) * sky_layer;
   int layer = int(frame.display.y);
-  // The clouds' opacity-weighted distance (clouds.comp), where they are not clear; 0 elsewhere.
-  float depth_m = cloud.a < 0.999f ? cloud_b.z * 1000.0f : 0.0f;
   vec4 out_value = layer == 1   ? vec4(sky_layer, 1.0f)
                    : layer == 2 ? vec4(front, alpha)
                    : layer == 3 ? vec4(depth_m, depth_m, depth_m, 1.0f)

@@ -2,8 +2,9 @@
 // Pass 5: stars. One invocation per star of the catalogue (data/stars.csv): its J2000
 // direction turned into the sky of the date and place, projected into the image and added to
 // the pixel it falls in as radiance = irradiance / the pixel's solid angle, dimmed by the air
-// (extinction grows towards the horizon) and by the clouds in front of it. Stars fade as the
-// sky brightens by themselves: a magnitude-0 star is 1e-11 of the sun, far below a day sky.
+// (extinction grows towards the horizon) and by the clouds and particle clouds in front of it.
+// Stars fade as the sky brightens by themselves: a magnitude-0 star is 1e-11 of the sun, far
+// below a day sky.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
@@ -30,9 +31,10 @@ void main() {
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(width, height)))) return;
   vec3 air = transmittance_to_light(frame_atmosphere(), transmittance_lut, false, eye, dir);
   // The clouds in front hide it, except in the sky layer (frame.display.y 1: what is behind them).
+  vec2 uv = (vec2(pixel) + 0.5f) / vec2(width, height);
   float cloud = int(frame.display.y) == 1
                     ? 1.0f
-                    : textureLod(clouds_a, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f).a;
+                    : textureLod(clouds_a, uv, 0.0f).a * (1.0f - textureLod(particle_layer, uv, 0.0f).a);
   float visibility = frame.conditions_sky_fog.w;  // the keyframes' star visibility, 1 when off
   vec3 radiance = star.irradiance.rgb * frame.stars.x / frame.stars.z * air * cloud * visibility;
   imageStore(color_rw, pixel, imageLoad(color_rw, pixel) + vec4(radiance, 0.0f));

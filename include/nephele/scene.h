@@ -340,6 +340,9 @@ struct ParticleCloudParams {
   // gamma of Harris and Lastra's forward scattering: the solid angle (sr) about the light's
   // direction whose scattered light counts as going on with it, [0, 4 pi].
   float forward_solid_angle_sr = 0.5f;
+  // The light scattered many times, which Harris and Lastra's model leaves out: an isotropic
+  // radiance albedo x I_k x sunlight / pi times this, [0, 10]; 0 = their model alone.
+  float diffuse_strength = 1.0f;
   int light_buffer = 32;               // the lighting splat buffer's side: 32 or 64 texels
   uint32_t seed = 1;
 };

@@ -92,5 +92,14 @@ layout(set = 0, binding = 48) uniform sampler2D ms_field;
 // The exposure meter (meter.comp), one per frame in flight, read by the host: the mean of
 // log(luminance, cd/m^2) over METER_GRID^2 points of the final image.
 layout(std430, set = 0, binding = 49) writeonly buffer MeterBlock { float meter_mean_log_luminance; };
+// Particle clouds (render/modules/particle_clouds.h): this frame's particles back to front
+// (particles.vert), their procedural textures side by side (PARTICLE_TEXTURES tiles of
+// PARTICLE_TEXTURE_SIZE texels), and the layer they are drawn into, read by compose.comp:
+// rgb premultiplied radiance, a opacity; and x their opacity-weighted distance (km) times
+// the opacity, a the opacity.
+layout(std430, set = 0, binding = 50) readonly buffer ParticleBlock { ParticleGpu particle_list[]; };
+layout(set = 0, binding = 51) uniform sampler2D particle_textures;
+layout(set = 0, binding = 52) uniform sampler2D particle_layer;
+layout(set = 0, binding = 53) uniform sampler2D particle_depth;
 
 #endif

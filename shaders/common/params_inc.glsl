@@ -187,6 +187,10 @@ struct FrameParams {
   // The noise clouds' majorant grid (path_majorant, render/path_majorant.h): xy its corner
   // (planet frame, m), z its cells' edge (m), w 1 when in use
   vec4 path_grid;
+  // Particle clouds (particles.vert): x albedo, y Henyey-Greenstein g, z 1 for Harris and
+  // Lastra's Rayleigh phase instead, w a particle's opacity at its centre
+  vec4 particle_shading;
+  vec4 particle_light;  // x the multiply scattered light's strength (diffuse_strength); yzw unused
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 
@@ -221,6 +225,15 @@ const int SKY_MODEL_REFERENCE = 2;  // brute force per pixel, no tables (slow; f
 // steps along each view ray (sky_reference_psi.comp, sky_reference.comp).
 const int REFERENCE_TILE = 32;
 const int REFERENCE_SAMPLES = 48;
+
+// One particle of the particle clouds as particles.vert draws it.
+struct ParticleGpu {
+  vec4 position_radius;  // xyz from the camera (m, the planet frame's axes), w radius (m)
+  vec4 shading;          // x the light reaching it (CPU lighting, [0, 1]), y its texture, zw unused
+};
+// The particles' procedural textures (render/modules/particle_clouds.cpp).
+const int PARTICLE_TEXTURES = 4;
+const int PARTICLE_TEXTURE_SIZE = 64;
 
 // One star of the catalogue (data/stars.csv), as stars.comp reads it.
 struct StarGpu {

@@ -26,13 +26,18 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kStorage, kSampled, kStorage, kSampled, kStorage,
       kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled,
       kStorage, kStorage, kSampled, kSampled, kStorage, kStorage, kSampled, kStorage, kSampled,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, kSampled,
+      kSampled};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
   static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];
   uint32_t count_of[VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT + 1] = {};
   for (uint32_t i = 0; i < kCount; ++i) {
-    bindings[i] = {i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    // Compute passes, and the raster passes (gpu/raster.h) that draw particles.
+    bindings[i] = {i, types[i], 1,
+                   VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT |
+                       VK_SHADER_STAGE_FRAGMENT_BIT,
+                   nullptr};
     ++count_of[types[i]];
   }
   VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};

@@ -64,6 +64,10 @@ enum Binding : uint32_t {
   kMsFieldOut = 47,
   kMsField = 48,
   kMeter = 49,
+  kParticles = 50,
+  kParticleTextures = 51,
+  kParticleLayer = 52,
+  kParticleDepth = 53,
   kBindingCount
 };
 

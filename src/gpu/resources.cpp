@@ -69,6 +69,9 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  // A 2D image a raster pass can draw into (gpu/raster.h), where the format allows.
+  if (!is_3d && (props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT))
+    info.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   NEPHELE_VK(vkCreateImage(device_, &info, nullptr, &image_));
   VkMemoryRequirements req;

@@ -302,6 +302,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       voxel_clouds(ctx, state.set),
       sky_view(ctx, state.set),
       clouds(ctx, state.set),
+      particles(ctx, state.set),
       path_tracer(ctx, state.set) {}
 
 FrameRenderer::FrameRenderer(const RendererOptions& options)
@@ -420,6 +421,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);
   weather.prepare(scene, params);
+  particles.prepare(scene, slot, s.width, s.height, still, params);
   clouds.swap_history();
 
   const bool in_bands = still && progress;
@@ -433,6 +435,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     clouds.record_march(cmd, *s.timer, scene.quality.mode);
   }
   clouds.record_reconstruction(cmd, *s.timer);
+  particles.record(cmd, *s.timer);
   // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe).
   if (light_volume.completed() || params.light_volume.w == 0.0f)
     clouds.record_ground_light(cmd, *s.timer, scene.quality.mode);

@@ -12,6 +12,7 @@
 #include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
+#include "render/modules/particle_clouds.h"
 #include "render/modules/path_tracer.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/voxel_clouds.h"
@@ -49,6 +50,7 @@ struct FrameRenderer::Impl {
   VoxelCloudsModule voxel_clouds;
   SkyViewModule sky_view;
   CloudsModule clouds;
+  ParticleCloudsModule particles;
   PathTracerModule path_tracer;
 
   void update_atmosphere_luts(const Scene& scene);

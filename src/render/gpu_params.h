@@ -6,9 +6,10 @@
 #include "common/params_inc.glsl"
 
 namespace nephele::gpu {
-static_assert(sizeof(FrameParams) == (77 + 6 * MAX_VOXEL_CLOUDS) * 16,
-              "FrameParams must be 77 + 6 x 16 vec4s (std140 layout)");
+static_assert(sizeof(FrameParams) == (79 + 6 * MAX_VOXEL_CLOUDS) * 16,
+              "FrameParams must be 79 + 6 x 16 vec4s (std140 layout)");
 static_assert(sizeof(VoxelCloudGpu) == 6 * 16);
 static_assert(sizeof(StarGpu) == 2 * 16);
+static_assert(sizeof(ParticleGpu) == 2 * 16);
 static_assert(alignof(FrameParams) <= 16);
 }  // namespace nephele::gpu

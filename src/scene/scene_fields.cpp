@@ -329,6 +329,9 @@ const std::vector<Section>& scene_sections() {
         FIELD(particle_clouds, forward_solid_angle_sr,
               "Harris and Lastra's gamma: the solid angle about the light's direction whose "
               "scattered light goes on with it, [0, 4 pi]"),
+        FIELD(particle_clouds, diffuse_strength,
+              "[0, 10]: the multiply scattered light, an isotropic radiance albedo x I_k x "
+              "sunlight / pi times this; 0 = Harris and Lastra's model alone"),
         FIELD(particle_clouds, light_buffer, "the CPU lighting's splat buffer, 32 or 64 texels a side"),
         FIELD(particle_clouds, seed, "seeds the noise and the particles' offsets")},
        {}},

@@ -376,6 +376,7 @@ void check_particle_clouds(const Checker& check, const ParticleCloudParams& p) {
   check.in_range("particle_clouds.phase_g", p.phase_g, -1.0f, 1.0f, true, true);
   check.in_range("particle_clouds.forward_solid_angle_sr", p.forward_solid_angle_sr, 0.0f,
                  4.0f * 3.14159265f);
+  check.in_range("particle_clouds.diffuse_strength", p.diffuse_strength, 0.0f, 10.0f);
   if (p.light_buffer != 32 && p.light_buffer != 64)
     check.fail("particle_clouds.light_buffer", std::to_string(p.light_buffer), "must be 32 or 64");
   if (p.coverage <= 0.0f) return;

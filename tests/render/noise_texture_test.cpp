@@ -12,6 +12,7 @@
 #include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
+#include "render/modules/particle_clouds.h"
 #include "render/modules/path_tracer.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/voxel_clouds.h"
@@ -81,6 +82,7 @@ struct Modules {
         voxel_clouds(ctx, s.set),
         sky_view(ctx, s.set),
         clouds(ctx, s.set),
+        particles(ctx, s.set),
         path_tracer(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
@@ -89,6 +91,7 @@ struct Modules {
   nephele::VoxelCloudsModule voxel_clouds;
   nephele::SkyViewModule sky_view;
   nephele::CloudsModule clouds;
+  nephele::ParticleCloudsModule particles;
   nephele::PathTracerModule path_tracer;
 };
 

@@ -1,0 +1,195 @@
+#include "gpu/raster.h"
+
+#include "gpu/vk_check.h"
+#include "nephele_embedded.h"
+
+namespace nephele_shaders {
+extern const EmbeddedFile kFiles[];
+extern const size_t kFileCount;
+}  // namespace nephele_shaders
+
+namespace nephele::gpu {
+
+namespace {
+
+VkShaderModule load_module(VkDevice device, const std::string& name) {
+  const EmbeddedFile* spv = find_embedded(nephele_shaders::kFiles, nephele_shaders::kFileCount, name);
+  if (!spv) throw RuntimeError("shader '" + name + "' is not embedded in this build");
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = spv->size;
+  info.pCode = reinterpret_cast<const uint32_t*>(spv->data);
+  VkShaderModule module;
+  NEPHELE_VK(vkCreateShaderModule(device, &info, nullptr, &module));
+  return module;
+}
+
+}  // namespace
+
+RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::string& vert_spv,
+                       const std::string& frag_spv, const std::vector<VkFormat>& formats)
+    : device_(ctx.device()), attachments_(formats.size()) {
+  if (!ctx.has_graphics())
+    throw RuntimeError("the device's queue on " + ctx.device_name() + " cannot draw (no graphics)");
+  std::vector<VkAttachmentDescription> attachments;
+  std::vector<VkAttachmentReference> refs;
+  for (VkFormat format : formats) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &props);
+    if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+      throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
+                         " cannot be a blended colour attachment on " + ctx.device_name());
+    VkAttachmentDescription a{};
+    a.format = format;
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_GENERAL;
+    a.finalLayout = VK_IMAGE_LAYOUT_GENERAL;
+    refs.push_back({uint32_t(attachments.size()), VK_IMAGE_LAYOUT_GENERAL});
+    attachments.push_back(a);
+  }
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = uint32_t(refs.size());
+  subpass.pColorAttachments = refs.data();
+  // Before: earlier passes' reads of the targets (compute) and writes of what the shaders
+  // read. After: the targets' writes made visible to the compute passes that sample them.
+  VkSubpassDependency deps[2] = {};
+  deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  deps[0].dstSubpass = 0;
+  deps[0].srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                         VK_PIPELINE_STAGE_HOST_BIT;
+  deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                         VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+  deps[0].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
+                          VK_ACCESS_HOST_WRITE_BIT;
+  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
+  deps[1].srcSubpass = 0;
+  deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  deps[1].dstStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  deps[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+  VkRenderPassCreateInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  rp.attachmentCount = uint32_t(attachments.size());
+  rp.pAttachments = attachments.data();
+  rp.subpassCount = 1;
+  rp.pSubpasses = &subpass;
+  rp.dependencyCount = 2;
+  rp.pDependencies = deps;
+  NEPHELE_VK(vkCreateRenderPass(device_, &rp, nullptr, &render_pass_));
+
+  VkShaderModule vert = load_module(device_, vert_spv), frag = load_module(device_, frag_spv);
+  VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                               {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vert;
+  stages[0].pName = "main";
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = frag;
+  stages[1].pName = "main";
+  VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  // Premultiplied "over": dst = src + (1 - src.a) dst, in every channel.
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.blendEnable = VK_TRUE;
+  blend.srcColorBlendFactor = blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend.dstColorBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+  blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                         VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  std::vector<VkPipelineColorBlendAttachmentState> blends(formats.size(), blend);
+  VkPipelineColorBlendStateCreateInfo blending{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blending.attachmentCount = uint32_t(blends.size());
+  blending.pAttachments = blends.data();
+  const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamic.dynamicStateCount = 2;
+  dynamic.pDynamicStates = dynamic_states;
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  info.stageCount = 2;
+  info.pStages = stages;
+  info.pVertexInputState = &vertex_input;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pColorBlendState = &blending;
+  info.pDynamicState = &dynamic;
+  info.layout = set.pipeline_layout();
+  info.renderPass = render_pass_;
+  const VkResult result =
+      vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+  vkDestroyShaderModule(device_, vert, nullptr);
+  vkDestroyShaderModule(device_, frag, nullptr);
+  check(result, ("vkCreateGraphicsPipelines(" + vert_spv + ", " + frag_spv + ")").c_str());
+}
+
+RasterPass::~RasterPass() {
+  for (const Cached& c : framebuffers_) vkDestroyFramebuffer(device_, c.framebuffer, nullptr);
+  vkDestroyPipeline(device_, pipeline_, nullptr);
+  vkDestroyRenderPass(device_, render_pass_, nullptr);
+}
+
+VkFramebuffer RasterPass::framebuffer_for(const std::vector<const Texture*>& targets) {
+  std::vector<VkImageView> views;
+  for (const Texture* t : targets) views.push_back(t->storage_view());
+  const uint32_t w = targets[0]->width(), h = targets[0]->height();
+  for (const Cached& c : framebuffers_)
+    if (c.views == views && c.width == w && c.height == h) return c.framebuffer;
+  VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  info.renderPass = render_pass_;
+  info.attachmentCount = uint32_t(views.size());
+  info.pAttachments = views.data();
+  info.width = w;
+  info.height = h;
+  info.layers = 1;
+  VkFramebuffer framebuffer;
+  NEPHELE_VK(vkCreateFramebuffer(device_, &info, nullptr, &framebuffer));
+  framebuffers_.push_back({views, w, h, framebuffer});
+  return framebuffer;
+}
+
+void RasterPass::record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer& timer,
+                        const std::string& name, const std::vector<const Texture*>& targets,
+                        uint32_t vertex_count) {
+  if (targets.size() != attachments_) throw RuntimeError("RasterPass: wrong number of targets");
+  timer.begin(cmd, name);
+  const uint32_t w = targets[0]->width(), h = targets[0]->height();
+  std::vector<VkClearValue> clears(targets.size());
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = render_pass_;
+  begin.framebuffer = framebuffer_for(targets);
+  begin.renderArea = {{0, 0}, {w, h}};
+  begin.clearValueCount = uint32_t(clears.size());
+  begin.pClearValues = clears.data();
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  if (vertex_count > 0) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    VkDescriptorSet handle = set.set();
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, set.pipeline_layout(), 0, 1,
+                            &handle, 0, nullptr);
+    const VkViewport viewport{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {w, h}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdDraw(cmd, vertex_count, 1, 0, 0);
+  }
+  vkCmdEndRenderPass(cmd);
+  timer.end(cmd);
+}
+
+}  // namespace nephele::gpu

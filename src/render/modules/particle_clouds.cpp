@@ -1,0 +1,196 @@
+#include "render/modules/particle_clouds.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <vector>
+
+#include "nephele/error.h"
+#include "nephele/scene_io.h"
+#include "particles/particle_lighting.h"
+#include "particles/perlin.h"
+#include "render/glsl.h"
+
+namespace nephele {
+
+namespace {
+
+constexpr VkFormat kLayerFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The particles' procedural textures (no image assets): PARTICLE_TEXTURES tiles side by side,
+// each a detail pattern of fractal Perlin noise with its own frequency, stored halved in r
+// (the shader doubles it) and scaled so that its mean over the particle, weighted by
+// particle_profile, is 1: the opacity the CPU lighting splats is the drawn one on average.
+std::vector<uint8_t> particle_texels() {
+  const int n = gpu::PARTICLE_TEXTURE_SIZE, tiles = gpu::PARTICLE_TEXTURES;
+  std::vector<uint8_t> texels(size_t(n) * n * tiles * 4, 0);
+  const particles::PerlinNoise noise(20260122);
+  for (int t = 0; t < tiles; ++t) {
+    std::vector<float> detail(size_t(n) * n);
+    double weighted = 0.0, weights = 0.0;
+    const float frequency = 3.0f + 1.5f * float(t);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const float u = (x + 0.5f) / n * 2.0f - 1.0f, v = (y + 0.5f) / n * 2.0f - 1.0f;
+        const float f = noise.noise3(u * frequency, v * frequency, 7.3f * t) +
+                        0.5f * noise.noise3(2.0f * u * frequency, 2.0f * v * frequency, 7.3f * t + 3.1f);
+        const float d = std::clamp(1.0f + 0.6f * f, 0.3f, 1.7f);
+        detail[size_t(y) * n + x] = d;
+        const float w = glsl::particle_profile(u * u + v * v);
+        weighted += w * d, weights += w;
+      }
+    const float scale = float(weights / weighted);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const float d = std::min(detail[size_t(y) * n + x] * scale, 2.0f);
+        uint8_t* texel = &texels[(size_t(y) * n * tiles + size_t(t) * n + x) * 4];
+        texel[0] = texel[1] = texel[2] = uint8_t(d * 0.5f * 255.0f + 0.5f);
+        texel[3] = 255;
+      }
+  }
+  return texels;
+}
+
+// What shapes the field: every particle parameter but those only the drawing uses, and, for
+// an evolving sky, the time step (1/64 of evolution_s) it was generated at.
+std::string field_key(const ParticleCloudParams& p, float step_time_s) {
+  Scene only;
+  only.particle_clouds = p;
+  only.particle_clouds.wind_mps = glm::vec2(0.0f);
+  only.particle_clouds.albedo = only.particle_clouds.phase_g = 0.0f;
+  only.particle_clouds.rayleigh_phase = false;
+  only.particle_clouds.diffuse_strength = 0.0f;
+  return scene_to_toml(only) + std::to_string(step_time_s);
+}
+
+}  // namespace
+
+ParticleCloudsModule::ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : ctx_(ctx), set_(set) {
+  const int n = gpu::PARTICLE_TEXTURE_SIZE, tiles = gpu::PARTICLE_TEXTURES;
+  textures_ = gpu::Texture(ctx, uint32_t(n * tiles), uint32_t(n), 1, VK_FORMAT_R8G8B8A8_UNORM,
+                           VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  const std::vector<uint8_t> texels = particle_texels();
+  gpu::Buffer staging(ctx, VkDeviceSize(texels.size()), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  std::memcpy(staging.data(), texels.data(), texels.size());
+  // Until a scene has particle clouds: empty layers (1 x 1, zero) and a one-particle buffer.
+  layer_ = gpu::Texture(ctx, 1, 1, 1, kLayerFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  depth_ = gpu::Texture(ctx, 1, 1, 1, kLayerFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    textures_.record_upload(cmd, staging);
+    layer_.record_clear(cmd);
+    depth_.record_clear(cmd);
+  });
+  for (gpu::Buffer& b : buffers_)
+    b = gpu::Buffer(ctx, sizeof(gpu::ParticleGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  set_.bind_sampled_image(gpu::kParticleTextures, textures_);
+  set_.bind_sampled_image(gpu::kParticleLayer, layer_);
+  set_.bind_sampled_image(gpu::kParticleDepth, depth_);
+  set_.bind_buffer(gpu::kParticles, buffers_[0], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+}
+
+ParticleCloudsModule::~ParticleCloudsModule() = default;
+
+void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int height, bool still,
+                                   gpu::FrameParams& params) {
+  const ParticleCloudParams& p = scene.particle_clouds;
+  active_ = p.coverage > 0.0f;
+  stats_ = {};
+  count_ = 0;
+  params.particle_shading = glm::vec4(p.albedo, p.phase_g, p.rayleigh_phase ? 1.0f : 0.0f, p.opacity);
+  params.particle_light = glm::vec4(p.diffuse_strength, 0.0f, 0.0f, 0.0f);
+  if (!active_) {
+    field_ = {};
+    field_key_.clear();
+    return;
+  }
+  if (!ctx_.has_graphics())
+    throw InputError("particle_clouds.coverage = " + std::to_string(p.coverage) +
+                     ": particle clouds are drawn by a raster pass, and the queue of " +
+                     ctx_.device_name() + " has no graphics");
+  if (!pass_)
+    pass_ = std::make_unique<gpu::RasterPass>(ctx_, set_, "particles.vert.spv", "particles.frag.spv",
+                                              std::vector<VkFormat>{kLayerFormat, kLayerFormat});
+  // The field, for the evolving noise's time step.
+  const float step_s = p.evolution_s > 0.0f ? p.evolution_s / 64.0f : 0.0f;
+  const float field_time_s = step_s > 0.0f ? std::floor(scene.time_s / step_s) * step_s : 0.0f;
+  const std::string key = field_key(p, field_time_s);
+  auto start = std::chrono::steady_clock::now();
+  if (key != field_key_) {
+    field_ = particles::generate_field(p, field_time_s);
+    field_key_ = key;
+    field_time_s_ = field_time_s;
+    stats_.generate_ms = ms_since(start);
+  }
+  // Lit by the key light (the sun, or the moon at night), the planet frame's axes being ENU's.
+  start = std::chrono::steady_clock::now();
+  const particles::RelightReport relit =
+      particles::relight(field_, glm::vec3(params.sun_dir), p, still ? ~size_t(0) : kParticleRelightBudget);
+  stats_.relit_clouds = relit.clouds;
+  stats_.lighting_ms = ms_since(start);
+
+  // Back to front from the camera; the field drifts with the wind since it was generated.
+  start = std::chrono::steady_clock::now();
+  const glm::vec3 offset = glm::vec3(p.wind_mps * (scene.time_s - field_time_s_), 0.0f) -
+                           scene.camera.position_m;
+  struct Entry {
+    float distance2;
+    const particles::Particle* particle;
+  };
+  std::vector<Entry> order;
+  order.reserve(field_.particles());
+  for (const particles::ParticleCloud& cloud : field_.clouds)
+    for (const particles::Particle& q : cloud.particles) {
+      const glm::vec3 d = q.position_m + offset;
+      order.push_back({glm::dot(d, d), &q});
+    }
+  std::sort(order.begin(), order.end(),
+            [](const Entry& a, const Entry& b) { return a.distance2 > b.distance2; });
+  gpu::Buffer& buffer = buffers_[slot];
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(order.size(), 1) * sizeof(gpu::ParticleGpu);
+  if (buffer.size() < bytes) {
+    ctx_.wait_queue_idle();  // the frame in flight may still read the old buffer
+    buffer = gpu::Buffer(ctx_, bytes + bytes / 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  }
+  auto* out = static_cast<gpu::ParticleGpu*>(buffer.data());
+  for (size_t i = 0; i < order.size(); ++i) {
+    const particles::Particle& q = *order[i].particle;
+    out[i].position_radius = glm::vec4(q.position_m + offset, q.radius_m);
+    out[i].shading = glm::vec4(q.light, float(q.texture), 0.0f, 0.0f);
+  }
+  count_ = uint32_t(order.size());
+  stats_.sort_ms = ms_since(start);
+  stats_.particles = order.size();
+  stats_.clouds = int(field_.clouds.size());
+  set_.bind_buffer(gpu::kParticles, buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+
+  if (layer_.width() != uint32_t(width) || layer_.height() != uint32_t(height)) {
+    ctx_.wait_queue_idle();
+    layer_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kLayerFormat,
+                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    depth_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kLayerFormat,
+                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    set_.bind_sampled_image(gpu::kParticleLayer, layer_);
+    set_.bind_sampled_image(gpu::kParticleDepth, depth_);
+  }
+}
+
+void ParticleCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  if (active_) {
+    pass_->record(cmd, set_, timer, "particles", {&layer_, &depth_}, 6 * count_);
+    drawn_ = true;
+  } else if (drawn_) {  // a scene without particle clouds after one with them
+    layer_.record_clear(cmd);
+    depth_.record_clear(cmd);
+    gpu::full_barrier(cmd);
+    drawn_ = false;
+  }
+}
+
+}  // namespace nephele

@@ -1,0 +1,127 @@
+// Particle clouds drawn (seed 003, 3.3.4; issue 22): the raster pass's layer over the sky, in
+// the film layers, and in depth order with the volumetric clouds.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "nephele/scene_io.h"
+#include "render_fixture.h"
+
+namespace {
+
+nephele::Scene particle_scene() {
+  nephele::Scene s = nephele::load_preset("default");
+  s.output.width = 96;
+  s.output.height = 64;
+  s.clouds.coverage = 0.0f;
+  s.particle_clouds.coverage = 0.35f;
+  s.particle_clouds.field_radius_m = 6000.0f;
+  s.camera.view_dir = glm::vec3(0.0f, 1.0f, 0.6f);
+  s.output.auto_exposure = false;
+  return s;
+}
+
+class ParticleRenderTest : public RenderTest {};
+
+TEST_F(ParticleRenderTest, CloudsOverTheSkyAtTheirDistanceInTheFilmLayers) {
+  nephele::Scene s = particle_scene();
+  const nephele::FilmLayers layers = shared_renderer().render_layers(s);
+  size_t cloudy = 0, clear = 0;
+  double worst = 0.0, cloud_blue = 0.0, sky_blue = 0.0;
+  for (size_t i = 0; i < layers.clouds.pixels.size(); ++i) {
+    const glm::vec4 c = layers.clouds.pixels[i];
+    const float a = c.a;
+    ASSERT_GE(a, 0.0f);
+    ASSERT_LE(a, 1.0f);
+    const glm::vec4 image = layers.frame.color.pixels[i];
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, double(std::abs(image[k] - (c[k] + (1.0f - a) * layers.sky.pixels[i][k]))) /
+                                  (std::abs(image[k]) + 1e-3));
+    const float depth_m = layers.clouds_depth_m.pixels[i].r;
+    if (a > 0.5f) {
+      ++cloudy;
+      EXPECT_GT(c.g, 0.0f);
+      cloud_blue += c.b / std::max(c.r, 1e-9f);
+      // From the ground, at least as far as the layer's base (1500 m less a cell) straight up,
+      // and within the field (6 km radius, 2.7 km high).
+      EXPECT_GT(depth_m, 1350.0f);
+      EXPECT_LT(depth_m, 7500.0f);
+    }
+    if (a < 1e-3f) ++clear, sky_blue += image.b / std::max(image.r, 1e-9f);
+  }
+  // Whiter than the blue sky between them (lit by the sun as much as by the sky).
+  EXPECT_LT(cloud_blue / cloudy, 0.75 * sky_blue / clear);
+  std::printf("blue / red: clouds %.2f, sky %.2f\n", cloud_blue / cloudy, sky_blue / clear);
+  std::printf("%zu cloudy, %zu clear of %zu pixels; worst over error %.3g\n", cloudy, clear,
+              layers.clouds.pixels.size(), worst);
+  EXPECT_GT(cloudy, layers.clouds.pixels.size() / 5);  // broken clouds: both, plenty of each
+  EXPECT_GT(clear, layers.clouds.pixels.size() / 20);
+  EXPECT_LT(worst, 1e-5);
+  // Without particle clouds the same sky has no clouds at all.
+  s.particle_clouds.coverage = 0.0f;
+  const nephele::FilmLayers none = shared_renderer().render_layers(s);
+  for (const glm::vec4& c : none.clouds.pixels) ASSERT_LT(c.a, 1e-4f);
+}
+
+// The mean relative difference of two images' luminance over the pixels where `mask` holds.
+template <typename Mask>
+double masked_difference(const nephele::Image& a, const nephele::Image& b, Mask mask, size_t& n) {
+  double sum = 0.0;
+  n = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    if (!mask(i)) continue;
+    const double la = nephele::luminance(a.pixels[i]), lb = nephele::luminance(b.pixels[i]);
+    sum += std::abs(la - lb) / std::max(lb, 1e-9);
+    ++n;
+  }
+  return n ? sum / double(n) : 0.0;
+}
+
+TEST_F(ParticleRenderTest, TheNearerOfParticleAndVolumetricCloudsHidesTheOther) {
+  // An overcast volumetric deck at 1500-2500 m, seen from below, with dense particle clouds
+  // under it (400-900 m) or above it (4000-4600 m).
+  nephele::Scene deck = particle_scene();
+  deck.clouds.coverage = 1.0f;
+  deck.clouds.type = 0.0f;
+  deck.clouds.density = 0.8f;
+  deck.clouds.bottom_altitude_m = 1500.0f;
+  deck.clouds.top_altitude_m = 2500.0f;
+  deck.particle_clouds.coverage = 0.7f;
+  deck.particle_clouds.opacity = 0.9f;
+  deck.particle_clouds.field_radius_m = 3000.0f;
+  deck.camera.view_dir = glm::vec3(0.0f, 0.4f, 1.0f);
+
+  nephele::Scene below = deck;  // particles in front of the deck
+  below.particle_clouds.bottom_altitude_m = 400.0f;
+  below.particle_clouds.top_altitude_m = 900.0f;
+  nephele::Scene below_alone = below;
+  below_alone.clouds.coverage = 0.0f;
+  const nephele::FilmLayers alone = shared_renderer().render_layers(below_alone);
+  const nephele::Frame both = render(below);
+  size_t n = 0;
+  const double in_front = masked_difference(
+      both.color, alone.frame.color, [&](size_t i) { return alone.clouds.pixels[i].a > 0.995f; }, n);
+  std::printf("particles in front of the deck: %zu opaque pixels differ by %.2f%%\n", n, 100 * in_front);
+  EXPECT_GT(n, 200u);
+  EXPECT_LT(in_front, 0.03);
+  // ... and where they are thin, the deck shows through them.
+  const double see_through = masked_difference(
+      both.color, alone.frame.color, [&](size_t i) { return alone.clouds.pixels[i].a < 0.3f; }, n);
+  EXPECT_GT(see_through, 0.1);
+
+  nephele::Scene above = deck;  // particles behind the deck
+  above.particle_clouds.bottom_altitude_m = 4000.0f;
+  above.particle_clouds.top_altitude_m = 4600.0f;
+  nephele::Scene deck_alone = above;
+  deck_alone.particle_clouds.coverage = 0.0f;
+  const nephele::FilmLayers deck_layers = shared_renderer().render_layers(deck_alone);
+  const nephele::Frame hidden = render(above);
+  const double behind = masked_difference(
+      hidden.color, deck_layers.frame.color,
+      [&](size_t i) { return deck_layers.clouds.pixels[i].a > 0.995f; }, n);
+  std::printf("particles behind the deck: %zu opaque pixels differ by %.2f%%\n", n, 100 * behind);
+  EXPECT_GT(n, 200u);
+  EXPECT_LT(behind, 0.03);
+}
+
+}  // namespace
