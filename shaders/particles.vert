@@ -18,13 +18,16 @@ const vec2 kCorners[6] = vec2[6](vec2(-1.0f, -1.0f), vec2(1.0f, -1.0f), vec2(1.0
                                  vec2(-1.0f, -1.0f), vec2(1.0f, 1.0f), vec2(-1.0f, 1.0f));
 const float kNearM = 1.0f;  // closer than this a quad is clipped
 
+layout(push_constant) uniform DrawBlock { DrawConstants draw; };
+
 void main() {
   ParticleGpu p = particle_list[gl_VertexIndex / 6];
   vec2 c = kCorners[gl_VertexIndex % 6];
-  vec3 right = frame.camera_right.xyz, up = frame.camera_up.xyz, forward = frame.camera_forward.xyz;
+  // The draw's camera: the frame's, or an impostor's view of one cloud from the same eye.
+  vec3 right = draw.right.xyz, up = draw.up.xyz, forward = draw.forward.xyz;
   vec3 corner = p.position_radius.xyz + (c.x * right + c.y * up) * p.position_radius.w;
   float z = dot(corner, forward);
-  float tan_half = frame.camera_pos_m.w, aspect = frame.camera_forward.w;
+  float tan_half = draw.forward.w, aspect = draw.right.w;
   // Clip space with w = z: x / w and y / w are camera_pixel's (image y down); depth z - near
   // clips what is nearer than kNearM (z in [0, w] only beyond it).
   gl_Position = vec4(dot(corner, right) / (tan_half * aspect), -dot(corner, up) / tan_half,

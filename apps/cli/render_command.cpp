@@ -154,6 +154,21 @@ std::string stats_to_json(const FrameStats& stats, const std::string& image_path
     j["voxel_clouds"] = clouds;
     j["voxel_bytes"] = stats.voxel_bytes;
   }
+  if (const auto& p = stats.particle_clouds) {
+    j["particle_clouds"] = {{"particles", p->particles},
+                            {"drawn", p->drawn},
+                            {"clouds", p->clouds},
+                            {"relit_clouds", p->relit_clouds},
+                            {"impostors", p->impostors},
+                            {"impostor_updates", p->impostor_updates},
+                            {"generate_ms", p->generate_ms},
+                            {"lighting_ms", p->lighting_ms},
+                            {"sort_ms", p->sort_ms},
+                            {"atlas_occupancy", p->atlas_occupancy},
+                            {"atlas_wasted", p->atlas_wasted},
+                            {"atlas_fragmentation", p->atlas_fragmentation},
+                            {"atlas_downsized", p->atlas_downsized}};
+  }
   return j.dump(2) + "\n";
 }
 

@@ -44,6 +44,24 @@ struct VoxelCloudMemory {
   size_t dense_bytes = 0;    // what the same grid would take stored whole (RG16F)
 };
 
+// A frame's particle clouds (issue 22; scene.h, ParticleCloudParams): the CPU's work and the
+// impostors and their atlas.
+struct ParticleCloudStats {
+  size_t particles = 0;  // in the field
+  size_t drawn = 0;      // drawn one by one (the rest are in impostors)
+  int clouds = 0;
+  int relit_clouds = 0;  // by the CPU lighting this frame
+  int impostors = 0;     // clouds drawn as impostors
+  int impostor_updates = 0;  // drawn into the atlas this frame
+  double generate_ms = 0.0, lighting_ms = 0.0, sort_ms = 0.0;  // host wall time
+  // The atlas (particles/atlas.h, AtlasStats): shares of its texels, defragmentations per
+  // second, downsized images, and the manager's time per operation.
+  double atlas_occupancy = 0.0, atlas_wasted = 0.0, atlas_fragmentation = 0.0;
+  double atlas_defragmentations_per_s = 0.0;
+  int atlas_defragmentations = 0, atlas_downsized = 0, atlas_failed = 0;
+  double atlas_mean_op_us = 0.0, atlas_max_op_us = 0.0;
+};
+
 struct FrameStats {
   std::string device;            // name of the Vulkan device used
   int width = 0;
@@ -66,6 +84,7 @@ struct FrameStats {
   std::optional<Ephemeris> ephemeris;  // sun, moon and sidereal time when the scene has a time
   std::vector<VoxelCloudMemory> voxel_clouds;
   size_t voxel_bytes = 0;  // the voxel clouds' textures on the device (atlas and page tables)
+  std::optional<ParticleCloudStats> particle_clouds;  // when the scene has particle clouds
 };
 
 // Cloud cover in oktas (eighths of the sky, WMO code 2700) from the covered share of the sky:

@@ -345,6 +345,25 @@ struct ParticleCloudParams {
   float diffuse_strength = 1.0f;
   int light_buffer = 32;               // the lighting splat buffer's side: 32 or 64 texels
   uint32_t seed = 1;
+  // Impostors (seed 003, 3.3.4-3.3.6): a cloud farther than impostor_distance_m is drawn once
+  // into an atlas and then as one quad, drawn again when the direction to it turns by more than
+  // impostor_max_angle_deg, its distance changes by more than impostor_distance_factor, or its
+  // lighting changes; at most impostor_updates_per_frame a frame, the old image fading out over
+  // impostor_fade_frames. "off" draws every particle every frame; "direct" stores impostors as
+  // rectangles (best fit, defragmentation at most atlas_defragmentations_per_s, else a smaller
+  // image), "tiles" as tiles of atlas_tile texels with a one-texel border.
+  std::string impostors = "direct";
+  float impostor_distance_m = 8000.0f;      // [0, 1e7]
+  float impostor_max_angle_deg = 1.5f;      // (0, 90]
+  float impostor_distance_factor = 1.15f;   // (1, 10]
+  float impostor_resolution = 1.0f;         // image texels per screen pixel, [0.1, 4]
+  int impostor_updates_per_frame = 8;       // [1, 1024]
+  int impostor_fade_frames = 8;             // [1, 1000]
+  int atlas_size = 2048;                    // texels a side, [256, 8192]
+  int atlas_granule = 16;                   // direct: sizes rounded up to this, [1, 256]
+  bool atlas_defragment = true;             // direct and tiles
+  float atlas_defragmentations_per_s = 2.0f;  // [0, 1000]
+  int atlas_tile = 32;                      // tiles: 16 or 32
 };
 
 // The lab scene (issue 21): one density grid in vacuum (no planet, no air, a black background)

@@ -101,5 +101,15 @@ layout(std430, set = 0, binding = 50) readonly buffer ParticleBlock { ParticleGp
 layout(set = 0, binding = 51) uniform sampler2D particle_textures;
 layout(set = 0, binding = 52) uniform sampler2D particle_layer;
 layout(set = 0, binding = 53) uniform sampler2D particle_depth;
+// Impostors of far particle clouds (render/modules/impostors.h): this frame's quads back to
+// front (impostor.vert), the atlas their images live in, each impostor's tile slots (the tiles
+// method), the scratch image an impostor is drawn into before impostor_tiles.comp splits it
+// into tiles, the atlas as that pass writes it, and its jobs (one per tile).
+layout(std430, set = 0, binding = 54) readonly buffer ImpostorBlock { ImpostorGpu impostor_list[]; };
+layout(set = 0, binding = 55) uniform sampler2D impostor_atlas;
+layout(std430, set = 0, binding = 56) readonly buffer TileSlotBlock { int impostor_tile_slots[]; };
+layout(set = 0, binding = 57) uniform sampler2D impostor_scratch;
+layout(set = 0, binding = 58, rgba16f) uniform writeonly image2D impostor_atlas_out;
+layout(std430, set = 0, binding = 59) readonly buffer TileJobBlock { ImpostorTileJob impostor_tile_jobs[]; };
 
 #endif

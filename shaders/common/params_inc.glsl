@@ -231,6 +231,36 @@ struct ParticleGpu {
   vec4 position_radius;  // xyz from the camera (m, the planet frame's axes), w radius (m)
   vec4 shading;          // x the light reaching it (CPU lighting, [0, 1]), y its texture, zw unused
 };
+// Per draw of a raster pass (push constants; gpu/raster.h): the camera it projects with. The
+// frame's camera for the image; for an impostor (render/modules/impostors.h) a square view from
+// the same eye framing the cloud's bounding sphere.
+struct DrawConstants {
+  vec4 forward;  // xyz unit view direction; w tan(vertical fov / 2)
+  vec4 right;    // xyz unit right vector; w aspect (width / height)
+  vec4 up;       // xyz unit up vector (image up); w unused
+  ivec4 info;    // x the first impostor of an impostor draw (impostor.vert); yzw unused
+};
+
+// An impostor's quad (impostor.vert): a cloud's image from the atlas, facing the camera.
+struct ImpostorGpu {
+  vec4 center_half;  // xyz the cloud's centre from the camera (m), w the quad's half side (m)
+  vec4 right;        // xyz the quad's right (its image's), w the new image's weight (cross-fade)
+  vec4 up;           // xyz the quad's up, w the cloud's distance (km), for the depth layer
+  vec4 image_new;    // direct: the image's texels (x0, y0, x1, y1); tiles: x its first entry in
+                     // impostor_tile_slots, y tiles per side, z the image's side (texels)
+  vec4 image_old;    // the same for the image fading out (weight 1 - right.w)
+  ivec4 info;        // x IMPOSTOR_DIRECT or IMPOSTOR_TILES, y the tile side (texels)
+};
+const int IMPOSTOR_DIRECT = 0;
+const int IMPOSTOR_TILES = 1;
+// One tile for impostor_tiles.comp to fill: x its slot, y, z its column and row in the
+// impostor's grid of tiles, w the tile side; source: xy the impostor's image's corner in the
+// scratch image, z its side (texels).
+struct ImpostorTileJob {
+  ivec4 tile;
+  ivec4 source;
+};
+
 // The particles' procedural textures (render/modules/particle_clouds.cpp).
 const int PARTICLE_TEXTURES = 4;
 const int PARTICLE_TEXTURE_SIZE = 64;

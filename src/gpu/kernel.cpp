@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gpu/vk_check.h"
+#include "render/gpu_params.h"
 #include "nephele_embedded.h"
 
 namespace nephele_shaders {
@@ -27,7 +28,8 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled,
       kStorage, kStorage, kSampled, kSampled, kStorage, kStorage, kSampled, kStorage, kSampled,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, kSampled,
-      kSampled};
+      kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      kSampled, kStorage, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
   static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];
@@ -48,6 +50,11 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
   VkPipelineLayoutCreateInfo pipeline_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pipeline_info.setLayoutCount = 1;
   pipeline_info.pSetLayouts = &layout_;
+  // The raster passes' per-draw constants (params_inc.glsl, DrawConstants).
+  const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                 sizeof(DrawConstants)};
+  pipeline_info.pushConstantRangeCount = 1;
+  pipeline_info.pPushConstantRanges = &push;
   NEPHELE_VK(vkCreatePipelineLayout(device_, &pipeline_info, nullptr, &pipeline_layout_));
 
   // Room for every set (one per frame in flight) and all their descriptors: lavapipe allocates

@@ -68,6 +68,12 @@ enum Binding : uint32_t {
   kParticleTextures = 51,
   kParticleLayer = 52,
   kParticleDepth = 53,
+  kImpostors = 54,
+  kImpostorAtlas = 55,
+  kImpostorTileSlots = 56,
+  kImpostorScratch = 57,
+  kImpostorAtlasOut = 58,
+  kImpostorTileJobs = 59,
   kBindingCount
 };
 

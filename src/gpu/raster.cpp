@@ -25,8 +25,8 @@ VkShaderModule load_module(VkDevice device, const std::string& name) {
 
 }  // namespace
 
-RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::string& vert_spv,
-                       const std::string& frag_spv, const std::vector<VkFormat>& formats)
+RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector<VkFormat>& formats,
+                       bool clear, const std::vector<RasterShaders>& pipelines)
     : device_(ctx.device()), attachments_(formats.size()) {
   if (!ctx.has_graphics())
     throw RuntimeError("the device's queue on " + ctx.device_name() + " cannot draw (no graphics)");
@@ -41,7 +41,7 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::string
     VkAttachmentDescription a{};
     a.format = format;
     a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
@@ -54,22 +54,25 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::string
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   subpass.colorAttachmentCount = uint32_t(refs.size());
   subpass.pColorAttachments = refs.data();
-  // Before: earlier passes' reads of the targets (compute) and writes of what the shaders
-  // read. After: the targets' writes made visible to the compute passes that sample them.
+  // Before: earlier passes' reads of the targets (compute, fragment) and writes of what the
+  // shaders read. After: the targets' writes made visible to the compute and fragment shaders
+  // that sample them (an impostor atlas is read by the next raster pass) and to transfers.
   VkSubpassDependency deps[2] = {};
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   deps[0].dstSubpass = 0;
   deps[0].srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                         VK_PIPELINE_STAGE_HOST_BIT;
+                         VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
                          VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
   deps[0].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
-                          VK_ACCESS_HOST_WRITE_BIT;
+                          VK_ACCESS_HOST_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
   deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
   deps[1].srcSubpass = 0;
   deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
   deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  deps[1].dstStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+  deps[1].dstStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                         VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
   deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
   deps[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
   VkRenderPassCreateInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
@@ -81,14 +84,13 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::string
   rp.pDependencies = deps;
   NEPHELE_VK(vkCreateRenderPass(device_, &rp, nullptr, &render_pass_));
 
-  VkShaderModule vert = load_module(device_, vert_spv), frag = load_module(device_, frag_spv);
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vert;
+  stages[0].module = VK_NULL_HANDLE;
   stages[0].pName = "main";
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = frag;
+  stages[1].module = VK_NULL_HANDLE;
   stages[1].pName = "main";
   VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
@@ -131,16 +133,22 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::string
   info.pDynamicState = &dynamic;
   info.layout = set.pipeline_layout();
   info.renderPass = render_pass_;
-  const VkResult result =
-      vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
-  vkDestroyShaderModule(device_, vert, nullptr);
-  vkDestroyShaderModule(device_, frag, nullptr);
-  check(result, ("vkCreateGraphicsPipelines(" + vert_spv + ", " + frag_spv + ")").c_str());
+  for (const RasterShaders& shaders : pipelines) {
+    stages[0].module = load_module(device_, shaders.vert);
+    stages[1].module = load_module(device_, shaders.frag);
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    const VkResult result =
+        vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+    vkDestroyShaderModule(device_, stages[0].module, nullptr);
+    vkDestroyShaderModule(device_, stages[1].module, nullptr);
+    check(result, ("vkCreateGraphicsPipelines(" + shaders.vert + ", " + shaders.frag + ")").c_str());
+    pipelines_.push_back(pipeline);
+  }
 }
 
 RasterPass::~RasterPass() {
   for (const Cached& c : framebuffers_) vkDestroyFramebuffer(device_, c.framebuffer, nullptr);
-  vkDestroyPipeline(device_, pipeline_, nullptr);
+  for (VkPipeline pipeline : pipelines_) vkDestroyPipeline(device_, pipeline, nullptr);
   vkDestroyRenderPass(device_, render_pass_, nullptr);
 }
 
@@ -165,7 +173,7 @@ VkFramebuffer RasterPass::framebuffer_for(const std::vector<const Texture*>& tar
 
 void RasterPass::record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer& timer,
                         const std::string& name, const std::vector<const Texture*>& targets,
-                        uint32_t vertex_count) {
+                        const std::vector<RasterDraw>& draws) {
   if (targets.size() != attachments_) throw RuntimeError("RasterPass: wrong number of targets");
   timer.begin(cmd, name);
   const uint32_t w = targets[0]->width(), h = targets[0]->height();
@@ -177,16 +185,32 @@ void RasterPass::record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer
   begin.clearValueCount = uint32_t(clears.size());
   begin.pClearValues = clears.data();
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-  if (vertex_count > 0) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    VkDescriptorSet handle = set.set();
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, set.pipeline_layout(), 0, 1,
-                            &handle, 0, nullptr);
-    const VkViewport viewport{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, {w, h}};
+  VkDescriptorSet handle = set.set();
+  int bound = -1;
+  for (const RasterDraw& draw : draws) {
+    const VkRect2D area = draw.area.extent.width > 0 ? draw.area : VkRect2D{{0, 0}, {w, h}};
+    if (draw.clear_area) {
+      std::vector<VkClearAttachment> attachments(targets.size());
+      for (uint32_t i = 0; i < attachments.size(); ++i)
+        attachments[i] = {VK_IMAGE_ASPECT_COLOR_BIT, i, VkClearValue{}};
+      const VkClearRect rect{area, 0, 1};
+      vkCmdClearAttachments(cmd, uint32_t(attachments.size()), attachments.data(), 1, &rect);
+    }
+    if (draw.vertex_count == 0) continue;
+    if (draw.pipeline != bound) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.at(size_t(draw.pipeline)));
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, set.pipeline_layout(), 0, 1,
+                              &handle, 0, nullptr);
+      bound = draw.pipeline;
+    }
+    const VkViewport viewport{float(area.offset.x), float(area.offset.y), float(area.extent.width),
+                              float(area.extent.height), 0.0f, 1.0f};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
-    vkCmdDraw(cmd, vertex_count, 1, 0, 0);
+    vkCmdSetScissor(cmd, 0, 1, &area);
+    vkCmdPushConstants(cmd, set.pipeline_layout(),
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(DrawConstants), &draw.constants);
+    vkCmdDraw(cmd, draw.vertex_count, 1, draw.first_vertex, 0);
   }
   vkCmdEndRenderPass(cmd);
   timer.end(cmd);

@@ -1,8 +1,9 @@
 // Raster passes: a render pass over colour attachments kept in VK_IMAGE_LAYOUT_GENERAL (the
 // layout every nephele image lives in, so compute passes sample them after), cleared to zero
-// and drawn with premultiplied-alpha "over" blending, and a graphics pipeline of embedded
-// vertex and fragment shaders with the shared descriptor set. The vertex shader makes its
-// geometry from gl_VertexIndex: there are no vertex buffers.
+// (or kept, with the areas drawn cleared), drawn with premultiplied-alpha "over" blending by
+// graphics pipelines of embedded vertex and fragment shaders with the shared descriptor set and
+// per-draw push constants (DrawConstants). The vertex shaders make their geometry from
+// gl_VertexIndex: there are no vertex buffers.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -13,29 +14,47 @@
 #include "gpu/context.h"
 #include "gpu/kernel.h"
 #include "gpu/resources.h"
+#include "render/gpu_params.h"
 
 namespace nephele::gpu {
 
+// A pipeline's shaders: embedded SPIR-V names ("particles.vert.spv").
+struct RasterShaders {
+  std::string vert, frag;
+};
+
+// One draw: `vertex_count` vertices from `first_vertex` with `pipeline`, its constants, into
+// `area` of the targets (viewport and scissor; width 0 = all of them), cleared first when
+// `clear_area`.
+struct RasterDraw {
+  int pipeline = 0;
+  uint32_t first_vertex = 0, vertex_count = 0;
+  DrawConstants constants{};
+  VkRect2D area{};
+  bool clear_area = false;
+};
+
 class RasterPass {
  public:
-  // Throws RuntimeError when the queue cannot draw or a format cannot be a blended attachment.
-  RasterPass(Context& ctx, const DescriptorSet& set, const std::string& vert_spv,
-             const std::string& frag_spv, const std::vector<VkFormat>& formats);
+  // `clear`: the targets are cleared to zero when the pass begins, else kept. Throws
+  // RuntimeError when the queue cannot draw or a format cannot be a blended attachment.
+  RasterPass(Context& ctx, const DescriptorSet& set, const std::vector<VkFormat>& formats,
+             bool clear, const std::vector<RasterShaders>& pipelines);
   ~RasterPass();
   RasterPass(const RasterPass&) = delete;
   RasterPass& operator=(const RasterPass&) = delete;
 
-  // Clears `targets` (one per format, all the same size), draws `vertex_count` vertices into
-  // them, and makes the result visible to compute shaders; timed as `name`.
+  // Records the draws into `targets` (one per format, all the same size) and makes the
+  // result visible to compute shaders and transfers; timed as `name`.
   void record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer& timer,
               const std::string& name, const std::vector<const Texture*>& targets,
-              uint32_t vertex_count);
+              const std::vector<RasterDraw>& draws);
 
  private:
   VkFramebuffer framebuffer_for(const std::vector<const Texture*>& targets);
   VkDevice device_;
   VkRenderPass render_pass_ = VK_NULL_HANDLE;
-  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  std::vector<VkPipeline> pipelines_;
   size_t attachments_ = 0;
   // Framebuffers by their image views; a target replaced (resized) gets a new one, the old
   // ones are destroyed with the pass (a handful over a viewer session's resizes).

@@ -458,6 +458,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   stats.ephemeris = lights.ephemeris;
   stats.voxel_clouds = voxel_clouds.memory();
   stats.voxel_bytes = scene.voxel_clouds.empty() ? 0 : voxel_clouds.device_bytes();
+  if (scene.particle_clouds.coverage > 0.0f) stats.particle_clouds = particles.frame_stats();
   if (stats.ephemeris && scene.sun.from_time) {
     stats.sun = stats.ephemeris->sun;
   } else {

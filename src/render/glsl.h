@@ -53,6 +53,7 @@ namespace {
 #include "common/light_volume_inc.glsl"
 #include "common/voxel_inc.glsl"
 #include "common/particle_inc.glsl"
+#include "common/impostor_inc.glsl"
 }  // namespace
 }  // namespace nephele::glsl
 #pragma GCC diagnostic pop

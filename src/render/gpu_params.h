@@ -11,5 +11,8 @@ static_assert(sizeof(FrameParams) == (79 + 6 * MAX_VOXEL_CLOUDS) * 16,
 static_assert(sizeof(VoxelCloudGpu) == 6 * 16);
 static_assert(sizeof(StarGpu) == 2 * 16);
 static_assert(sizeof(ParticleGpu) == 2 * 16);
+static_assert(sizeof(DrawConstants) == 4 * 16);
+static_assert(sizeof(ImpostorGpu) == 6 * 16);
+static_assert(sizeof(ImpostorTileJob) == 2 * 16);
 static_assert(alignof(FrameParams) <= 16);
 }  // namespace nephele::gpu

@@ -379,6 +379,20 @@ void check_particle_clouds(const Checker& check, const ParticleCloudParams& p) {
   check.in_range("particle_clouds.diffuse_strength", p.diffuse_strength, 0.0f, 10.0f);
   if (p.light_buffer != 32 && p.light_buffer != 64)
     check.fail("particle_clouds.light_buffer", std::to_string(p.light_buffer), "must be 32 or 64");
+  if (p.impostors != "off" && p.impostors != "direct" && p.impostors != "tiles")
+    check.fail("particle_clouds.impostors", scene_detail::toml_quote(p.impostors),
+               "must be \"off\", \"direct\" or \"tiles\"");
+  check.in_range("particle_clouds.impostor_distance_m", p.impostor_distance_m, 0.0f, 1.0e7f);
+  check.in_range("particle_clouds.impostor_max_angle_deg", p.impostor_max_angle_deg, 0.0f, 90.0f, true);
+  check.in_range("particle_clouds.impostor_distance_factor", p.impostor_distance_factor, 1.0f, 10.0f, true);
+  check.in_range("particle_clouds.impostor_resolution", p.impostor_resolution, 0.1f, 4.0f);
+  check.in_range("particle_clouds.impostor_updates_per_frame", p.impostor_updates_per_frame, 1, 1024);
+  check.in_range("particle_clouds.impostor_fade_frames", p.impostor_fade_frames, 1, 1000);
+  check.in_range("particle_clouds.atlas_size", p.atlas_size, 256, 8192);
+  check.in_range("particle_clouds.atlas_granule", p.atlas_granule, 1, 256);
+  check.in_range("particle_clouds.atlas_defragmentations_per_s", p.atlas_defragmentations_per_s, 0.0f, 1000.0f);
+  if (p.atlas_tile != 16 && p.atlas_tile != 32)
+    check.fail("particle_clouds.atlas_tile", std::to_string(p.atlas_tile), "must be 16 or 32");
   if (p.coverage <= 0.0f) return;
   // The grid's cells over the field: pi R^2 x height / cell^3.
   const double cells = 3.14159265 * double(p.field_radius_m) * p.field_radius_m *

@@ -125,3 +125,53 @@ TEST_F(ParticleRenderTest, TheNearerOfParticleAndVolumetricCloudsHidesTheOther) 
 }
 
 }  // namespace
+
+namespace {
+
+// From a cockpit at 3.2 km over a particle field 20 km across, far clouds as impostors.
+nephele::Scene cockpit_scene(const std::string& impostors) {
+  nephele::Scene s = nephele::load_preset("default");
+  s.output.width = 120;
+  s.output.height = 72;
+  s.output.auto_exposure = false;
+  s.clouds.coverage = 0.0f;
+  s.camera.position_m = glm::vec3(0.0f, 0.0f, 3200.0f);
+  s.camera.view_dir = glm::vec3(0.0f, 1.0f, -0.08f);
+  s.particle_clouds.coverage = 0.3f;
+  s.particle_clouds.field_radius_m = 20000.0f;
+  s.particle_clouds.cell_m = 200.0f;
+  s.particle_clouds.particle_radius_m = 260.0f;
+  s.particle_clouds.impostor_distance_m = 5000.0f;
+  s.particle_clouds.impostors = impostors;
+  return s;
+}
+
+TEST_F(ParticleRenderTest, ImpostorsLookLikeTheParticlesTheyReplace) {
+  const nephele::Frame all = render(cockpit_scene("off"));
+  ASSERT_TRUE(all.stats.particle_clouds);
+  EXPECT_EQ(all.stats.particle_clouds->impostors, 0);
+  EXPECT_EQ(all.stats.particle_clouds->drawn, all.stats.particle_clouds->particles);
+  for (const std::string method : {"direct", "tiles"}) {
+    const nephele::Frame frame = render(cockpit_scene(method));
+    const nephele::ParticleCloudStats& p = *frame.stats.particle_clouds;
+    std::printf("%s: %d impostors of %d clouds, %zu of %zu particles drawn one by one; "
+                "atlas occupancy %.3f, wasted %.3f\n",
+                method.c_str(), p.impostors, p.clouds, p.drawn, p.particles, p.atlas_occupancy,
+                p.atlas_wasted);
+    EXPECT_GT(p.impostors, p.clouds / 2) << method;  // most of the field is far
+    EXPECT_LT(p.drawn, p.particles / 2) << method;
+    EXPECT_GT(p.atlas_occupancy, 0.0) << method;
+    // The same image: mean luminance within 3% (the benchmark's target), and pixel by pixel
+    // close on average.
+    EXPECT_NEAR(frame.stats.mean_luminance / all.stats.mean_luminance, 1.0, 0.03) << method;
+    size_t n = 0;
+    const double difference =
+        masked_difference(frame.color, all.color, [](size_t) { return true; }, n);
+    std::printf("%s: mean luminance %+.2f%%, mean pixel difference %.2f%%\n", method.c_str(),
+                100.0 * (frame.stats.mean_luminance / all.stats.mean_luminance - 1.0),
+                100.0 * difference);
+    EXPECT_LT(difference, 0.06) << method;
+  }
+}
+
+}  // namespace

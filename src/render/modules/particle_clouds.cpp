@@ -18,6 +18,7 @@ namespace nephele {
 namespace {
 
 constexpr VkFormat kLayerFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_R16_SFLOAT;  // opacity-weighted distance (km)
 
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -72,7 +73,7 @@ std::string field_key(const ParticleCloudParams& p, float step_time_s) {
 }  // namespace
 
 ParticleCloudsModule::ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set) {
+    : ctx_(ctx), set_(set), impostors_(ctx, set) {
   const int n = gpu::PARTICLE_TEXTURE_SIZE, tiles = gpu::PARTICLE_TEXTURES;
   textures_ = gpu::Texture(ctx, uint32_t(n * tiles), uint32_t(n), 1, VK_FORMAT_R8G8B8A8_UNORM,
                            VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
@@ -81,7 +82,7 @@ ParticleCloudsModule::ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet
   std::memcpy(staging.data(), texels.data(), texels.size());
   // Until a scene has particle clouds: empty layers (1 x 1, zero) and a one-particle buffer.
   layer_ = gpu::Texture(ctx, 1, 1, 1, kLayerFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-  depth_ = gpu::Texture(ctx, 1, 1, 1, kLayerFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  depth_ = gpu::Texture(ctx, 1, 1, 1, kDepthFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     textures_.record_upload(cmd, staging);
     layer_.record_clear(cmd);
@@ -102,7 +103,7 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   const ParticleCloudParams& p = scene.particle_clouds;
   active_ = p.coverage > 0.0f;
   stats_ = {};
-  count_ = 0;
+  near_first_ = near_count_ = 0;
   params.particle_shading = glm::vec4(p.albedo, p.phase_g, p.rayleigh_phase ? 1.0f : 0.0f, p.opacity);
   params.particle_light = glm::vec4(p.diffuse_strength, 0.0f, 0.0f, 0.0f);
   if (!active_) {
@@ -115,14 +116,20 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
                      ": particle clouds are drawn by a raster pass, and the queue of " +
                      ctx_.device_name() + " has no graphics");
   if (!pass_)
-    pass_ = std::make_unique<gpu::RasterPass>(ctx_, set_, "particles.vert.spv", "particles.frag.spv",
-                                              std::vector<VkFormat>{kLayerFormat, kLayerFormat});
+    pass_ = std::make_unique<gpu::RasterPass>(
+        ctx_, set_, std::vector<VkFormat>{kLayerFormat, kDepthFormat}, true,
+        std::vector<gpu::RasterShaders>{{"particles.vert.spv", "particles.frag.spv"},
+                                        {"impostor.vert.spv", "impostor.frag.spv"}});
+  camera_.forward = glm::vec4(glm::vec3(params.camera_forward), params.camera_pos_m.w);
+  camera_.right = glm::vec4(glm::vec3(params.camera_right), params.camera_forward.w);
+  camera_.up = glm::vec4(glm::vec3(params.camera_up), 0.0f);
   // The field, for the evolving noise's time step.
   const float step_s = p.evolution_s > 0.0f ? p.evolution_s / 64.0f : 0.0f;
   const float field_time_s = step_s > 0.0f ? std::floor(scene.time_s / step_s) * step_s : 0.0f;
   const std::string key = field_key(p, field_time_s);
   auto start = std::chrono::steady_clock::now();
-  if (key != field_key_) {
+  const bool regenerated = key != field_key_;
+  if (regenerated) {
     field_ = particles::generate_field(p, field_time_s);
     field_key_ = key;
     field_time_s_ = field_time_s;
@@ -135,38 +142,60 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   stats_.relit_clouds = relit.clouds;
   stats_.lighting_ms = ms_since(start);
 
-  // Back to front from the camera; the field drifts with the wind since it was generated.
+  // Which clouds are impostors, and which of those are drawn into the atlas this frame; the
+  // field drifts with the wind since it was generated.
   start = std::chrono::steady_clock::now();
   const glm::vec3 offset = glm::vec3(p.wind_mps * (scene.time_s - field_time_s_), 0.0f) -
                            scene.camera.position_m;
-  struct Entry {
-    float distance2;
-    const particles::Particle* particle;
-  };
-  std::vector<Entry> order;
-  order.reserve(field_.particles());
-  for (const particles::ParticleCloud& cloud : field_.clouds)
-    for (const particles::Particle& q : cloud.particles) {
-      const glm::vec3 d = q.position_m + offset;
-      order.push_back({glm::dot(d, d), &q});
-    }
-  std::sort(order.begin(), order.end(),
-            [](const Entry& a, const Entry& b) { return a.distance2 > b.distance2; });
+  const ImpostorCache::Plan plan =
+      impostors_.plan(field_, p, offset, height, params.camera_pos_m.w, regenerated, still);
+  // The particle buffer: each updated impostor's particles, back to front from the eye, then
+  // all the particles drawn one by one, back to front.
+  size_t total = 0;
+  for (size_t c : plan.updates) total += field_.clouds[c].particles.size();
+  for (size_t c : plan.particle_clouds) total += field_.clouds[c].particles.size();
   gpu::Buffer& buffer = buffers_[slot];
-  const VkDeviceSize bytes = std::max<VkDeviceSize>(order.size(), 1) * sizeof(gpu::ParticleGpu);
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(total, 1) * sizeof(gpu::ParticleGpu);
   if (buffer.size() < bytes) {
     ctx_.wait_queue_idle();  // the frame in flight may still read the old buffer
     buffer = gpu::Buffer(ctx_, bytes + bytes / 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   }
   auto* out = static_cast<gpu::ParticleGpu*>(buffer.data());
-  for (size_t i = 0; i < order.size(); ++i) {
-    const particles::Particle& q = *order[i].particle;
-    out[i].position_radius = glm::vec4(q.position_m + offset, q.radius_m);
-    out[i].shading = glm::vec4(q.light, float(q.texture), 0.0f, 0.0f);
+  uint32_t written = 0;
+  struct Entry {
+    float distance2;
+    const particles::Particle* particle;
+  };
+  std::vector<Entry> order;
+  const auto write_back_to_front = [&](const std::vector<size_t>& clouds) {
+    order.clear();
+    for (size_t c : clouds)
+      for (const particles::Particle& q : field_.clouds[c].particles) {
+        const glm::vec3 d = q.position_m + offset;
+        order.push_back({glm::dot(d, d), &q});
+      }
+    std::sort(order.begin(), order.end(),
+              [](const Entry& a, const Entry& b) { return a.distance2 > b.distance2; });
+    for (const Entry& e : order) {
+      const particles::Particle& q = *e.particle;
+      out[written].position_radius = glm::vec4(q.position_m + offset, q.radius_m);
+      out[written].shading = glm::vec4(q.light, float(q.texture), 0.0f, 0.0f);
+      ++written;
+    }
+  };
+  std::vector<uint32_t> first, count;
+  for (size_t c : plan.updates) {
+    first.push_back(written);
+    write_back_to_front({c});
+    count.push_back(written - first.back());
   }
-  count_ = uint32_t(order.size());
+  near_first_ = written;
+  write_back_to_front(plan.particle_clouds);
+  near_count_ = written - near_first_;
+  impostors_.place_updates(field_, first, count, slot);
   stats_.sort_ms = ms_since(start);
-  stats_.particles = order.size();
+  stats_.particles = near_count_;
+  stats_.field_particles = field_.particles();
   stats_.clouds = int(field_.clouds.size());
   set_.bind_buffer(gpu::kParticles, buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 
@@ -174,16 +203,48 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
     ctx_.wait_queue_idle();
     layer_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kLayerFormat,
                           VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    depth_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kLayerFormat,
+    depth_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kDepthFormat,
                           VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     set_.bind_sampled_image(gpu::kParticleLayer, layer_);
     set_.bind_sampled_image(gpu::kParticleDepth, depth_);
   }
 }
 
+ParticleCloudStats ParticleCloudsModule::frame_stats() const {
+  ParticleCloudStats out;
+  out.particles = stats_.field_particles;
+  out.drawn = stats_.particles;
+  out.clouds = stats_.clouds;
+  out.relit_clouds = stats_.relit_clouds;
+  out.generate_ms = stats_.generate_ms;
+  out.lighting_ms = stats_.lighting_ms;
+  out.sort_ms = stats_.sort_ms;
+  const ImpostorFrameStats& im = impostors_.stats();
+  out.impostors = im.impostors;
+  out.impostor_updates = im.updates;
+  out.atlas_occupancy = im.atlas.occupancy;
+  out.atlas_wasted = im.atlas.wasted;
+  out.atlas_fragmentation = im.atlas.fragmentation;
+  out.atlas_defragmentations = im.atlas.defragmentations;
+  out.atlas_defragmentations_per_s = im.atlas.defragmentations_per_s;
+  out.atlas_downsized = im.atlas.downsized;
+  out.atlas_failed = im.atlas.failed;
+  out.atlas_mean_op_us = im.atlas.mean_op_us;
+  out.atlas_max_op_us = im.atlas.max_op_us;
+  return out;
+}
+
 void ParticleCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (active_) {
-    pass_->record(cmd, set_, timer, "particles", {&layer_, &depth_}, 6 * count_);
+    impostors_.record_updates(cmd, timer);
+    std::vector<gpu::RasterDraw> draws;
+    if (impostors_.quad_count() > 0) draws.push_back(impostors_.quads(camera_));  // the farthest
+    gpu::RasterDraw near;
+    near.first_vertex = 6 * near_first_;
+    near.vertex_count = 6 * near_count_;
+    near.constants = camera_;
+    draws.push_back(near);
+    pass_->record(cmd, set_, timer, "particles", {&layer_, &depth_}, draws);
     drawn_ = true;
   } else if (drawn_) {  // a scene without particle clouds after one with them
     layer_.record_clear(cmd);

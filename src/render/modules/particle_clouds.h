@@ -2,7 +2,8 @@
 // field (particles/particle_field.h), lights it on the CPU (particles/particle_lighting.h,
 // spread over frames), sorts its particles back to front each frame and draws them as
 // camera-facing quads in a raster pass (particles.vert, particles.frag) into a layer that
-// compose.comp puts in depth order with the sky and the volumetric clouds.
+// compose.comp puts in depth order with the sky and the volumetric clouds; far clouds as
+// impostors (impostors.h).
 #pragma once
 
 #include <memory>
@@ -13,6 +14,8 @@
 
 #include "gpu/kernel.h"
 #include "gpu/raster.h"
+#include "render/modules/impostors.h"
+#include "nephele/renderer.h"
 #include "nephele/scene.h"
 #include "particles/particle_field.h"
 #include "render/gpu_params.h"
@@ -23,7 +26,8 @@ namespace nephele {
 constexpr size_t kParticleRelightBudget = 60000;
 
 struct ParticleFrameStats {
-  size_t particles = 0;  // drawn
+  size_t particles = 0;  // drawn one by one (not in impostors)
+  size_t field_particles = 0;
   int clouds = 0;
   int relit_clouds = 0;  // this frame
   double generate_ms = 0.0, lighting_ms = 0.0, sort_ms = 0.0;  // CPU
@@ -47,6 +51,9 @@ class ParticleCloudsModule {
 
   const ParticleFrameStats& stats() const { return stats_; }
   const particles::ParticleField& field() const { return field_; }
+  const ImpostorFrameStats& impostor_stats() const { return impostors_.stats(); }
+  // Both, as FrameStats reports them.
+  ParticleCloudStats frame_stats() const;
 
  private:
   gpu::Context& ctx_;
@@ -60,7 +67,9 @@ class ParticleCloudsModule {
   float field_time_s_ = 0.0f;  // the time the field was generated for
   bool active_ = false;        // this frame draws
   bool drawn_ = false;         // the layers hold particles (cleared when none are drawn)
-  uint32_t count_ = 0;         // particles written this frame
+  uint32_t near_first_ = 0, near_count_ = 0;  // the particles drawn one by one this frame
+  gpu::DrawConstants camera_{};  // the frame's camera
+  ImpostorCache impostors_;
   ParticleFrameStats stats_;
 };
 

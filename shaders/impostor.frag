@@ -1,0 +1,35 @@
+#version 450
+// Impostors: the quad's texel from its image in the atlas (premultiplied), mixed with the
+// image it replaces while that fades out, so that an update never pops.
+#extension GL_GOOGLE_include_directive : require
+#include "common/bindings_inc.glsl"
+#include "common/impostor_inc.glsl"
+
+layout(location = 0) in vec2 uv;
+layout(location = 1) flat in int index;
+
+layout(location = 0) out vec4 layer_out;  // particle_layer
+layout(location = 1) out vec4 depth_out;  // particle_depth
+
+vec4 image_texel(vec4 image, ImpostorGpu im) {
+  vec2 atlas = vec2(textureSize(impostor_atlas, 0));
+  vec2 texel;
+  if (im.info.x == IMPOSTOR_DIRECT) {
+    texel = impostor_direct_texel(image, uv);
+  } else {
+    int side = int(image.y);
+    ivec2 tile = impostor_tile_of(uv, image.z, im.info.y, side);
+    int slot = impostor_tile_slots[int(image.x) + tile.y * side + tile.x];
+    texel = impostor_tile_texel(uv, image.z, im.info.y, tile, slot, int(atlas.x) / im.info.y);
+  }
+  return textureLod(impostor_atlas, texel / atlas, 0.0f);
+}
+
+void main() {
+  ImpostorGpu im = impostor_list[index];
+  float fade = im.right.w;
+  vec4 color = image_texel(im.image_new, im);
+  if (fade < 1.0f) color = mix(image_texel(im.image_old, im), color, fade);
+  layer_out = color;
+  depth_out = vec4(im.up.w * color.a, 0.0f, 0.0f, color.a);
+}

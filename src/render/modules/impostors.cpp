@@ -1,0 +1,379 @@
+#include "render/modules/impostors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace nephele {
+
+namespace {
+
+constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kAuxFormat = VK_FORMAT_R16_SFLOAT;  // particles.frag's depth output, unused here
+constexpr int kScratchSide = 1024;                     // tiles: this frame's images before the split
+constexpr int kMinSide = 16, kMaxSide = 256;           // an impostor's image (texels a side)
+
+gpu::Texture texture(gpu::Context& ctx, int w, int h, VkFormat format) {
+  return gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, format, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+}
+
+template <typename T>
+void upload(gpu::Context& ctx, gpu::Buffer& buffer, const std::vector<T>& items) {
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(items.size(), 1) * sizeof(T);
+  if (buffer.size() < bytes) {
+    ctx.wait_queue_idle();  // the frame in flight may still read the old buffer
+    buffer = gpu::Buffer(ctx, bytes + bytes / 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  }
+  if (!items.empty()) std::memcpy(buffer.data(), items.data(), items.size() * sizeof(T));
+}
+
+}  // namespace
+
+struct ImpostorCache::Impostor {
+  bool has_image = false;
+  uint32_t id = 0;     // its image's atlas id: cloud index x 2 + 0 or 1, alternating
+  glm::vec3 dir{0.0f};  // from the eye towards the cloud when drawn
+  float distance_m = 0.0f;
+  glm::vec3 light{0.0f};  // the cloud's lighting then (ParticleCloud::lit_towards)
+  glm::vec3 right{0.0f}, up{0.0f};
+  float half_m = 0.0f;  // the quad's half side at the cloud's centre
+  bool fading = false;
+  float fade = 1.0f;  // the new image's weight
+  uint32_t old_id = 0;
+};
+
+struct ImpostorCache::Update {
+  size_t cloud = 0;
+  uint32_t id = 0;
+  uint32_t first = 0, count = 0;  // its particles in the particle buffer
+  gpu::DrawConstants view{};
+  glm::ivec2 scratch{0};  // tiles: where it is drawn in the scratch image
+  int side = 0;
+};
+
+ImpostorCache::ImpostorCache(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : ctx_(ctx), set_(set), tiles_kernel_(ctx, set, "impostor_tiles.comp.spv") {
+  // Until a scene has impostors: 1 x 1 images and one-element buffers, so every binding is set.
+  atlas_ = texture(ctx, 1, 1, kColorFormat);
+  scratch_ = texture(ctx, 1, 1, kColorFormat);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    atlas_.record_clear(cmd);
+    scratch_.record_clear(cmd);
+  });
+  for (int s = 0; s < gpu::kFramesInFlight; ++s) {
+    upload(ctx, quads_buffers_[s], std::vector<gpu::ImpostorGpu>(1));
+    upload(ctx, slots_buffers_[s], std::vector<int>(1));
+    upload(ctx, jobs_buffers_[s], std::vector<gpu::ImpostorTileJob>(1));
+  }
+  set_.bind_sampled_image(gpu::kImpostorAtlas, atlas_);
+  set_.bind_storage_image(gpu::kImpostorAtlasOut, atlas_);
+  set_.bind_sampled_image(gpu::kImpostorScratch, scratch_);
+  set_.bind_buffer(gpu::kImpostors, quads_buffers_[0], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  set_.bind_buffer(gpu::kImpostorTileSlots, slots_buffers_[0], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  set_.bind_buffer(gpu::kImpostorTileJobs, jobs_buffers_[0], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+}
+
+ImpostorCache::~ImpostorCache() = default;
+
+void ImpostorCache::configure(const ParticleCloudParams& p) {
+  const bool same = configured_ && p.impostors == params_.impostors &&
+                    p.atlas_size == params_.atlas_size && p.atlas_granule == params_.atlas_granule &&
+                    p.atlas_defragment == params_.atlas_defragment &&
+                    p.atlas_defragmentations_per_s == params_.atlas_defragmentations_per_s &&
+                    p.atlas_tile == params_.atlas_tile;
+  if (same) return;
+  params_ = p;
+  configured_ = true;
+  impostors_.clear();
+  direct_.reset();
+  tiles_.reset();
+  if (p.impostors == "off") return;
+  ctx_.wait_queue_idle();  // the frames in flight read the atlas replaced
+  const int n = p.atlas_size;
+  atlas_ = texture(ctx_, n, n, kColorFormat);
+  if (p.impostors == "direct") {
+    direct_ = std::make_unique<particles::DirectAtlas>(
+        n, n, particles::DirectAtlas::Options{p.atlas_granule, p.atlas_defragment,
+                                              p.atlas_defragmentations_per_s});
+    atlas_aux_ = texture(ctx_, n, n, kAuxFormat);
+  } else {
+    tiles_ = std::make_unique<particles::TileAtlas>(
+        n, n, particles::TileAtlas::Options{p.atlas_tile, p.atlas_defragment,
+                                            p.atlas_defragmentations_per_s});
+    scratch_ = texture(ctx_, kScratchSide, kScratchSide, kColorFormat);
+    scratch_aux_ = texture(ctx_, kScratchSide, kScratchSide, kAuxFormat);
+  }
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) { atlas_.record_clear(cmd); });
+  set_.bind_sampled_image(gpu::kImpostorAtlas, atlas_);
+  set_.bind_storage_image(gpu::kImpostorAtlasOut, atlas_);
+  set_.bind_sampled_image(gpu::kImpostorScratch, scratch_);
+  if (!pass_)
+    pass_ = std::make_unique<gpu::RasterPass>(
+        ctx_, set_, std::vector<VkFormat>{kColorFormat, kAuxFormat}, false,
+        std::vector<gpu::RasterShaders>{{"particles.vert.spv", "particles.frag.spv"}});
+}
+
+void ImpostorCache::release(Impostor& im) {
+  const auto free_id = [&](uint32_t id) {
+    if (direct_) direct_->release(id);
+    if (tiles_) tiles_->release(id);
+  };
+  if (im.has_image) free_id(im.id);
+  if (im.fading) free_id(im.old_id);
+  im = Impostor{};
+}
+
+ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
+                                        const ParticleCloudParams& params, const glm::vec3& offset,
+                                        int image_height, float tan_half_fov, bool reset,
+                                        bool still) {
+  configure(params);
+  offset_ = offset;
+  Plan plan;
+  updates_.clear();
+  moves_.clear();
+  stats_ = {};
+  if (reset || impostors_.size() != field.clouds.size()) {
+    for (Impostor& im : impostors_) release(im);
+    impostors_.assign(field.clouds.size(), Impostor{});
+  }
+  const bool on = direct_ || tiles_;
+  const double now_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  // The cross-fades go on; an image faded out is freed.
+  for (Impostor& im : impostors_) {
+    if (!im.fading) continue;
+    im.fade = std::min(1.0f, im.fade + 1.0f / float(params.impostor_fade_frames));
+    if (im.fade >= 1.0f) {
+      if (direct_) direct_->release(im.old_id);
+      if (tiles_) tiles_->release(im.old_id);
+      im.fading = false;
+    }
+  }
+  // Which far clouds need an image: none yet first, then the stalest.
+  struct Candidate {
+    size_t cloud;
+    float staleness;
+  };
+  std::vector<Candidate> candidates;
+  const float cos_angle = std::cos(glm::radians(params.impostor_max_angle_deg));
+  const float cos_light = std::cos(glm::radians(0.5f));
+  for (size_t i = 0; i < field.clouds.size(); ++i) {
+    const particles::ParticleCloud& cloud = field.clouds[i];
+    Impostor& im = impostors_[i];
+    const glm::vec3 rel = cloud.center_m + offset;
+    const float d = glm::length(rel);
+    const bool far = on && d > params.impostor_distance_m && d > 2.0f * cloud.bound_radius_m;
+    if (!far) {
+      release(im);
+      plan.particle_clouds.push_back(i);
+      continue;
+    }
+    if (!im.has_image) {
+      plan.particle_clouds.push_back(i);  // until its image exists
+      candidates.push_back({i, 1e9f});
+      continue;
+    }
+    const float angle = std::acos(std::clamp(glm::dot(im.dir, rel / d), -1.0f, 1.0f));
+    const float ratio = std::max(d / im.distance_m, im.distance_m / d);
+    const bool relit = glm::dot(im.light, cloud.lit_towards) < cos_light;
+    if (glm::dot(im.dir, rel / d) < cos_angle || ratio > params.impostor_distance_factor || relit)
+      candidates.push_back({i, relit ? 1e6f : angle / glm::radians(params.impostor_max_angle_deg) +
+                                                  std::log(ratio) / std::log(params.impostor_distance_factor)});
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
+  glm::ivec2 shelf(0);  // tiles: this frame's images placed in rows in the scratch
+  int shelf_height = 0;
+  for (const Candidate& c : candidates) {
+    if (!still && int(updates_.size()) >= params.impostor_updates_per_frame) break;
+    const particles::ParticleCloud& cloud = field.clouds[c.cloud];
+    Impostor& im = impostors_[c.cloud];
+    const glm::vec3 rel = cloud.center_m + offset;
+    const float d = glm::length(rel);
+    const float r = std::min(cloud.bound_radius_m, 0.9f * d);
+    const float tan_r = r / std::sqrt(d * d - r * r);
+    int side = int(std::lround(params.impostor_resolution * tan_r / tan_half_fov * image_height));
+    side = std::clamp(side, kMinSide, kMaxSide);
+    // The image's id: the other of the cloud's two, the current one being kept to fade out.
+    if (im.fading) {
+      if (direct_) direct_->release(im.old_id);
+      if (tiles_) tiles_->release(im.old_id);
+      im.fading = false;
+    }
+    const uint32_t id = im.has_image ? (im.id ^ 1u) : uint32_t(2 * c.cloud);
+    Update u{c.cloud, id, 0, 0, {}, glm::ivec2(0), side};
+    if (direct_) {
+      const particles::DirectAtlas::Result res = direct_->allocate(id, side, side, now_s);
+      if (!res.ok) continue;
+      if (res.defragmented) moves_ = direct_->last_moves();
+      u.side = std::min(res.rect.w, res.rect.h);
+    } else {
+      if (shelf.x + side > kScratchSide) shelf = glm::ivec2(0, shelf.y + shelf_height), shelf_height = 0;
+      if (shelf.y + side > kScratchSide) break;  // the scratch is full this frame
+      const particles::TileAtlas::Result res = tiles_->allocate(id, side, side, now_s);
+      if (!res.ok) continue;
+      if (res.defragmented) moves_ = tiles_->last_moves();
+      u.side = res.placement.width;
+      u.scratch = shelf;
+      shelf.x += u.side;
+      shelf_height = std::max(shelf_height, u.side);
+    }
+    // The view from the eye framing the cloud's bounding sphere, square.
+    const glm::vec3 forward = rel / d;
+    glm::vec3 right = glm::cross(forward, glm::vec3(0.0f, 0.0f, 1.0f));
+    right = glm::length(right) > 1e-3f ? glm::normalize(right) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 up = glm::cross(right, forward);
+    u.view.forward = glm::vec4(forward, tan_r);
+    u.view.right = glm::vec4(right, 1.0f);
+    u.view.up = glm::vec4(up, 0.0f);
+    if (im.has_image) {
+      im.fading = true;
+      im.fade = 1.0f / float(params.impostor_fade_frames);
+      im.old_id = im.id;
+    } else {
+      im.fade = 1.0f;
+    }
+    im.has_image = true;
+    im.id = id;
+    im.dir = forward;
+    im.distance_m = d;
+    im.light = cloud.lit_towards;
+    im.right = right;
+    im.up = up;
+    im.half_m = d * tan_r;
+    updates_.push_back(u);
+    plan.updates.push_back(c.cloud);
+  }
+  // A cloud whose first image is drawn this frame is an impostor already.
+  std::vector<size_t> kept;
+  for (size_t i : plan.particle_clouds)
+    if (!impostors_[i].has_image) kept.push_back(i);
+  plan.particle_clouds = std::move(kept);
+  return plan;
+}
+
+glm::vec4 ImpostorCache::image_of(uint32_t id, std::vector<int>& slots) const {
+  if (direct_) {
+    const particles::AtlasRect r = direct_->regions().at(id);
+    return glm::vec4(r.x, r.y, r.x + r.w, r.y + r.h);
+  }
+  const particles::TileAtlas::Placement& p = tiles_->placements().at(id);
+  const int first = int(slots.size());
+  slots.insert(slots.end(), p.slots.begin(), p.slots.end());
+  return glm::vec4(float(first), float(p.tiles_x), float(p.width), 0.0f);
+}
+
+void ImpostorCache::place_updates(const particles::ParticleField& field,
+                                  const std::vector<uint32_t>& first,
+                                  const std::vector<uint32_t>& count, int slot) {
+  for (size_t k = 0; k < updates_.size(); ++k) updates_[k].first = first[k], updates_[k].count = count[k];
+  quads_.clear();
+  jobs_.clear();
+  std::vector<int> slots;
+  // This frame's quads, back to front by their distance now (the layer's pass draws them
+  // before the near particles, all nearer than they).
+  std::vector<std::pair<float, size_t>> order;
+  for (size_t i = 0; i < impostors_.size(); ++i)
+    if (impostors_[i].has_image) order.push_back({glm::length(field.clouds[i].center_m + offset_), i});
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  const int mode = tiles_ ? gpu::IMPOSTOR_TILES : gpu::IMPOSTOR_DIRECT;
+  for (const auto& [distance_m, i] : order) {
+    const Impostor& im = impostors_[i];
+    gpu::ImpostorGpu q{};
+    q.center_half = glm::vec4(field.clouds[i].center_m + offset_, im.half_m);
+    q.right = glm::vec4(im.right, im.fading ? im.fade : 1.0f);
+    q.up = glm::vec4(im.up, distance_m * 1e-3f);
+    q.image_new = image_of(im.id, slots);
+    q.image_old = im.fading ? image_of(im.old_id, slots) : q.image_new;
+    q.info = glm::ivec4(mode, params_.atlas_tile, 0, 0);
+    quads_.push_back(q);
+  }
+  // Tiles: each image drawn this frame is cut into its tiles.
+  for (const Update& u : updates_) {
+    if (!tiles_) break;
+    const particles::TileAtlas::Placement& p = tiles_->placements().at(u.id);
+    for (size_t t = 0; t < p.slots.size(); ++t)
+      jobs_.push_back({glm::ivec4(p.slots[t], int(t) % p.tiles_x, int(t) / p.tiles_x, params_.atlas_tile),
+                       glm::ivec4(u.scratch, p.width, 0)});
+  }
+  stats_.impostors = int(quads_.size());
+  stats_.updates = int(updates_.size());
+  for (const Impostor& im : impostors_) stats_.fading += im.fading ? 1 : 0;
+  if (direct_) stats_.atlas = direct_->stats();
+  if (tiles_) stats_.atlas = tiles_->stats();
+  upload(ctx_, quads_buffers_[slot], quads_);
+  upload(ctx_, slots_buffers_[slot], slots);
+  upload(ctx_, jobs_buffers_[slot], jobs_);
+  set_.bind_buffer(gpu::kImpostors, quads_buffers_[slot], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  set_.bind_buffer(gpu::kImpostorTileSlots, slots_buffers_[slot], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  set_.bind_buffer(gpu::kImpostorTileJobs, jobs_buffers_[slot], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+}
+
+void ImpostorCache::record_updates(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  if (!moves_.empty()) {
+    // A defragmentation moved images: the atlas copied aside, then each image from its old
+    // place to its new one (the two may overlap).
+    if (move_temp_.width() != atlas_.width())
+      move_temp_ = texture(ctx_, int(atlas_.width()), int(atlas_.height()), kColorFormat);
+    timer.begin(cmd, "impostor_moves");
+    VkImageCopy whole{};
+    whole.srcSubresource = whole.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    whole.extent = {atlas_.width(), atlas_.height(), 1};
+    vkCmdCopyImage(cmd, atlas_.image(), VK_IMAGE_LAYOUT_GENERAL, move_temp_.image(),
+                   VK_IMAGE_LAYOUT_GENERAL, 1, &whole);
+    gpu::full_barrier(cmd);
+    std::vector<VkImageCopy> copies;
+    for (const particles::AtlasMove& m : moves_) {
+      VkImageCopy c{};
+      c.srcSubresource = c.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      c.srcOffset = {m.from.x, m.from.y, 0};
+      c.dstOffset = {m.to.x, m.to.y, 0};
+      c.extent = {uint32_t(std::min(m.from.w, m.to.w)), uint32_t(std::min(m.from.h, m.to.h)), 1};
+      copies.push_back(c);
+    }
+    vkCmdCopyImage(cmd, move_temp_.image(), VK_IMAGE_LAYOUT_GENERAL, atlas_.image(),
+                   VK_IMAGE_LAYOUT_GENERAL, uint32_t(copies.size()), copies.data());
+    gpu::full_barrier(cmd);
+    timer.end(cmd);
+  }
+  if (updates_.empty()) return;
+  // Each image drawn from the eye with its own view, into its rectangle of the atlas (direct)
+  // or of the scratch image (tiles).
+  std::vector<gpu::RasterDraw> draws;
+  for (const Update& u : updates_) {
+    gpu::RasterDraw d;
+    d.first_vertex = 6 * u.first;
+    d.vertex_count = 6 * u.count;
+    d.constants = u.view;
+    glm::ivec2 corner = u.scratch;
+    if (direct_) {
+      const particles::AtlasRect r = direct_->regions().at(u.id);
+      corner = glm::ivec2(r.x, r.y);
+    }
+    d.area = {{corner.x, corner.y}, {uint32_t(u.side), uint32_t(u.side)}};
+    d.clear_area = true;
+    draws.push_back(d);
+  }
+  if (direct_) {
+    pass_->record(cmd, set_, timer, "impostor_draw", {&atlas_, &atlas_aux_}, draws);
+  } else {
+    pass_->record(cmd, set_, timer, "impostor_draw", {&scratch_, &scratch_aux_}, draws);
+    const int tile = params_.atlas_tile;
+    gpu::dispatch(cmd, tiles_kernel_, set_, timer, "impostor_tiles", uint32_t(tile), uint32_t(tile),
+                  uint32_t(jobs_.size()), 8, 8, 1);
+  }
+}
+
+gpu::RasterDraw ImpostorCache::quads(const gpu::DrawConstants& camera) const {
+  gpu::RasterDraw d;
+  d.pipeline = 1;
+  d.vertex_count = 6 * uint32_t(quads_.size());
+  d.constants = camera;
+  d.constants.info.x = 0;
+  return d;
+}
+
+}  // namespace nephele
