@@ -18,6 +18,7 @@ struct BenchOptions {
   bool quick = false;                 // fewer points, small resolutions (for tests)
   bool realtime_only = false;         // skip the seed's sweeps
   bool ablation = false;              // only seed 002's voxel-cloud ablation
+  bool impostors = false;             // only seed 003's particle clouds and impostors
   std::string json;                   // also write the real-time figures here
   std::string device;
   bool verbose = false;

@@ -47,12 +47,12 @@ struct AtlasStats {
   // there is none). Tiles: the share of impostors whose tiles are not one run of consecutive
   // slots in row-major slot order (0 with no impostors).
   double fragmentation = 0.0;
-  int defragmentations = 0;         // calls, successful or not (each costs the same time)
-  int failed_defragmentations = 0;  // calls after which everything still did not fit
-  double defragmentations_per_s = 0.0;  // calls / the time between the first and last allocate
-  int downsized = 0;  // allocations served smaller than asked
-  int failed = 0;     // allocations not served at all
-  long long operations = 0;  // allocate and release calls
+  int defragmentations = 0;                  // calls, successful or not (each costs the same time)
+  int failed_defragmentations = 0;           // calls after which everything still did not fit
+  double defragmentations_per_s = 0.0;       // calls / the time between the first and last allocate
+  int downsized = 0;                         // allocations served smaller than asked
+  int failed = 0;                            // allocations not served at all
+  long long operations = 0;                  // allocate and release calls
   double mean_op_us = 0.0, max_op_us = 0.0;  // wall time per operation (steady_clock), all ops
   // Elementary steps (grid cells, tile slots or free rectangles examined) of the costliest
   // operation that did not defragment: deterministic, unlike the wall time. The rate-limited
@@ -167,7 +167,8 @@ class DirectAtlas {
     int x = 0, y = 0, w = 0, h = 0;
   };
 
-  int cells_of(int texels) const { return (texels + options_.granule - 1) / options_.granule; }
+  // Whole granules covering `texels` > 0, written so that INT_MAX cannot overflow.
+  int cells_of(int texels) const { return (texels - 1) / options_.granule + 1; }
   CellRect cells_of(const AtlasRect& region) const;
   void fill_cells(const CellRect& cells, uint8_t value, long long& work);
   void free_region(uint32_t id, long long& work);
@@ -178,8 +179,8 @@ class DirectAtlas {
 
   int width_, height_;
   Options options_;
-  int cells_x_, cells_y_;         // whole granules across and down
-  std::vector<uint8_t> used_;     // cells_x_ * cells_y_, row-major: 1 where allocated
+  int cells_x_, cells_y_;      // whole granules across and down
+  std::vector<uint8_t> used_;  // cells_x_ * cells_y_, row-major: 1 where allocated
   long long used_cells_ = 0;
   std::map<uint32_t, AtlasRect> regions_;
   std::vector<AtlasMove> moves_;
@@ -235,7 +236,7 @@ class TileAtlas {
   // Where the impostor's continuous texel coordinate (u, v) in [0, width] x [0, height] (texel
   // centres at +0.5) is sampled: continuous atlas texel coordinates inside the interior of the
   // tile holding (u, v), reaching at most half a texel into its border, so that the bilinear
-  // 2 x 2 footprint never leaves the tile.
+  // 2 x 2 footprint never leaves the tile. (u, v) outside the image (or NaN) is clamped to it.
   std::pair<float, float> atlas_texel(const Placement& placement, float u, float v) const;
   // The moves of the last defragmentation, one per tile that changed slot; not the impostor
   // being allocated then (it is rendered anew).
@@ -250,7 +251,7 @@ class TileAtlas {
   int free_tiles() const { return free_tiles_; }
 
  private:
-  int tiles_for(int texels) const { return (texels + interior() - 1) / interior(); }
+  int tiles_for(int texels) const { return (texels - 1) / interior() + 1; }  // texels > 0
   void free_placement(uint32_t id, long long& work);
   bool fit_proportional(int width, int height, int tiles, int& served_w, int& served_h) const;
   int shortest_run(int count, long long& work) const;  // its first slot, or -1

@@ -80,10 +80,10 @@ using atlas_detail::require_rate;
 using Clock = atlas_detail::OpLog::Clock;
 
 // out[i] = min(in[i], ..., in[i + window - 1]) for i in [0, n - window], where each element is a
-// row of `lanes` ints minimised lane by lane (lanes = the grid's width for minima down columns,
-// 1 along a row). Van Herk and Gil-Werman: minima from each block of `window` elements' start
-// (kept in `scratch`) and to its end (written to out) meet in any window, three branch-free
-// passes that vectorise across the lanes. out and scratch hold n * lanes ints.
+// row of `lanes` ints minimised lane by lane (a grid's rows, for minima down its columns). Van
+// Herk and Gil-Werman: minima from each block of `window` elements' start (kept in `scratch`)
+// and to its end (written to out) meet in any window; three branch-free passes that vectorise
+// across the lanes. out and scratch hold n * lanes ints.
 void window_min(const int* in, int n, int lanes, int window, int* out, int* scratch) {
   const auto row = [lanes](int* a, int i) { return a + ptrdiff_t(i) * lanes; };
   const auto crow = [lanes](const int* a, int i) { return a + ptrdiff_t(i) * lanes; };
@@ -114,6 +114,55 @@ void window_min(const int* in, int n, int lanes, int window, int* out, int* scra
   }
 }
 
+// The free space beside a cells_w x cells_h block at each corner (x, y), from the runs of free
+// cells through every cell. right_min at (x, y): the least free run rightwards from column x
+// over the block's rows (the block fits where it is >= cells_w); left_min at (x - 1, y): the
+// free cells left of it in all its rows; down_min and up_min likewise along its columns (at
+// (x, y) and (x, y - 1)). The runs along columns are stored column-major so that their minima
+// along a row are minima of whole columns too, which vectorise.
+struct BlockSlack {
+  int nx, ny;
+  const int *right_min, *left_min, *down_min, *up_min;
+  size_t row_major(int x, int y) const { return size_t(y) * size_t(nx) + size_t(x); }
+  size_t column_major(int x, int y) const { return size_t(x) * size_t(ny) + size_t(y); }
+};
+
+BlockSlack block_slack(const std::vector<uint8_t>& used, int nx, int ny, int cells_w, int cells_h,
+                       std::vector<int>& scratch, long long& work) {
+  const size_t n = size_t(nx) * size_t(ny);
+  scratch.resize(9 * n);
+  int* right = scratch.data();
+  int* left = right + n;
+  int* down = left + n;
+  int* up = down + n;
+  int* minima = up + n;
+  int* partial = minima + 4 * n;
+  const BlockSlack slack = {nx, ny, minima, minima + n, minima + 2 * n, minima + 3 * n};
+  // All ones where free, zero where used: run = (run + 1) & mask counts without a branch or a
+  // multiplication on the loop's critical path.
+  const auto free_mask = [&](int x, int y) { return int(used[slack.row_major(x, y)]) - 1; };
+  for (int y = 0; y < ny; ++y) {
+    int run = 0;
+    for (int x = nx - 1; x >= 0; --x)
+      right[slack.row_major(x, y)] = run = (run + 1) & free_mask(x, y);
+    run = 0;
+    for (int x = 0; x < nx; ++x) left[slack.row_major(x, y)] = run = (run + 1) & free_mask(x, y);
+  }
+  for (int x = 0; x < nx; ++x) {
+    int run = 0;
+    for (int y = ny - 1; y >= 0; --y)
+      down[slack.column_major(x, y)] = run = (run + 1) & free_mask(x, y);
+    run = 0;
+    for (int y = 0; y < ny; ++y) up[slack.column_major(x, y)] = run = (run + 1) & free_mask(x, y);
+  }
+  window_min(right, ny, nx, cells_h, minima, partial);
+  window_min(left, ny, nx, cells_h, minima + n, partial);
+  window_min(down, nx, ny, cells_w, minima + 2 * n, partial);
+  window_min(up, nx, ny, cells_w, minima + 3 * n, partial);
+  work += 16LL * (long long)n;  // four run passes, four window minima of three passes each
+  return slack;
+}
+
 // Calls visit(x, y, w, h) with rectangles of free cells (used[i] == 0) such that every free
 // rectangle lies inside one of them: for each row, the widest rectangles standing on it under
 // each column's free height (the histogram's stack algorithm). At most one per cell.
@@ -124,7 +173,8 @@ void for_each_maximal_free_rect(const std::vector<uint8_t>& used, int cells_x, i
   stack.reserve(size_t(cells_x) + 1);
   for (int y = 0; y < cells_y; ++y) {
     for (int x = 0; x < cells_x; ++x)
-      heights[size_t(x)] = used[size_t(y) * size_t(cells_x) + size_t(x)] ? 0 : heights[size_t(x)] + 1;
+      heights[size_t(x)] =
+          used[size_t(y) * size_t(cells_x) + size_t(x)] ? 0 : heights[size_t(x)] + 1;
     stack.clear();
     for (int x = 0; x <= cells_x; ++x) {  // heights[cells_x] = 0 empties the stack
       while (!stack.empty() && heights[size_t(stack.back())] >= heights[size_t(x)]) {
@@ -314,55 +364,23 @@ void DirectAtlas::place(uint32_t id, const AtlasRect& region, long long& work) {
 // on each axis (the corner of its hole, not its middle); then the topmost, leftmost.
 bool DirectAtlas::best_fit(int cells_w, int cells_h, CellRect& found, long long& work) {
   const int nx = cells_x_, ny = cells_y_;
-  if (cells_w > nx || cells_h > ny || used_cells_ + (long long)cells_w * cells_h > (long long)nx * ny)
+  if (cells_w > nx || cells_h > ny ||
+      used_cells_ + (long long)cells_w * cells_h > (long long)nx * ny)
     return false;
-  const size_t n = size_t(nx) * size_t(ny);
-  scratch_.resize(9 * n);
-  int* right = scratch_.data();  // free cells from (x, y) rightwards, itself included
-  int* left = right + n;         // ... leftwards
-  int* down = left + n;  // ... downwards; column-major, so that the minima along a row are
-  int* up = down + n;      // minima of whole columns, which vectorise like those down a column
-  int* right_min = up + n;  // over rows [y, y + cells_h) of column x: right, then left
-  int* left_min = right_min + n;
-  int* down_min = left_min + n;  // over columns [x, x + cells_w) of row y: down, then up
-  int* up_min = down_min + n;
-  int* partial = up_min + n;
-  const auto at = [nx](int x, int y) { return size_t(y) * size_t(nx) + size_t(x); };
-  const auto at_t = [ny](int x, int y) { return size_t(x) * size_t(ny) + size_t(y); };
-  const auto free_at = [this, &at](int x, int y) { return 1 - int(used_[at(x, y)]); };
-
-  for (int y = 0; y < ny; ++y) {
-    int run = 0;
-    for (int x = nx - 1; x >= 0; --x) right[at(x, y)] = run = (run + 1) * free_at(x, y);
-    run = 0;
-    for (int x = 0; x < nx; ++x) left[at(x, y)] = run = (run + 1) * free_at(x, y);
-  }
-  for (int x = 0; x < nx; ++x) {
-    int run = 0;
-    for (int y = ny - 1; y >= 0; --y) down[at_t(x, y)] = run = (run + 1) * free_at(x, y);
-    run = 0;
-    for (int y = 0; y < ny; ++y) up[at_t(x, y)] = run = (run + 1) * free_at(x, y);
-  }
-  window_min(right, ny, nx, cells_h, right_min, partial);
-  window_min(left, ny, nx, cells_h, left_min, partial);
-  window_min(down, nx, ny, cells_w, down_min, partial);
-  window_min(up, nx, ny, cells_w, up_min, partial);
-  work += 16LL * (long long)n;  // four run passes, four window minima of three passes
-
+  const BlockSlack slack = block_slack(used_, nx, ny, cells_w, cells_h, scratch_, work);
   bool any = false;
   long long best_block = 0;
   int best_corner = 0;
   for (int y = 0; y + cells_h <= ny; ++y) {
     for (int x = 0; x + cells_w <= nx; ++x) {
-      const int fits_w = right_min[at(x, y)];  // free width at x in all the block's rows
+      const int fits_w = slack.right_min[slack.row_major(x, y)];  // free width in all its rows
       if (fits_w < cells_w) continue;
-      const int slack_right = fits_w - cells_w;
-      const int slack_left = x > 0 ? left_min[at(x - 1, y)] : 0;
-      const int slack_down = down_min[at_t(x, y)] - cells_h;
-      const int slack_up = y > 0 ? up_min[at_t(x, y - 1)] : 0;
-      const long long block = (long long)(cells_w + slack_left + slack_right) *
-                              (long long)(cells_h + slack_up + slack_down);
-      const int corner = std::min(slack_left, slack_right) + std::min(slack_up, slack_down);
+      const int right = fits_w - cells_w;
+      const int left = x > 0 ? slack.left_min[slack.row_major(x - 1, y)] : 0;
+      const int down = slack.down_min[slack.column_major(x, y)] - cells_h;
+      const int up = y > 0 ? slack.up_min[slack.column_major(x, y - 1)] : 0;
+      const long long block = (long long)(cells_w + left + right) * (cells_h + up + down);
+      const int corner = std::min(left, right) + std::min(up, down);
       if (!any || block < best_block || (block == best_block && corner < best_corner)) {
         any = true;
         best_block = block;
@@ -444,8 +462,8 @@ bool DirectAtlas::pack(const std::vector<Request>& requests) {
   if (!pack_cells(cells_x_, cells_y_, items, corners, work)) return false;
   const int g = options_.granule;
   for (size_t i = 0; i < requests.size(); ++i)
-    place(requests[i].id, {corners[i].x * g, corners[i].y * g, requests[i].width,
-                           requests[i].height}, work);
+    place(requests[i].id,
+          {corners[i].x * g, corners[i].y * g, requests[i].width, requests[i].height}, work);
   return true;
 }
 
@@ -469,8 +487,8 @@ DirectAtlas::Result DirectAtlas::allocate(uint32_t id, int width, int height, do
     // A repack cannot succeed with too little free area in total; such a call would only
     // spend the rate limit's allowance.
     const long long free_cells = (long long)used_.size() - used_cells_;
-    const bool could_fit = cells_w <= cells_x_ && cells_h <= cells_y_ &&
-                           (long long)cells_w * cells_h <= free_cells;
+    const bool could_fit =
+        cells_w <= cells_x_ && cells_h <= cells_y_ && (long long)cells_w * cells_h <= free_cells;
     if (options_.defragment && could_fit && limiter_.allows(now_s)) {
       limiter_.record(now_s);
       ++defragmentations_;

@@ -28,6 +28,27 @@ int min_slot(const std::vector<int>& slots) {
   return slots.empty() ? 0 : *std::min_element(slots.begin(), slots.end());
 }
 
+struct Run {
+  int start, length;
+};
+
+// The runs of consecutive free slots, in slot order.
+std::vector<Run> free_runs(const std::vector<uint8_t>& used) {
+  std::vector<Run> runs;
+  const int n = int(used.size());
+  for (int s = 0; s < n;) {
+    if (used[size_t(s)]) {
+      ++s;
+      continue;
+    }
+    int end = s;
+    while (end < n && !used[size_t(end)]) ++end;
+    runs.push_back({s, end - s});
+    s = end;
+  }
+  return runs;
+}
+
 }  // namespace
 
 TileAtlas::TileAtlas(int width, int height, Options options)
@@ -44,8 +65,7 @@ TileAtlas::TileAtlas(int width, int height, Options options)
     throw std::invalid_argument("TileAtlas tile = " + std::to_string(options.tile) +
                                 ": must not exceed the atlas's smaller side " +
                                 std::to_string(std::min(width, height)));
-  atlas_detail::require_rate("TileAtlas", options.defragment,
-                             options.max_defragmentations_per_s);
+  atlas_detail::require_rate("TileAtlas", options.defragment, options.max_defragmentations_per_s);
   slots_x_ = width / options.tile;
   slots_y_ = height / options.tile;
   used_.assign(size_t(slot_count()), 0);
@@ -80,11 +100,12 @@ bool TileAtlas::fit_proportional(int width, int height, int tiles, int& served_w
     served_w = int(w);
     served_h = int(h);
   };
-  for (int across = 1; across <= tiles_for(width); ++across) {
+  // A side of k tiles needs k tiles at least: no more candidates than free tiles.
+  for (int across = 1; across <= std::min(tiles_for(width), tiles); ++across) {
     const long long w = std::min<long long>(width, across * inner);
     consider(w, w * height / width);
   }
-  for (int down = 1; down <= tiles_for(height); ++down) {
+  for (int down = 1; down <= std::min(tiles_for(height), tiles); ++down) {
     const long long h = std::min<long long>(height, down * inner);
     consider(h * width / height, h);
   }
@@ -92,23 +113,14 @@ bool TileAtlas::fit_proportional(int width, int height, int tiles, int& served_w
 }
 
 int TileAtlas::shortest_run(int count, long long& work) const {
-  const int n = slot_count();
   int best_start = -1, best_length = 0;
-  for (int s = 0; s < n;) {
-    if (used_[size_t(s)]) {
-      ++s;
-      continue;
+  for (const Run& run : free_runs(used_)) {
+    if (run.length >= count && (best_start < 0 || run.length < best_length)) {
+      best_start = run.start;
+      best_length = run.length;
     }
-    int end = s;
-    while (end < n && !used_[size_t(end)]) ++end;
-    const int length = end - s;
-    if (length >= count && (best_start < 0 || length < best_length)) {
-      best_start = s;
-      best_length = length;
-    }
-    s = end;
   }
-  work += n;
+  work += slot_count();
   return best_start;
 }
 
@@ -117,29 +129,17 @@ int TileAtlas::shortest_run(int count, long long& work) const {
 // linear in the slots.
 std::vector<int> TileAtlas::gather(int count, long long& work) const {
   const int n = slot_count();
-  std::vector<int> starts, lengths;
-  for (int s = 0; s < n;) {
-    if (used_[size_t(s)]) {
-      ++s;
-      continue;
-    }
-    int end = s;
-    while (end < n && !used_[size_t(end)]) ++end;
-    starts.push_back(s);
-    lengths.push_back(end - s);
-    s = end;
-  }
-  std::vector<int> first_of_length(size_t(n) + 2, 0);  // counting sort of runs by length
-  for (int length : lengths) ++first_of_length[size_t(length) + 1];
+  const std::vector<Run> runs = free_runs(used_);
+  std::vector<int> first_of_length(size_t(n) + 2, 0);
+  for (const Run& run : runs) ++first_of_length[size_t(run.length) + 1];
   for (size_t l = 1; l < first_of_length.size(); ++l) first_of_length[l] += first_of_length[l - 1];
-  std::vector<int> by_length(lengths.size());
-  for (size_t r = 0; r < lengths.size(); ++r)
-    by_length[size_t(first_of_length[size_t(lengths[r])]++)] = int(r);
+  std::vector<Run> by_length(runs.size());
+  for (const Run& run : runs) by_length[size_t(first_of_length[size_t(run.length)]++)] = run;
   std::vector<int> slots;
   slots.reserve(size_t(count));
-  for (int r : by_length) {
-    for (int k = 0; k < lengths[size_t(r)] && int(slots.size()) < count; ++k)
-      slots.push_back(starts[size_t(r)] + k);
+  for (const Run& run : by_length) {
+    for (int k = 0; k < run.length && int(slots.size()) < count; ++k)
+      slots.push_back(run.start + k);
     if (int(slots.size()) == count) break;
   }
   std::sort(slots.begin(), slots.end());  // the impostor's tiles in slot order: nearer together
@@ -234,11 +234,12 @@ void TileAtlas::release(uint32_t id) {
 
 // The tile holding (u, v) (on a shared edge, either: both hold the texels on each side), then
 // the offset inside its interior, which starts one texel in from the tile's corner.
-std::pair<float, float> TileAtlas::atlas_texel(const Placement& placement, float u,
-                                               float v) const {
+std::pair<float, float> TileAtlas::atlas_texel(const Placement& placement, float u, float v) const {
   const float inner = float(interior());
-  const int column = std::clamp(int(std::floor(u / inner)), 0, placement.tiles_x - 1);
-  const int row = std::clamp(int(std::floor(v / inner)), 0, placement.tiles_y - 1);
+  u = std::fmin(std::fmax(u, 0.0f), float(placement.width));  // NaN and strays: to the image
+  v = std::fmin(std::fmax(v, 0.0f), float(placement.height));
+  const int column = std::min(int(u / inner), placement.tiles_x - 1);
+  const int row = std::min(int(v / inner), placement.tiles_y - 1);
   const AtlasRect slot = slot_rect(placement.slots.at(size_t(row * placement.tiles_x + column)));
   const float local_u = std::clamp(u - float(column) * inner, 0.0f, inner);
   const float local_v = std::clamp(v - float(row) * inner, 0.0f, inner);

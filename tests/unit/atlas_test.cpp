@@ -2,16 +2,17 @@
 // updates (no overlaps, sizes as asked unless downsized, downsizing only when it had to be,
 // rate-limited defragmentations with exact moves), bilinear sampling inside tiles, bounded work
 // per operation, statistics and argument checks. Deterministic: a simulated clock, no timings.
+#include "particles/atlas.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
-
-#include "particles/atlas.h"
 
 namespace nephele::particles {
 namespace {
@@ -34,7 +35,8 @@ class Workload {
   // An update of a random impostor: a new one gets a fresh size, a live one changes its size by
   // up to 25% (or, now and then, vanishes).
   Op next() {
-    const uint32_t id = std::uniform_int_distribution<uint32_t>(0, uint32_t(sizes_.size()) - 1)(rng_);
+    const uint32_t id =
+        std::uniform_int_distribution<uint32_t>(0, uint32_t(sizes_.size()) - 1)(rng_);
     auto& size = sizes_[id];
     const double roll = std::uniform_real_distribution<double>(0.0, 1.0)(rng_);
     if (size.first > 0 && roll < 0.1) {
@@ -54,7 +56,9 @@ class Workload {
   }
 
  private:
-  int clamp_side(double side) const { return std::clamp(int(std::lround(side)), min_side_, max_side_); }
+  int clamp_side(double side) const {
+    return std::clamp(int(std::lround(side)), min_side_, max_side_);
+  }
 
   std::mt19937 rng_;
   std::vector<std::pair<int, int>> sizes_;
@@ -121,7 +125,8 @@ void expect_disjoint_inside(const DirectAtlas& atlas) {
 
 void expect_stats_add_up(const DirectAtlas& atlas) {
   const AtlasStats s = atlas.stats();
-  const double texels = double(atlas.width()) * atlas.height(), cell = atlas.granule() * atlas.granule();
+  const double texels = double(atlas.width()) * atlas.height(),
+               cell = atlas.granule() * atlas.granule();
   double held = 0.0;
   for (const auto& [id, region] : atlas.regions()) held += double(region.w) * region.h;
   EXPECT_NEAR(s.occupancy, held / texels, 1e-12);
@@ -147,8 +152,8 @@ void checked_allocate(DirectAtlas& atlas, const Op& op, double now_s, double& la
   const bool room = cells_w <= atlas.width() / options.granule &&
                     cells_h <= atlas.height() / options.granule &&
                     (long long)cells_w * cells_h <= free_cells(before);
-  const bool allowed = defrag_times_s.empty() ||
-                       now_s - last_defrag_s >= 1.0 / options.max_defragmentations_per_s;
+  const bool allowed =
+      defrag_times_s.empty() || now_s - last_defrag_s >= 1.0 / options.max_defragmentations_per_s;
   const int calls_before = atlas.stats().defragmentations;
 
   const DirectAtlas::Result result = atlas.allocate(op.id, op.width, op.height, now_s);
@@ -350,7 +355,7 @@ TEST(DirectAtlas, WorkPerOperationIsBoundedByTheGrid) {
     const AtlasStats s = atlas.stats();
     const long long cells = (long long)(side / 16) * (side / 16);
     EXPECT_GT(s.downsized, 0) << side;  // the costliest path was taken too
-    EXPECT_LE(s.max_op_work, 16 * cells) << side;
+    EXPECT_LE(s.max_op_work, 24 * cells) << side;
     EXPECT_GT(s.max_op_work, cells) << side;
     EXPECT_EQ(s.operations, 600);
   }
@@ -381,6 +386,31 @@ TEST(DirectAtlas, StatisticsOfAnEmptyAndAFullAtlas) {
   EXPECT_NEAR(s.occupancy + s.wasted + s.free + s.unusable, 1.0, 1e-12);
 }
 
+// A request larger than the atlas is the downsizing path's extreme: served at the atlas's size
+// in the asked proportions, with no overflow and no work beyond the usual passes.
+TEST(AtlasExtremes, RequestsLargerThanTheAtlasAreServedSmallerInProportion) {
+  constexpr int kHuge = std::numeric_limits<int>::max();
+  DirectAtlas direct(256, 128, {});
+  const DirectAtlas::Result r = direct.allocate(1, kHuge, kHuge / 4, 0.0);
+  ASSERT_TRUE(r.ok && r.downsized && !r.defragmented);
+  EXPECT_EQ(r.rect, (AtlasRect{0, 0, 256, 63}));  // 4:1, the width limiting, rounded down
+  EXPECT_EQ(direct.stats().defragmentations, 0);  // hopeless: no repack tried
+  EXPECT_LE(direct.stats().max_op_work, 24LL * 16 * 8);
+
+  TileAtlas tiles(256, 256, {.tile = 32});  // 64 tiles of 30 texels inside
+  const TileAtlas::Result t = tiles.allocate(1, kHuge, kHuge, 0.0);
+  ASSERT_TRUE(t.ok && t.downsized);
+  EXPECT_EQ(t.placement.width, 240);  // 8 x 8 tiles
+  EXPECT_EQ(t.placement.height, 240);
+  EXPECT_EQ(tiles.free_tiles(), 0);
+  EXPECT_LE(tiles.stats().max_op_work, 8LL * tiles.slot_count());
+  // Sampling outside the image, or at NaN, stays inside the impostor's tiles.
+  for (const auto& [u, v] : {std::pair{-5.0f, 3.0f}, {1e9f, 1e9f}, {NAN, NAN}}) {
+    const auto [x, y] = tiles.atlas_texel(t.placement, u, v);
+    EXPECT_TRUE(x >= 1.0f && x <= 255.0f && y >= 1.0f && y <= 255.0f) << x << ", " << y;
+  }
+}
+
 TEST(DirectAtlas, RejectsBadArgumentsNamingThem) {
   const auto message_of = [](auto&& call) -> std::string {
     try {
@@ -393,16 +423,20 @@ TEST(DirectAtlas, RejectsBadArgumentsNamingThem) {
   EXPECT_NE(message_of([] { DirectAtlas(0, 64, {}); }).find("width = 0: must be positive"),
             std::string::npos);
   EXPECT_NE(message_of([] { DirectAtlas(64, -3, {}); }).find("height = -3"), std::string::npos);
-  EXPECT_NE(message_of([] { DirectAtlas(64, 64, {.granule = 0}); }).find("granule = 0: must be at least 1"),
+  EXPECT_NE(message_of([] {
+              DirectAtlas(64, 64, {.granule = 0});
+            }).find("granule = 0: must be at least 1"),
             std::string::npos);
   EXPECT_NE(message_of([] { DirectAtlas(64, 32, {.granule = 48}); }).find("at most"),
             std::string::npos);
-  EXPECT_NE(message_of([] { DirectAtlas(64, 64, {.max_defragmentations_per_s = 0.0}); })
-                .find("max_defragmentations_per_s = 0"),
+  EXPECT_NE(message_of([] {
+              DirectAtlas(64, 64, {.max_defragmentations_per_s = 0.0});
+            }).find("max_defragmentations_per_s = 0"),
             std::string::npos);
   EXPECT_NO_THROW(DirectAtlas(64, 64, {.defragment = false, .max_defragmentations_per_s = 0.0}));
   DirectAtlas atlas(64, 64, {});
-  EXPECT_NE(message_of([&] { atlas.allocate(1, 0, 16, 0.0); }).find("width = 0"), std::string::npos);
+  EXPECT_NE(message_of([&] { atlas.allocate(1, 0, 16, 0.0); }).find("width = 0"),
+            std::string::npos);
   EXPECT_NE(message_of([&] { atlas.allocate(1, 16, -1, 0.0); }).find("height = -1"),
             std::string::npos);
   atlas.allocate(1, 16, 16, 2.0);
@@ -410,7 +444,9 @@ TEST(DirectAtlas, RejectsBadArgumentsNamingThem) {
             std::string::npos);
   EXPECT_THROW(atlas.allocate(1, 16, 16, NAN), std::invalid_argument);
   DirectAtlas empty(64, 64, {});
-  EXPECT_NE(message_of([&] { empty.pack({{1, 8, 8}, {1, 8, 8}}); }).find("id = 1"),
+  EXPECT_NE(message_of([&] {
+              empty.pack({{1, 8, 8}, {1, 8, 8}});
+            }).find("id = 1"),
             std::string::npos);
   EXPECT_THROW(empty.pack({{1, 8, 0}}), std::invalid_argument);
 }
@@ -488,8 +524,8 @@ void checked_allocate(TileAtlas& atlas, const Op& op, double now_s, double& last
   const int inner = atlas.interior();
   const int needed = ((op.width + inner - 1) / inner) * ((op.height + inner - 1) / inner);
   const bool enough = needed <= before.free_tiles();
-  const bool allowed = defrag_times_s.empty() ||
-                       now_s - last_defrag_s >= 1.0 / options.max_defragmentations_per_s;
+  const bool allowed =
+      defrag_times_s.empty() || now_s - last_defrag_s >= 1.0 / options.max_defragmentations_per_s;
 
   const TileAtlas::Result result = atlas.allocate(op.id, op.width, op.height, now_s);
 
@@ -589,7 +625,8 @@ TEST(TileAtlas, RandomUpdatesKeepTilesDisjointAsAskedAndDownsizeOnlyWhenFull) {
 TEST(TileAtlas, CompactionMovesTheScatteredTilesTogether) {
   for (bool defragment : {false, true}) {
     TileAtlas atlas(4 * 32, 32, {.tile = 32, .defragment = defragment});  // 4 slots in a row
-    for (uint32_t id = 0; id < 4; ++id) EXPECT_EQ(atlas.allocate(id, 30, 30, 0.0).placement.slots, std::vector<int>{int(id)});
+    for (uint32_t id = 0; id < 4; ++id)
+      EXPECT_EQ(atlas.allocate(id, 30, 30, 0.0).placement.slots, std::vector<int>{int(id)});
     atlas.release(0);
     atlas.release(2);
     const TileAtlas::Result r = atlas.allocate(9, 60, 30, 1.0);  // two tiles; no two free together
