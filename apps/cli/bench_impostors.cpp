@@ -104,8 +104,8 @@ nlohmann::json run_impostor_bench(const RendererOptions& options, const Scene& s
     s.particle_clouds.impostors = kMethods[m];
     return s;
   };
-  // Warm-up: a still (every impostor drawn), then a second of flight.
-  const int warmup = 30;
+  // Warm-up: a still (every impostor drawn), then a third of a second of flight.
+  const int warmup = 10;
   for (int m = 0; m < kCount; ++m) renderers[m]->render(scene_for(m, 0.0f));
   for (int f = 1; f <= warmup; ++f)
     for (int m = 0; m < kCount; ++m) renderers[m]->render_next(scene_for(m, f * kFrameDtS), false);

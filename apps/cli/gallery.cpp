@@ -46,6 +46,11 @@ const std::vector<std::string>& gallery_presets() {
   return names;
 }
 
+const std::vector<std::string>& gallery_particle_presets() {
+  static const std::vector<std::string> names = {"particle-cumulus", "particle-cockpit"};
+  return names;
+}
+
 OktaRange gallery_okta_range(const std::string& preset) {
   for (const GalleryEntry& e : entries())
     if (preset == e.preset) return e.oktas;
@@ -77,7 +82,8 @@ int run_gallery(const GalleryOptions& options) {
   check("--columns", options.columns, 1, 16);
   check_output_path(options.output, "--output");
 
-  const std::vector<std::string>& names = gallery_presets();
+  std::vector<std::string> names = gallery_presets();
+  for (const std::string& name : gallery_particle_presets()) names.push_back(name);
   const int columns = std::min(options.columns, int(names.size()));
   const int rows = (int(names.size()) + columns - 1) / columns;
   const int gap = 4;
@@ -111,8 +117,12 @@ int run_gallery(const GalleryOptions& options) {
         gallery.at(x0 + x, y0 + y) = glm::vec4(glm::vec3(frame.color.at(x, y)) * *exposure, 1.0f);
     const double cover = frame.stats.sky_cover_fraction.value_or(0.0);
     char label[160];
-    std::snprintf(label, sizeof label, "%s  %d/8 (%.2f)", names[i].c_str(),
-                  sky_cover_oktas(cover), cover);
+    if (const auto& p = frame.stats.particle_clouds)  // the sky cover counts volumetric clouds
+      std::snprintf(label, sizeof label, "%s  %zuk particles, %d impostors", names[i].c_str(),
+                    p->particles / 1000, p->impostors);
+    else
+      std::snprintf(label, sizeof label, "%s  %d/8 (%.2f)", names[i].c_str(),
+                    sky_cover_oktas(cover), cover);
     draw_label(gallery, x0, y0, label, scale);
     progress.clear();
     if (options.verbose) std::fprintf(stderr, "nephele: gallery %s\n", label);

@@ -325,6 +325,48 @@ TEST_F(CliTest, BenchAblationWritesTheFourVariants) {
   EXPECT_EQ(h, 24);
 }
 
+// `bench --impostors` flies over particle clouds three ways in one run: every particle, and
+// impostors in a direct and a tiled atlas. The JSON holds the figures; the impostors
+// keep the image (mean luminance within 3%) and, cross-faded, add no pops: no frame changes
+// much more than drawing every particle does.
+TEST_F(CliTest, BenchImpostorsComparesEveryParticleWithBothAtlases) {
+  // A smaller field than the benchmark's own, quick to draw.
+  std::ofstream(path("impostors.toml")) << "[particle_clouds]\ncoverage = 0.25\n"
+                                           "field_radius_m = 8000.0\ncell_m = 200.0\n"
+                                           "particle_radius_m = 260.0\nimpostor_distance_m = 2500.0\n"
+                                           // updates, and cross-fades, every frame
+                                           "impostor_max_angle_deg = 0.05\n";
+  const CliRun r = run_cli("bench --impostors --frames 4 --width 96 --height 64 --validation --scene " +
+                           path("impostors.toml") + " --out-dir " + path("imp") + " --json " +
+                           path("imp.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::printf("%s", r.output.c_str());
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("imp.json")));
+  for (const char* key : {"all_particles_ms", "impostors_direct_ms", "impostors_tiles_ms",
+                          "cpu_lighting_ms"})
+    EXPECT_GT(j[key].get<double>(), 0.0) << key;
+  EXPECT_DOUBLE_EQ(j["speedup_direct"].get<double>(),
+                   j["all_particles_ms"].get<double>() / j["impostors_direct_ms"].get<double>());
+  EXPECT_DOUBLE_EQ(j["speedup_tiles"].get<double>(),
+                   j["all_particles_ms"].get<double>() / j["impostors_tiles_ms"].get<double>());
+  EXPECT_LT(j["luminance_difference"].get<double>(), 0.03);
+  EXPECT_GT(j["impostors_direct_impostors"].get<int>(), 10);
+  EXPECT_GT(j["impostors_tiles_impostors"].get<int>(), 10);
+  EXPECT_LT(j["impostors_direct_drawn_particles"].get<size_t>(),
+            j["all_particles_drawn_particles"].get<size_t>() / 2);
+  const double pops = std::max(j["max_frame_change_direct"].get<double>(),
+                               j["max_frame_change_tiles"].get<double>());
+  EXPECT_LT(pops, j["max_frame_change_off"].get<double>() + 0.01);
+  for (const char* method : {"atlas_direct", "atlas_tiles"}) {
+    EXPECT_GT(j[method]["occupancy"].get<double>(), 0.0) << method;
+    EXPECT_LE(j[method]["occupancy"].get<double>() + j[method]["wasted"].get<double>(), 1.0);
+  }
+  int w = 0, h = 0, n = 0;
+  ASSERT_TRUE(stbi_info(path("imp/impostors.png").c_str(), &w, &h, &n));
+  EXPECT_EQ(w, 3 * 96);
+  EXPECT_EQ(h, 64);
+}
+
 // bench.json holds every row of bench.csv ("sweeps"), from which scripts/plot_bench.py draws
 // bench.png where /usr/bin/python3 has matplotlib; elsewhere one line says the plot was
 // skipped, and the benchmark still succeeds.

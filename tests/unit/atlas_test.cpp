@@ -770,3 +770,42 @@ TEST(TileAtlas, RejectsBadArgumentsNamingThem) {
 
 }  // namespace
 }  // namespace nephele::particles
+
+// The shaders read a tiled impostor through common/impostor_inc.glsl: the same texels as
+// TileAtlas::atlas_texel, inside the tile's slot with the bilinear footprint.
+#include "render/glsl.h"
+
+namespace nephele::particles {
+namespace {
+
+TEST(TileAtlas, TheShadersLookupIsTheAtlasOwn) {
+  for (int tile : {16, 32}) {
+    TileAtlas atlas(512, 512, {tile, false, 1.0});
+    const TileAtlas::Result r = atlas.allocate(7, 100, 100, 0.0);
+    ASSERT_TRUE(r.ok);
+    const TileAtlas::Placement& p = r.placement;
+    int checked = 0;
+    for (int j = 0; j <= 40; ++j)
+      for (int i = 0; i <= 40; ++i) {
+        const glm::vec2 uv(i / 40.0f, j / 40.0f);
+        const glm::ivec2 t = glsl::impostor_tile_of(uv, float(p.width), tile, p.tiles_x);
+        const int slot = p.slots[size_t(t.y * p.tiles_x + t.x)];
+        const glm::vec2 texel = glsl::impostor_tile_texel(uv, float(p.width), tile, t, slot,
+                                                          atlas.slots_per_row());
+        const auto [ax, ay] = atlas.atlas_texel(p, uv.x * p.width, uv.y * p.height);
+        EXPECT_NEAR(texel.x, ax, 1e-3f) << "tile " << tile << " uv " << uv.x << ", " << uv.y;
+        EXPECT_NEAR(texel.y, ay, 1e-3f) << "tile " << tile << " uv " << uv.x << ", " << uv.y;
+        const AtlasRect slot_rect = atlas.slot_rect(slot);
+        const int x0 = int(std::floor(texel.x - 0.5f)), y0 = int(std::floor(texel.y - 0.5f));
+        EXPECT_GE(x0, slot_rect.x);
+        EXPECT_GE(y0, slot_rect.y);
+        EXPECT_LT(x0 + 1, slot_rect.x + slot_rect.w);
+        EXPECT_LT(y0 + 1, slot_rect.y + slot_rect.h);
+        ++checked;
+      }
+    EXPECT_EQ(checked, 41 * 41);
+  }
+}
+
+}  // namespace
+}  // namespace nephele::particles
