@@ -17,10 +17,11 @@ vec4 image_texel(vec4 image, ImpostorGpu im) {
   if (im.info.x == IMPOSTOR_DIRECT) {
     texel = impostor_direct_texel(image, uv);
   } else {
-    int side = int(image.y);
-    ivec2 tile = impostor_tile_of(uv, image.z, im.info.y, side);
-    int slot = impostor_tile_slots[int(image.x) + tile.y * side + tile.x];
-    texel = impostor_tile_texel(uv, image.z, im.info.y, tile, slot, int(atlas.x) / im.info.y);
+    int across = int(image.y);
+    vec2 size = vec2(image.z, image.w);
+    ivec2 tile = impostor_tile_of(uv, size, im.info.y, across);
+    int slot = impostor_tile_slots[int(image.x) + tile.y * across + tile.x];
+    texel = impostor_tile_texel(uv, size, im.info.y, tile, slot, int(atlas.x) / im.info.y);
   }
   return textureLod(impostor_atlas, texel / atlas, 0.0f);
 }

@@ -17,7 +17,7 @@ void main() {
   int index = draw.info.x + gl_VertexIndex / 6;
   ImpostorGpu im = impostor_list[index];
   vec2 c = kCorners[gl_VertexIndex % 6];
-  vec3 corner = im.center_half.xyz + (c.x * im.right.xyz + c.y * im.up.xyz) * im.center_half.w;
+  vec3 corner = im.center_half.xyz + c.x * im.right.xyz + c.y * im.up.xyz;
   float z = dot(corner, draw.forward.xyz);
   gl_Position = vec4(dot(corner, draw.right.xyz) / (draw.forward.w * draw.right.w),
                      -dot(corner, draw.up.xyz) / draw.forward.w, z - 1.0f, z);

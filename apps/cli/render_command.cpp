@@ -137,7 +137,8 @@ std::string stats_to_json(const FrameStats& stats, const std::string& image_path
     j["moon_illuminated_fraction"] = stats.ephemeris->moon_illuminated_fraction;
   }
   nlohmann::json passes = nlohmann::json::object();
-  for (const PassTiming& p : stats.passes) passes[p.name] = p.ms;
+  for (const PassTiming& p : stats.passes)  // a pass run several times: its total
+    passes[p.name] = passes.value(p.name, 0.0) + p.ms;
   j["passes_ms"] = passes;
   if (!stats.voxel_clouds.empty()) {
     // The device memory of the voxel clouds' sparse bricks, each against the same grid stored

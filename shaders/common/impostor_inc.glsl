@@ -11,18 +11,19 @@ vec2 impostor_direct_texel(vec4 texels, vec2 uv) {
 }
 
 // Tiles: each tile of `tile` texels holds tile - 2 of the image's in each axis, with a one-texel
-// border repeating its neighbours'. The tile under uv of an image `side_texels` wide split in
-// `tiles` tiles per side.
-ivec2 impostor_tile_of(vec2 uv, float side_texels, int tile, int tiles) {
+// border repeating its neighbours'. The tile under uv of an image of `size` texels, `across`
+// tiles wide.
+ivec2 impostor_tile_of(vec2 uv, vec2 size, int tile, int across) {
   float inner = float(tile - 2);
-  return clamp(ivec2(floor(uv * side_texels / inner)), ivec2(0), ivec2(tiles - 1));
+  ivec2 last = ivec2(across, int(ceil(size.y / inner))) - 1;
+  return clamp(ivec2(floor(uv * size / inner)), ivec2(0), last);
 }
 
 // The atlas texel coordinate of uv in tile `t` stored in `slot` (slots row-major, `per_row` a
 // row): within [1, tile - 1] of the tile, so a bilinear footprint stays inside it.
-vec2 impostor_tile_texel(vec2 uv, float side_texels, int tile, ivec2 t, int slot, int per_row) {
+vec2 impostor_tile_texel(vec2 uv, vec2 size, int tile, ivec2 t, int slot, int per_row) {
   float inner = float(tile - 2);
-  vec2 local = clamp(uv * side_texels - vec2(t) * inner, vec2(0.0f), vec2(inner)) + 1.0f;
+  vec2 local = clamp(uv * size - vec2(t) * inner, vec2(0.0f), vec2(inner)) + 1.0f;
   return vec2(float(slot % per_row), float(slot / per_row)) * float(tile) + local;
 }
 

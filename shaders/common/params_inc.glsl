@@ -243,11 +243,12 @@ struct DrawConstants {
 
 // An impostor's quad (impostor.vert): a cloud's image from the atlas, facing the camera.
 struct ImpostorGpu {
-  vec4 center_half;  // xyz the cloud's centre from the camera (m), w the quad's half side (m)
-  vec4 right;        // xyz the quad's right (its image's), w the new image's weight (cross-fade)
-  vec4 up;           // xyz the quad's up, w the cloud's distance (km), for the depth layer
+  vec4 center_half;  // xyz the quad's centre from the camera (m), w unused
+  vec4 right;        // xyz the quad's half width along its image's right (m), w the new image's
+                     // weight (cross-fade)
+  vec4 up;           // xyz its half height along its image's up (m), w the cloud's distance (km)
   vec4 image_new;    // direct: the image's texels (x0, y0, x1, y1); tiles: x its first entry in
-                     // impostor_tile_slots, y tiles per side, z the image's side (texels)
+                     // impostor_tile_slots, y its tiles across, z, w its width and height (texels)
   vec4 image_old;    // the same for the image fading out (weight 1 - right.w)
   ivec4 info;        // x IMPOSTOR_DIRECT or IMPOSTOR_TILES, y the tile side (texels)
 };
@@ -255,7 +256,7 @@ const int IMPOSTOR_DIRECT = 0;
 const int IMPOSTOR_TILES = 1;
 // One tile for impostor_tiles.comp to fill: x its slot, y, z its column and row in the
 // impostor's grid of tiles, w the tile side; source: xy the impostor's image's corner in the
-// scratch image, z its side (texels).
+// scratch image, z, w its width and height (texels).
 struct ImpostorTileJob {
   ivec4 tile;
   ivec4 source;

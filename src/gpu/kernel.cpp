@@ -50,9 +50,8 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
   VkPipelineLayoutCreateInfo pipeline_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pipeline_info.setLayoutCount = 1;
   pipeline_info.pSetLayouts = &layout_;
-  // The raster passes' per-draw constants (params_inc.glsl, DrawConstants).
-  const VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                                 sizeof(DrawConstants)};
+  // The per-draw constants (params_inc.glsl, DrawConstants).
+  const VkPushConstantRange push{kDrawConstantStages, 0, sizeof(DrawConstants)};
   pipeline_info.pushConstantRangeCount = 1;
   pipeline_info.pPushConstantRanges = &push;
   NEPHELE_VK(vkCreatePipelineLayout(device_, &pipeline_info, nullptr, &pipeline_layout_));

@@ -77,6 +77,11 @@ enum Binding : uint32_t {
   kBindingCount
 };
 
+// The stages that read the per-draw push constants (DrawConstants, params_inc.glsl): the raster
+// passes' shaders and impostor_tiles.comp.
+constexpr VkShaderStageFlags kDrawConstantStages =
+    VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
+
 // How many frames may be in flight at once (nephele::FrameRenderer): each has its own
 // descriptor set, frame parameters, timestamps and output images.
 constexpr int kFramesInFlight = 2;

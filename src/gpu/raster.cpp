@@ -207,9 +207,8 @@ void RasterPass::record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer
                               float(area.extent.height), 0.0f, 1.0f};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &area);
-    vkCmdPushConstants(cmd, set.pipeline_layout(),
-                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                       sizeof(DrawConstants), &draw.constants);
+    vkCmdPushConstants(cmd, set.pipeline_layout(), kDrawConstantStages, 0, sizeof(DrawConstants),
+                       &draw.constants);
     vkCmdDraw(cmd, draw.vertex_count, 1, draw.first_vertex, 0);
   }
   vkCmdEndRenderPass(cmd);

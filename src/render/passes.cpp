@@ -27,7 +27,7 @@ GpuState::GpuState(gpu::Context& c)
   set.bind_image(gpu::kReferencePsiOut, gpu::kReferencePsi, reference_psi);
   resize_reference_sky(1, 1);
   for (int i = 0; i < kSlots; ++i) {
-    timers[i] = std::make_unique<gpu::PassTimer>(c, 16);
+    timers[i] = std::make_unique<gpu::PassTimer>(c, 64);
     frame_params[i] = gpu::Buffer(c, sizeof(gpu::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     meter[i] = gpu::Buffer(c, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     *static_cast<float*>(meter[i].data()) = std::nanf("");

@@ -30,6 +30,47 @@ void upload(gpu::Context& ctx, gpu::Buffer& buffer, const std::vector<T>& items)
   if (!items.empty()) std::memcpy(buffer.data(), items.data(), items.size() * sizeof(T));
 }
 
+// The view of one cloud from the eye: towards the middle of its particles' angular extent,
+// with the tangents of that extent's half width and half height: the image holds the cloud
+// and little else (a bounding sphere's square wasted three quarters of its texels on a flat
+// cumulus seen from the side, and every one was drawn as a quad's fragment).
+struct Framing {
+  glm::vec3 forward, right, up;
+  glm::vec2 tan_half;
+};
+
+glm::vec3 right_of(const glm::vec3& forward) {
+  const glm::vec3 r = glm::cross(forward, glm::vec3(0.0f, 0.0f, 1.0f));
+  return glm::length(r) > 1e-3f ? glm::normalize(r) : glm::vec3(1.0f, 0.0f, 0.0f);
+}
+
+Framing frame_cloud(const particles::ParticleCloud& cloud, const glm::vec3& offset) {
+  const glm::vec3 centre = cloud.center_m + offset;
+  glm::vec3 forward = glm::normalize(centre);
+  for (int pass = 0; pass < 2; ++pass) {  // centre the view on the extent, then measure it
+    const glm::vec3 right = right_of(forward), up = glm::cross(right, forward);
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const particles::Particle& p : cloud.particles) {
+      const glm::vec3 q = p.position_m + offset;
+      // The particle's sphere seen from the eye: its centre's tangents, widened by its angular
+      // radius (over the distance to its near side, so the bound holds for any size).
+      const float z = std::max(glm::dot(q, forward) - p.radius_m, 1.0f);
+      const glm::vec2 t(glm::dot(q, right), glm::dot(q, up));
+      lo = glm::min(lo, (t - p.radius_m) / z);
+      hi = glm::max(hi, (t + p.radius_m) / z);
+    }
+    const glm::vec2 middle = 0.5f * (lo + hi);
+    if (pass == 0) {
+      forward = glm::normalize(forward + middle.x * right + middle.y * up);
+      continue;
+    }
+    // A margin for the second pass's small residual offset.
+    const glm::vec2 half = 0.5f * (hi - lo) + glm::abs(middle);
+    return {forward, right, up, glm::max(half * 1.02f, glm::vec2(1e-4f))};
+  }
+  return {};
+}
+
 }  // namespace
 
 struct ImpostorCache::Impostor {
@@ -38,8 +79,9 @@ struct ImpostorCache::Impostor {
   glm::vec3 dir{0.0f};  // from the eye towards the cloud when drawn
   float distance_m = 0.0f;
   glm::vec3 light{0.0f};  // the cloud's lighting then (ParticleCloud::lit_towards)
+  // The quad: its centre from the cloud's, and its half sides (its image's right and up).
+  glm::vec3 center_from_cloud{0.0f};
   glm::vec3 right{0.0f}, up{0.0f};
-  float half_m = 0.0f;  // the quad's half side at the cloud's centre
   bool fading = false;
   float fade = 1.0f;  // the new image's weight
   uint32_t old_id = 0;
@@ -51,7 +93,8 @@ struct ImpostorCache::Update {
   uint32_t first = 0, count = 0;  // its particles in the particle buffer
   gpu::DrawConstants view{};
   glm::ivec2 scratch{0};  // tiles: where it is drawn in the scratch image
-  int side = 0;
+  glm::ivec2 size{0};     // its image's texels
+  int batch = 0;          // tiles: the scratch's batches are drawn and cut one after another
 };
 
 ImpostorCache::ImpostorCache(gpu::Context& ctx, gpu::DescriptorSet& set)
@@ -186,17 +229,18 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
   glm::ivec2 shelf(0);  // tiles: this frame's images placed in rows in the scratch
-  int shelf_height = 0;
+  int shelf_height = 0, batch = 0;
   for (const Candidate& c : candidates) {
     if (!still && int(updates_.size()) >= params.impostor_updates_per_frame) break;
     const particles::ParticleCloud& cloud = field.clouds[c.cloud];
     Impostor& im = impostors_[c.cloud];
     const glm::vec3 rel = cloud.center_m + offset;
-    const float d = glm::length(rel);
-    const float r = std::min(cloud.bound_radius_m, 0.9f * d);
-    const float tan_r = r / std::sqrt(d * d - r * r);
-    int side = int(std::lround(params.impostor_resolution * tan_r / tan_half_fov * image_height));
-    side = std::clamp(side, kMinSide, kMaxSide);
+    const Framing framing = frame_cloud(cloud, offset);
+    // Texels per unit of tangent: the image's resolution on the screen, times the option.
+    const float texels = params.impostor_resolution * float(image_height) / (2.0f * tan_half_fov);
+    glm::ivec2 size(glm::round(2.0f * framing.tan_half * texels));
+    const float shrink = std::min(1.0f, float(kMaxSide) / float(std::max(size.x, size.y)));
+    size = glm::clamp(glm::ivec2(glm::vec2(size) * shrink), glm::ivec2(kMinSide), glm::ivec2(kMaxSide));
     // The image's id: the other of the cloud's two, the current one being kept to fade out.
     if (im.fading) {
       if (direct_) direct_->release(im.old_id);
@@ -204,31 +248,31 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
       im.fading = false;
     }
     const uint32_t id = im.has_image ? (im.id ^ 1u) : uint32_t(2 * c.cloud);
-    Update u{c.cloud, id, 0, 0, {}, glm::ivec2(0), side};
+    Update u{c.cloud, id, 0, 0, {}, glm::ivec2(0), size};
     if (direct_) {
-      const particles::DirectAtlas::Result res = direct_->allocate(id, side, side, now_s);
+      const particles::DirectAtlas::Result res = direct_->allocate(id, size.x, size.y, now_s);
       if (!res.ok) continue;
       if (res.defragmented) moves_ = direct_->last_moves();
-      u.side = std::min(res.rect.w, res.rect.h);
+      u.size = glm::ivec2(res.rect.w, res.rect.h);
     } else {
-      if (shelf.x + side > kScratchSide) shelf = glm::ivec2(0, shelf.y + shelf_height), shelf_height = 0;
-      if (shelf.y + side > kScratchSide) break;  // the scratch is full this frame
-      const particles::TileAtlas::Result res = tiles_->allocate(id, side, side, now_s);
+      if (shelf.x + size.x > kScratchSide) shelf = glm::ivec2(0, shelf.y + shelf_height), shelf_height = 0;
+      if (shelf.y + size.y > kScratchSide) {  // the scratch is full: the next batch reuses it
+        shelf = glm::ivec2(0);
+        shelf_height = 0;
+        ++batch;
+      }
+      const particles::TileAtlas::Result res = tiles_->allocate(id, size.x, size.y, now_s);
       if (!res.ok) continue;
       if (res.defragmented) moves_ = tiles_->last_moves();
-      u.side = res.placement.width;
+      u.size = glm::ivec2(res.placement.width, res.placement.height);
       u.scratch = shelf;
-      shelf.x += u.side;
-      shelf_height = std::max(shelf_height, u.side);
+      u.batch = batch;
+      shelf.x += u.size.x;
+      shelf_height = std::max(shelf_height, u.size.y);
     }
-    // The view from the eye framing the cloud's bounding sphere, square.
-    const glm::vec3 forward = rel / d;
-    glm::vec3 right = glm::cross(forward, glm::vec3(0.0f, 0.0f, 1.0f));
-    right = glm::length(right) > 1e-3f ? glm::normalize(right) : glm::vec3(1.0f, 0.0f, 0.0f);
-    const glm::vec3 up = glm::cross(right, forward);
-    u.view.forward = glm::vec4(forward, tan_r);
-    u.view.right = glm::vec4(right, 1.0f);
-    u.view.up = glm::vec4(up, 0.0f);
+    u.view.forward = glm::vec4(framing.forward, framing.tan_half.y);
+    u.view.right = glm::vec4(framing.right, framing.tan_half.x / framing.tan_half.y);
+    u.view.up = glm::vec4(framing.up, 0.0f);
     if (im.has_image) {
       im.fading = true;
       im.fade = 1.0f / float(params.impostor_fade_frames);
@@ -236,14 +280,17 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
     } else {
       im.fade = 1.0f;
     }
+    // The quad: in the plane through the cloud's centre facing the view, where the image's
+    // frustum cuts it; kept relative to the cloud's centre, which drifts with the wind.
+    const float depth_m = glm::dot(rel, framing.forward);
     im.has_image = true;
     im.id = id;
-    im.dir = forward;
-    im.distance_m = d;
+    im.dir = rel / glm::length(rel);
+    im.distance_m = glm::length(rel);
     im.light = cloud.lit_towards;
-    im.right = right;
-    im.up = up;
-    im.half_m = d * tan_r;
+    im.right = framing.right * depth_m * framing.tan_half.x;
+    im.up = framing.up * depth_m * framing.tan_half.y;
+    im.center_from_cloud = framing.forward * depth_m - rel;
     updates_.push_back(u);
     plan.updates.push_back(c.cloud);
   }
@@ -263,7 +310,7 @@ glm::vec4 ImpostorCache::image_of(uint32_t id, std::vector<int>& slots) const {
   const particles::TileAtlas::Placement& p = tiles_->placements().at(id);
   const int first = int(slots.size());
   slots.insert(slots.end(), p.slots.begin(), p.slots.end());
-  return glm::vec4(float(first), float(p.tiles_x), float(p.width), 0.0f);
+  return glm::vec4(float(first), float(p.tiles_x), float(p.width), float(p.height));
 }
 
 void ImpostorCache::place_updates(const particles::ParticleField& field,
@@ -283,7 +330,7 @@ void ImpostorCache::place_updates(const particles::ParticleField& field,
   for (const auto& [distance_m, i] : order) {
     const Impostor& im = impostors_[i];
     gpu::ImpostorGpu q{};
-    q.center_half = glm::vec4(field.clouds[i].center_m + offset_, im.half_m);
+    q.center_half = glm::vec4(field.clouds[i].center_m + offset_ + im.center_from_cloud, 1.0f);
     q.right = glm::vec4(im.right, im.fading ? im.fade : 1.0f);
     q.up = glm::vec4(im.up, distance_m * 1e-3f);
     q.image_new = image_of(im.id, slots);
@@ -297,7 +344,7 @@ void ImpostorCache::place_updates(const particles::ParticleField& field,
     const particles::TileAtlas::Placement& p = tiles_->placements().at(u.id);
     for (size_t t = 0; t < p.slots.size(); ++t)
       jobs_.push_back({glm::ivec4(p.slots[t], int(t) % p.tiles_x, int(t) / p.tiles_x, params_.atlas_tile),
-                       glm::ivec4(u.scratch, p.width, 0)});
+                       glm::ivec4(u.scratch, p.width, p.height)});
   }
   stats_.impostors = int(quads_.size());
   stats_.updates = int(updates_.size());
@@ -341,29 +388,42 @@ void ImpostorCache::record_updates(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   }
   if (updates_.empty()) return;
   // Each image drawn from the eye with its own view, into its rectangle of the atlas (direct)
-  // or of the scratch image (tiles).
-  std::vector<gpu::RasterDraw> draws;
-  for (const Update& u : updates_) {
-    gpu::RasterDraw d;
-    d.first_vertex = 6 * u.first;
-    d.vertex_count = 6 * u.count;
-    d.constants = u.view;
-    glm::ivec2 corner = u.scratch;
-    if (direct_) {
-      const particles::AtlasRect r = direct_->regions().at(u.id);
-      corner = glm::ivec2(r.x, r.y);
+  // or of the scratch image (tiles: a batch at a time, each cut into tiles before the next).
+  size_t job = 0;
+  for (size_t k = 0; k < updates_.size();) {
+    const int batch = updates_[k].batch;
+    std::vector<gpu::RasterDraw> draws;
+    size_t jobs = 0;
+    for (; k < updates_.size() && updates_[k].batch == batch; ++k) {
+      const Update& u = updates_[k];
+      gpu::RasterDraw d;
+      d.first_vertex = 6 * u.first;
+      d.vertex_count = 6 * u.count;
+      d.constants = u.view;
+      glm::ivec2 corner = u.scratch;
+      if (direct_) {
+        const particles::AtlasRect r = direct_->regions().at(u.id);
+        corner = glm::ivec2(r.x, r.y);
+      } else {
+        jobs += tiles_->placements().at(u.id).slots.size();
+      }
+      d.area = {{corner.x, corner.y}, {uint32_t(u.size.x), uint32_t(u.size.y)}};
+      d.clear_area = true;
+      draws.push_back(d);
     }
-    d.area = {{corner.x, corner.y}, {uint32_t(u.side), uint32_t(u.side)}};
-    d.clear_area = true;
-    draws.push_back(d);
-  }
-  if (direct_) {
-    pass_->record(cmd, set_, timer, "impostor_draw", {&atlas_, &atlas_aux_}, draws);
-  } else {
+    if (direct_) {
+      pass_->record(cmd, set_, timer, "impostor_draw", {&atlas_, &atlas_aux_}, draws);
+      continue;
+    }
     pass_->record(cmd, set_, timer, "impostor_draw", {&scratch_, &scratch_aux_}, draws);
+    gpu::DrawConstants first{};
+    first.info.x = int(job);  // impostor_tiles.comp's first job
+    vkCmdPushConstants(cmd, set_.pipeline_layout(), gpu::kDrawConstantStages, 0,
+                       sizeof(gpu::DrawConstants), &first);
     const int tile = params_.atlas_tile;
     gpu::dispatch(cmd, tiles_kernel_, set_, timer, "impostor_tiles", uint32_t(tile), uint32_t(tile),
-                  uint32_t(jobs_.size()), 8, 8, 1);
+                  uint32_t(jobs), 8, 8, 1);
+    job += jobs;
   }
 }
 
