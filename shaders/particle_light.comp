@@ -12,7 +12,8 @@
 #include "common/particle_inc.glsl"
 
 layout(constant_id = 0) const int BUFFER = 32;  // the buffer's side (texels), 1 to 64
-layout(local_size_x_id = 1) in;                 // invocations a cloud (specialization 1)
+// Invocations a cloud (render/modules/particle_light_gpu.cpp: a few, splats are small).
+layout(local_size_x_id = 1) in;
 
 // BUFFER^2 uints: 16 KiB at 64, the least any device must give a workgroup.
 shared uint texels[BUFFER * BUFFER];
@@ -41,19 +42,23 @@ void main() {
   uint id = gl_LocalInvocationIndex, invocations = gl_WorkGroupSize.x;
   for (uint i = id; i < uint(BUFFER * BUFFER); i += invocations) texels[i] = 255u;  // I_0 = 1
   float forward = cloud.shading.x, opacity = cloud.shading.y;
-  for (int k = 0; k < cloud.range.y; ++k) {
+  int first = cloud.range.x, count = cloud.range.y;
+  vec4 next = count > 0 ? particle_splats[first].splat : vec4(0.0f);
+  for (int k = 0; k < count; ++k) {
     barrier();  // the last splat's texels written
-    vec4 s = particle_splats[cloud.range.x + k].splat;
+    vec4 s = next;
+    // Loaded while this splat is drawn: on a GPU the splats may lie in host memory.
+    if (k + 1 < count) next = particle_splats[first + k + 1].splat;
     ivec2 centre = clamp(ivec2(s.xy), ivec2(0), ivec2(BUFFER - 1));
     precise float light = float(texels[centre.y * BUFFER + centre.x]) * (1.0f / 255.0f);
-    if (id == 0u) particle_lights[cloud.range.x + int(s.w)] = light;
+    if (id == 0u) particle_lights[first + int(s.w)] = light;
     barrier();  // every invocation has read the centre before any texel changes
     precise float target = 255.0f * forward * light;
     precise float inv_r2 = 1.0f / max(s.z * s.z, 1e-6f);
     ivec2 lo, hi;
     span_of(s.xyz, lo, hi);
-    int width = hi.x - lo.x, count = width * (hi.y - lo.y);
-    for (int i = int(id); i < count; i += int(invocations)) {
+    int width = hi.x - lo.x, texels_in_span = width * (hi.y - lo.y);
+    for (int i = int(id); i < texels_in_span; i += int(invocations)) {
       ivec2 texel = lo + ivec2(i % width, i / width);
       texels[texel.y * BUFFER + texel.x] = splat_texel(texel, s.xyz, inv_r2, opacity, target);
     }

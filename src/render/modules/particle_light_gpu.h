@@ -24,6 +24,7 @@ struct ParticleLightGpuResult {
   double wall_ms = 0.0;     // host: the splats uploaded, the pass submitted and waited for, the
                             // lights read back (prepare_ms not included)
   double gpu_ms = 0.0;      // the pass's timestamps (0 where the queue has none)
+  int invocations = 0;      // a cloud's workgroup
 };
 
 class ParticleLightGpuModule {
@@ -46,6 +47,7 @@ class ParticleLightGpuModule {
 
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
+  const int invocations_;  // a cloud's workgroup
   std::map<int, std::unique_ptr<gpu::Kernel>> kernels_;
   gpu::Buffer splats_, clouds_, lights_;
 };
