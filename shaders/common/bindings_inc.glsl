@@ -111,5 +111,11 @@ layout(std430, set = 0, binding = 56) readonly buffer TileSlotBlock { int impost
 layout(set = 0, binding = 57) uniform sampler2D impostor_scratch;
 layout(set = 0, binding = 58, rgba16f) uniform writeonly image2D impostor_atlas_out;
 layout(std430, set = 0, binding = 59) readonly buffer TileJobBlock { ImpostorTileJob impostor_tile_jobs[]; };
+// The particle clouds' lighting on the device (particle_light.comp, render/modules/
+// particle_light_gpu.h): every cloud's particles seen from the light, nearest first, the clouds
+// (one workgroup each), and the light reaching each particle, I_k in [0, 1], in the field's order.
+layout(std430, set = 0, binding = 60) readonly buffer ParticleSplatBlock { ParticleSplatGpu particle_splats[]; };
+layout(std430, set = 0, binding = 61) readonly buffer ParticleLightCloudBlock { ParticleLightCloudGpu particle_light_clouds[]; };
+layout(std430, set = 0, binding = 62) writeonly buffer ParticleLightBlock { float particle_lights[]; };
 
 #endif

@@ -262,6 +262,21 @@ struct ImpostorTileJob {
   ivec4 source;
 };
 
+// The particle clouds' lighting on the device (particle_light.comp; the CPU's is
+// particles/particle_lighting.h): one workgroup a cloud splats the cloud's particles, sorted
+// nearest the light first on the host, into a buffer in shared memory.
+// One particle as seen from the light.
+struct ParticleSplatGpu {
+  vec4 splat;  // xy its centre, z its radius (buffer texels); w its index in its cloud (exact
+               // in a float below 2^24)
+};
+// One cloud: its splats and where its particles' lights go.
+struct ParticleLightCloudGpu {
+  ivec4 range;   // x its first splat in particle_splats, y its splats; x is also its first
+                 // particle's light in particle_lights
+  vec4 shading;  // x the forward share f, y a particle's opacity at its centre
+};
+
 // The particles' procedural textures (render/modules/particle_clouds.cpp).
 const int PARTICLE_TEXTURES = 4;
 const int PARTICLE_TEXTURE_SIZE = 64;

@@ -29,7 +29,8 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       kStorage, kStorage, kSampled, kSampled, kStorage, kStorage, kSampled, kStorage, kSampled,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, kSampled,
       kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-      kSampled, kStorage, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+      kSampled, kStorage, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
   static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];

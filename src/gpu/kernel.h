@@ -74,6 +74,9 @@ enum Binding : uint32_t {
   kImpostorScratch = 57,
   kImpostorAtlasOut = 58,
   kImpostorTileJobs = 59,
+  kParticleSplats = 60,
+  kParticleLightClouds = 61,
+  kParticleLights = 62,
   kBindingCount
 };
 

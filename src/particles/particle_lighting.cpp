@@ -18,12 +18,7 @@ typedef uint8_t v8u8 __attribute__((vector_size(8)));
 
 constexpr int kPad = 8;  // bytes after each row: a row's last 8-texel step may run past its end
 
-// The cloud seen from the light: its particles nearest the light first, each with its centre
-// and radius in buffer texels.
-struct Splat {
-  float x, y, radius;
-  uint32_t index;
-};
+}  // namespace
 
 std::vector<Splat> splats_from_light(const ParticleCloud& cloud, const glm::vec3& l, int n) {
   const glm::vec3 any = std::abs(l.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
@@ -47,6 +42,8 @@ std::vector<Splat> splats_from_light(const ParticleCloud& cloud, const glm::vec3
                    [&](const Splat& a, const Splat& b) { return along[a.index] > along[b.index]; });
   return splats;
 }
+
+namespace {
 
 // The light at a splat's centre, [0, 1]: the texel under it.
 float read_centre(const uint8_t* buffer, int n, int stride, const Splat& s) {

@@ -24,6 +24,17 @@ namespace nephele::particles {
 // scatters on in the light's direction.
 float forward_share(const ParticleCloudParams& params);
 
+// The cloud seen from the light: its particles nearest the light first (a stable sort on the
+// distance along `towards_light`), each with its centre and radius in the texels of a
+// `buffer` x `buffer` splat buffer framing the cloud. light_cloud splats them in this order;
+// the GPU version (render/modules/particle_light_gpu.h) uploads them.
+struct Splat {
+  float x, y, radius;
+  uint32_t index;  // the particle's in cloud.particles
+};
+std::vector<Splat> splats_from_light(const ParticleCloud& cloud, const glm::vec3& towards_light,
+                                     int buffer);
+
 // Lights every particle of `cloud` from the unit direction `towards_light` (ENU, from the cloud
 // to the light): sets each particle's `light` and the cloud's lit_towards. `buffer` is 32 or 64.
 // The vectorised splat; light_cloud_scalar is the same arithmetic one texel at a time (tests).

@@ -303,6 +303,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       sky_view(ctx, state.set),
       clouds(ctx, state.set),
       particles(ctx, state.set),
+      particle_light(ctx, state.set),
       path_tracer(ctx, state.set) {}
 
 FrameRenderer::FrameRenderer(const RendererOptions& options)

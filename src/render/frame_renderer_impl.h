@@ -13,6 +13,7 @@
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
 #include "render/modules/particle_clouds.h"
+#include "render/modules/particle_light_gpu.h"
 #include "render/modules/path_tracer.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/voxel_clouds.h"
@@ -51,6 +52,7 @@ struct FrameRenderer::Impl {
   SkyViewModule sky_view;
   CloudsModule clouds;
   ParticleCloudsModule particles;
+  ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
 
   void update_atmosphere_luts(const Scene& scene);

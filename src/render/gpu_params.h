@@ -14,5 +14,7 @@ static_assert(sizeof(ParticleGpu) == 2 * 16);
 static_assert(sizeof(DrawConstants) == 4 * 16);
 static_assert(sizeof(ImpostorGpu) == 6 * 16);
 static_assert(sizeof(ImpostorTileJob) == 2 * 16);
+static_assert(sizeof(ParticleSplatGpu) == 16);
+static_assert(sizeof(ParticleLightCloudGpu) == 2 * 16);
 static_assert(alignof(FrameParams) <= 16);
 }  // namespace nephele::gpu

@@ -13,6 +13,7 @@
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
 #include "render/modules/particle_clouds.h"
+#include "render/modules/particle_light_gpu.h"
 #include "render/modules/path_tracer.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/voxel_clouds.h"
@@ -83,6 +84,7 @@ struct Modules {
         sky_view(ctx, s.set),
         clouds(ctx, s.set),
         particles(ctx, s.set),
+        particle_light(ctx, s.set),
         path_tracer(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
@@ -92,6 +94,7 @@ struct Modules {
   nephele::SkyViewModule sky_view;
   nephele::CloudsModule clouds;
   nephele::ParticleCloudsModule particles;
+  nephele::ParticleLightGpuModule particle_light;
   nephele::PathTracerModule path_tracer;
 };
 
