@@ -136,8 +136,9 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
                "only seed 003's particle clouds: a flight drawing every particle against "
                "impostors in a direct and a tiled atlas; writes impostors.png to --out-dir and, "
                "with --json, all_particles_ms, impostors_direct_ms, impostors_tiles_ms, "
-               "speedup_direct, speedup_tiles, luminance_difference, cpu_lighting_ms and the "
-               "atlas statistics (--frames: the timed frames, default 3)");
+               "speedup_direct, speedup_tiles, luminance_difference, cpu_lighting_ms, "
+               "gpu_lighting_ms (the same splat on the device) and the atlas statistics "
+               "(--frames: the timed frames, default 3)");
   cmd.add_option("--json", options.json,
                  "write the real-time figures (static_fps, moving_fps, static_p99_ms, "
                  "moving_p99_ms, moving_max_ms, speedup_vs_baseline, static_error, "

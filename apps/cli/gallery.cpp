@@ -118,8 +118,7 @@ int run_gallery(const GalleryOptions& options) {
     const double cover = frame.stats.sky_cover_fraction.value_or(0.0);
     char label[160];
     if (const auto& p = frame.stats.particle_clouds)  // the sky cover counts volumetric clouds
-      std::snprintf(label, sizeof label, "%s  %zuk particles, %d impostors", names[i].c_str(),
-                    p->particles / 1000, p->impostors);
+      std::snprintf(label, sizeof label, "%s  %d impostors", names[i].c_str(), p->impostors);
     else
       std::snprintf(label, sizeof label, "%s  %d/8 (%.2f)", names[i].c_str(),
                     sky_cover_oktas(cover), cover);

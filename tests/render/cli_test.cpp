@@ -343,8 +343,11 @@ TEST_F(CliTest, BenchImpostorsComparesEveryParticleWithBothAtlases) {
   std::printf("%s", r.output.c_str());
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("imp.json")));
   for (const char* key : {"all_particles_ms", "impostors_direct_ms", "impostors_tiles_ms",
-                          "cpu_lighting_ms"})
+                          "cpu_lighting_ms", "gpu_lighting_ms"})
     EXPECT_GT(j[key].get<double>(), 0.0) << key;
+  // The device's splat lights every particle as the CPU's does.
+  for (const char* buffer : {"lighting_32", "lighting_64"})
+    EXPECT_EQ(j[buffer]["differing"].get<size_t>(), 0u) << buffer;
   EXPECT_DOUBLE_EQ(j["speedup_direct"].get<double>(),
                    j["all_particles_ms"].get<double>() / j["impostors_direct_ms"].get<double>());
   EXPECT_DOUBLE_EQ(j["speedup_tiles"].get<double>(),
