@@ -228,10 +228,12 @@ std::vector<Sample> run_sweeps(Renderer& renderer, const Scene& base, const Benc
   return samples;
 }
 
-// `--ablation`: seed 002's ablation alone.
-int run_ablation_bench(const Scene& base, const BenchOptions& options) {
+// A study run alone (--ablation, --impostors): its image `image_name` in --out-dir, checked
+// before anything is rendered, its figures to --json.
+template <typename Study>
+int run_study(const BenchOptions& options, const char* image_name, Study study) {
   namespace fs = std::filesystem;
-  const std::string image = (fs::path(options.out_dir) / "ablation.png").string();
+  const std::string image = (fs::path(options.out_dir) / image_name).string();
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   check_output_path(image, "--out-dir");
@@ -239,27 +241,7 @@ int run_ablation_bench(const Scene& base, const BenchOptions& options) {
     check_output_file(options.json, "--json", true);
     check_distinct_outputs({{"--out-dir", image}, {"--json", options.json}});
   }
-  Renderer renderer(RendererOptions{options.device, options.validation, options.verbose, {}});
-  const nlohmann::json result =
-      run_ablation(renderer, ablation_scene(base), std::max(options.frames, 1), image);
-  if (!options.json.empty()) write_text_output(options.json, result.dump(2) + "\n");
-  return 0;
-}
-
-// `--impostors`: seed 003's particle clouds and impostors alone.
-int run_impostor_bench_command(const Scene& base, const BenchOptions& options) {
-  namespace fs = std::filesystem;
-  const std::string image = (fs::path(options.out_dir) / "impostors.png").string();
-  std::error_code ec;
-  fs::create_directories(options.out_dir, ec);
-  check_output_path(image, "--out-dir");
-  if (!options.json.empty()) {
-    check_output_file(options.json, "--json", true);
-    check_distinct_outputs({{"--out-dir", image}, {"--json", options.json}});
-  }
-  const nlohmann::json result =
-      run_impostor_bench(RendererOptions{options.device, options.validation, options.verbose, {}},
-                         impostor_bench_scene(base), std::max(options.frames, 2), image);
+  const nlohmann::json result = study(image);
   if (!options.json.empty()) write_text_output(options.json, result.dump(2) + "\n");
   return 0;
 }
@@ -269,8 +251,17 @@ int run_impostor_bench_command(const Scene& base, const BenchOptions& options) {
 int run_bench(const BenchOptions& options) {
   const Scene base = resolve_scene(options.scene);
   namespace fs = std::filesystem;
-  if (options.ablation) return run_ablation_bench(base, options);
-  if (options.impostors) return run_impostor_bench_command(base, options);
+  const RendererOptions renderer_options{options.device, options.validation, options.verbose, {}};
+  if (options.ablation)  // seed 002's ablation alone
+    return run_study(options, "ablation.png", [&](const std::string& image) {
+      Renderer renderer(renderer_options);
+      return run_ablation(renderer, ablation_scene(base), std::max(options.frames, 1), image);
+    });
+  if (options.impostors)  // seed 003's particle clouds and impostors alone
+    return run_study(options, "impostors.png", [&](const std::string& image) {
+      return run_impostor_bench(renderer_options, impostor_bench_scene(base),
+                                std::max(options.frames, 2), image);
+    });
   const std::string csv = (fs::path(options.out_dir) / "bench.csv").string();
   const std::string json = (fs::path(options.out_dir) / "bench.json").string();
   // The figures scripts/plot_bench.py draws; removed before it runs, so that those left
@@ -291,7 +282,6 @@ int run_bench(const BenchOptions& options) {
                               {"--json", options.json}});
   }
 
-  const RendererOptions renderer_options{options.device, options.validation, options.verbose, {}};
   Renderer renderer(renderer_options);
   std::printf("nephele bench on %s, scene %dx%d\n", renderer.device_name().c_str(),
               base.output.width, base.output.height);

@@ -15,6 +15,18 @@ extern const size_t kFileCount;
 
 namespace nephele::gpu {
 
+namespace {
+
+constexpr VkShaderStageFlags kRasterStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+// The bindings the raster passes' shaders read (particles.vert/.frag, impostor.vert/.frag).
+bool raster_reads(Binding b) {
+  return b == kFrameParams || b == kParticles || b == kParticleTextures || b == kImpostors ||
+         b == kImpostorAtlas || b == kImpostorTileSlots;
+}
+
+}  // namespace
+
 DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
   // Indexed by Binding.
   constexpr VkDescriptorType kUbo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
@@ -36,10 +48,11 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
   VkDescriptorSetLayoutBinding bindings[kCount];
   uint32_t count_of[VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT + 1] = {};
   for (uint32_t i = 0; i < kCount; ++i) {
-    // Compute passes, and the raster passes (gpu/raster.h) that draw particles.
+    // Compute passes; the raster passes (gpu/raster.h) read only a few bindings, and only
+    // those are visible to their stages (every stage a binding is visible to costs the
+    // validation layer time at every dispatch).
     bindings[i] = {i, types[i], 1,
-                   VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT |
-                       VK_SHADER_STAGE_FRAGMENT_BIT,
+                   VK_SHADER_STAGE_COMPUTE_BIT | (raster_reads(Binding(i)) ? kRasterStages : 0u),
                    nullptr};
     ++count_of[types[i]];
   }

@@ -46,7 +46,7 @@ void Buffer::reset() {
 }
 
 Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
-                 VkSamplerAddressMode address, uint32_t mip_levels)
+                 VkSamplerAddressMode address, uint32_t mip_levels, bool render_target)
     : device_(ctx.device()), width_(width), height_(height), depth_(depth), levels_(mip_levels) {
   // Every texture is written by a compute pass and then sampled with linear filtering.
   VkFormatProperties props;
@@ -69,9 +69,12 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  // A 2D image a raster pass can draw into (gpu/raster.h), where the format allows.
-  if (!is_3d && (props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT))
+  if (render_target) {
+    if (is_3d || !(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+      throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
+                         " cannot be a blended 2D render target on " + ctx.device_name());
     info.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+  }
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   NEPHELE_VK(vkCreateImage(device_, &info, nullptr, &image_));
   VkMemoryRequirements req;

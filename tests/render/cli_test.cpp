@@ -85,7 +85,7 @@ TEST_F(CliTest, GalleryRendersThePresetsInOneImage) {
   int w = 0, h = 0, n = 0;
   ASSERT_TRUE(stbi_info(out.c_str(), &w, &h, &n));
   EXPECT_EQ(w, 3 * 48 + 2 * 4);
-  EXPECT_EQ(h, 4 * 32 + 3 * 4);  // 11 presets
+  EXPECT_EQ(h, 5 * 32 + 4 * 4);  // 11 sky-cover presets and 2 of particle clouds
   const CliRun bad = run_cli("gallery --columns 0 -o " + path("bad.png"));
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.output.find("--columns 0: must be in [1, 16]"), std::string::npos) << bad.output;

@@ -17,7 +17,8 @@ constexpr int kScratchSide = 1024;                     // tiles: this frame's im
 constexpr int kMinSide = 16, kMaxSide = 256;           // an impostor's image (texels a side)
 
 gpu::Texture texture(gpu::Context& ctx, int w, int h, VkFormat format) {
-  return gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, format, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  return gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, format, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                      1, true);
 }
 
 template <typename T>
@@ -228,19 +229,38 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
+  if (!still && int(candidates.size()) > params.impostor_updates_per_frame)
+    candidates.resize(size_t(params.impostor_updates_per_frame));
+  // Each chosen cloud's view and image size: the image's resolution on the screen (texels per
+  // unit of tangent) times the option, within [kMinSide, kMaxSide] keeping its proportions.
+  const float texels = params.impostor_resolution * float(image_height) / (2.0f * tan_half_fov);
+  std::vector<Framing> framings;
+  std::vector<glm::ivec2> sizes;
+  for (const Candidate& c : candidates) {
+    framings.push_back(frame_cloud(field.clouds[c.cloud], offset));
+    glm::ivec2 size(glm::round(2.0f * framings.back().tan_half * texels));
+    const float shrink = std::min(1.0f, float(kMaxSide) / float(std::max(size.x, size.y)));
+    sizes.push_back(glm::clamp(glm::ivec2(glm::vec2(size) * shrink), glm::ivec2(kMinSide),
+                               glm::ivec2(kMaxSide)));
+  }
+  // The seed's step 1: an empty atlas (the first frame, or after a reset) is filled by
+  // rectangle packing all at once; later images come one at a time by best fit.
+  std::vector<bool> packed(candidates.size(), false);
+  if (direct_ && direct_->regions().empty() && candidates.size() > 1) {
+    std::vector<particles::DirectAtlas::Request> requests;
+    for (size_t k = 0; k < candidates.size(); ++k)
+      requests.push_back({uint32_t(2 * candidates[k].cloud), sizes[k].x, sizes[k].y});
+    if (direct_->pack(requests)) packed.assign(candidates.size(), true);
+  }
   glm::ivec2 shelf(0);  // tiles: this frame's images placed in rows in the scratch
   int shelf_height = 0, batch = 0;
-  for (const Candidate& c : candidates) {
-    if (!still && int(updates_.size()) >= params.impostor_updates_per_frame) break;
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    const Candidate& c = candidates[k];
     const particles::ParticleCloud& cloud = field.clouds[c.cloud];
     Impostor& im = impostors_[c.cloud];
     const glm::vec3 rel = cloud.center_m + offset;
-    const Framing framing = frame_cloud(cloud, offset);
-    // Texels per unit of tangent: the image's resolution on the screen, times the option.
-    const float texels = params.impostor_resolution * float(image_height) / (2.0f * tan_half_fov);
-    glm::ivec2 size(glm::round(2.0f * framing.tan_half * texels));
-    const float shrink = std::min(1.0f, float(kMaxSide) / float(std::max(size.x, size.y)));
-    size = glm::clamp(glm::ivec2(glm::vec2(size) * shrink), glm::ivec2(kMinSide), glm::ivec2(kMaxSide));
+    const Framing& framing = framings[k];
+    const glm::ivec2 size = sizes[k];
     // The image's id: the other of the cloud's two, the current one being kept to fade out.
     if (im.fading) {
       if (direct_) direct_->release(im.old_id);
@@ -249,7 +269,10 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
     }
     const uint32_t id = im.has_image ? (im.id ^ 1u) : uint32_t(2 * c.cloud);
     Update u{c.cloud, id, 0, 0, {}, glm::ivec2(0), size};
-    if (direct_) {
+    if (direct_ && packed[k]) {
+      const particles::AtlasRect r = direct_->regions().at(id);
+      u.size = glm::ivec2(r.w, r.h);
+    } else if (direct_) {
       const particles::DirectAtlas::Result res = direct_->allocate(id, size.x, size.y, now_s);
       if (!res.ok) continue;
       if (res.defragmented) moves_ = direct_->last_moves();

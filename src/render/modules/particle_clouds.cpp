@@ -81,8 +81,8 @@ ParticleCloudsModule::ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet
   gpu::Buffer staging(ctx, VkDeviceSize(texels.size()), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   std::memcpy(staging.data(), texels.data(), texels.size());
   // Until a scene has particle clouds: empty layers (1 x 1, zero) and a one-particle buffer.
-  layer_ = gpu::Texture(ctx, 1, 1, 1, kLayerFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-  depth_ = gpu::Texture(ctx, 1, 1, 1, kDepthFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  layer_ = gpu::Texture(ctx, 1, 1, 1, kLayerFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
+  depth_ = gpu::Texture(ctx, 1, 1, 1, kDepthFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     textures_.record_upload(cmd, staging);
     layer_.record_clear(cmd);
@@ -202,9 +202,9 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   if (layer_.width() != uint32_t(width) || layer_.height() != uint32_t(height)) {
     ctx_.wait_queue_idle();
     layer_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kLayerFormat,
-                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
     depth_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kDepthFormat,
-                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
     set_.bind_sampled_image(gpu::kParticleLayer, layer_);
     set_.bind_sampled_image(gpu::kParticleDepth, depth_);
   }
