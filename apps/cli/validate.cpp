@@ -81,7 +81,7 @@ ValidationSuite parse_validation_suite(const std::string& text, const std::strin
     root = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
     std::ostringstream line;
-    line << source << ":" << e.source().begin.line << ": " << e.description();
+    line << source << ":" << e.source().begin.line << ": " << one_line_for_message(e.description());
     throw InputError(line.str());
   }
   const std::string where = source + ": ";

@@ -26,6 +26,10 @@ class RuntimeError : public std::runtime_error {
 constexpr size_t kMaxEchoedChars = 80;
 std::string shorten_for_message(std::string_view text);
 
+// A parser's description of an error, which may quote what it read: on one line (a newline
+// as a space, other control characters as '?'), whatever its length.
+std::string one_line_for_message(std::string_view text);
+
 // A path as an error message may echo it: as shorten_for_message, but at most kMaxPathChars
 // and a long path keeps its end (the file's name): ".../scenes/storm.toml".
 constexpr size_t kMaxPathChars = 200;

@@ -325,11 +325,10 @@ class PathReader {
     try {
       root = toml::parse(text, check_.source());
     } catch (const toml::parse_error& error) {
-      std::string description(error.description());
-      std::replace(description.begin(), description.end(), '\n', ' ');
       const toml::source_position at = error.source().begin;
       throw InputError(check_.source() + ":" + std::to_string(at.line) + ":" +
-                       std::to_string(at.column) + ": malformed TOML: " + description);
+                       std::to_string(at.column) + ": malformed TOML: " +
+                       one_line_for_message(error.description()));
     }
     for (const auto& [name, node] : root)
       if (name.str() != "key")

@@ -24,6 +24,12 @@ std::string shorten_for_message(std::string_view text) {
   return printable(text.substr(0, cut)) + "...";
 }
 
+std::string one_line_for_message(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = c == '\n' ? ' ' : c;
+  return printable(out);
+}
+
 std::string shorten_path_for_message(std::string_view path) {
   if (path.size() <= kMaxPathChars) return printable(path);
   size_t start = path.size() - (kMaxPathChars - 3);

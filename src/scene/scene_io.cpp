@@ -203,9 +203,9 @@ class SceneReader {
     try {
       root = toml::parse(text, source_);
     } catch (const toml::parse_error& error) {
-      std::string description(error.description());
-      std::replace(description.begin(), description.end(), '\n', ' ');
-      fail(error.source(), "malformed TOML: " + description);
+      // toml++ quotes the offending bytes: control characters among them (a carriage return)
+      // would break the message's one line.
+      fail(error.source(), "malformed TOML: " + one_line_for_message(error.description()));
     }
     Scene scene;
     if (const toml::node* preset = root.get("preset")) scene = read_preset(*preset);
@@ -622,9 +622,7 @@ void scene_detail::read_field_value(Scene& scene, const Field& field, const std:
   try {
     root = toml::parse("value = " + std::string(text));
   } catch (const toml::parse_error& error) {
-    std::string description(error.description());
-    std::replace(description.begin(), description.end(), '\n', ' ');
-    throw not_a_value("not a TOML value (" + description + ")");
+    throw not_a_value("not a TOML value (" + one_line_for_message(error.description()) + ")");
   }
   const toml::node* node = root.get("value");
   if (!node || root.size() != 1) throw not_a_value("expected one TOML value");

@@ -1378,3 +1378,18 @@ TEST(SceneRoundTrip, OutputIsCommentedAndHasAllTables) {
 
 }  // namespace
 }  // namespace nephele
+
+// toml++ quotes what it read in its descriptions: a carriage return among those bytes must not
+// split nephele's one-line message (found by the fuzz tests).
+TEST(SceneIo, MalformedTomlMessagesStayOnOneLine) {
+  try {
+    nephele::parse_scene_toml("[particle_clouds]\nrayleigh_phase = tr\r\n", "s.toml");
+    FAIL() << "accepted";
+  } catch (const nephele::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.find_first_of("\r\n"), std::string::npos) << m;
+    EXPECT_NE(m.find("s.toml:2"), std::string::npos) << m;
+    EXPECT_NE(m.find("malformed TOML"), std::string::npos) << m;
+  }
+  EXPECT_EQ(nephele::one_line_for_message("a\nb\rc\x7f"), "a b?c?");
+}
