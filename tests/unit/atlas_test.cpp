@@ -768,6 +768,49 @@ TEST(TileAtlas, RejectsBadArgumentsNamingThem) {
             std::string::npos);
 }
 
+// The README's table of the two methods under churn: a 2048^2 atlas, 100 impostors of 48-400
+// texels a side (aspect 0.5-2), each changing size every four frames or so (sometimes
+// vanishing), 30 s at 60 frames/s. A measurement, not a check: run it with
+//   build/tests/nephele_tests --gtest_also_run_disabled_tests \
+//       --gtest_filter='AtlasChurn.DISABLED_*'
+template <typename Atlas>
+void print_churn(const char* label, Atlas atlas) {
+  Workload workload(20261126, 100, 48, 400);
+  double occupancy = 0.0, wasted = 0.0, fragmentation = 0.0;
+  long long allocations = 0, downsized = 0;
+  constexpr int kFrames = 30 * 60;
+  for (int frame = 0; frame < kFrames; ++frame) {
+    const double now_s = frame * kFrameS;
+    for (int k = 0; k < 25; ++k) {
+      const Op op = workload.next();
+      if (op.release) {
+        atlas.release(op.id);
+        continue;
+      }
+      ++allocations;
+      downsized += atlas.allocate(op.id, op.width, op.height, now_s).downsized ? 1 : 0;
+    }
+    const AtlasStats s = atlas.stats();
+    occupancy += s.occupancy / kFrames;
+    wasted += s.wasted / kFrames;
+    fragmentation += s.fragmentation / kFrames;
+  }
+  const AtlasStats s = atlas.stats();
+  std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.1f%% | %.1f |\n", label, occupancy, wasted,
+              fragmentation, s.defragmentations_per_s, 100.0 * double(downsized) / double(allocations),
+              s.mean_op_us);
+}
+
+TEST(AtlasChurn, DISABLED_StatisticsOfBothMethods) {
+  std::printf("| method | occupancy | waste | fragmentation | defragmentations/s | downsized | "
+              "us/operation |\n");
+  print_churn("direct, no defragmentation", DirectAtlas(2048, 2048, {16, false, 2.0}));
+  print_churn("direct, at most 2/s", DirectAtlas(2048, 2048, {16, true, 2.0}));
+  print_churn("tiles of 32", TileAtlas(2048, 2048, {32, false, 1.0}));
+  print_churn("tiles of 32, at most 1/s", TileAtlas(2048, 2048, {32, true, 1.0}));
+  print_churn("tiles of 16", TileAtlas(2048, 2048, {16, false, 1.0}));
+}
+
 }  // namespace
 }  // namespace nephele::particles
 
