@@ -136,6 +136,13 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector
   for (const RasterShaders& shaders : pipelines) {
     stages[0].module = load_module(device_, shaders.vert);
     stages[1].module = load_module(device_, shaders.frag);
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < shaders.frag_specialization.size(); ++i)
+      entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
+    const VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(),
+                                    shaders.frag_specialization.size() * sizeof(int32_t),
+                                    shaders.frag_specialization.data()};
+    stages[1].pSpecializationInfo = entries.empty() ? nullptr : &spec;
     VkPipeline pipeline = VK_NULL_HANDLE;
     const VkResult result =
         vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);

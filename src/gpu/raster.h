@@ -18,9 +18,11 @@
 
 namespace nephele::gpu {
 
-// A pipeline's shaders: embedded SPIR-V names ("particles.vert.spv").
+// A pipeline's shaders: embedded SPIR-V names ("particles.vert.spv"), and the fragment
+// shader's integer specialization constants 0..n-1.
 struct RasterShaders {
   std::string vert, frag;
+  std::vector<int32_t> frag_specialization = {};
 };
 
 // One draw: `vertex_count` vertices from `first_vertex` with `pipeline`, its constants, into

@@ -452,7 +452,7 @@ void ImpostorCache::record_updates(VkCommandBuffer cmd, gpu::PassTimer& timer) {
 
 gpu::RasterDraw ImpostorCache::quads(const gpu::DrawConstants& camera) const {
   gpu::RasterDraw d;
-  d.pipeline = 1;
+  d.pipeline = tiles_ ? 2 : 1;  // the layer pass's impostor pipelines (particle_clouds.cpp)
   d.vertex_count = 6 * uint32_t(quads_.size());
   d.constants = camera;
   d.constants.info.x = 0;

@@ -118,8 +118,10 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   if (!pass_)
     pass_ = std::make_unique<gpu::RasterPass>(
         ctx_, set_, std::vector<VkFormat>{kLayerFormat, kDepthFormat}, true,
-        std::vector<gpu::RasterShaders>{{"particles.vert.spv", "particles.frag.spv"},
-                                        {"impostor.vert.spv", "impostor.frag.spv"}});
+        std::vector<gpu::RasterShaders>{
+            {"particles.vert.spv", "particles.frag.spv"},
+            {"impostor.vert.spv", "impostor.frag.spv", {gpu::IMPOSTOR_DIRECT}},
+            {"impostor.vert.spv", "impostor.frag.spv", {gpu::IMPOSTOR_TILES}}});
   camera_.forward = glm::vec4(glm::vec3(params.camera_forward), params.camera_pos_m.w);
   camera_.right = glm::vec4(glm::vec3(params.camera_right), params.camera_forward.w);
   camera_.up = glm::vec4(glm::vec3(params.camera_up), 0.0f);
