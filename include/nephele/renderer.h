@@ -53,6 +53,7 @@ struct ParticleCloudStats {
   int relit_clouds = 0;  // by the CPU lighting this frame
   int impostors = 0;     // clouds drawn as impostors
   int impostor_updates = 0;  // drawn into the atlas this frame
+  int layer_width = 0, layer_height = 0;  // the particle layer's pixels (layer_resolution)
   double generate_ms = 0.0, lighting_ms = 0.0, sort_ms = 0.0;  // host wall time
   // The atlas (particles/atlas.h, AtlasStats): shares of its texels, defragmentations per
   // second, downsized images, and the manager's time per operation.

@@ -344,6 +344,12 @@ struct ParticleCloudParams {
   // radiance albedo x I_k x sunlight / pi times this, [0, 10]; 0 = their model alone.
   float diffuse_strength = 1.0f;
   int light_buffer = 32;               // the lighting splat buffer's side: 32 or 64 texels
+  // The particle layer's pixels per output pixel along each axis, [0.25, 1]: below 1, the
+  // particles are drawn off-screen at a lower resolution and filtered up when composed
+  // (Cantlay, GPU Gems 3, ch. 23): at 0.5 a quarter of the fragments, where filling them is
+  // what costs (a CPU's Vulkan at high resolution), for softer particles. Impostor images
+  // follow the layer's resolution.
+  float layer_resolution = 1.0f;
   uint32_t seed = 1;
   // Impostors (seed 003, 3.3.4-3.3.6): a cloud farther than impostor_distance_m is drawn once
   // into an atlas and then as one quad, drawn again when the direction to it turns by more than
@@ -356,7 +362,7 @@ struct ParticleCloudParams {
   float impostor_distance_m = 8000.0f;      // [0, 1e7]
   float impostor_max_angle_deg = 1.5f;      // (0, 90]
   float impostor_distance_factor = 1.15f;   // (1, 10]
-  float impostor_resolution = 1.0f;         // image texels per screen pixel, [0.1, 4]
+  float impostor_resolution = 1.0f;         // image texels per particle-layer pixel, [0.1, 4]
   int impostor_updates_per_frame = 8;       // [1, 1024]
   int impostor_fade_frames = 8;             // [1, 1000]
   int atlas_size = 2048;                    // texels a side, [256, 8192]

@@ -333,6 +333,9 @@ const std::vector<Section>& scene_sections() {
               "[0, 10]: the multiply scattered light, an isotropic radiance albedo x I_k x "
               "sunlight / pi times this; 0 = Harris and Lastra's model alone"),
         FIELD(particle_clouds, light_buffer, "the CPU lighting's splat buffer, 32 or 64 texels a side"),
+        FIELD(particle_clouds, layer_resolution,
+              "the particle layer's pixels per output pixel along each axis, [0.25, 1]; drawn "
+              "at this resolution and filtered up when composed"),
         FIELD(particle_clouds, seed, "seeds the noise and the particles' offsets"),
         FIELD(particle_clouds, impostors,
               "\"off\" (every particle every frame), \"direct\" (far clouds as impostors "
@@ -342,7 +345,7 @@ const std::vector<Section>& scene_sections() {
               "an impostor is drawn again when the direction to it turns by more, (0, 90]"),
         FIELD(particle_clouds, impostor_distance_factor,
               "... or its distance changes by more than this factor, (1, 10]"),
-        FIELD(particle_clouds, impostor_resolution, "impostor texels per screen pixel, [0.1, 4]"),
+        FIELD(particle_clouds, impostor_resolution, "impostor texels per particle-layer pixel, [0.1, 4]"),
         FIELD(particle_clouds, impostor_updates_per_frame, "[1, 1024]"),
         FIELD(particle_clouds, impostor_fade_frames, "an update's cross-fade, [1, 1000] frames"),
         FIELD(particle_clouds, atlas_size, "the impostor atlas's side (texels), [256, 8192]"),

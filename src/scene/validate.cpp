@@ -379,6 +379,7 @@ void check_particle_clouds(const Checker& check, const ParticleCloudParams& p) {
   check.in_range("particle_clouds.diffuse_strength", p.diffuse_strength, 0.0f, 10.0f);
   if (p.light_buffer != 32 && p.light_buffer != 64)
     check.fail("particle_clouds.light_buffer", std::to_string(p.light_buffer), "must be 32 or 64");
+  check.in_range("particle_clouds.layer_resolution", p.layer_resolution, 0.25f, 1.0f);
   if (p.impostors != "off" && p.impostors != "direct" && p.impostors != "tiles")
     check.fail("particle_clouds.impostors", scene_detail::toml_quote(p.impostors),
                "must be \"off\", \"direct\" or \"tiles\"");

@@ -124,6 +124,36 @@ TEST_F(ParticleRenderTest, TheNearerOfParticleAndVolumetricCloudsHidesTheOther) 
   EXPECT_LT(behind, 0.03);
 }
 
+// Drawn off-screen at half or a quarter of the output's resolution and filtered up: a quarter
+// or a sixteenth of the fragments, the same clouds, softer (at 160 x 96 the particles are a few
+// pixels across, so the blur is large; a misplaced or shifted layer would move the clouds).
+TEST_F(ParticleRenderTest, ALowerResolutionLayerShowsTheSameClouds) {
+  nephele::Scene s = particle_scene();
+  s.output.width = 160;
+  s.output.height = 96;
+  s.particle_clouds.layer_resolution = 1.0f;
+  const nephele::Frame full = render(s);
+  ASSERT_TRUE(full.stats.particle_clouds);
+  EXPECT_EQ(full.stats.particle_clouds->layer_width, 160);
+  EXPECT_EQ(full.stats.particle_clouds->layer_height, 96);
+  double previous = 0.0;
+  for (const float scale : {0.5f, 0.25f}) {
+    s.particle_clouds.layer_resolution = scale;
+    const nephele::Frame low = render(s);
+    EXPECT_EQ(low.stats.particle_clouds->layer_width, int(std::lround(160 * scale)));
+    EXPECT_EQ(low.stats.particle_clouds->layer_height, int(std::lround(96 * scale)));
+    size_t n = 0;
+    const double difference = masked_difference(low.color, full.color, [](size_t) { return true; }, n);
+    const double luminance = low.stats.mean_luminance / full.stats.mean_luminance - 1.0;
+    std::printf("layer at %.2f: mean luminance %+.2f%%, mean pixel difference %.2f%%\n", scale,
+                100.0 * luminance, 100.0 * difference);
+    EXPECT_NEAR(luminance, 0.0, 0.01) << scale;  // filtering moves light, it neither adds nor loses it
+    EXPECT_LT(difference, scale > 0.4f ? 0.22 : 0.35) << scale;
+    EXPECT_GT(difference, previous) << scale;  // the coarser, the softer
+    previous = difference;
+  }
+}
+
 }  // namespace
 
 namespace {

@@ -224,6 +224,9 @@ TEST(ParticleScene, BadParametersGetOneLineNamingThem) {
   EXPECT_NE(cells.find("particle_clouds.cell_m = 2: the field would hold"), std::string::npos) << cells;
   EXPECT_NE(message("[particle_clouds]\ncoverage = 1.5\n").find("particle_clouds.coverage = 1.5"),
             std::string::npos);
+  const std::string layer = message("[particle_clouds]\nlayer_resolution = 0.1\n");
+  EXPECT_NE(layer.find("particle_clouds.layer_resolution = 0.1"), std::string::npos) << layer;
+  EXPECT_NE(layer.find("[0.25, 1]"), std::string::npos) << layer;
   EXPECT_NE(message("[particle_clouds]\nbottom_altitude_m = 3000\n").find("top_altitude_m"),
             std::string::npos);
   // A scene's particle clouds survive writing and reading.
@@ -231,10 +234,12 @@ TEST(ParticleScene, BadParametersGetOneLineNamingThem) {
   s.particle_clouds.coverage = 0.25f;
   s.particle_clouds.rayleigh_phase = true;
   s.particle_clouds.light_buffer = 64;
+  s.particle_clouds.layer_resolution = 0.75f;
   const Scene back = parse_scene_toml(scene_to_toml(s), "");
   EXPECT_EQ(back.particle_clouds.coverage, 0.25f);
   EXPECT_TRUE(back.particle_clouds.rayleigh_phase);
   EXPECT_EQ(back.particle_clouds.light_buffer, 64);
+  EXPECT_EQ(back.particle_clouds.layer_resolution, 0.75f);
 }
 
 }  // namespace

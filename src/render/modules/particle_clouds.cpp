@@ -102,6 +102,10 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
                                    gpu::FrameParams& params) {
   const ParticleCloudParams& p = scene.particle_clouds;
   active_ = p.coverage > 0.0f;
+  // The layer's pixels; compose.comp filters it up to the output's (its projection is the
+  // same, in coordinates across the image).
+  const int layer_width = std::max(1, int(std::lround(float(width) * p.layer_resolution)));
+  const int layer_height = std::max(1, int(std::lround(float(height) * p.layer_resolution)));
   stats_ = {};
   near_first_ = near_count_ = 0;
   params.particle_shading = glm::vec4(p.albedo, p.phase_g, p.rayleigh_phase ? 1.0f : 0.0f, p.opacity);
@@ -150,7 +154,7 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   const glm::vec3 offset = glm::vec3(p.wind_mps * (scene.time_s - field_time_s_), 0.0f) -
                            scene.camera.position_m;
   const ImpostorCache::Plan plan =
-      impostors_.plan(field_, p, offset, height, params.camera_pos_m.w, regenerated, still);
+      impostors_.plan(field_, p, offset, layer_height, params.camera_pos_m.w, regenerated, still);
   // The particle buffer: each updated impostor's particles, back to front from the eye, then
   // all the particles drawn one by one, back to front.
   size_t total = 0;
@@ -201,11 +205,11 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   stats_.clouds = int(field_.clouds.size());
   set_.bind_buffer(gpu::kParticles, buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 
-  if (layer_.width() != uint32_t(width) || layer_.height() != uint32_t(height)) {
+  if (layer_.width() != uint32_t(layer_width) || layer_.height() != uint32_t(layer_height)) {
     ctx_.wait_queue_idle();
-    layer_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kLayerFormat,
+    layer_ = gpu::Texture(ctx_, uint32_t(layer_width), uint32_t(layer_height), 1, kLayerFormat,
                           VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
-    depth_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, kDepthFormat,
+    depth_ = gpu::Texture(ctx_, uint32_t(layer_width), uint32_t(layer_height), 1, kDepthFormat,
                           VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
     set_.bind_sampled_image(gpu::kParticleLayer, layer_);
     set_.bind_sampled_image(gpu::kParticleDepth, depth_);
@@ -216,6 +220,8 @@ ParticleCloudStats ParticleCloudsModule::frame_stats() const {
   ParticleCloudStats out;
   out.particles = stats_.field_particles;
   out.drawn = stats_.particles;
+  out.layer_width = int(layer_.width());
+  out.layer_height = int(layer_.height());
   out.clouds = stats_.clouds;
   out.relit_clouds = stats_.relit_clouds;
   out.generate_ms = stats_.generate_ms;
