@@ -67,6 +67,8 @@ nlohmann::json atlas_json(const ParticleCloudStats& p) {
           {"defragmentations_per_s", p.atlas_defragmentations_per_s},
           {"downsized", p.atlas_downsized},
           {"failed", p.atlas_failed},
+          {"resolution_scale", p.impostor_resolution_scale},
+          {"waiting", p.impostors_waiting},
           {"mean_op_us", p.atlas_mean_op_us},
           {"max_op_us", p.atlas_max_op_us}};
 }
@@ -231,11 +233,13 @@ nlohmann::json run_impostor_bench(const RendererOptions& options, const Scene& s
   for (const char* method : {"direct", "tiles"}) {
     const nlohmann::json& a = out["atlas_" + std::string(method)];
     std::printf("  atlas %-6s occupancy %.3f, wasted %.3f, fragmentation %.3f, %d "
-                "defragmentations (%.2f/s), %d downsized, %.2f us per operation (max %.1f)\n",
+                "defragmentations (%.2f/s), %d downsized, %d failed, %.2f us per operation (max "
+                "%.1f); images at %.2f of impostor_resolution, %d far clouds waiting for one\n",
                 method, a["occupancy"].get<double>(), a["wasted"].get<double>(),
                 a["fragmentation"].get<double>(), a["defragmentations"].get<int>(),
                 a["defragmentations_per_s"].get<double>(), a["downsized"].get<int>(),
-                a["mean_op_us"].get<double>(), a["max_op_us"].get<double>());
+                a["failed"].get<int>(), a["mean_op_us"].get<double>(), a["max_op_us"].get<double>(),
+                a["resolution_scale"].get<double>(), a["waiting"].get<int>());
   }
   for (const ParticleLightTiming& t : lighting)
     std::printf("  lighting of the whole field, %dx%d buffer: CPU %.1f ms (%.3f us a particle); the "

@@ -162,6 +162,8 @@ std::string stats_to_json(const FrameStats& stats, const std::string& image_path
                             {"relit_clouds", p->relit_clouds},
                             {"impostors", p->impostors},
                             {"impostor_updates", p->impostor_updates},
+                            {"impostors_waiting", p->impostors_waiting},
+                            {"impostor_resolution_scale", p->impostor_resolution_scale},
                             {"layer_width", p->layer_width},
                             {"layer_height", p->layer_height},
                             {"generate_ms", p->generate_ms},

@@ -54,6 +54,10 @@ struct ParticleCloudStats {
   int impostors = 0;     // clouds drawn as impostors
   int impostor_updates = 0;  // drawn into the atlas this frame
   int layer_width = 0, layer_height = 0;  // the particle layer's pixels (layer_resolution)
+  int impostors_waiting = 0;  // far clouds drawn particle by particle, their images not yet drawn
+  // The impostor images' resolution, of impostor_resolution: below 1 while the atlas is short
+  // of room (render/modules/impostors.h).
+  double impostor_resolution_scale = 1.0;
   double generate_ms = 0.0, lighting_ms = 0.0, sort_ms = 0.0;  // host wall time
   // The atlas (particles/atlas.h, AtlasStats): shares of its texels, defragmentations per
   // second, downsized images, and the manager's time per operation.

@@ -158,6 +158,11 @@ class DirectAtlas {
   // Whether a width x height texel request fits somewhere in the free space as it is now (a
   // check independent of the best-fit search, for tests and callers planning ahead).
   bool can_fit(int width, int height) const;
+  // The share of the atlas's texels free to allocate (AtlasStats::free, without the rest).
+  double free_share() const {
+    return double((long long)used_.size() - used_cells_) * options_.granule * options_.granule /
+           (double(width_) * double(height_));
+  }
   int granule() const { return options_.granule; }
   int width() const { return width_; }
   int height() const { return height_; }
@@ -249,6 +254,9 @@ class TileAtlas {
   int slots_per_row() const { return slots_x_; }
   int slot_count() const { return slots_x_ * slots_y_; }
   int free_tiles() const { return free_tiles_; }
+  double free_share() const {  // AtlasStats::free, without the rest
+    return double(free_tiles_) * options_.tile * options_.tile / (double(width_) * double(height_));
+  }
 
  private:
   int tiles_for(int texels) const { return (texels - 1) / interior() + 1; }  // texels > 0

@@ -204,4 +204,46 @@ TEST_F(ParticleRenderTest, ImpostorsLookLikeTheParticlesTheyReplace) {
   }
 }
 
+// An atlas too small for every image at the asked resolution: the images are drawn smaller
+// until they fit, so that no far cloud falls back to its particles, in a still and in a
+// flight; with room, they stay at the asked resolution.
+TEST_F(ParticleRenderTest, ImpostorsShrinkToFitASmallAtlas) {
+  nephele::Scene s = cockpit_scene("off");
+  s.output.width = 240;
+  s.output.height = 144;
+  const nephele::Frame all = render(s);
+  for (const std::string method : {"direct", "tiles"}) {
+    s.particle_clouds.impostors = method;
+    s.particle_clouds.atlas_size = 2048;
+    const nephele::ParticleCloudStats roomy = *render(s).stats.particle_clouds;
+    EXPECT_EQ(roomy.impostor_resolution_scale, 1.0) << method;
+    EXPECT_EQ(roomy.impostors_waiting, 0) << method;
+    // Room for fewer texels than the images take, but for every image at the smallest size
+    // (8 texels a side): direct granules of 8, tiles of 16.
+    s.particle_clouds.atlas_size = method == "direct" ? 320 : 384;
+    s.particle_clouds.atlas_granule = 8;
+    s.particle_clouds.atlas_tile = 16;
+    const nephele::Frame still = render(s);
+    const nephele::ParticleCloudStats& p = *still.stats.particle_clouds;
+    std::printf("%s in a small atlas: %d impostors, %d waiting, images at %.2f of the "
+                "resolution asked, occupancy %.3f, mean luminance %+.2f%%\n",
+                method.c_str(), p.impostors, p.impostors_waiting, p.impostor_resolution_scale,
+                p.atlas_occupancy, 100.0 * (still.stats.mean_luminance / all.stats.mean_luminance - 1.0));
+    EXPECT_LT(p.impostor_resolution_scale, 0.9) << method;
+    EXPECT_EQ(p.impostors_waiting, 0) << method;
+    EXPECT_EQ(p.impostors, roomy.impostors) << method;
+    EXPECT_NEAR(still.stats.mean_luminance / all.stats.mean_luminance, 1.0, 0.03) << method;
+    // A flight: the turn redraws images, which must keep finding room.
+    nephele::Renderer& r = shared_renderer();
+    for (int f = 1; f <= 12; ++f) {
+      nephele::Scene next = s;
+      const float yaw = 0.05f * float(f);  // rad
+      next.camera.view_dir = glm::vec3(std::sin(yaw), std::cos(yaw), -0.08f);
+      const nephele::ParticleCloudStats q = *r.render_next(next, false).stats.particle_clouds;
+      EXPECT_EQ(q.impostors_waiting, 0) << method << " frame " << f;
+      EXPECT_GE(q.impostor_resolution_scale, 0.25) << method;
+    }
+  }
+}
+
 }  // namespace

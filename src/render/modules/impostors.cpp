@@ -14,7 +14,13 @@ namespace {
 constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kAuxFormat = VK_FORMAT_R16_SFLOAT;  // particles.frag's depth output, unused here
 constexpr int kScratchSide = 1024;                     // tiles: this frame's images before the split
-constexpr int kMinSide = 16, kMaxSide = 256;           // an impostor's image (texels a side)
+constexpr int kMinSide = 8, kMaxSide = 256;  // an impostor's image (texels a side)
+// The images' resolution for the atlas's room (ImpostorCache::adapt_resolution): down by
+// kScaleDown a frame while images do not fit or less than kLowRoom of the atlas is free, up by
+// kScaleUp while more than kHighRoom is; an image drawn at a resolution kRescale off is stale.
+constexpr float kMinScale = 0.25f, kScaleDown = 0.85f, kScaleUp = 1.02f;
+constexpr double kLowRoom = 0.05, kHighRoom = 0.3;
+constexpr float kRescale = 1.3f;
 
 gpu::Texture texture(gpu::Context& ctx, int w, int h, VkFormat format) {
   return gpu::Texture(ctx, uint32_t(w), uint32_t(h), 1, format, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
@@ -80,6 +86,7 @@ struct ImpostorCache::Impostor {
   glm::vec3 dir{0.0f};  // from the eye towards the cloud when drawn
   float distance_m = 0.0f;
   glm::vec3 light{0.0f};  // the cloud's lighting then (ParticleCloud::lit_towards)
+  float scale = 1.0f;     // the resolution scale then (ImpostorCache::scale_)
   // The quad: its centre from the cloud's, and its half sides (its image's right and up).
   glm::vec3 center_from_cloud{0.0f};
   glm::vec3 right{0.0f}, up{0.0f};
@@ -131,6 +138,7 @@ void ImpostorCache::configure(const ParticleCloudParams& p) {
   if (same) return;
   params_ = p;
   configured_ = true;
+  scale_ = 1.0f;
   impostors_.clear();
   direct_.reset();
   tiles_.reset();
@@ -204,6 +212,8 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
   std::vector<Candidate> candidates;
   const float cos_angle = std::cos(glm::radians(params.impostor_max_angle_deg));
   const float cos_light = std::cos(glm::radians(0.5f));
+  const bool cramped = on && room() < kLowRoom;
+  int shrinking = 0;  // images waiting to be drawn smaller
   for (size_t i = 0; i < field.clouds.size(); ++i) {
     const particles::ParticleCloud& cloud = field.clouds[i];
     Impostor& im = impostors_[i];
@@ -218,30 +228,60 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
     if (!im.has_image) {
       plan.particle_clouds.push_back(i);  // until its image exists
       candidates.push_back({i, 1e9f});
+      ++stats_.waiting;
       continue;
     }
     const float angle = std::acos(std::clamp(glm::dot(im.dir, rel / d), -1.0f, 1.0f));
     const float ratio = std::max(d / im.distance_m, im.distance_m / d);
+    const float rescale = std::max(im.scale / scale_, scale_ / im.scale);
     const bool relit = glm::dot(im.light, cloud.lit_towards) < cos_light;
-    if (glm::dot(im.dir, rel / d) < cos_angle || ratio > params.impostor_distance_factor || relit)
+    // An image too large for the atlas's room now: drawing it smaller makes room, first of all
+    // when the atlas is full, else after the clouds waiting for their first image.
+    if (im.scale > kRescale * scale_) {
+      candidates.push_back({i, cramped ? 2e9f : 5e8f});
+      ++shrinking;
+    }
+    else if (glm::dot(im.dir, rel / d) < cos_angle || ratio > params.impostor_distance_factor ||
+             rescale > kRescale || relit)
       candidates.push_back({i, relit ? 1e6f : angle / glm::radians(params.impostor_max_angle_deg) +
-                                                  std::log(ratio) / std::log(params.impostor_distance_factor)});
+                                                  std::log(ratio) / std::log(params.impostor_distance_factor) +
+                                                  std::log(rescale) / std::log(kRescale)});
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
   if (!still && int(candidates.size()) > params.impostor_updates_per_frame)
     candidates.resize(size_t(params.impostor_updates_per_frame));
+  // A still has nothing to cross-fade: the images it replaces make room at once.
+  if (still && on)
+    for (const Candidate& c : candidates) release(impostors_[c.cloud]);
   // Each chosen cloud's view and image size: the image's resolution on the screen (texels per
-  // unit of tangent) times the option, within [kMinSide, kMaxSide] keeping its proportions.
-  const float texels = params.impostor_resolution * float(image_height) / (2.0f * tan_half_fov);
+  // unit of tangent) times the option and the scale for the atlas's room, within
+  // [kMinSide, kMaxSide] keeping its proportions.
   std::vector<Framing> framings;
+  for (const Candidate& c : candidates) framings.push_back(frame_cloud(field.clouds[c.cloud], offset));
   std::vector<glm::ivec2> sizes;
-  for (const Candidate& c : candidates) {
-    framings.push_back(frame_cloud(field.clouds[c.cloud], offset));
-    glm::ivec2 size(glm::round(2.0f * framings.back().tan_half * texels));
-    const float shrink = std::min(1.0f, float(kMaxSide) / float(std::max(size.x, size.y)));
-    sizes.push_back(glm::clamp(glm::ivec2(glm::vec2(size) * shrink), glm::ivec2(kMinSide),
-                               glm::ivec2(kMaxSide)));
+  const auto size_images = [&] {
+    const float texels = scale_ * params.impostor_resolution * float(image_height) / (2.0f * tan_half_fov);
+    sizes.clear();
+    double texels_held = 0.0;  // in the atlas, with its rounding and borders
+    for (const Framing& framing : framings) {
+      glm::ivec2 size(glm::round(2.0f * framing.tan_half * texels));
+      const float shrink = std::min(1.0f, float(kMaxSide) / float(std::max(size.x, size.y)));
+      sizes.push_back(glm::clamp(glm::ivec2(glm::vec2(size) * shrink), glm::ivec2(kMinSide),
+                                 glm::ivec2(kMaxSide)));
+      texels_held += footprint(sizes.back());
+    }
+    return texels_held;
+  };
+  double texels_held = size_images();
+  // A still's images all at once: at a resolution whose images take at most 85% of the free
+  // room (the sizes' bounds and rounding make the scale's effect uneven: a few tries).
+  if (still && on) {
+    const double texels_free = 0.85 * room() * double(params.atlas_size) * double(params.atlas_size);
+    for (int attempt = 0; attempt < 4 && texels_held > texels_free && scale_ > kMinScale; ++attempt) {
+      scale_ = std::max(kMinScale, scale_ * float(std::sqrt(texels_free / texels_held)));
+      texels_held = size_images();
+    }
   }
   // The seed's step 1: an empty atlas (the first frame, or after a reset) is filled by
   // rectangle packing all at once; later images come one at a time by best fit.
@@ -254,6 +294,7 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
   }
   glm::ivec2 shelf(0);  // tiles: this frame's images placed in rows in the scratch
   int shelf_height = 0, batch = 0;
+  bool short_of_room = false;  // an image did not fit, or only smaller
   for (size_t k = 0; k < candidates.size(); ++k) {
     const Candidate& c = candidates[k];
     const particles::ParticleCloud& cloud = field.clouds[c.cloud];
@@ -267,31 +308,36 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
       if (tiles_) tiles_->release(im.old_id);
       im.fading = false;
     }
-    const uint32_t id = im.has_image ? (im.id ^ 1u) : uint32_t(2 * c.cloud);
+    uint32_t id = im.has_image ? (im.id ^ 1u) : uint32_t(2 * c.cloud);
     Update u{c.cloud, id, 0, 0, {}, glm::ivec2(0), size};
     if (direct_ && packed[k]) {
       const particles::AtlasRect r = direct_->regions().at(id);
       u.size = glm::ivec2(r.w, r.h);
-    } else if (direct_) {
-      const particles::DirectAtlas::Result res = direct_->allocate(id, size.x, size.y, now_s);
-      if (!res.ok) continue;
-      if (res.defragmented) moves_ = direct_->last_moves();
-      u.size = glm::ivec2(res.rect.w, res.rect.h);
     } else {
-      if (shelf.x + size.x > kScratchSide) shelf = glm::ivec2(0, shelf.y + shelf_height), shelf_height = 0;
-      if (shelf.y + size.y > kScratchSide) {  // the scratch is full: the next batch reuses it
+      if (tiles_ && shelf.x + size.x > kScratchSide)
+        shelf = glm::ivec2(0, shelf.y + shelf_height), shelf_height = 0;
+      if (tiles_ && shelf.y + size.y > kScratchSide) {  // the scratch is full: the next batch reuses it
         shelf = glm::ivec2(0);
         shelf_height = 0;
         ++batch;
       }
-      const particles::TileAtlas::Result res = tiles_->allocate(id, size.x, size.y, now_s);
-      if (!res.ok) continue;
-      if (res.defragmented) moves_ = tiles_->last_moves();
-      u.size = glm::ivec2(res.placement.width, res.placement.height);
+      std::optional<glm::ivec2> served = allocate(id, size, now_s, short_of_room);
+      if (!served && im.has_image) {
+        // No room for both images: the new one replaces the old at once (no cross-fade), or
+        // else the cloud goes back to its particles until there is room.
+        release(im);
+        plan.particle_clouds.push_back(c.cloud);
+        id = u.id = uint32_t(2 * c.cloud);
+        served = allocate(id, size, now_s, short_of_room);
+      }
+      if (!served) continue;
+      u.size = *served;
       u.scratch = shelf;
       u.batch = batch;
-      shelf.x += u.size.x;
-      shelf_height = std::max(shelf_height, u.size.y);
+      if (tiles_) {
+        shelf.x += u.size.x;
+        shelf_height = std::max(shelf_height, u.size.y);
+      }
     }
     u.view.forward = glm::vec4(framing.forward, framing.tan_half.y);
     u.view.right = glm::vec4(framing.right, framing.tan_half.x / framing.tan_half.y);
@@ -311,6 +357,7 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
     im.dir = rel / glm::length(rel);
     im.distance_m = glm::length(rel);
     im.light = cloud.lit_towards;
+    im.scale = scale_;
     im.right = framing.right * depth_m * framing.tan_half.x;
     im.up = framing.up * depth_m * framing.tan_half.y;
     im.center_from_cloud = framing.forward * depth_m - rel;
@@ -321,8 +368,49 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
   std::vector<size_t> kept;
   for (size_t i : plan.particle_clouds)
     if (!impostors_[i].has_image) kept.push_back(i);
+  stats_.waiting -= int(plan.particle_clouds.size() - kept.size());
   plan.particle_clouds = std::move(kept);
+  if (on) adapt_resolution(short_of_room, shrinking);
   return plan;
+}
+
+double ImpostorCache::footprint(const glm::ivec2& size) const {
+  if (!direct_ && !tiles_) return 0.0;
+  const auto whole = [](int texels, int unit) { return double((texels + unit - 1) / unit * unit); };
+  if (direct_) return whole(size.x, direct_->granule()) * whole(size.y, direct_->granule());
+  const int inner = tiles_->interior(), tile = tiles_->tile();
+  return whole(size.x, inner) / inner * tile * (whole(size.y, inner) / inner * tile);
+}
+
+std::optional<glm::ivec2> ImpostorCache::allocate(uint32_t id, const glm::ivec2& size,
+                                                  double now_s, bool& short_of_room) {
+  if (direct_) {
+    const particles::DirectAtlas::Result res = direct_->allocate(id, size.x, size.y, now_s);
+    short_of_room |= !res.ok || res.downsized;
+    if (!res.ok) return std::nullopt;
+    if (res.defragmented) moves_ = direct_->last_moves();
+    return glm::ivec2(res.rect.w, res.rect.h);
+  }
+  const particles::TileAtlas::Result res = tiles_->allocate(id, size.x, size.y, now_s);
+  short_of_room |= !res.ok || res.downsized;
+  if (!res.ok) return std::nullopt;
+  if (res.defragmented) moves_ = tiles_->last_moves();
+  return glm::ivec2(res.placement.width, res.placement.height);
+}
+
+double ImpostorCache::room() const {
+  return direct_ ? direct_->free_share() : tiles_ ? tiles_->free_share() : 0.0;
+}
+
+// Smaller while images do not fit or the room runs low, unless images are still waiting to be
+// drawn at the last scale (the room they free is on its way: going on would overshoot).
+void ImpostorCache::adapt_resolution(bool short_of_room, int shrinking) {
+  const double free = room();
+  if ((short_of_room || free < kLowRoom) && shrinking == 0)
+    scale_ = std::max(kMinScale, scale_ * kScaleDown);
+  else if (free > kHighRoom)
+    scale_ = std::min(1.0f, scale_ * kScaleUp);
+  stats_.resolution_scale = scale_;
 }
 
 glm::vec4 ImpostorCache::image_of(uint32_t id, std::vector<int>& slots) const {

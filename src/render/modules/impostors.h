@@ -1,12 +1,16 @@
 // Impostors of far particle clouds (seed 003, 3.3.4-3.3.6; issue 22): a cloud far enough away
-// is drawn once into an atlas, from the eye, framing its bounding sphere, and then drawn as
-// one quad with that image (impostor.vert, impostor.frag). It is drawn again when the
+// is drawn once into an atlas, from the eye, framing its particles' angular extent, and then
+// drawn as one quad with that image (impostor.vert, impostor.frag). It is drawn again when the
 // direction to it turns by more than a threshold angle, its distance changes by more than a
 // factor, or its lighting changes, at most a budget of clouds a frame; the image it replaces
 // fades out over a few frames so that an update never pops. The atlas is managed by either of
 // the seed's methods (particles/atlas.h): rectangles (best fit, rate-limited defragmentation,
 // else a smaller image) or tiles with a one-texel border, cut from the image drawn into a
-// scratch image by impostor_tiles.comp.
+// scratch image by impostor_tiles.comp. The images' resolution follows the atlas's room: when
+// an image does not fit, or little room is left, all images are asked smaller (down to a
+// quarter of impostor_resolution), and larger again when the room comes back; an image more
+// than 30% off the resolution asked is drawn again like a stale one, so that a full atlas never
+// leaves far clouds drawn particle by particle for long.
 #pragma once
 
 #include <chrono>
@@ -14,6 +18,7 @@
 #include <optional>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -31,6 +36,7 @@ struct ImpostorFrameStats {
   int updates = 0;       // drawn into the atlas this frame
   int fading = 0;        // cross-fading from an older image
   int waiting = 0;       // far clouds still drawn particle by particle (no image yet)
+  float resolution_scale = 1.0f;  // of impostor_resolution, for the atlas's room
   particles::AtlasStats atlas;
 };
 
@@ -71,6 +77,13 @@ class ImpostorCache {
   void configure(const ParticleCloudParams& params);
   void release(Impostor& im);
   glm::vec4 image_of(uint32_t id, std::vector<int>& slots) const;
+  // id's image of `size` texels in the atlas, or none; the texels served (smaller when the
+  // atlas is short of room, which sets short_of_room).
+  std::optional<glm::ivec2> allocate(uint32_t id, const glm::ivec2& size, double now_s,
+                                     bool& short_of_room);
+  void adapt_resolution(bool short_of_room, int shrinking);
+  double room() const;  // the atlas's share free to allocate
+  double footprint(const glm::ivec2& size) const;  // the atlas texels an image of `size` takes
 
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
@@ -85,6 +98,7 @@ class ImpostorCache {
   std::unique_ptr<particles::DirectAtlas> direct_;
   std::unique_ptr<particles::TileAtlas> tiles_;
   std::vector<Impostor> impostors_;
+  float scale_ = 1.0f;  // the images' resolution, of impostor_resolution, for the atlas's room
   std::vector<Update> updates_;
   std::vector<particles::AtlasMove> moves_;  // this frame's, to copy
   std::vector<gpu::ImpostorGpu> quads_;

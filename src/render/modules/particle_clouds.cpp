@@ -230,6 +230,8 @@ ParticleCloudStats ParticleCloudsModule::frame_stats() const {
   const ImpostorFrameStats& im = impostors_.stats();
   out.impostors = im.impostors;
   out.impostor_updates = im.updates;
+  out.impostors_waiting = im.waiting;
+  out.impostor_resolution_scale = im.resolution_scale;
   out.atlas_occupancy = im.atlas.occupancy;
   out.atlas_wasted = im.atlas.wasted;
   out.atlas_fragmentation = im.atlas.fragmentation;
