@@ -113,6 +113,11 @@ float coverage_threshold(const ParticleCloudParams& params) {
   return values[rank];
 }
 
+FieldShape field_shape(const ParticleCloudParams& p, float time_s) {
+  return {p.coverage, p.bottom_altitude_m, p.top_altitude_m, p.field_radius_m, p.cloud_spacing_m,
+          p.cell_m, p.particle_radius_m, p.noise_period_m, p.evolution_s, p.seed, time_s};
+}
+
 ParticleField generate_field(const ParticleCloudParams& params, float time_s) {
   ParticleField field;
   if (params.coverage <= 0.0f) return field;

@@ -30,8 +30,13 @@ struct ParticleCloud {
   glm::vec3 center_m{0.0f};   // ENU: the middle of its square at the layer's mid height
   float bound_radius_m = 0.0f;  // a sphere about center_m holding every particle whole
   std::vector<Particle> particles;
-  // The direction towards the light of its last lighting (particle_lighting.h); 0 = never lit.
+  // Its last lighting (particle_lighting.h): the direction towards the light (0 = never lit),
+  // the parameters it used, and how many lightings it has had (a drawing of it is stale when
+  // the count moved on).
   glm::vec3 lit_towards{0.0f};
+  float lit_forward = -1.0f, lit_opacity = -1.0f;
+  int lit_buffer = 0;
+  uint32_t lightings = 0;
 };
 
 struct ParticleField {
@@ -52,5 +57,15 @@ float coverage_threshold(const ParticleCloudParams& params);
 
 // The field at `time_s` (empty when coverage is 0). Deterministic for the parameters and time.
 ParticleField generate_field(const ParticleCloudParams& params, float time_s);
+
+// What generate_field's result depends on: two fields are the same when their shapes are.
+struct FieldShape {
+  float coverage, bottom_altitude_m, top_altitude_m, field_radius_m, cloud_spacing_m, cell_m,
+      particle_radius_m, noise_period_m, evolution_s;
+  uint32_t seed;
+  float time_s;
+  bool operator==(const FieldShape&) const = default;
+};
+FieldShape field_shape(const ParticleCloudParams& params, float time_s);
 
 }  // namespace nephele::particles

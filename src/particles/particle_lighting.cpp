@@ -78,6 +78,10 @@ void light_with(ParticleCloud& cloud, const glm::vec3& towards_light, float forw
     }
   }
   cloud.lit_towards = towards_light;
+  cloud.lit_forward = forward;
+  cloud.lit_opacity = opacity;
+  cloud.lit_buffer = n;
+  ++cloud.lightings;
 }
 
 // One row: texel x gets dst + (target - dst) a(x), a = opacity particle_profile(d^2 / r^2),
@@ -133,15 +137,19 @@ RelightReport relight(ParticleField& field, const glm::vec3& towards_light,
                       const ParticleCloudParams& params, size_t budget_particles,
                       float max_angle_deg) {
   const float cos_max = std::cos(glm::radians(max_angle_deg));
+  const float forward = forward_share(params);
   std::vector<size_t> stale;
-  for (size_t i = 0; i < field.clouds.size(); ++i)
-    if (glm::dot(field.clouds[i].lit_towards, towards_light) < cos_max) stale.push_back(i);
+  for (size_t i = 0; i < field.clouds.size(); ++i) {
+    const ParticleCloud& c = field.clouds[i];
+    if (glm::dot(c.lit_towards, towards_light) < cos_max || c.lit_forward != forward ||
+        c.lit_opacity != params.opacity || c.lit_buffer != params.light_buffer)
+      stale.push_back(i);
+  }
   // Never lit first (their dot is 0, the lowest of any cloud lit from above the horizon).
   std::stable_sort(stale.begin(), stale.end(), [&](size_t a, size_t b) {
     return glm::dot(field.clouds[a].lit_towards, field.clouds[a].lit_towards) <
            glm::dot(field.clouds[b].lit_towards, field.clouds[b].lit_towards);
   });
-  const float forward = forward_share(params);
   RelightReport report;
   for (size_t i : stale) {
     if (report.clouds > 0 && report.particles + field.clouds[i].particles.size() > budget_particles)

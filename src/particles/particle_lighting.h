@@ -43,8 +43,9 @@ void light_cloud(ParticleCloud& cloud, const glm::vec3& towards_light, float for
 void light_cloud_scalar(ParticleCloud& cloud, const glm::vec3& towards_light, float forward_share,
                         float opacity, int buffer);
 
-// Relighting spread over frames: clouds never lit, or lit from a direction more than
-// `max_angle_deg` from today's, are relit, the ones never lit first, until `budget_particles`
+// Relighting spread over frames: clouds never lit, lit from a direction more than
+// `max_angle_deg` from today's, or lit with other parameters (forward_share, opacity,
+// light_buffer), are relit, the ones never lit first, until `budget_particles`
 // particles have been lit in this call (at least one cloud per call). Returns the clouds relit.
 struct RelightReport {
   int clouds = 0;

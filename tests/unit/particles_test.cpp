@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <set>
 
 #include <glm/geometric.hpp>
@@ -207,6 +208,48 @@ TEST(ParticleLighting, RelightingKeepsToItsBudgetAndOnlyRedoesStaleClouds) {
   EXPECT_EQ(relight(f, near, p, f.particles()).clouds, 0);
   const glm::vec3 far = glm::normalize(sun + glm::vec3(0.05f, 0.0f, 0.0f));
   EXPECT_EQ(relight(f, far, p, f.particles()).clouds, int(f.clouds.size()));
+  // Every parameter of the lighting redoes it (a viewer's slider), and each lighting counts.
+  const uint32_t lightings = f.clouds[0].lightings;
+  for (const auto& change : std::vector<std::function<void(ParticleCloudParams&)>>{
+           [](ParticleCloudParams& q) { q.albedo = 0.5f; },
+           [](ParticleCloudParams& q) { q.phase_g = 0.2f; },
+           [](ParticleCloudParams& q) { q.rayleigh_phase = true; },
+           [](ParticleCloudParams& q) { q.forward_solid_angle_sr = 0.1f; },
+           [](ParticleCloudParams& q) { q.opacity = 0.7f; },
+           [](ParticleCloudParams& q) { q.light_buffer = 64; }}) {
+    ParticleCloudParams q = p;
+    change(q);
+    EXPECT_EQ(relight(f, far, q, f.particles()).clouds, int(f.clouds.size()));
+    EXPECT_EQ(relight(f, far, q, f.particles()).clouds, 0);
+  }
+  EXPECT_EQ(f.clouds[0].lightings, lightings + 6);
+  // What only the drawing uses does not (the last lighting was p's with a 64-texel buffer).
+  ParticleCloudParams drawing = p;
+  drawing.light_buffer = 64;
+  drawing.diffuse_strength = 3.0f;
+  drawing.impostors = "tiles";
+  EXPECT_EQ(relight(f, far, drawing, f.particles()).clouds, 0);
+}
+
+TEST(ParticleField, ItsShapeNamesWhatTheFieldDependsOn) {
+  const ParticleCloudParams p = small_field(0.3f);
+  ParticleCloudParams q = p;
+  q.albedo = 0.1f;
+  q.impostors = "off";
+  q.wind_mps = glm::vec2(10.0f, 0.0f);
+  q.layer_resolution = 0.5f;
+  EXPECT_EQ(field_shape(q, 1.0f), field_shape(p, 1.0f));  // drawing and lighting only
+  EXPECT_FALSE(field_shape(p, 2.0f) == field_shape(p, 1.0f));
+  for (const auto& change : std::vector<std::function<void(ParticleCloudParams&)>>{
+           [](ParticleCloudParams& r) { r.coverage = 0.4f; },
+           [](ParticleCloudParams& r) { r.cell_m *= 2.0f; },
+           [](ParticleCloudParams& r) { r.seed = 7; },
+           [](ParticleCloudParams& r) { r.noise_period_m *= 2.0f; }}) {
+    ParticleCloudParams r = p;
+    change(r);
+    EXPECT_FALSE(field_shape(r, 1.0f) == field_shape(p, 1.0f));
+    EXPECT_NE(generate_field(r, 1.0f).particles(), generate_field(p, 1.0f).particles());
+  }
 }
 
 TEST(ParticleScene, BadParametersGetOneLineNamingThem) {

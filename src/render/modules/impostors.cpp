@@ -85,7 +85,7 @@ struct ImpostorCache::Impostor {
   uint32_t id = 0;     // its image's atlas id: cloud index x 2 + 0 or 1, alternating
   glm::vec3 dir{0.0f};  // from the eye towards the cloud when drawn
   float distance_m = 0.0f;
-  glm::vec3 light{0.0f};  // the cloud's lighting then (ParticleCloud::lit_towards)
+  uint32_t lightings = 0;  // the cloud's lightings then (ParticleCloud::lightings)
   float scale = 1.0f;     // the resolution scale then (ImpostorCache::scale_)
   // The quad: its centre from the cloud's, and its half sides (its image's right and up).
   glm::vec3 center_from_cloud{0.0f};
@@ -211,7 +211,6 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
   };
   std::vector<Candidate> candidates;
   const float cos_angle = std::cos(glm::radians(params.impostor_max_angle_deg));
-  const float cos_light = std::cos(glm::radians(0.5f));
   const bool cramped = on && room() < kLowRoom;
   int shrinking = 0;  // images waiting to be drawn smaller
   for (size_t i = 0; i < field.clouds.size(); ++i) {
@@ -234,7 +233,7 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
     const float angle = std::acos(std::clamp(glm::dot(im.dir, rel / d), -1.0f, 1.0f));
     const float ratio = std::max(d / im.distance_m, im.distance_m / d);
     const float rescale = std::max(im.scale / scale_, scale_ / im.scale);
-    const bool relit = glm::dot(im.light, cloud.lit_towards) < cos_light;
+    const bool relit = im.lightings != cloud.lightings;
     // An image too large for the atlas's room now: drawing it smaller makes room, first of all
     // when the atlas is full, else after the clouds waiting for their first image.
     if (im.scale > kRescale * scale_) {
@@ -356,7 +355,7 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
     im.id = id;
     im.dir = rel / glm::length(rel);
     im.distance_m = glm::length(rel);
-    im.light = cloud.lit_towards;
+    im.lightings = cloud.lightings;
     im.scale = scale_;
     im.right = framing.right * depth_m * framing.tan_half.x;
     im.up = framing.up * depth_m * framing.tan_half.y;

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "nephele/error.h"
-#include "nephele/scene_io.h"
 #include "particles/particle_lighting.h"
 #include "particles/perlin.h"
 #include "render/glsl.h"
@@ -58,18 +57,6 @@ std::vector<uint8_t> particle_texels() {
   return texels;
 }
 
-// What shapes the field: every particle parameter but those only the drawing uses, and, for
-// an evolving sky, the time step (1/64 of evolution_s) it was generated at.
-std::string field_key(const ParticleCloudParams& p, float step_time_s) {
-  Scene only;
-  only.particle_clouds = p;
-  only.particle_clouds.wind_mps = glm::vec2(0.0f);
-  only.particle_clouds.albedo = only.particle_clouds.phase_g = 0.0f;
-  only.particle_clouds.rayleigh_phase = false;
-  only.particle_clouds.diffuse_strength = 0.0f;
-  return scene_to_toml(only) + std::to_string(step_time_s);
-}
-
 }  // namespace
 
 ParticleCloudsModule::ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
@@ -112,7 +99,7 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   params.particle_light = glm::vec4(p.diffuse_strength, 0.0f, 0.0f, 0.0f);
   if (!active_) {
     field_ = {};
-    field_key_.clear();
+    field_shape_.reset();
     return;
   }
   if (!ctx_.has_graphics())
@@ -132,12 +119,12 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   // The field, for the evolving noise's time step.
   const float step_s = p.evolution_s > 0.0f ? p.evolution_s / 64.0f : 0.0f;
   const float field_time_s = step_s > 0.0f ? std::floor(scene.time_s / step_s) * step_s : 0.0f;
-  const std::string key = field_key(p, field_time_s);
+  const particles::FieldShape shape = particles::field_shape(p, field_time_s);
   auto start = std::chrono::steady_clock::now();
-  const bool regenerated = key != field_key_;
+  const bool regenerated = shape != field_shape_;
   if (regenerated) {
     field_ = particles::generate_field(p, field_time_s);
-    field_key_ = key;
+    field_shape_ = shape;
     field_time_s_ = field_time_s;
     stats_.generate_ms = ms_since(start);
   }

@@ -63,7 +63,7 @@ class ParticleCloudsModule {
   gpu::Texture layer_, depth_;
   gpu::Buffer buffers_[gpu::kFramesInFlight];
   particles::ParticleField field_;
-  std::string field_key_;
+  std::optional<particles::FieldShape> field_shape_;  // field_'s
   float field_time_s_ = 0.0f;  // the time the field was generated for
   bool active_ = false;        // this frame draws
   bool drawn_ = false;         // the layers hold particles (cleared when none are drawn)
