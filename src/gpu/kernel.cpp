@@ -146,31 +146,35 @@ void DescriptorSet::bind_sampled_image(Binding binding, const Texture& texture) 
   set_entry(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &info);
 }
 
-Kernel::Kernel(Context& ctx, const DescriptorSet& set, const std::string& spv_name,
-               const std::vector<int32_t>& specialization)
-    : device_(ctx.device()) {
+VkShaderModule create_shader_module(VkDevice device, const std::string& spv_name) {
   const EmbeddedFile* spv =
       find_embedded(nephele_shaders::kFiles, nephele_shaders::kFileCount, spv_name);
   if (!spv) throw RuntimeError("shader '" + spv_name + "' is not embedded in this build");
-
-  VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  module_info.codeSize = spv->size;
-  module_info.pCode = reinterpret_cast<const uint32_t*>(spv->data);
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = spv->size;
+  info.pCode = reinterpret_cast<const uint32_t*>(spv->data);
   VkShaderModule module;
-  NEPHELE_VK(vkCreateShaderModule(device_, &module_info, nullptr, &module));
+  NEPHELE_VK(vkCreateShaderModule(device, &info, nullptr, &module));
+  return module;
+}
 
-  std::vector<VkSpecializationMapEntry> entries;
-  for (uint32_t i = 0; i < specialization.size(); ++i)
-    entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
-  VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(),
-                            specialization.size() * sizeof(int32_t), specialization.data()};
+Specialization::Specialization(const std::vector<int32_t>& values) {
+  for (uint32_t i = 0; i < values.size(); ++i)
+    entries_.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
+  info_ = {uint32_t(entries_.size()), entries_.data(), values.size() * sizeof(int32_t), values.data()};
+}
 
+Kernel::Kernel(Context& ctx, const DescriptorSet& set, const std::string& spv_name,
+               const std::vector<int32_t>& specialization)
+    : device_(ctx.device()) {
+  VkShaderModule module = create_shader_module(device_, spv_name);
+  const Specialization spec(specialization);
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
-  info.stage.pSpecializationInfo = specialization.empty() ? nullptr : &spec;
+  info.stage.pSpecializationInfo = spec.info();
   info.layout = set.pipeline_layout();
   VkResult result = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
   vkDestroyShaderModule(device_, module, nullptr);

@@ -131,6 +131,24 @@ class DescriptorSet {
                  const VkDescriptorImageInfo* image);
 };
 
+// The embedded SPIR-V file `spv_name` as a shader module, for the caller to destroy once its
+// pipeline is made; throws RuntimeError when this build does not embed it.
+VkShaderModule create_shader_module(VkDevice device, const std::string& spv_name);
+
+// Integer specialization constants 0..n-1 set to `values` (kept by reference: they must outlive
+// this), for a pipeline stage's pSpecializationInfo (null when there are none).
+class Specialization {
+ public:
+  explicit Specialization(const std::vector<int32_t>& values);
+  Specialization(const Specialization&) = delete;
+  Specialization& operator=(const Specialization&) = delete;
+  const VkSpecializationInfo* info() const { return entries_.empty() ? nullptr : &info_; }
+
+ private:
+  std::vector<VkSpecializationMapEntry> entries_;
+  VkSpecializationInfo info_{};
+};
+
 // A compute pipeline from the embedded SPIR-V file `spv_name` (e.g. "clouds.comp.spv"),
 // with integer specialization constants 0..n-1 set to `specialization`.
 class Kernel {

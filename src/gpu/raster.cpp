@@ -1,29 +1,8 @@
 #include "gpu/raster.h"
 
 #include "gpu/vk_check.h"
-#include "nephele_embedded.h"
-
-namespace nephele_shaders {
-extern const EmbeddedFile kFiles[];
-extern const size_t kFileCount;
-}  // namespace nephele_shaders
 
 namespace nephele::gpu {
-
-namespace {
-
-VkShaderModule load_module(VkDevice device, const std::string& name) {
-  const EmbeddedFile* spv = find_embedded(nephele_shaders::kFiles, nephele_shaders::kFileCount, name);
-  if (!spv) throw RuntimeError("shader '" + name + "' is not embedded in this build");
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = spv->size;
-  info.pCode = reinterpret_cast<const uint32_t*>(spv->data);
-  VkShaderModule module;
-  NEPHELE_VK(vkCreateShaderModule(device, &info, nullptr, &module));
-  return module;
-}
-
-}  // namespace
 
 RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector<VkFormat>& formats,
                        bool clear, const std::vector<RasterShaders>& pipelines)
@@ -134,15 +113,10 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector
   info.layout = set.pipeline_layout();
   info.renderPass = render_pass_;
   for (const RasterShaders& shaders : pipelines) {
-    stages[0].module = load_module(device_, shaders.vert);
-    stages[1].module = load_module(device_, shaders.frag);
-    std::vector<VkSpecializationMapEntry> entries;
-    for (uint32_t i = 0; i < shaders.frag_specialization.size(); ++i)
-      entries.push_back({i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
-    const VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(),
-                                    shaders.frag_specialization.size() * sizeof(int32_t),
-                                    shaders.frag_specialization.data()};
-    stages[1].pSpecializationInfo = entries.empty() ? nullptr : &spec;
+    stages[0].module = create_shader_module(device_, shaders.vert);
+    stages[1].module = create_shader_module(device_, shaders.frag);
+    const Specialization spec(shaders.frag_specialization);
+    stages[1].pSpecializationInfo = spec.info();
     VkPipeline pipeline = VK_NULL_HANDLE;
     const VkResult result =
         vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
