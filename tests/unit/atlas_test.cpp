@@ -13,6 +13,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace nephele::particles {
 namespace {
@@ -213,31 +214,8 @@ void checked_allocate(DirectAtlas& atlas, const Op& op, double now_s, double& la
   }
 }
 
-DirectRun random_direct(const DirectAtlas::Options& options, uint32_t seed, int frames) {
-  DirectAtlas atlas(390, 260, options);  // 24 x 16 granules and an unusable strip
-  Workload work(seed, 28, 10, 120);
-  std::vector<double> defrag_times_s;
-  double last_defrag_s = 0.0;
-  DirectRun run;
-  for (int frame = 0; frame < frames; ++frame) {
-    const double now_s = frame * kFrameS;
-    for (int k = 0; k < 3; ++k) {
-      const Op op = work.next();
-      if (op.release) {
-        atlas.release(op.id);
-        EXPECT_EQ(atlas.regions().count(op.id), 0u);
-      } else {
-        checked_allocate(atlas, op, now_s, last_defrag_s, defrag_times_s, run, options);
-      }
-      expect_disjoint_inside(atlas);
-      if (::testing::Test::HasFailure()) return run;
-    }
-    if (frame % 50 == 0) expect_stats_add_up(atlas);
-  }
-  if (options.defragment) expect_rate_limited(defrag_times_s, options.max_defragmentations_per_s);
-  run.stats = atlas.stats();
-  return run;
-}
+// A seeded churn of the atlas (defined with the tiles' below).
+DirectRun random_direct(const DirectAtlas::Options& options, uint32_t seed, int frames);
 
 TEST(DirectAtlas, RandomUpdatesKeepRegionsDisjointAsAskedAndDownsizeOnlyWhenForced) {
   DirectAtlas::Options plain;
@@ -578,31 +556,50 @@ void checked_allocate(TileAtlas& atlas, const Op& op, double now_s, double& last
   EXPECT_EQ(atlas.last_moves().size(), moved);
 }
 
-TileRun random_tiles(const TileAtlas::Options& options, uint32_t seed, int frames) {
-  const int width = 330, height = 230;  // an unusable strip whichever the tile
-  TileAtlas atlas(width, height, options);
-  Workload work(seed, 24, 8, 110);
+// Seeded random allocations and releases, three a frame at kFrameS, each allocation checked
+// against the atlas as it was (checked_allocate), the layout after every operation, the
+// statistics every 50 frames and the defragmentations' rate at the end.
+template <typename Run, typename Atlas, typename Options>
+Run churn(Atlas& atlas, const Options& options, Workload work, int frames, int width, int height) {
   std::vector<double> defrag_times_s;
   double last_defrag_s = 0.0;
-  TileRun run;
+  Run run;
   for (int frame = 0; frame < frames; ++frame) {
     const double now_s = frame * kFrameS;
     for (int k = 0; k < 3; ++k) {
       const Op op = work.next();
       if (op.release) {
         atlas.release(op.id);
-        EXPECT_EQ(atlas.placements().count(op.id), 0u);
+        if constexpr (std::is_same_v<Atlas, DirectAtlas>)
+          EXPECT_EQ(atlas.regions().count(op.id), 0u);
+        else
+          EXPECT_EQ(atlas.placements().count(op.id), 0u);
       } else {
         checked_allocate(atlas, op, now_s, last_defrag_s, defrag_times_s, run, options);
       }
       expect_disjoint_inside(atlas);
       if (::testing::Test::HasFailure()) return run;
     }
-    if (frame % 50 == 0) expect_stats_add_up(atlas, width, height);
+    if (frame % 50 != 0) continue;
+    if constexpr (std::is_same_v<Atlas, DirectAtlas>)
+      expect_stats_add_up(atlas);
+    else
+      expect_stats_add_up(atlas, width, height);
   }
   if (options.defragment) expect_rate_limited(defrag_times_s, options.max_defragmentations_per_s);
   run.stats = atlas.stats();
   return run;
+}
+
+DirectRun random_direct(const DirectAtlas::Options& options, uint32_t seed, int frames) {
+  DirectAtlas atlas(390, 260, options);  // 24 x 16 granules and an unusable strip
+  return churn<DirectRun>(atlas, options, Workload(seed, 28, 10, 120), frames, 390, 260);
+}
+
+TileRun random_tiles(const TileAtlas::Options& options, uint32_t seed, int frames) {
+  const int width = 330, height = 230;  // an unusable strip whichever the tile
+  TileAtlas atlas(width, height, options);
+  return churn<TileRun>(atlas, options, Workload(seed, 24, 8, 110), frames, width, height);
 }
 
 TEST(TileAtlas, RandomUpdatesKeepTilesDisjointAsAskedAndDownsizeOnlyWhenFull) {
