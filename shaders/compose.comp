@@ -71,6 +71,14 @@ void cloud_at(int x, int y, out vec4 a, out vec4 b) {
   b = textureLod(clouds_b, uv, 0.0f);
 }
 
+// The air between the eye and `distance_m` along the view at `uv` (the aerial-perspective
+// volume's): its in-scattered light (rgb, per unit of sunlight) and transmittance (a).
+vec4 air_in_front(vec2 uv, float distance_m) {
+  return textureLod(aerial_perspective,
+                    vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)), aerial_perspective_w(distance_m)),
+                    0.0f);
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   int width = frame.size.x;
@@ -114,10 +122,7 @@ void main() {
   float haze = cloud_b.x;
   // The haze's colour: the air's in-scattering between the eye and the cloud per unit of its
   // opacity (clouds.comp weights the haze by the air's opacity in front of each sample).
-  vec4 ap = textureLod(aerial_perspective,
-                       vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)),
-                            aerial_perspective_w(cloud_b.z * 1000.0f)),
-                       0.0f);
+  vec4 ap = air_in_front(uv, cloud_b.z * 1000.0f);
   vec3 haze_color = ap.rgb / max(1.0f - ap.a, 1e-6f);
   float ground_shadow = cloud_b.y;  // cloud transmittance towards the sun
   // Under clouds the ground's sky light comes through the gaps and through the clouds
@@ -158,10 +163,7 @@ void main() {
   for (int i = 0; i < (cirrus_m > 0.0f ? 1 : 0); ++i) {
     cirrus = cirrus_layer(frame_atmosphere(), eye, dir, cirrus_m);
     if (cirrus_in_front || conditions == 1) continue;
-    vec4 air = textureLod(aerial_perspective,
-                          vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)),
-                               aerial_perspective_w(cirrus_m)),
-                          0.0f);
+    vec4 air = air_in_front(uv, cirrus_m);
     background = background * cirrus.a + (1.0f - cirrus.a) * air.rgb + cirrus.rgb * air.a;
   }
   // The film layers (frame.display.y, render --layers): everything behind the clouds (sky,
@@ -182,10 +184,7 @@ void main() {
   vec4 particles = textureLod(particle_layer, pixel_uv, 0.0f);
   for (int i = 0; i < (particles.a > 1e-4f ? 1 : 0); ++i) {
     float particles_m = textureLod(particle_depth, pixel_uv, 0.0f).x / particles.a * 1000.0f;
-    vec4 air = textureLod(aerial_perspective,
-                          vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)),
-                               aerial_perspective_w(particles_m)),
-                          0.0f);
+    vec4 air = air_in_front(uv, particles_m);
     vec3 particle_light = particles.rgb * air.a + air.rgb * illuminance * particles.a;
     bool in_front = alpha < 1e-3f || particles_m < cloud_b.z * 1000.0f;
     front = in_front ? particle_light + (1.0f - particles.a) * front
