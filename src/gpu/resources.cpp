@@ -189,10 +189,9 @@ void Texture::record_download(VkCommandBuffer cmd, const Buffer& staging) const 
   compute_barrier(cmd);
 }
 
-void Texture::record_clear(VkCommandBuffer cmd) const {
-  const VkClearColorValue zero{};
+void Texture::record_clear(VkCommandBuffer cmd, const VkClearColorValue& value) const {
   const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdClearColorImage(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+  vkCmdClearColorImage(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, &value, 1, &range);
   compute_barrier(cmd);
 }
 

@@ -62,7 +62,7 @@ class Texture {
   // Copies the image into `staging` (recorded into `cmd`).
   void record_download(VkCommandBuffer cmd, const Buffer& staging) const;
   // Sets every texel to zero (recorded into `cmd`).
-  void record_clear(VkCommandBuffer cmd) const;
+  void record_clear(VkCommandBuffer cmd, const VkClearColorValue& value = {}) const;
   // Box-filters each mip level from the one above it (recorded into `cmd`).
   void record_mipmaps(VkCommandBuffer cmd) const;
 

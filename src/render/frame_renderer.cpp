@@ -429,13 +429,19 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   band_timings.clear();
   if (in_bands) march_in_bands(scene, params);
   s.begin(cmd, slot, params);
+  // A sky without volumetric clouds (a clear one, or particle clouds only) skips their march.
+  const bool volumetric = scene.clouds.coverage > 0.0f || scene.high_clouds.coverage > 0.0f ||
+                          !scene.voxel_clouds.empty();
   if (!in_bands) {
     weather.record(cmd, *s.timer);
     sky_view.record(cmd, *s.timer);
     light_volume.record(cmd, *s.timer);
-    clouds.record_march(cmd, *s.timer, scene.quality.mode);
+    if (volumetric) clouds.record_march(cmd, *s.timer, scene.quality.mode);
   }
-  clouds.record_reconstruction(cmd, *s.timer);
+  if (volumetric || in_bands)
+    clouds.record_reconstruction(cmd, *s.timer);
+  else
+    clouds.record_clear_sky(cmd);
   particles.record(cmd, *s.timer);
   // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe).
   if (light_volume.completed() || params.light_volume.w == 0.0f)

@@ -363,6 +363,8 @@ TEST_F(CliTest, BenchImpostorsComparesEveryParticleWithBothAtlases) {
   for (const char* method : {"atlas_direct", "atlas_tiles"}) {
     EXPECT_GT(j[method]["occupancy"].get<double>(), 0.0) << method;
     EXPECT_LE(j[method]["occupancy"].get<double>() + j[method]["wasted"].get<double>(), 1.0);
+    EXPECT_EQ(j[method]["waiting"].get<int>(), 0) << method;  // every far cloud has its image
+    EXPECT_GT(j[method]["resolution_scale"].get<double>(), 0.0) << method;
   }
   int w = 0, h = 0, n = 0;
   ASSERT_TRUE(stbi_info(path("imp/impostors.png").c_str(), &w, &h, &n));

@@ -114,6 +114,34 @@ TEST_F(RenderTest, Seed2_MinimumCoverageShowsNoCloud) {
   EXPECT_LT(max_cloud_opacity(f), 1e-4f);
 }
 
+// A sky without volumetric clouds skips their march, and looks as the march of an empty layer
+// leaves it: the same sky, ground and haze (a cloud coverage too small to make a cloud marches
+// it all the same), in the image and in the cloud buffer.
+TEST_F(RenderTest, ASkyWithoutVolumetricCloudsSkipsTheirMarch) {
+  Scene s = small_scene();
+  s.camera.view_dir = {0.0f, 1.0f, -0.05f};  // the ground, the horizon and the sky
+  s.clouds.coverage = 0.0f;
+  const auto has_pass = [](const Frame& f, const std::string& name) {
+    return std::any_of(f.stats.passes.begin(), f.stats.passes.end(),
+                       [&](const nephele::PassTiming& p) { return p.name == name; });
+  };
+  const Frame skipped = render(s);
+  s.clouds.coverage = 1e-6f;
+  const Frame marched = render(s);
+  EXPECT_FALSE(has_pass(skipped, "clouds"));
+  EXPECT_FALSE(has_pass(skipped, "resolve"));
+  EXPECT_TRUE(has_pass(marched, "clouds"));
+  EXPECT_LT(max_cloud_opacity(marched), 1e-4f);
+  ASSERT_EQ(skipped.color.pixels.size(), marched.color.pixels.size());
+  for (size_t i = 0; i < skipped.color.pixels.size(); ++i) {
+    for (int k = 0; k < 3; ++k)
+      ASSERT_NEAR(skipped.color.pixels[i][k], marched.color.pixels[i][k],
+                  1e-3f * std::abs(marched.color.pixels[i][k]) + 1e-6f)
+          << "pixel " << i;
+    ASSERT_EQ(skipped.clouds.pixels[i], glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)) << "pixel " << i;
+  }
+}
+
 // Seed test 3: density 0 shows no cloud.
 TEST_F(RenderTest, Seed3_ZeroDensityShowsNoCloud) {
   Scene s = small_scene();

@@ -35,6 +35,10 @@ class CloudsModule {
   void record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode, int rows = -1);
   // The march range and the resolve: the cloud buffer of this frame.
   void record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  // Instead of the march and the reconstruction when the scene has no volumetric clouds: this
+  // frame's cloud buffers as a clear sky's march leaves them (nothing scattered, transmittance
+  // 1, no haze, the ground unshadowed).
+  void record_clear_sky(VkCommandBuffer cmd);
   // The clouds' mean diffuse transmittance over the ground around the camera (one texel).
   void record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode);
   // The march over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME) into dome_a and
