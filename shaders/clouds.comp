@@ -24,20 +24,11 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"
 #include "cirrus_inc.glsl"
+#include "air_inc.glsl"
 
-const float FAR_M = 1.0e7f;  // distance written for rays that meet neither cloud nor ground
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
 const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance
 const float TAU_STEP_96 = 0.5f;     // optical depth per step in dense cloud at 96 primary steps
-
-// Transmittance of the air over `dist_m` from the eye to a cloud sample at altitude
-// `sample_alt_m`, with the extinction taken at the mean altitude (a simple aerial perspective;
-// distant clouds fade into the haze of the sky behind them).
-vec3 air_transmittance(float eye_alt_m, float sample_alt_m, float dist_m) {
-  float h = max(0.5f * (eye_alt_m + sample_alt_m), 0.0f);
-  vec3 sigma_t = frame.rayleigh.rgb * exp(-h / frame.rayleigh.w) + frame.mie.y * exp(-h / frame.mie.z);
-  return exp(-sigma_t * dist_m);
-}
 
 // Cloud shadow on the ground: the share of the sunlight that reaches the ground point this ray
 // hits through the cloud layer (direct and scattered forward), 1 when the ray misses the

@@ -26,7 +26,7 @@ using Target = std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&)
                             std::string& (*)(Scene&), MarchMode& (*)(Scene&),
                             bool& (*)(Scene&), SkyModel& (*)(Scene&),
                             ConditionsMode& (*)(Scene&), VoxelMarch& (*)(Scene&),
-                            VoxelShadow& (*)(Scene&)>;
+                            VoxelShadow& (*)(Scene&), CloudModel& (*)(Scene&)>;
 
 struct FlagSpec {
   const char* flag;
@@ -182,6 +182,9 @@ const std::vector<FlagSpec>& flag_specs() {
        "light volume half extent (km), [0, 1000]; 0 = march every light ray"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
+      {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model), "nephele|blinn",
+       "the model drawing the [clouds] layer: nephele (default) or a classical one of seed 004, "
+       "blinn (Blinn 1982: a layer of small particles, single scattering; see [classic])"},
       {"--voxel-march", &F::voxel_march, "quality.voxel_march", TO(quality.voxel_march),
        "plain|three-phase",
        "how rays cross the voxel clouds: three-phase (default; SDF sphere tracing across their "
@@ -322,6 +325,11 @@ void parse_into(const std::string& flag, const std::string& text, VoxelMarch& ou
   std::optional<VoxelMarch> mode = parse_voxel_march(text);
   if (!mode) fail(flag, text, "expected plain or three-phase");
   out = *mode;
+}
+void parse_into(const std::string& flag, const std::string& text, CloudModel& out) {
+  std::optional<CloudModel> model = parse_cloud_model(text);
+  if (!model) fail(flag, text, "expected " + cloud_model_names(false));
+  out = *model;
 }
 void parse_into(const std::string& flag, const std::string& text, VoxelShadow& out) {
   std::optional<VoxelShadow> mode = parse_voxel_shadow(text);

@@ -32,7 +32,7 @@ struct SceneFlags {
   std::optional<std::string> time, lat_deg, lon_deg;
   std::optional<std::string> time_s, seed, steps, light_steps, march_stride, cloud_downsample,
       light_volume_km, mode, sky, turbidity, conditions, weather, hour, exposure, auto_exposure,
-      voxel_march, voxel_shadow;
+      voxel_march, voxel_shadow, cloud_model;
   std::optional<std::string> ev100, ev100_min, ev100_max, exposure_compensation_ev,
       adaptation_ev_per_s;
   // --voxel-cloud SPEC, repeatable: FILE@E,N,U or preset:NAME[:SEED]@E,N,U, each appended to

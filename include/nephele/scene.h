@@ -61,6 +61,14 @@ enum class SkyModel {
   Reference,  // brute force per pixel with no tables: slow, for checking the Hillaire path
 };
 
+// Which model draws the [clouds] layer (clouds.model): nephele's own, or one of the classical
+// models surveyed by seed 004 ([classic], issue 23), for comparison.
+enum class CloudModel {
+  Nephele,  // the noise clouds marched with multiple-scattering octaves (seeds 000 and 002)
+  Blinn,    // Blinn 1982: a uniform layer of small particles, low-albedo single scattering
+};
+inline constexpr CloudModel kCloudModels[] = {CloudModel::Nephele, CloudModel::Blinn};
+
 // Planet and atmosphere (Hillaire 2020, table 1 for the Earth's defaults): Rayleigh and Mie
 // scattering falling off exponentially with altitude, Mie absorption, an ozone layer.
 struct AtmosphereParams {
@@ -90,6 +98,7 @@ struct AtmosphereParams {
 // One volumetric cloud layer between two spheres (seed 000, section 2.2). Altitudes in
 // [0, 1e6] m and below the top of the atmosphere; winds (m/s) in [-200, 200] per component.
 struct CloudParams {
+  CloudModel model = CloudModel::Nephele;
   float bottom_altitude_m = 1500.0f;  // cloud layer bottom above ground
   float top_altitude_m = 4000.0f;     // cloud layer top above ground, > bottom
   float coverage = 0.45f;             // [0, 1]; 1 = sky fully covered
@@ -372,6 +381,23 @@ struct ParticleCloudParams {
   int atlas_tile = 32;                      // tiles: 16 or 32
 };
 
+// The classical cloud models of seed 004 (issue 23), drawn in place of nephele's noise clouds
+// when clouds.model names one, between the [clouds] layer's altitudes.
+struct ClassicCloudParams {
+  // The seed's printing of the formulas where it differs from the papers (Blinn's B and Tr,
+  // the Lambert phase function's factor); false: the papers' (README, "Classical cloud models").
+  bool seed_formulas = false;
+  // Blinn 1982: n spheres of radius r per unit volume in the layer, optical depth
+  // tau = n pi r^2 (top - bottom); phase function "constant", "anisotropic" (1 + x cos alpha),
+  // "lambert", "rayleigh" or "hg", with x or g in Blinn's convention (alpha = 0: back towards
+  // the light, so forward scattering is x < 0).
+  std::string blinn_phase = "hg";
+  float blinn_phase_x = -0.6f;               // [-0.99, 0.99] for hg, [-1, 1] for anisotropic
+  float blinn_particle_radius_m = 1.0e-5f;   // (0, 1]
+  float blinn_particles_per_m3 = 1.0e6f;     // [0, 1e12]: tau 0.79 over the default layer
+  float blinn_albedo = 0.9f;                 // omega, [0, 1]
+};
+
 // The lab scene (issue 21): one density grid in vacuum (no planet, no air, a black background)
 // lit by a distant sun, for comparing nephele's reference path tracer (Renderer::render_reference)
 // with other renderers. The grid keeps its file's frame (x east, y north, z up, metres) and
@@ -405,6 +431,7 @@ struct Scene {
   uint32_t noise_seed = 1;   // seeds the noise textures and the procedural weather map
   std::vector<VoxelCloudParams> voxel_clouds;
   ParticleCloudParams particle_clouds;
+  ClassicCloudParams classic;
   LabParams lab;
 };
 
@@ -417,6 +444,7 @@ float vertical_fov_deg(const Scene& scene);  // for scene.output's aspect
 float horizontal_fov_from_focal_deg(float focal_length_mm, float sensor_width_mm);
 
 const char* to_string(MarchMode mode);
+const char* to_string(CloudModel model);
 const char* to_string(VoxelMarch mode);
 const char* to_string(VoxelShadow mode);
 const char* to_string(SkyModel model);

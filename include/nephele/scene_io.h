@@ -98,6 +98,10 @@ std::optional<MarchMode> parse_march_mode(std::string_view text);
 std::optional<SkyModel> parse_sky_model(std::string_view text);
 // "off" / "artist" / "overlay".
 std::optional<ConditionsMode> parse_conditions_mode(std::string_view text);
+// "nephele" / "blinn" (the inverse of to_string(CloudModel)).
+std::optional<CloudModel> parse_cloud_model(std::string_view text);
+// The models' names for a message: "nephele or blinn", quoted as TOML strings when `quoted`.
+std::string cloud_model_names(bool quoted);
 // "plain" / "three-phase".
 std::optional<VoxelMarch> parse_voxel_march(std::string_view text);
 // "march" / "sdf-cone".

@@ -191,6 +191,10 @@ struct FrameParams {
   // Lastra's Rayleigh phase instead, w a particle's opacity at its centre
   vec4 particle_shading;
   vec4 particle_light;  // x the multiply scattered light's strength (diffuse_strength); yzw unused
+  // The classical models (classic_clouds.comp, seed 004): Blinn's x optical depth tau along the
+  // vertical, y albedo omega, z his phase function's x or g, w its kind (BLINN_PHASE_*)
+  vec4 classic_blinn;
+  vec4 classic_options;  // x 1: the seed's printing of the formulas; yzw unused
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

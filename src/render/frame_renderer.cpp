@@ -303,6 +303,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       sky_view(ctx, state.set),
       clouds(ctx, state.set),
       particles(ctx, state.set),
+      classic_clouds(ctx, state.set),
       particle_light(ctx, state.set),
       path_tracer(ctx, state.set) {}
 
@@ -423,22 +424,27 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   update_noise(scene, params);
   weather.prepare(scene, params);
   particles.prepare(scene, slot, s.width, s.height, still, params);
+  ClassicCloudsModule::prepare(scene, params);
   clouds.swap_history();
 
-  const bool in_bands = still && progress;
+  // A classical model (seed 004) draws instead of the march; a sky without volumetric clouds
+  // (clear, or particle clouds only) skips it.
+  const bool classic = scene.clouds.model != CloudModel::Nephele;
+  const bool volumetric = !classic && (scene.clouds.coverage > 0.0f ||
+                                       scene.high_clouds.coverage > 0.0f || !scene.voxel_clouds.empty());
+  const bool in_bands = still && progress && volumetric;
   band_timings.clear();
   if (in_bands) march_in_bands(scene, params);
   s.begin(cmd, slot, params);
-  // A sky without volumetric clouds (a clear one, or particle clouds only) skips their march.
-  const bool volumetric = scene.clouds.coverage > 0.0f || scene.high_clouds.coverage > 0.0f ||
-                          !scene.voxel_clouds.empty();
   if (!in_bands) {
     weather.record(cmd, *s.timer);
     sky_view.record(cmd, *s.timer);
     light_volume.record(cmd, *s.timer);
     if (volumetric) clouds.record_march(cmd, *s.timer, scene.quality.mode);
   }
-  if (volumetric || in_bands)
+  if (classic)
+    classic_clouds.record(cmd, *s.timer, scene.clouds.model, clouds.width(), clouds.height());
+  else if (volumetric)
     clouds.record_reconstruction(cmd, *s.timer);
   else
     clouds.record_clear_sky(cmd);

@@ -12,6 +12,7 @@
 #include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
+#include "render/modules/classic_clouds.h"
 #include "render/modules/particle_clouds.h"
 #include "render/modules/particle_light_gpu.h"
 #include "render/modules/path_tracer.h"
@@ -52,6 +53,7 @@ struct FrameRenderer::Impl {
   SkyViewModule sky_view;
   CloudsModule clouds;
   ParticleCloudsModule particles;
+  ClassicCloudsModule classic_clouds;  // seed 004's models, when clouds.model names one
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
 

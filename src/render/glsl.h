@@ -54,6 +54,7 @@ namespace {
 #include "common/voxel_inc.glsl"
 #include "common/particle_inc.glsl"
 #include "common/impostor_inc.glsl"
+#include "common/classic_inc.glsl"
 }  // namespace
 }  // namespace nephele::glsl
 #pragma GCC diagnostic pop

@@ -68,6 +68,32 @@ std::optional<MarchMode> parse_march_mode(std::string_view text) {
   return std::nullopt;
 }
 
+const char* to_string(CloudModel model) {
+  switch (model) {
+    case CloudModel::Nephele:
+      return "nephele";
+    case CloudModel::Blinn:
+      return "blinn";
+  }
+  return "unknown";
+}
+
+std::optional<CloudModel> parse_cloud_model(std::string_view text) {
+  for (CloudModel m : kCloudModels)
+    if (text == to_string(m)) return m;
+  return std::nullopt;
+}
+
+std::string cloud_model_names(bool quoted) {
+  std::string names;
+  const size_t n = std::size(kCloudModels);
+  for (size_t i = 0; i < n; ++i) {
+    names += i == 0 ? "" : (i + 1 == n ? " or " : ", ");
+    names += quoted ? "\"" + std::string(to_string(kCloudModels[i])) + "\"" : to_string(kCloudModels[i]);
+  }
+  return names;
+}
+
 const char* to_string(VoxelMarch mode) {
   switch (mode) {
     case VoxelMarch::Plain:
@@ -234,7 +260,10 @@ const std::vector<Section>& scene_sections() {
         FIELD(cirrus, wind_mps, "east, north (m/s), [-200, 200] each")},
        {}},
       {"clouds",
-       {FIELD(clouds, bottom_altitude_m, "above ground, [0, 1e6]"),
+       {FIELD(clouds, model,
+              "\"nephele\" (its noise clouds) or a classical model of seed 004 drawing the same "
+              "layer: \"blinn\" (see [classic])"),
+        FIELD(clouds, bottom_altitude_m, "above ground, [0, 1e6]"),
         FIELD(clouds, top_altitude_m, "above ground, > bottom_altitude_m"),
         FIELD(clouds, coverage, "[0, 1]"),
         FIELD(clouds, type, "0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus, 1 cumulonimbus"),
@@ -353,6 +382,18 @@ const std::vector<Section>& scene_sections() {
         FIELD(particle_clouds, atlas_defragment, "repack the atlas when an impostor does not fit"),
         FIELD(particle_clouds, atlas_defragmentations_per_s, "the defragmentations' rate limit, [0, 1000]"),
         FIELD(particle_clouds, atlas_tile, "tiles: the tile side, 16 or 32 texels")},
+       {}},
+      {"classic",
+       {FIELD(classic, seed_formulas,
+              "true: the seed's printing of the formulas where it differs from the papers (Blinn's "
+              "B and Tr, the Lambert phase's factor)"),
+        FIELD(classic, blinn_phase, "Blinn's phase function: constant, anisotropic, lambert, rayleigh or hg"),
+        FIELD(classic, blinn_phase_x,
+              "x of 1 + x cos alpha or g of hg, alpha = 0 back towards the light (forward "
+              "scattering: < 0), [-1, 1] ((-1, 1) for hg)"),
+        FIELD(classic, blinn_particle_radius_m, "r, (0, 1]"),
+        FIELD(classic, blinn_particles_per_m3, "n, [0, 1e12]; tau = n pi r^2 (top - bottom)"),
+        FIELD(classic, blinn_albedo, "omega, [0, 1]")},
        {}},
       {"lab",
        {FIELD(lab, grid, "a density grid (.vdb, .nvdb) in vacuum for render --reference; empty = none"),

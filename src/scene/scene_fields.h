@@ -19,7 +19,8 @@ using FieldAccess =
     std::variant<float& (*)(Scene&), int& (*)(Scene&), uint32_t& (*)(Scene&),
                  glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&), std::string& (*)(Scene&),
                  MarchMode& (*)(Scene&), bool& (*)(Scene&), SkyModel& (*)(Scene&),
-                 ConditionsMode& (*)(Scene&), VoxelMarch& (*)(Scene&), VoxelShadow& (*)(Scene&)>;
+                 ConditionsMode& (*)(Scene&), VoxelMarch& (*)(Scene&), VoxelShadow& (*)(Scene&),
+                 CloudModel& (*)(Scene&)>;
 
 struct Field {
   std::string_view name;  // key inside its table, e.g. "coverage"

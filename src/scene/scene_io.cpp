@@ -505,6 +505,12 @@ class SceneReader {
     if (!mode) fail_value(node, key, "expected \"march\" or \"sdf-cone\"");
     out = *mode;
   }
+  void read_value(const toml::node& node, const std::string& key, CloudModel& out) const {
+    const auto* s = node.as_string();
+    std::optional<CloudModel> model = s ? parse_cloud_model(s->get()) : std::nullopt;
+    if (!model) fail_value(node, key, "expected " + cloud_model_names(true));
+    out = *model;
+  }
   void read_value(const toml::node& node, const std::string& key, SkyModel& out) const {
     const auto* s = node.as_string();
     std::optional<SkyModel> model = s ? parse_sky_model(s->get()) : std::nullopt;

@@ -47,6 +47,9 @@ void describe_type(SceneParameter& parameter) {
     parameter.kind = K::kEnum;
     for (VoxelShadow m : {VoxelShadow::LightMarch, VoxelShadow::SdfCone})
       parameter.allowed.emplace_back(to_string(m));
+  } else if constexpr (std::is_same_v<T, CloudModel>) {
+    parameter.kind = K::kEnum;
+    for (CloudModel m : kCloudModels) parameter.allowed.emplace_back(to_string(m));
   } else if constexpr (std::is_same_v<T, SkyModel>) {
     parameter.kind = K::kEnum;
     for (SkyModel m : {SkyModel::Hillaire, SkyModel::Preetham, SkyModel::Reference})

@@ -30,6 +30,9 @@ std::string toml_value(MarchMode mode) {
 std::string toml_value(ConditionsMode mode) {
   return scene_detail::toml_quote(to_string(mode));
 }
+std::string toml_value(CloudModel model) {
+  return scene_detail::toml_quote(to_string(model));
+}
 std::string toml_value(SkyModel model) {
   return scene_detail::toml_quote(to_string(model));
 }

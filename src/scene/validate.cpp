@@ -356,6 +356,26 @@ void check_quality(const Checker& check, const QualityParams& quality) {
   check.in_range("quality.sdf_light_tangent", quality.sdf_light_tangent, 0.001f, 10.0f);
 }
 
+// The classical models (seed 004): checked whichever model draws, so a scene file stays valid
+// when its model changes.
+void check_classic(const Checker& check, const CloudParams& clouds, const ClassicCloudParams& c) {
+  if (parse_cloud_model(to_string(clouds.model)) != clouds.model)
+    check.fail("clouds.model", std::to_string(static_cast<int>(clouds.model)),
+               "must be " + cloud_model_names(false));
+  const std::string& phase = c.blinn_phase;
+  if (phase != "constant" && phase != "anisotropic" && phase != "lambert" && phase != "rayleigh" &&
+      phase != "hg")
+    check.fail("classic.blinn_phase", scene_detail::toml_quote(phase),
+               "must be \"constant\", \"anisotropic\", \"lambert\", \"rayleigh\" or \"hg\"");
+  if (phase == "hg")
+    check.in_range("classic.blinn_phase_x", c.blinn_phase_x, -1.0f, 1.0f, true, true);
+  else
+    check.in_range("classic.blinn_phase_x", c.blinn_phase_x, -1.0f, 1.0f);
+  check.in_range("classic.blinn_particle_radius_m", c.blinn_particle_radius_m, 0.0f, 1.0f, true);
+  check.in_range("classic.blinn_particles_per_m3", c.blinn_particles_per_m3, 0.0f, 1.0e12f);
+  check.in_range("classic.blinn_albedo", c.blinn_albedo, 0.0f, 1.0f);
+}
+
 // The particle clouds' grid: bounded so that spawning a field takes seconds, not hours.
 void check_particle_clouds(const Checker& check, const ParticleCloudParams& p) {
   check.in_range("particle_clouds.coverage", p.coverage, 0.0f, 1.0f);
@@ -539,6 +559,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_voxel_clouds(check, scene.voxel_clouds);
   check_lab(check, scene.lab);
   check_particle_clouds(check, scene.particle_clouds);
+  check_classic(check, scene.clouds, scene.classic);
   check_conditions(check, scene);
   check.in_range("time_s", scene.time_s, -kMaxTimeS, kMaxTimeS);
   check_time(check, scene);

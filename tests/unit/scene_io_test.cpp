@@ -165,7 +165,8 @@ Scene unusual_scene() {
   s.atmosphere = {SkyModel::Preetham, 6371.5f, 80.0f, {1e-6f, 2.5e-5f, 3.3333e-5f}, 7994.0f,
                   2.1e-5f, 2.3e-5f, 1234.5f, 0.76f, {1.5e-6f, 2e-6f, 1e-7f}, 22000.5f, 14000.0f,
                   0.27f, 3.25f, 12};
-  s.clouds = {800.0f,
+  s.clouds = {CloudModel::Blinn,
+              800.0f,
               5321.25f,
               0.123f,
               0.3125f,

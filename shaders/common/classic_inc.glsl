@@ -1,0 +1,173 @@
+// The classical cloud models of seed 004 (issue 23): their pure functions, shared by
+// classic_clouds.comp and the C++ tests (render/glsl.h).
+//
+// Angles follow Blinn (1982): the phase angle alpha is the angle at the particle between the
+// directions towards the light and towards the eye, so alpha = 0 is light from behind the eye
+// (back scattering, "full phase") and alpha = pi light straight through the cloud towards the
+// eye (forward scattering). With nephele's mu = dot(view ray, towards light), cos alpha = -mu.
+// Blinn's phase functions are normalised to a mean of 1 over the sphere: phi / (4 pi) is a
+// phase function in nephele's sense (1/sr, integrating to 1).
+#ifndef NEPHELE_CLASSIC_INC
+#define NEPHELE_CLASSIC_INC
+
+// The models of classic_clouds.comp (its MODEL specialization constant).
+const int CLASSIC_BLINN = 1;
+
+// --- Blinn 1982: phase functions -------------------------------------------------------------
+const int BLINN_PHASE_CONSTANT = 0;     // 1
+const int BLINN_PHASE_ANISOTROPIC = 1;  // 1 + x cos alpha
+const int BLINN_PHASE_LAMBERT = 2;      // 8 / (3 pi) (sin alpha + (pi - alpha) cos alpha)
+const int BLINN_PHASE_RAYLEIGH = 3;     // 3/4 (1 + cos^2 alpha)
+const int BLINN_PHASE_HG = 4;           // (1 - g^2) / (1 + g^2 - 2 g cos alpha)^(3/2)
+
+// phi(alpha) of `kind`; `x` is the anisotropic function's x or Henyey-Greenstein's g.
+// `seed_lambert`: the seed's (8/3) pi for the Lambert sphere's factor instead of the original
+// 8 / (3 pi), which has a mean of 1 (the seed's is pi^2 = 9.87 times larger).
+float blinn_phase(int kind, float x, float cos_alpha, bool seed_lambert) {
+  float c = clamp(cos_alpha, -1.0f, 1.0f);
+  if (kind == BLINN_PHASE_ANISOTROPIC) return 1.0f + x * c;
+  if (kind == BLINN_PHASE_LAMBERT) {
+    float alpha = acos(c);
+    float factor = seed_lambert ? (8.0f / 3.0f) * PI : 8.0f / (3.0f * PI);
+    return factor * (sqrt(max(1.0f - c * c, 0.0f)) + (PI - alpha) * c);
+  }
+  if (kind == BLINN_PHASE_RAYLEIGH) return 0.75f * (1.0f + c * c);
+  if (kind == BLINN_PHASE_HG) {
+    float gg = x * x;
+    return (1.0f - gg) / pow(max(1.0f + gg - 2.0f * x * c, 1e-6f), 1.5f);
+  }
+  return 1.0f;
+}
+
+// --- Blinn 1982: a layer of particles, low albedo ---------------------------------------------
+// A layer of thickness T holding n spheres of radius r per unit volume has the optical depth
+// tau = n pi r^2 T along its normal. Seen along a direction at cosine mu to the normal, lit by a
+// parallel beam at cosine mu0 (both > 0, measured on the side each comes from), single
+// scattering gives Blinn's brightness (radiance over the beam's irradiance / 4 pi):
+//   lit and seen from the same side: B = omega phi mu0 / (mu + mu0) (1 - e^(-tau (1/mu + 1/mu0)))
+//   lit from the far side:           B = omega phi mu0 / (mu - mu0) (e^(-tau/mu) - e^(-tau/mu0))
+// (mu = mu0: omega phi (tau/mu) e^(-tau/mu), the seed's s), and the layer lets through
+// Tr = e^(-tau/mu) of the light behind it.
+float blinn_optical_depth(float n_per_m3, float radius_m, float thickness_m) {
+  return n_per_m3 * PI * radius_m * radius_m * thickness_m;
+}
+
+// The scattering probability per unit omega phi of the two cases above.
+float blinn_reflection(float tau, float mu, float mu0) {
+  return mu0 / (mu + mu0) * (1.0f - exp(-tau * (1.0f / mu + 1.0f / mu0)));
+}
+
+float blinn_transmission(float tau, float mu, float mu0) {
+  // With a = tau/mu, b = tau/mu0 and d = |a - b|: e^(-min(a, b)) a (1 - e^(-d)) / d, which
+  // neither overflows nor loses its digits near mu = mu0 (there (1 - e^(-d)) / d comes from
+  // its series).
+  float a = tau / mu, b = tau / mu0;
+  float d = abs(a - b);
+  float ratio = d < 1e-3f ? 1.0f - d * (0.5f - d / 6.0f) : (1.0f - exp(-d)) / d;
+  return exp(-min(a, b)) * a * ratio;
+}
+
+// Blinn's brightness of the layer and its transparency: x = B (per unit beam irradiance / 4 pi),
+// y = Tr. `lit_from_front`: the light on the eye's side of the layer. `seed_form`: the seed's
+// printing, B = (omega / mu) phi s with s = (tau/mu) e^(-tau/mu) whatever the light's angle,
+// and Tr = e^(-tau/mu) + omega phi(pi), kept for comparison.
+vec2 blinn_layer(float tau, float mu, float mu0, bool lit_from_front, float omega, float phi,
+                 float phi_at_pi, bool seed_form) {
+  float tr = exp(-tau / mu);
+  if (seed_form) {
+    float s = tau / mu * exp(-tau / mu);
+    return vec2(omega / mu * phi * s, tr + omega * phi_at_pi);
+  }
+  float p = lit_from_front ? blinn_reflection(tau, mu, mu0) : blinn_transmission(tau, mu, mu0);
+  return vec2(omega * phi * p, tr);
+}
+
+// --- Gardner 1985: the texture function -------------------------------------------------------
+// T(x, y, z) = k [sum_i C_i sin(FX_i x + PX_i) + T0] [sum_i C_i sin(FY_i y + PY_i) + T0],
+// FX_(i+1) = 2 FX_i, FY_(i+1) = 2 FY_i, C_(i+1) = 0.707 C_i, with the phase shifts
+// PX_i = pi/2 sin(FY_(i-1) y) + pi sin(FX_i z / 2), PY_i = pi/2 sin(FX_(i-1) x) + pi sin(FY_i z / 2)
+// (for i = 1, FX_0 = FX_1 / 2). That is Gardner's paper; the seed prints a sum instead of the
+// product, the terms without their sines (C_i (FX_i x + PY_i): PX_i does not appear) and FX_i
+// in PY_i's second term: `seed_form` keeps its printing, for comparison. The caller chooses k
+// and T0 so that T stays in [0, 1].
+const int GARDNER_TERMS_MAX = 8;
+
+// The x factor's sum, sum_i C_i sin(FX_i x + PX_i) with C_1 = 1: along x a sum of sines at
+// FX_1, 2 FX_1, 4 FX_1, ... (PX_i depends on y and z only). `seed_form`: C_i (FX_i x + PY_i).
+float gardner_sum_x(vec3 p, vec2 f1, int terms, bool seed_form) {
+  float sum = 0.0f, c = 1.0f;
+  vec2 f = f1, f_prev = 0.5f * f1;
+  for (int i = 0; i < GARDNER_TERMS_MAX; ++i) {
+    if (i >= terms) break;
+    float px = 0.5f * PI * sin(f_prev.y * p.y) + PI * sin(0.5f * f.x * p.z);
+    float py = 0.5f * PI * sin(f_prev.x * p.x) + PI * sin(0.5f * f.x * p.z);
+    sum += c * (seed_form ? f.x * p.x + py : sin(f.x * p.x + px));
+    f_prev = f;
+    f *= 2.0f;
+    c *= 0.707f;
+  }
+  return sum;
+}
+
+// The y factor's sum, sum_i C_i sin(FY_i y + PY_i). `seed_form`: C_i (FY_i y + PY_i), with the
+// seed's FX_i in PY_i's second term.
+float gardner_sum_y(vec3 p, vec2 f1, int terms, bool seed_form) {
+  float sum = 0.0f, c = 1.0f;
+  vec2 f = f1, f_prev = 0.5f * f1;
+  for (int i = 0; i < GARDNER_TERMS_MAX; ++i) {
+    if (i >= terms) break;
+    float py = 0.5f * PI * sin(f_prev.x * p.x) + PI * sin(0.5f * (seed_form ? f.x : f.y) * p.z);
+    sum += c * (seed_form ? f.y * p.y + py : sin(f.y * p.y + py));
+    f_prev = f;
+    f *= 2.0f;
+    c *= 0.707f;
+  }
+  return sum;
+}
+
+// T(x, y, z) = k [sum_x + T0] [sum_y + T0]; the seed's printing: k sum_x + T0 + sum_y + T0.
+float gardner_texture(vec3 p, vec2 f1, float t0, float k, int terms, bool seed_form) {
+  float sx = gardner_sum_x(p, f1, terms, seed_form), sy = gardner_sum_y(p, f1, terms, seed_form);
+  return seed_form ? k * sx + t0 + sy + t0 : k * (sx + t0) * (sy + t0);
+}
+
+// Gardner's shading: I = (1 - f) {(1 - t) [(1 - s) I_d + s I_s] + t I_t} + f.
+float gardner_intensity(float i_d, float i_s, float i_t, float f, float t, float s) {
+  return (1.0f - f) * ((1.0f - t) * ((1.0f - s) * i_d + s * i_s) + t * i_t) + f;
+}
+
+// Gardner's translucency: TR = (I_t - T1 - (T2 - T1)(1 - g)) / D, g the normalised limb
+// curve (1 at the ellipsoid's centre as seen, 0 at its silhouette), clamped to [0, 1] as an
+// opacity: T1 the texture's threshold at the centre, T2 at the edge, D the texture's range
+// over which the cloud goes from clear to opaque.
+float gardner_translucency(float i_t, float t1, float t2, float d, float g) {
+  return clamp((i_t - t1 - (t2 - t1) * (1.0f - g)) / d, 0.0f, 1.0f);
+}
+
+// --- Nishita and Nakamae 1996: metaballs -------------------------------------------------------
+// A metaball of radius R and central density q contributes q f(r / R) at distance r from its
+// centre, with Wyvill's soft-object polynomial f(u) = 1 - 22/9 u^2 + 17/9 u^4 - 4/9 u^6 for
+// u < 1 and 0 beyond: f(0) = 1, f(1) = 0, f'(0) = f'(1) = 0, so the field is smooth where balls
+// end.
+float metaball_falloff(float u) {
+  if (u >= 1.0f) return 0.0f;
+  float u2 = u * u;
+  return 1.0f + u2 * (-22.0f / 9.0f + u2 * (17.0f / 9.0f - u2 * (4.0f / 9.0f)));
+}
+
+// d f / d (u^2): the gradient of q f(|p - c| / R) is q f'(u^2) 2 (p - c) / R^2.
+float metaball_falloff_d_u2(float u) {
+  if (u >= 1.0f) return 0.0f;
+  float u2 = u * u;
+  return -22.0f / 9.0f + u2 * (34.0f / 9.0f - u2 * (12.0f / 9.0f));
+}
+
+// One ball (centre_radius = (c, R)) at p: x = density, yzw = its gradient.
+vec4 metaball(vec3 p, vec4 centre_radius, float q) {
+  vec3 d = p - vec3(centre_radius);
+  float r2 = centre_radius.w * centre_radius.w;
+  float u = sqrt(dot(d, d) / r2);
+  return vec4(q * metaball_falloff(u), q * metaball_falloff_d_u2(u) * 2.0f * d / r2);
+}
+
+#endif

@@ -1,0 +1,34 @@
+#include "render/modules/classic_clouds.h"
+
+#include "render/glsl.h"
+
+namespace nephele {
+
+int blinn_phase_kind(const std::string& name) {
+  if (name == "constant") return glsl::BLINN_PHASE_CONSTANT;
+  if (name == "anisotropic") return glsl::BLINN_PHASE_ANISOTROPIC;
+  if (name == "lambert") return glsl::BLINN_PHASE_LAMBERT;
+  if (name == "rayleigh") return glsl::BLINN_PHASE_RAYLEIGH;
+  return glsl::BLINN_PHASE_HG;
+}
+
+ClassicCloudsModule::ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : set_(set), blinn_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_BLINN}) {}
+
+void ClassicCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) {
+  const ClassicCloudParams& c = scene.classic;
+  const float thickness_m = scene.clouds.top_altitude_m - scene.clouds.bottom_altitude_m;
+  params.classic_blinn = glm::vec4(
+      glsl::blinn_optical_depth(c.blinn_particles_per_m3, c.blinn_particle_radius_m, thickness_m),
+      c.blinn_albedo, c.blinn_phase_x, float(blinn_phase_kind(c.blinn_phase)));
+  params.classic_options = glm::vec4(c.seed_formulas ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+}
+
+void ClassicCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model,
+                                 int width, int height) {
+  if (model != CloudModel::Blinn) return;
+  gpu::dispatch(cmd, blinn_, set_, timer, "classic_blinn", uint32_t(width), uint32_t(height), 1, 8,
+                8, 1);
+}
+
+}  // namespace nephele

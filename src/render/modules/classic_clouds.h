@@ -1,0 +1,30 @@
+// The classical cloud models of seed 004 (issue 23): drawn in place of nephele's march when
+// clouds.model names one, by classic_clouds.comp into this frame's cloud buffer (as the
+// temporal resolve writes it), so that compose.comp puts them in the sky unchanged. Their
+// formulas are common/classic_inc.glsl's.
+#pragma once
+
+#include "gpu/kernel.h"
+#include "nephele/scene.h"
+#include "render/gpu_params.h"
+
+namespace nephele {
+
+class ClassicCloudsModule {
+ public:
+  ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+
+  // Fills params.classic_*: the scene's [classic] values in the shader's terms.
+  static void prepare(const Scene& scene, gpu::FrameParams& params);
+  // One thread per pixel of the width x height cloud buffer bound as clouds_a_out / _b_out.
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model, int width, int height);
+
+ private:
+  gpu::DescriptorSet& set_;
+  gpu::Kernel blinn_;
+};
+
+// Blinn's phase function's kind (classic_inc.glsl's BLINN_PHASE_*) for [classic] blinn_phase.
+int blinn_phase_kind(const std::string& name);
+
+}  // namespace nephele

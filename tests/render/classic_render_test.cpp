@@ -1,0 +1,145 @@
+// The classical cloud models drawn (classic_clouds.comp, seed 004, issue 23): each pixel of
+// the cloud buffer against the model's closed form for that pixel's ray.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "nephele/scene_io.h"
+#include "render/frame_params.h"
+#include "render/modules/classic_clouds.h"
+#include "render/glsl.h"
+#include "render_fixture.h"
+
+namespace nephele {
+namespace {
+
+// From the ground looking up into the [clouds] layer, 1.5-4 km, the sun high in the south-east;
+// the cloud buffer at the image's resolution.
+Scene blinn_scene() {
+  Scene s = load_preset("default");
+  s.output.width = 48;
+  s.output.height = 32;
+  s.output.auto_exposure = false;
+  s.quality.cloud_downsample = 1;
+  s.camera.view_dir = glm::vec3(0.0f, 0.5f, 1.0f);
+  s.camera.fov_deg = 60.0f;
+  s.sun.direction = glm::normalize(glm::vec3(0.5f, -0.4f, 0.75f));
+  s.clouds.model = CloudModel::Blinn;
+  s.classic.blinn_particles_per_m3 = 3.0e5f;  // tau = 0.236
+  return s;
+}
+
+struct Ray {
+  glm::vec3 dir;
+  double path_m;   // through the layer
+  glm::vec3 up;    // at the path's middle
+};
+
+Ray ray_of(const Scene& s, int x, int y) {
+  const CameraBasis b = camera_basis(s.camera);
+  const float tan_half = std::tan(glm::radians(s.camera.fov_deg) * 0.5f);
+  const float aspect = float(s.output.width) / float(s.output.height);
+  Ray r;
+  r.dir = glsl::camera_ray(b.forward, b.right, b.up, tan_half, aspect, float(x), float(y),
+                           float(s.output.width), float(s.output.height));
+  const double planet_m = s.atmosphere.planet_radius_km * 1000.0;
+  const glm::dvec3 eye(s.camera.position_m.x, s.camera.position_m.y, planet_m + s.camera.position_m.z);
+  const glm::dvec3 d(r.dir);
+  const auto exit_at = [&](double radius_m) {  // from inside the sphere
+    const double b2 = glm::dot(eye, d), c = glm::dot(eye, eye) - radius_m * radius_m;
+    return -b2 + std::sqrt(b2 * b2 - c);
+  };
+  const double t0 = exit_at(planet_m + s.clouds.bottom_altitude_m);
+  const double t1 = exit_at(planet_m + s.clouds.top_altitude_m);
+  r.path_m = t1 - t0;
+  r.up = glm::vec3(glm::normalize(eye + d * (0.5 * (t0 + t1))));
+  return r;
+}
+
+class ClassicRenderTest : public RenderTest {};
+
+// Blinn's slab from below, the sun above it: the transmittance along each ray is e^(-tau/mu),
+// mu = thickness / path; the light is Blinn's transmitted single scattering omega phi(alpha)
+// mu0/(mu - mu0)(e^(-tau/mu) - e^(-tau/mu0)) times the sunlight / 4 pi, dimmed by the air in
+// front: radiance over the closed form is nearly the same for every pixel (the air's
+// transmittance differs by a few percent over these rays), and exactly the same ratio between
+// two renders, where the air cancels: each phase function against Henyey-Greenstein's, and
+// the seed's printing of B and Tr against the original.
+TEST_F(ClassicRenderTest, BlinnsLayerIsItsClosedFormPixelByPixel) {
+  Scene s = blinn_scene();
+  const float thickness_m = s.clouds.top_altitude_m - s.clouds.bottom_altitude_m;
+  const float tau = glsl::blinn_optical_depth(s.classic.blinn_particles_per_m3,
+                                              s.classic.blinn_particle_radius_m, thickness_m);
+  // The closed form for each pixel, with the scene's phase and printing.
+  const auto closed_form = [&](const Scene& scene) {
+    std::vector<glm::vec2> out;
+    const int kind = blinn_phase_kind(scene.classic.blinn_phase);
+    const bool seed = scene.classic.seed_formulas;
+    for (int y = 0; y < scene.output.height; ++y)
+      for (int x = 0; x < scene.output.width; ++x) {
+        const Ray r = ray_of(scene, x, y);
+        const float mu = float(thickness_m / r.path_m);
+        const float mu0 = glm::dot(r.up, scene.sun.direction);
+        const float cos_alpha = -glm::dot(r.dir, scene.sun.direction);
+        const float x_param = scene.classic.blinn_phase_x;
+        out.push_back(glsl::blinn_layer(tau, mu, mu0, false, scene.classic.blinn_albedo,
+                                        glsl::blinn_phase(kind, x_param, cos_alpha, seed),
+                                        glsl::blinn_phase(kind, x_param, -1.0f, seed), seed));
+      }
+    return out;
+  };
+  const Frame reference = render(s);
+  const std::vector<glm::vec2> reference_expected = closed_form(s);
+  double lo = 1e30, hi = 0.0;
+  for (size_t i = 0; i < reference_expected.size(); ++i) {
+    const double ratio = reference.clouds.pixels[i].g / reference_expected[i].x;
+    lo = std::min(lo, ratio);
+    hi = std::max(hi, ratio);
+  }
+  std::printf("hg: radiance / closed form in [%.4g, %.4g]\n", lo, hi);
+  EXPECT_GT(lo, 0.0);
+  EXPECT_LT(hi / lo, 1.06);
+  const std::vector<std::pair<std::string, bool>> cases = {
+      {"constant", false}, {"anisotropic", false}, {"lambert", false}, {"rayleigh", false},
+      {"hg", true}, {"lambert", true}};
+  for (const auto& [phase, seed] : cases) {
+    {
+      s.classic.blinn_phase = phase;
+      s.classic.blinn_phase_x = phase == "anisotropic" ? 0.8f : -0.6f;
+      s.classic.seed_formulas = seed;
+      const Frame f = render(s);
+      ASSERT_EQ(f.clouds.width, s.output.width);
+      const std::vector<glm::vec2> expected = closed_form(s);
+      double worst_tr = 0.0, worst_ratio = 0.0;
+      for (size_t i = 0; i < expected.size(); ++i) {
+        const glm::vec4 c = f.clouds.pixels[i];
+        worst_tr = std::max(worst_tr, double(std::abs(c.a - std::min(expected[i].y, 1.0f))));
+        const double measured = c.g / reference.clouds.pixels[i].g;
+        const double predicted = expected[i].x / reference_expected[i].x;
+        worst_ratio = std::max(worst_ratio, std::abs(measured / predicted - 1.0));
+      }
+      std::printf("%s%s: worst transmittance error %.2e, worst ratio to hg's error %.2e\n",
+                  phase.c_str(), seed ? " (seed's form)" : "", worst_tr, worst_ratio);
+      EXPECT_LT(worst_tr, 2e-3) << phase << seed;
+      EXPECT_LT(worst_ratio, 2e-3) << phase << seed;
+    }
+  }
+}
+
+// Doubling the particles doubles tau: the slab lets through the square of what it did.
+TEST_F(ClassicRenderTest, BlinnsLayerThickensWithItsParticles) {
+  Scene s = blinn_scene();
+  const Frame thin = render(s);
+  s.classic.blinn_particles_per_m3 *= 2.0f;
+  const Frame thick = render(s);
+  for (size_t i = 0; i < thin.clouds.pixels.size(); i += 37)
+    EXPECT_NEAR(thick.clouds.pixels[i].a, thin.clouds.pixels[i].a * thin.clouds.pixels[i].a, 1e-3);
+  // None at all: a clear sky, the same as nephele's with no clouds.
+  s.classic.blinn_particles_per_m3 = 0.0f;
+  const Frame none = render(s);
+  for (const glm::vec4& c : none.clouds.pixels) ASSERT_EQ(c, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+}
+
+}  // namespace
+}  // namespace nephele
