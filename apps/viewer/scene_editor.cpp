@@ -57,9 +57,12 @@ const std::vector<ParameterGroup>& parameter_groups() {
         {"Clouds", {"clouds.", "noise_seed"}},
         {"High clouds", {"high_clouds."}},
         {"Cirrus", {"cirrus."}},
+        {"Particle clouds", {"particle_clouds."}},
+        {"Classical cloud models", {"classic."}},
         {"Conditions", {"conditions."}},
         {"Quality", {"quality."}},
         {"Output", {"output."}},
+        {"Lab", {"lab."}},
     };
     std::vector<ParameterGroup> out;
     for (const auto& [title, prefixes] : layout) out.push_back({title, {}});

@@ -363,7 +363,7 @@ TEST(SceneToml, UnknownPresetIsAnError) {
 
 TEST(SceneToml, UnknownKeyListsAllowedKeys) {
   std::string message = parse_error("[clouds]\ncovrage = 0.5\n");
-  EXPECT_EQ(message.rfind("scene.toml:2:1: unknown key 'clouds.covrage' (allowed in [clouds]: "
+  EXPECT_EQ(message.rfind("scene.toml:2:1: unknown key 'clouds.covrage' (allowed in [clouds]: model, "
                           "bottom_altitude_m, top_altitude_m, coverage",
                           0),
             0u)

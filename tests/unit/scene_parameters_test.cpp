@@ -155,7 +155,7 @@ TEST(SceneParameters, SetChangesThatKeyAlone) {
 TEST(SceneParameters, UnknownKeysAreNamedWithTheAllowedOnes) {
   Scene scene;
   EXPECT_EQ(input_error([&] { set_scene_value(scene, "clouds.cover", "0.5"); }).rfind(
-                "unknown scene key 'clouds.cover' (allowed in [clouds]: bottom_altitude_m, ", 0),
+                "unknown scene key 'clouds.cover' (allowed in [clouds]: model, bottom_altitude_m, ", 0),
             0u);
   EXPECT_NE(input_error([&] { get_scene_value(scene, "cloud.coverage"); })
                 .find("unknown scene key 'cloud.coverage' (allowed tables: location camera sun"),

@@ -166,13 +166,14 @@ TEST(ViewerPanel, EveryParameterIsInExactlyOneGroupInTheFilesOrder) {
   }
   EXPECT_EQ(titles, (std::vector<std::string>{"Location and time", "Camera", "Sun and moon",
                                                "Atmosphere and sky model", "Clouds", "High clouds",
-                                               "Cirrus", "Conditions", "Quality", "Output"}));
+                                               "Cirrus", "Particle clouds", "Classical cloud models",
+                                               "Conditions", "Quality", "Output", "Lab"}));
   EXPECT_EQ(shown.size(), scene_parameters().size());
   for (const SceneParameter& p : scene_parameters()) EXPECT_EQ(shown.count(p.key), 1u) << p.key;
   EXPECT_EQ(parameter_groups()[0].keys,
             (std::vector<std::string>{"time", "time_s", "location.lat_deg", "location.lon_deg",
                                       "location.altitude_m"}));
-  EXPECT_EQ(parameter_groups()[4].keys.front(), "clouds.bottom_altitude_m");
+  EXPECT_EQ(parameter_groups()[4].keys.front(), "clouds.model");
   EXPECT_EQ(parameter_groups()[4].keys.back(), "noise_seed");
 }
 
