@@ -18,8 +18,8 @@ namespace {
 // the cloud buffer at the image's resolution.
 Scene blinn_scene() {
   Scene s = load_preset("default");
-  s.output.width = 48;
-  s.output.height = 32;
+  s.output.width = 32;
+  s.output.height = 24;
   s.output.auto_exposure = false;
   s.quality.cloud_downsample = 1;
   s.camera.view_dir = glm::vec3(0.0f, 0.5f, 1.0f);
@@ -101,8 +101,7 @@ TEST_F(ClassicRenderTest, BlinnsLayerIsItsClosedFormPixelByPixel) {
   EXPECT_GT(lo, 0.0);
   EXPECT_LT(hi / lo, 1.06);
   const std::vector<std::pair<std::string, bool>> cases = {
-      {"constant", false}, {"anisotropic", false}, {"lambert", false}, {"rayleigh", false},
-      {"hg", true}, {"lambert", true}};
+      {"anisotropic", false}, {"lambert", false}, {"rayleigh", false}, {"hg", true}};
   for (const auto& [phase, seed] : cases) {
     {
       s.classic.blinn_phase = phase;
