@@ -6,9 +6,17 @@
 //   CLASSIC_BLINN: Blinn 1982, the [clouds] layer as a uniform slab of small particles, lit by
 //     the key light with low-albedo single scattering (common/classic_inc.glsl): the light
 //     scattered once towards the eye and the transparency of the slab along the view.
+//   CLASSIC_GARDNER: Gardner 1985, on a flat earth as he had it: cumulus as ellipsoids standing
+//     on the layer's bottom, one in a share `coverage` of the cells of a grid (visited along the
+//     ray in order, front to back), or stratus as a sky plane at the layer's bottom; both
+//     textured by his T(x, y, z), translucent where T falls below the threshold that goes from
+//     T1 at an ellipsoid's centre to T2 at its limb, shaded by his I = (1 - f){(1 - t)
+//     [(1 - s) I_d + s I_s] + t T} + f times the sunlight of a white diffuser (E / pi). No
+//     shadows on the ground: his model has none.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
+#include "common/noise_inc.glsl"
 #include "common/classic_inc.glsl"
 #include "air_inc.glsl"
 
@@ -95,6 +103,108 @@ void blinn(ivec2 pixel, vec3 eye, vec3 dir, vec3 light) {
   write_cloud(pixel, air * radiance, transmittance, haze, shadow, t_mid);
 }
 
+// Gardner's texture at a point (ENU, m) and the translucency (opacity) there for limb curve g.
+vec2 gardner_surface(vec3 p, float g) {
+  bool seed_form = frame.classic_options.x > 0.5f;
+  int terms = int(frame.classic_options.z);
+  // k and T0 keep the original's T in [0, 1]: each factor's sum lies within +-S, S = sum C_i.
+  float s = 0.0f, c = 1.0f;
+  for (int i = 0; i < GARDNER_TERMS_MAX; ++i) {
+    if (i >= terms) break;
+    s += c;
+    c *= 0.707f;
+  }
+  float f1 = frame.classic_gardner.x;
+  float t = gardner_texture(p, vec2(f1), s, 1.0f / (4.0f * s * s), terms, seed_form);
+  if (seed_form) t = fract(t);  // the seed's printing grows without bound: seen modulo 1
+  return vec2(t, gardner_translucency(t, frame.classic_gardner.y, frame.classic_gardner.z,
+                                      frame.classic_gardner.w, g));
+}
+
+// Gardner's intensity at a surface point with normal n facing the eye.
+float gardner_shade(vec3 n, vec3 to_eye, vec3 light, float texture_value) {
+  vec4 k = frame.classic_gardner_shading;
+  float i_d = max(dot(n, light), 0.0f);
+  float i_s = pow(max(dot(n, normalize(light + to_eye)), 0.0f), 16.0f);
+  return gardner_intensity(i_d, i_s, texture_value, k.x, k.y, k.z);
+}
+
+void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light) {
+  float radius_m = frame.radii_m.x;
+  vec3 eye = vec3(eye_planet.xy, length(eye_planet) - radius_m);  // ENU on a flat earth
+  float bottom_m = frame.radii_m.z - radius_m, top_m = frame.radii_m.w - radius_m;
+  float t_ground = dir.z < 0.0f ? -eye.z / dir.z : FAR_M;
+  vec3 sunlight = frame.sun_at_clouds.rgb / PI * (light.z > 0.0f ? 1.0f : 0.0f);
+  vec3 radiance = vec3(0.0f);
+  float transmittance = 1.0f, haze = 0.0f, weighted_t = 0.0f;
+  // One surface: composited front to back with the air in front of it.
+  #define GARDNER_HIT(t_hit, opacity, intensity)                                          \
+    {                                                                                      \
+      vec3 air = air_transmittance(eye.z, eye.z + dir.z * (t_hit), (t_hit));              \
+      radiance += transmittance * (opacity) * air * sunlight * (intensity);                \
+      haze += transmittance * (opacity) * (1.0f - air.g);                                  \
+      weighted_t += (t_hit) * transmittance * (opacity);                                   \
+      transmittance *= 1.0f - (opacity);                                                   \
+    }
+  if (frame.classic_options.y > 0.5f) {  // stratus: the sky plane
+    float t = abs(dir.z) > 1e-6f ? (bottom_m - eye.z) / dir.z : -1.0f;
+    if (t > 0.0f && t < t_ground) {
+      vec3 n = vec3(0.0f, 0.0f, dir.z > 0.0f ? -1.0f : 1.0f);
+      vec2 surface = gardner_surface(eye + dir * t, 1.0f);
+      GARDNER_HIT(t, surface.y, gardner_shade(n, -dir, light, surface.x));
+    }
+  } else {  // cumulus: the cells the ray crosses within the layer, in order
+    float spacing = frame.classic_gardner_shading.w;
+    float t0 = 0.0f, t1 = FAR_M;
+    if (abs(dir.z) > 1e-6f) {
+      float tb = (bottom_m - eye.z) / dir.z, tt = (top_m - eye.z) / dir.z;
+      t0 = max(min(tb, tt), 0.0f);
+      t1 = max(tb, tt);
+    } else if (eye.z < bottom_m || eye.z > top_m) {
+      t1 = -1.0f;
+    }
+    t1 = min(t1, min(t_ground, t0 + 80000.0f));  // at most 80 km of the layer
+    if (t1 > t0) {
+      vec2 p = (eye.xy + dir.xy * t0) / spacing;
+      ivec2 cell = ivec2(floor(p));
+      vec2 d = dir.xy;
+      ivec2 step_dir = ivec2(d.x >= 0.0f ? 1 : -1, d.y >= 0.0f ? 1 : -1);
+      vec2 inv = vec2(abs(d.x) > 1e-9f ? 1.0f / abs(d.x) : 1e30f, abs(d.y) > 1e-9f ? 1.0f / abs(d.y) : 1e30f);
+      // The ray's t at the next cell border in x and y (Amanatides and Woo).
+      vec2 border = vec2(d.x >= 0.0f ? float(cell.x + 1) - p.x : p.x - float(cell.x),
+                         d.y >= 0.0f ? float(cell.y + 1) - p.y : p.y - float(cell.y));
+      vec2 t_next = vec2(t0) + border * spacing * inv;
+      vec2 t_delta = spacing * inv;
+      uint seed = uint(frame.size.w);
+      for (int i = 0; i < 160 && transmittance > 0.01f; ++i) {
+        GardnerEllipsoid e = gardner_cell_ellipsoid(cell, spacing, bottom_m, top_m,
+                                                    frame.classic_options.w, seed);
+        if (e.present) {
+          vec2 hit = ray_ellipsoid(eye, dir, e.centre, e.radii);
+          if (hit.x > 0.0f && hit.x < t_ground) {
+            vec3 q = eye + dir * hit.x;
+            vec3 n = normalize((q - e.centre) / (e.radii * e.radii));
+            vec2 surface = gardner_surface(q, hit.y);
+            GARDNER_HIT(hit.x, surface.y, gardner_shade(n, -dir, light, surface.x));
+          }
+        }
+        float t_here = min(t_next.x, t_next.y);
+        if (t_here > t1) break;
+        if (t_next.x < t_next.y) {
+          t_next.x += t_delta.x;
+          cell.x += step_dir.x;
+        } else {
+          t_next.y += t_delta.y;
+          cell.y += step_dir.y;
+        }
+      }
+    }
+  }
+  float opacity = 1.0f - transmittance;
+  float distance_m = opacity > 1e-6f ? weighted_t / opacity : (t_ground < FAR_M ? t_ground : FAR_M);
+  write_cloud(pixel, radiance, transmittance, haze, 1.0f, distance_m);
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   int width = frame.cloud_grid.x, height = frame.cloud_grid.y;
@@ -104,4 +214,5 @@ void main() {
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
                         float(pixel.y), float(width), float(height));
   if (MODEL == CLASSIC_BLINN) blinn(pixel, eye, dir, frame.sun_dir.xyz);
+  if (MODEL == CLASSIC_GARDNER) gardner(pixel, eye, dir, frame.sun_dir.xyz);
 }

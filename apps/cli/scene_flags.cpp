@@ -182,9 +182,10 @@ const std::vector<FlagSpec>& flag_specs() {
        "light volume half extent (km), [0, 1000]; 0 = march every light ray"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
-      {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model), "nephele|blinn",
-       "the model drawing the [clouds] layer: nephele (default) or a classical one of seed 004, "
-       "blinn (Blinn 1982: a layer of small particles, single scattering; see [classic])"},
+      {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model), "nephele|blinn|gardner",
+       "the model drawing the [clouds] layer: nephele (default) or a classical one of seed 004: "
+       "blinn (Blinn 1982: a layer of small particles, single scattering) or gardner (Gardner "
+       "1985: textured ellipsoids or sky plane); see [classic]"},
       {"--voxel-march", &F::voxel_march, "quality.voxel_march", TO(quality.voxel_march),
        "plain|three-phase",
        "how rays cross the voxel clouds: three-phase (default; SDF sphere tracing across their "

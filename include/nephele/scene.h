@@ -66,8 +66,10 @@ enum class SkyModel {
 enum class CloudModel {
   Nephele,  // the noise clouds marched with multiple-scattering octaves (seeds 000 and 002)
   Blinn,    // Blinn 1982: a uniform layer of small particles, low-albedo single scattering
+  Gardner,  // Gardner 1985: textured ellipsoids (cumulus) or a textured sky plane (stratus)
 };
-inline constexpr CloudModel kCloudModels[] = {CloudModel::Nephele, CloudModel::Blinn};
+inline constexpr CloudModel kCloudModels[] = {CloudModel::Nephele, CloudModel::Blinn,
+                                              CloudModel::Gardner};
 
 // Planet and atmosphere (Hillaire 2020, table 1 for the Earth's defaults): Rayleigh and Mie
 // scattering falling off exponentially with altitude, Mie absorption, an ozone layer.
@@ -396,6 +398,21 @@ struct ClassicCloudParams {
   float blinn_particle_radius_m = 1.0e-5f;   // (0, 1]
   float blinn_particles_per_m3 = 1.0e6f;     // [0, 1e12]: tau 0.79 over the default layer
   float blinn_albedo = 0.9f;                 // omega, [0, 1]
+  // Gardner 1985: "cumulus" (an ellipsoid in a share `coverage` of the cells of
+  // gardner_spacing_m over the layer) or "stratus" (a sky plane at the layer's bottom), both
+  // textured by his function T with gardner_terms sines from the wavelength gardner_period_m;
+  // translucency from the thresholds T1 (centre), T2 (edge) over the range D; shading
+  // I = (1 - f){(1 - t)[(1 - s) I_d + s I_s] + t T} + f.
+  std::string gardner_clouds = "cumulus";
+  float gardner_spacing_m = 3000.0f;         // [100, 1e5]
+  float gardner_period_m = 2000.0f;          // [10, 1e6]
+  int gardner_terms = 6;                     // [1, 8]
+  float gardner_t1 = 0.2f;                   // [0, 1]
+  float gardner_t2 = 0.45f;                  // [0, 1]
+  float gardner_range = 0.15f;               // D, (0, 1]
+  float gardner_ambient = 0.3f;              // f, [0, 1]
+  float gardner_texture = 0.4f;              // t, [0, 1]
+  float gardner_specular = 0.05f;            // s, [0, 1]
 };
 
 // The lab scene (issue 21): one density grid in vacuum (no planet, no air, a black background)

@@ -12,6 +12,7 @@
 
 // The models of classic_clouds.comp (its MODEL specialization constant).
 const int CLASSIC_BLINN = 1;
+const int CLASSIC_GARDNER = 2;
 
 // --- Blinn 1982: phase functions -------------------------------------------------------------
 const int BLINN_PHASE_CONSTANT = 0;     // 1
@@ -142,6 +143,46 @@ float gardner_intensity(float i_d, float i_s, float i_t, float f, float t, float
 // over which the cloud goes from clear to opaque.
 float gardner_translucency(float i_t, float t1, float t2, float d, float g) {
   return clamp((i_t - t1 - (t2 - t1) * (1.0f - g)) / d, 0.0f, 1.0f);
+}
+
+// --- Gardner 1985: the cumulus field and its ellipsoids -------------------------------------
+// One ellipsoid per square cell of `spacing_m`, where the cell's hash is below `coverage`: a
+// horizontal semi-axis of 0.3-0.45 spacing, a vertical one of 0.6-1 of half the layer's
+// thickness, standing on the layer's bottom, its centre jittered as far as keeps it inside its
+// cell (a ray visiting the cells in order meets the ellipsoids in order).
+struct GardnerEllipsoid {
+  vec3 centre;  // ENU (m)
+  vec3 radii;   // semi-axes (m)
+  bool present;
+};
+
+GardnerEllipsoid gardner_cell_ellipsoid(ivec2 cell, float spacing_m, float bottom_m, float top_m,
+                                        float coverage, uint seed) {
+  vec3 h = hash_cell(ivec3(cell, 7), seed);
+  vec3 k = hash_cell(ivec3(cell, 11), seed);
+  float a = spacing_m * (0.3f + 0.15f * k.x);
+  float c = 0.5f * (top_m - bottom_m) * (0.6f + 0.4f * k.y);
+  vec2 slack = vec2(0.5f * spacing_m - a);
+  vec2 centre = (vec2(cell) + 0.5f) * spacing_m + (vec2(h.y, h.z) * 2.0f - 1.0f) * slack;
+  GardnerEllipsoid e;
+  e.centre = vec3(centre, bottom_m + c);
+  e.radii = vec3(a, a, c);
+  e.present = h.x < coverage;
+  return e;
+}
+
+// The ray o + t d (d unit) against the ellipsoid (centre, radii): x the entering t (< 0: none
+// ahead, or the ray misses), y Gardner's normalised limb curve there, sqrt(1 - q^2) with q the
+// ray's closest approach to the centre in the ellipsoid's unit-sphere space (1 through the
+// centre, 0 grazing the silhouette).
+vec2 ray_ellipsoid(vec3 o, vec3 d, vec3 centre, vec3 radii) {
+  vec3 o1 = (o - centre) / radii, d1 = d / radii;
+  float a = dot(d1, d1), b = dot(o1, d1), c = dot(o1, o1) - 1.0f;
+  float disc = b * b - a * c;
+  if (disc <= 0.0f) return vec2(-1.0f, 0.0f);
+  float t = (-b - sqrt(disc)) / a;
+  float q2 = c + 1.0f - b * b / a;
+  return vec2(t, sqrt(max(1.0f - q2, 0.0f)));
 }
 
 // --- Nishita and Nakamae 1996: metaballs -------------------------------------------------------

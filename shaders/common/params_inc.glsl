@@ -194,7 +194,14 @@ struct FrameParams {
   // The classical models (classic_clouds.comp, seed 004): Blinn's x optical depth tau along the
   // vertical, y albedo omega, z his phase function's x or g, w its kind (BLINN_PHASE_*)
   vec4 classic_blinn;
-  vec4 classic_options;  // x 1: the seed's printing of the formulas; yzw unused
+  // x 1: the seed's printing of the formulas; y Gardner's clouds (0 cumulus ellipsoids, 1 a
+  // stratus plane); z his texture's terms; w the layer's coverage
+  vec4 classic_options;
+  // Gardner: x FX_1 = FY_1 (rad/m), y T1 (the threshold at an ellipsoid's centre), z T2 (at
+  // its edge), w D (the texture's range from clear to opaque)
+  vec4 classic_gardner;
+  // Gardner: x f (ambient), y t (texture), z s (specular), w the cumulus cells' spacing (m)
+  vec4 classic_gardner_shading;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

@@ -74,6 +74,8 @@ const char* to_string(CloudModel model) {
       return "nephele";
     case CloudModel::Blinn:
       return "blinn";
+    case CloudModel::Gardner:
+      return "gardner";
   }
   return "unknown";
 }
@@ -262,7 +264,7 @@ const std::vector<Section>& scene_sections() {
       {"clouds",
        {FIELD(clouds, model,
               "\"nephele\" (its noise clouds) or a classical model of seed 004 drawing the same "
-              "layer: \"blinn\" (see [classic])"),
+              "layer: \"blinn\" or \"gardner\" (see [classic])"),
         FIELD(clouds, bottom_altitude_m, "above ground, [0, 1e6]"),
         FIELD(clouds, top_altitude_m, "above ground, > bottom_altitude_m"),
         FIELD(clouds, coverage, "[0, 1]"),
@@ -393,7 +395,17 @@ const std::vector<Section>& scene_sections() {
               "scattering: < 0), [-1, 1] ((-1, 1) for hg)"),
         FIELD(classic, blinn_particle_radius_m, "r, (0, 1]"),
         FIELD(classic, blinn_particles_per_m3, "n, [0, 1e12]; tau = n pi r^2 (top - bottom)"),
-        FIELD(classic, blinn_albedo, "omega, [0, 1]")},
+        FIELD(classic, blinn_albedo, "omega, [0, 1]"),
+        FIELD(classic, gardner_clouds, "Gardner's clouds: cumulus (textured ellipsoids) or stratus (a textured sky plane)"),
+        FIELD(classic, gardner_spacing_m, "the cumulus cells' side (m), [100, 1e5]; one ellipsoid in a share clouds.coverage of them"),
+        FIELD(classic, gardner_period_m, "his texture's longest wavelength (m), [10, 1e6]"),
+        FIELD(classic, gardner_terms, "the texture's sines per axis, frequencies doubling, [1, 8]"),
+        FIELD(classic, gardner_t1, "T1, the texture's threshold at an ellipsoid's centre, [0, 1]"),
+        FIELD(classic, gardner_t2, "T2, the threshold at its edge, [0, 1]"),
+        FIELD(classic, gardner_range, "D, the texture's range from clear to opaque, (0, 1]"),
+        FIELD(classic, gardner_ambient, "f, the ambient term, [0, 1]"),
+        FIELD(classic, gardner_texture, "t, the texture's share of the shading, [0, 1]"),
+        FIELD(classic, gardner_specular, "s, the specular share, [0, 1]")},
        {}},
       {"lab",
        {FIELD(lab, grid, "a density grid (.vdb, .nvdb) in vacuum for render --reference; empty = none"),

@@ -374,6 +374,18 @@ void check_classic(const Checker& check, const CloudParams& clouds, const Classi
   check.in_range("classic.blinn_particle_radius_m", c.blinn_particle_radius_m, 0.0f, 1.0f, true);
   check.in_range("classic.blinn_particles_per_m3", c.blinn_particles_per_m3, 0.0f, 1.0e12f);
   check.in_range("classic.blinn_albedo", c.blinn_albedo, 0.0f, 1.0f);
+  if (c.gardner_clouds != "cumulus" && c.gardner_clouds != "stratus")
+    check.fail("classic.gardner_clouds", scene_detail::toml_quote(c.gardner_clouds),
+               "must be \"cumulus\" or \"stratus\"");
+  check.in_range("classic.gardner_spacing_m", c.gardner_spacing_m, 100.0f, 1.0e5f);
+  check.in_range("classic.gardner_period_m", c.gardner_period_m, 10.0f, 1.0e6f);
+  check.in_range("classic.gardner_terms", c.gardner_terms, 1, 8);
+  check.in_range("classic.gardner_t1", c.gardner_t1, 0.0f, 1.0f);
+  check.in_range("classic.gardner_t2", c.gardner_t2, 0.0f, 1.0f);
+  check.in_range("classic.gardner_range", c.gardner_range, 0.0f, 1.0f, true);
+  check.in_range("classic.gardner_ambient", c.gardner_ambient, 0.0f, 1.0f);
+  check.in_range("classic.gardner_texture", c.gardner_texture, 0.0f, 1.0f);
+  check.in_range("classic.gardner_specular", c.gardner_specular, 0.0f, 1.0f);
 }
 
 // The particle clouds' grid: bounded so that spawning a field takes seconds, not hours.

@@ -142,3 +142,89 @@ TEST_F(ClassicRenderTest, BlinnsLayerThickensWithItsParticles) {
 
 }  // namespace
 }  // namespace nephele
+
+namespace nephele {
+namespace {
+
+class GardnerRenderTest : public RenderTest {};
+
+// Gardner's stratus from below: every pixel's opacity is his translucency of his texture T at
+// the point where the ray meets the sky plane (evaluated here by the same functions on the
+// CPU, whose spectrum classic_test.cpp checks), and with the texture alone shading it (f = s
+// = 0, t = 1, the plane opaque) the light is T times the same sunlight everywhere.
+TEST_F(GardnerRenderTest, TheSkyPlaneShowsHisTexturePixelByPixel) {
+  Scene s = blinn_scene();
+  s.clouds.model = CloudModel::Gardner;
+  s.classic.gardner_clouds = "stratus";
+  s.classic.gardner_range = 0.3f;
+  const Frame f = render(s);
+  const float bottom_m = s.clouds.bottom_altitude_m;
+  const CameraBasis b = camera_basis(s.camera);
+  const float tan_half = std::tan(glm::radians(s.camera.fov_deg) * 0.5f);
+  const float aspect = float(s.output.width) / float(s.output.height);
+  float sum_c = 1.0f, c = 1.0f;
+  for (int i = 1; i < s.classic.gardner_terms; ++i) sum_c += (c *= 0.707f);
+  const float f1 = 2.0f * glsl::PI / s.classic.gardner_period_m;
+  const auto texture_at = [&](int x, int y) {
+    const glm::vec3 dir = glsl::camera_ray(b.forward, b.right, b.up, tan_half, aspect, float(x),
+                                           float(y), float(s.output.width), float(s.output.height));
+    const glm::vec3 p = s.camera.position_m + dir * ((bottom_m - s.camera.position_m.z) / dir.z);
+    return glsl::gardner_texture(p, glm::vec2(f1), sum_c, 1.0f / (4.0f * sum_c * sum_c),
+                                 s.classic.gardner_terms, false);
+  };
+  double worst = 0.0;
+  int clear = 0, opaque = 0;
+  for (int y = 0; y < s.output.height; ++y)
+    for (int x = 0; x < s.output.width; ++x) {
+      const float tr = glsl::gardner_translucency(texture_at(x, y), s.classic.gardner_t1,
+                                                  s.classic.gardner_t2, s.classic.gardner_range, 1.0f);
+      const float a = f.clouds.at(x, y).a;
+      worst = std::max(worst, double(std::abs(a - (1.0f - tr))));
+      clear += a > 0.99f;
+      opaque += a < 0.01f;
+    }
+  std::printf("stratus: worst opacity error %.2e, %d clear and %d opaque of %d pixels\n", worst,
+              clear, opaque, s.output.width * s.output.height);
+  EXPECT_LT(worst, 5e-3);
+  EXPECT_GT(clear, 20);  // a broken deck: both
+  EXPECT_GT(opaque, 20);
+  // The texture alone: light over T the same for every pixel (the air's few percent aside).
+  s.classic.gardner_t1 = 0.0f;
+  s.classic.gardner_range = 1e-6f;
+  s.classic.gardner_ambient = s.classic.gardner_specular = 0.0f;
+  s.classic.gardner_texture = 1.0f;
+  const Frame lit = render(s);
+  double lo = 1e30, hi = 0.0;
+  for (int y = 0; y < s.output.height; ++y)
+    for (int x = 0; x < s.output.width; ++x) {
+      const float t = texture_at(x, y);
+      if (t < 0.05f) continue;
+      const double ratio = lit.clouds.at(x, y).g / t;
+      lo = std::min(lo, ratio);
+      hi = std::max(hi, ratio);
+    }
+  EXPECT_GT(lo, 0.0);
+  EXPECT_LT(hi / lo, 1.06);
+}
+
+// Cumulus: no ellipsoid at coverage 0, more cloud with more coverage.
+TEST_F(GardnerRenderTest, CumulusCoverFollowsTheCoverage) {
+  Scene s = blinn_scene();
+  s.clouds.model = CloudModel::Gardner;
+  s.camera.view_dir = glm::vec3(0.0f, 1.0f, 0.25f);
+  double previous = -1.0;
+  for (const float coverage : {0.0f, 0.3f, 0.8f}) {
+    s.clouds.coverage = coverage;
+    const Frame f = render(s);
+    double opacity = 0.0;
+    for (const glm::vec4& p : f.clouds.pixels) opacity += 1.0 - p.a;
+    opacity /= double(f.clouds.pixels.size());
+    std::printf("coverage %.1f: mean opacity %.3f\n", coverage, opacity);
+    if (coverage == 0.0f) EXPECT_EQ(opacity, 0.0);
+    EXPECT_GT(opacity, previous + (coverage > 0.0f ? 0.02 : -1.0));
+    previous = opacity;
+  }
+}
+
+}  // namespace
+}  // namespace nephele

@@ -215,3 +215,56 @@ TEST(Metaball, DensityAndGradientAgainstClosedForms) {
 
 }  // namespace
 }  // namespace nephele
+
+namespace nephele {
+namespace {
+
+// Gardner's cumulus field: each present ellipsoid lies inside its own cell's column (so a ray
+// that visits the cells in order meets them in order), stands on the layer's bottom below its
+// top, and a share `coverage` of the cells holds one.
+TEST(GardnerCumulus, EllipsoidsStayInTheirCellsAndCoverTheirShare) {
+  const float spacing = 3000.0f, bottom = 1500.0f, top = 4000.0f;
+  for (const float coverage : {0.2f, 0.5f, 0.8f}) {
+    int present = 0, cells = 0;
+    for (int i = -50; i < 50; ++i)
+      for (int j = -50; j < 50; ++j) {
+        const glsl::GardnerEllipsoid e =
+            glsl::gardner_cell_ellipsoid(glm::ivec2(i, j), spacing, bottom, top, coverage, 3u);
+        ++cells;
+        if (!e.present) continue;
+        ++present;
+        ASSERT_GE(e.centre.x - e.radii.x, float(i) * spacing - 1e-2f);
+        ASSERT_LE(e.centre.x + e.radii.x, float(i + 1) * spacing + 1e-2f);
+        ASSERT_GE(e.centre.y - e.radii.y, float(j) * spacing - 1e-2f);
+        ASSERT_LE(e.centre.y + e.radii.y, float(j + 1) * spacing + 1e-2f);
+        ASSERT_NEAR(e.centre.z - e.radii.z, bottom, 1e-2f);
+        ASSERT_LE(e.centre.z + e.radii.z, top + 1e-2f);
+      }
+    EXPECT_NEAR(double(present) / cells, coverage, 0.02) << coverage;
+  }
+}
+
+// The ray against an ellipsoid: through a sphere's centre, t = distance - R and the limb curve
+// 1; off-centre by q R, sqrt(1 - q^2); past it, no hit; a stretched ellipsoid is the sphere
+// in its own units.
+TEST(GardnerCumulus, RayEllipsoidHitsAndItsLimbCurve) {
+  const glm::vec3 c(100.0f, 200.0f, 2000.0f), sphere(500.0f);
+  const glm::vec2 through = glsl::ray_ellipsoid(glm::vec3(100.0f, 200.0f, 0.0f),
+                                                glm::vec3(0.0f, 0.0f, 1.0f), c, sphere);
+  EXPECT_NEAR(through.x, 1500.0f, 1e-2f);
+  EXPECT_NEAR(through.y, 1.0f, 1e-6f);
+  const glm::vec2 off = glsl::ray_ellipsoid(glm::vec3(400.0f, 200.0f, 0.0f),
+                                            glm::vec3(0.0f, 0.0f, 1.0f), c, sphere);
+  EXPECT_NEAR(off.x, 2000.0f - 400.0f, 1e-1f);  // sqrt(500^2 - 300^2) = 400
+  EXPECT_NEAR(off.y, 0.8f, 1e-5f);
+  EXPECT_LT(glsl::ray_ellipsoid(glm::vec3(700.0f, 200.0f, 0.0f), glm::vec3(0.0f, 0.0f, 1.0f), c,
+                                sphere).x, 0.0f);
+  const glm::vec2 stretched = glsl::ray_ellipsoid(glm::vec3(100.0f + 2.0f * 300.0f, 200.0f, 0.0f),
+                                                  glm::vec3(0.0f, 0.0f, 1.0f), c,
+                                                  glm::vec3(1000.0f, 500.0f, 500.0f));
+  EXPECT_NEAR(stretched.x, off.x, 1e-1f);
+  EXPECT_NEAR(stretched.y, off.y, 1e-5f);
+}
+
+}  // namespace
+}  // namespace nephele

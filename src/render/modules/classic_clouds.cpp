@@ -13,7 +13,9 @@ int blinn_phase_kind(const std::string& name) {
 }
 
 ClassicCloudsModule::ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : set_(set), blinn_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_BLINN}) {}
+    : set_(set),
+      blinn_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_BLINN}),
+      gardner_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_GARDNER}) {}
 
 void ClassicCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) {
   const ClassicCloudParams& c = scene.classic;
@@ -21,14 +23,23 @@ void ClassicCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) 
   params.classic_blinn = glm::vec4(
       glsl::blinn_optical_depth(c.blinn_particles_per_m3, c.blinn_particle_radius_m, thickness_m),
       c.blinn_albedo, c.blinn_phase_x, float(blinn_phase_kind(c.blinn_phase)));
-  params.classic_options = glm::vec4(c.seed_formulas ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+  params.classic_options = glm::vec4(c.seed_formulas ? 1.0f : 0.0f,
+                                     c.gardner_clouds == "stratus" ? 1.0f : 0.0f,
+                                     float(c.gardner_terms), scene.clouds.coverage);
+  params.classic_gardner = glm::vec4(2.0f * glsl::PI / c.gardner_period_m, c.gardner_t1,
+                                     c.gardner_t2, c.gardner_range);
+  params.classic_gardner_shading = glm::vec4(c.gardner_ambient, c.gardner_texture,
+                                             c.gardner_specular, c.gardner_spacing_m);
 }
 
 void ClassicCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model,
                                  int width, int height) {
-  if (model != CloudModel::Blinn) return;
-  gpu::dispatch(cmd, blinn_, set_, timer, "classic_blinn", uint32_t(width), uint32_t(height), 1, 8,
-                8, 1);
+  if (model == CloudModel::Blinn)
+    gpu::dispatch(cmd, blinn_, set_, timer, "classic_blinn", uint32_t(width), uint32_t(height), 1,
+                  8, 8, 1);
+  if (model == CloudModel::Gardner)
+    gpu::dispatch(cmd, gardner_, set_, timer, "classic_gardner", uint32_t(width), uint32_t(height),
+                  1, 8, 8, 1);
 }
 
 }  // namespace nephele
