@@ -8,10 +8,13 @@
 
 #include <optional>
 
+#include <nlohmann/json.hpp>
+
 #include "label.h"
 #include "nephele/error.h"
 #include "nephele/exposure.h"
 #include "nephele/image.h"
+#include "nephele/output_file.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
 #include "progress.h"
@@ -35,7 +38,38 @@ const std::vector<GalleryEntry>& entries() {
   return table;
 }
 
+// The median GPU time of an animation frame of `scene` (after the still that starts its
+// history): what a real-time host would pay each frame.
+double animation_frame_ms(Renderer& renderer, const Scene& scene) {
+  std::vector<double> ms;
+  for (int f = 1; f <= 3; ++f) {
+    Scene next = scene;
+    next.time_s += float(f) / 30.0f;
+    ms.push_back(renderer.render_next(next, false).stats.frame_ms);
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+
 }  // namespace
+
+std::vector<ClassicTile> classic_gallery_tiles(int tile_width, int tile_height) {
+  Scene base = load_preset("default");
+  base.output.width = tile_width;
+  base.output.height = tile_height;
+  std::vector<ClassicTile> tiles;
+  const auto add = [&](const std::string& name, CloudModel model, const std::string& gardner) {
+    Scene s = base;
+    s.clouds.model = model;
+    s.classic.gardner_clouds = gardner;
+    tiles.push_back({name, s});
+  };
+  add("blinn", CloudModel::Blinn, "cumulus");
+  add("gardner", CloudModel::Gardner, "cumulus");
+  add("gardner-stratus", CloudModel::Gardner, "stratus");
+  add("nephele", CloudModel::Nephele, "cumulus");
+  return tiles;
+}
 
 const std::vector<std::string>& gallery_presets() {
   static const std::vector<std::string> names = [] {
@@ -67,6 +101,12 @@ void add_gallery_flags(CLI::App& cmd, GalleryOptions& options) {
   cmd.add_option("--tile-height", options.tile_height, "height of each tile (pixels), [16, 4096]")
       ->capture_default_str();
   cmd.add_option("--columns", options.columns, "tiles per row, [1, 16]")->capture_default_str();
+  cmd.add_flag("--classic", options.classic,
+               "the classical cloud models of seed 004 (blinn, gardner cumulus and stratus) and "
+               "nephele's own on one scene, each labelled with its frame time on this device");
+  cmd.add_option("--json", options.json,
+                 "with --classic: write {\"models\": {name: frame_ms}} (the median GPU time of "
+                 "an animation frame) to this file, or to standard output with -");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
   add_progress_flags(cmd, options.progress, options.quiet);
 }
@@ -81,9 +121,30 @@ int run_gallery(const GalleryOptions& options) {
   check("--tile-height", options.tile_height, 16, 4096);
   check("--columns", options.columns, 1, 16);
   check_output_path(options.output, "--output");
+  if (!options.json.empty() && !options.classic)
+    throw InputError("--json " + options.json + ": only with --classic (the models' frame times)");
+  if (!options.json.empty()) {
+    check_output_file(options.json, "--json", true);
+    check_distinct_outputs({{"--output", options.output}, {"--json", options.json}});
+  }
 
-  std::vector<std::string> names = gallery_presets();
-  for (const std::string& name : gallery_particle_presets()) names.push_back(name);
+  std::vector<std::string> names;
+  std::vector<Scene> scenes;  // all checked before the first is rendered
+  if (options.classic) {
+    for (ClassicTile& tile : classic_gallery_tiles(options.tile_width, options.tile_height)) {
+      names.push_back(tile.name);
+      scenes.push_back(std::move(tile.scene));
+    }
+  } else {
+    names = gallery_presets();
+    for (const std::string& name : gallery_particle_presets()) names.push_back(name);
+    for (const std::string& name : names) {
+      scenes.push_back(load_preset(name));
+      scenes.back().output.width = options.tile_width;
+      scenes.back().output.height = options.tile_height;
+    }
+  }
+  for (const Scene& scene : scenes) validate_scene(scene);
   const int columns = std::min(options.columns, int(names.size()));
   const int rows = (int(names.size()) + columns - 1) / columns;
   const int gap = 4;
@@ -92,13 +153,6 @@ int run_gallery(const GalleryOptions& options) {
   for (glm::vec4& p : gallery.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   const int scale = options.tile_height >= 200 ? 2 : 1;
 
-  std::vector<Scene> scenes;  // all checked before the first is rendered
-  for (const std::string& name : names) {
-    scenes.push_back(load_preset(name));
-    scenes.back().output.width = options.tile_width;
-    scenes.back().output.height = options.tile_height;
-    validate_scene(scenes.back());
-  }
   Renderer renderer({options.device, options.validation, options.verbose, {}});
   // A step a preset (--verbose prints a line a preset instead, unless --progress).
   Progress progress("gallery", int(names.size()),
@@ -106,6 +160,7 @@ int run_gallery(const GalleryOptions& options) {
   // One exposure for every tile, the first's (auto exposure would brighten an overcast to the
   // clear sky's grey), so that the covers compare as the eye would see them side by side.
   std::optional<float> exposure;
+  nlohmann::json models = nlohmann::json::object();
   for (size_t i = 0; i < names.size(); ++i) {
     const Scene& scene = scenes[i];
     const Frame frame = renderer.render(scene);
@@ -117,7 +172,11 @@ int run_gallery(const GalleryOptions& options) {
         gallery.at(x0 + x, y0 + y) = glm::vec4(glm::vec3(frame.color.at(x, y)) * *exposure, 1.0f);
     const double cover = frame.stats.sky_cover_fraction.value_or(0.0);
     char label[160];
-    if (const auto& p = frame.stats.particle_clouds)  // the sky cover counts volumetric clouds
+    if (options.classic) {
+      const double ms = animation_frame_ms(renderer, scene);
+      models[names[i]] = ms;
+      std::snprintf(label, sizeof label, "%s  %.1f ms", names[i].c_str(), ms);
+    } else if (const auto& p = frame.stats.particle_clouds)  // the sky cover counts volumetric clouds
       std::snprintf(label, sizeof label, "%s  %d impostors", names[i].c_str(), p->impostors);
     else
       std::snprintf(label, sizeof label, "%s  %d/8 (%.2f)", names[i].c_str(),
@@ -135,6 +194,14 @@ int run_gallery(const GalleryOptions& options) {
   write_image(gallery, options.output, 1.0f,
               options.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf);
   std::cout << options.output << "\n";
+  if (!options.json.empty()) {
+    const nlohmann::json out = {{"device", renderer.device_name()},
+                                {"width", options.tile_width},
+                                {"height", options.tile_height},
+                                {"models", models}};
+    write_text_output(options.json, out.dump(2) + "\n");
+    if (options.json != "-") std::cout << options.json << "\n";
+  }
   return 0;
 }
 

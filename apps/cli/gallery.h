@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "nephele/scene.h"
+
 namespace CLI {
 class App;
 }
@@ -24,8 +26,18 @@ struct OktaRange {
 };
 OktaRange gallery_okta_range(const std::string& preset);
 
+// The classical models' gallery (`--classic`, seed 004): each model on the default scene (the
+// same camera, sun and cloud layer), nephele's own last: its tiles' names and scenes.
+struct ClassicTile {
+  std::string name;  // a model, or a model and its variant ("gardner-stratus")
+  Scene scene;
+};
+std::vector<ClassicTile> classic_gallery_tiles(int tile_width, int tile_height);
+
 struct GalleryOptions {
   std::string output = "gallery.png";
+  bool classic = false;  // the classical models instead of the presets
+  std::string json;      // --classic: {"models": {name: frame_ms}} here
   bool exr_float = false;  // EXR as 32-bit floats
   int tile_width = 400, tile_height = 250, columns = 3;
   std::string device;

@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
 
   nephele::cli::GalleryOptions gallery;
   CLI::App* gallery_cmd = app.add_subcommand(
-      "gallery", "the sky-cover presets (clear to overcast, stratus, storm, cirrus, sunset) side by side, labelled with their measured oktas");
+      "gallery", "the sky-cover presets (clear to overcast, stratus, storm, cirrus, sunset) side by side, labelled with their measured oktas; with --classic, the classical cloud models of seed 004 and nephele's on one scene, labelled with their frame times");
   nephele::cli::add_gallery_flags(*gallery_cmd, gallery);
 
   nephele::cli::ValidateOptions validate;

@@ -92,6 +92,28 @@ TEST_F(CliTest, GalleryRendersThePresetsInOneImage) {
   EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
+// `gallery --classic`: the classical models and nephele's on one scene, each with its frame
+// time in the labels and the JSON; --json only with --classic, and nothing written then.
+TEST_F(CliTest, GalleryClassicShowsEveryModelWithItsFrameTime) {
+  const std::string out = path("classic.png"), json = path("classic.json");
+  const CliRun r = run_cli("gallery --classic --tile-width 32 --tile-height 24 --columns 2 "
+                           "--validation -o " + out + " --json " + json);
+  ASSERT_EQ(r.status, 0) << r.output;
+  int w = 0, h = 0, n = 0;
+  ASSERT_TRUE(stbi_info(out.c_str(), &w, &h, &n));
+  EXPECT_EQ(w, 2 * 32 + 4);
+  EXPECT_EQ(h, 2 * 24 + 4);
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+  ASSERT_EQ(j["models"].size(), 4u);
+  for (const char* model : {"blinn", "gardner", "gardner-stratus", "nephele"})
+    EXPECT_GT(j["models"][model].get<double>(), 0.0) << model;
+  const CliRun bad = run_cli("gallery --json " + path("bad.json") + " -o " + path("bad.png"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("only with --classic"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("bad.json")));
+  EXPECT_FALSE(fs::exists(path("bad.png")));
+}
+
 TEST_F(CliTest, StatsJsonGivesTheSunAndMoonOfTheDateAndPlace) {
   // Sydney, 2012-11-08T02:11:58Z: a row of the astropy reference (tests/data).
   const std::string out = path("sydney.png"), stats = path("sydney.json");
