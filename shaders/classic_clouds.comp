@@ -13,12 +13,18 @@
 //     T1 at an ellipsoid's centre to T2 at its limb, shaded by his I = (1 - f){(1 - t)
 //     [(1 - s) I_d + s I_s] + t T} + f times the sunlight of a white diffuser (E / pi). No
 //     shadows on the ground: his model has none.
+//   CLASSIC_KAJIYA: Kajiya and Von Herzen 1984's two passes on nephele's own density field
+//     (kajiya() below).
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/noise_inc.glsl"
 #include "common/classic_inc.glsl"
 #include "air_inc.glsl"
+#include "common/phase_inc.glsl"
+
+const int MARCH_MODE = 0;  // cloud_field_inc.glsl's density and light lookups, nephele's own
+#include "cloud_field_inc.glsl"
 
 layout(constant_id = 0) const int MODEL = CLASSIC_BLINN;
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -205,6 +211,108 @@ void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light) {
   write_cloud(pixel, radiance, transmittance, haze, 1.0f, distance_m);
 }
 
+// Kajiya and Von Herzen 1984 on nephele's density field. Pass 1, the array I(x, y, z) of the
+// key light's attenuation over the volume, is nephele's light volume (light_volume.comp: the
+// optical depth towards the light on a grid about the camera; beyond it, a march towards the
+// light). Pass 2 integrates each eye ray through the layer, B = integral of A C rho dt with
+// A = exp(-kappa integral rho) and C = I p(cos theta) (single scattering, nephele's phase),
+// by Romberg's method: trapezoid sums on 2^k + 1 samples, k = 0 ... levels, each with its own
+// A from the cumulative trapezoid of rho on the same samples, extrapolated by Richardson.
+// `reference`: instead, a brute-force march of the same integral (1024 midpoint samples, the
+// light marched at each), to check the method against.
+void kajiya(ivec2 pixel, vec3 eye, vec3 dir, vec3 light, bool reference) {
+  vec2 seg = slab_segment(eye, dir);
+  vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
+  float far_m = ground.x > 0.0f ? ground.x : FAR_M;
+  seg.y = min(seg.y, seg.x + 60000.0f);
+  if (seg.y <= seg.x) {
+    write_cloud(pixel, vec3(0.0f), 1.0f, 0.0f, 1.0f, far_m);
+    return;
+  }
+  float kappa = max(frame.cloud_shape.z * frame.cloud_light.x, 1e-9f);  // view rays
+  float kappa_light = frame.cloud_shape.z * frame.cloud_light.y;  // light rays
+  float phase = dual_lobe_hg(frame.cloud_phase.x, frame.cloud_phase.y, frame.cloud_phase.z,
+                             dot(dir, light));
+  float lit = dot(normalize(eye + dir * seg.x), light) > -0.2f ? 1.0f : 0.0f;
+  float length_m = seg.y - seg.x;
+  float integral = 0.0f, depth = 0.0f, weighted_t = 0.0f;
+  if (reference) {
+    const int n = 1024;
+    float dt = length_m / float(n);
+    float a = 1.0f;
+    for (int i = 0; i < n; ++i) {
+      float t = seg.x + (float(i) + 0.5f) * dt;
+      vec3 p = eye + dir * t;
+      float rho = cloud_density(p, true);
+      if (rho <= 0.0f) continue;
+      float step_a = exp(-kappa * rho * dt);
+      float i_light = exp(-kappa_light * march_light(p, light, 0.0f, light_ray_length(p, light), 32));
+      // The exact integral over the step of A rho at constant rho: A (1 - e^(-kappa rho dt)) / kappa.
+      integral += a * (1.0f - step_a) / kappa * i_light;
+      weighted_t += t * a * (1.0f - step_a);
+      a *= step_a;
+    }
+    depth = -log(max(a, 1e-30f)) / kappa;
+  } else {
+    int levels = int(frame.classic_kajiya.x);
+    int n = 1 << levels;
+    float rho[129], c[129];
+    for (int i = 0; i <= n; ++i) {
+      vec3 p = eye + dir * (seg.x + length_m * float(i) / float(n));
+      rho[i] = cloud_density(p, true);
+      // The array's trilinear lookup smooths the depth over a voxel, where the light changes
+      // fastest: as nephele's march does, the first voxel towards the light is marched.
+      float near_m = light_volume_voxel_at(p);
+      float d = light_volume_covers(p + light * near_m)
+                    ? march_light(p, light, 0.0f, near_m, 4) + light_volume_lookup(p + light * near_m)
+                    : march_light(p, light, 0.0f, light_ray_length(p, light), 16);
+      c[i] = exp(-kappa_light * d);
+    }
+    float r_b[KAJIYA_LEVELS_MAX + 1], r_d[KAJIYA_LEVELS_MAX + 1];  // Romberg's last row
+    for (int k = 0; k <= levels; ++k) {
+      int stride = 1 << (levels - k);
+      float h = length_m / float(1 << k);
+      // The trapezoid sums on level k: of rho (the optical depth) and of A C rho, A from the
+      // cumulative trapezoid of rho on the same samples.
+      float sum_b = 0.0f, cumulative = 0.0f, previous_rho = rho[0];
+      float wt = 0.0f;
+      for (int i = 0; i <= n; i += stride) {
+        if (i > 0) cumulative += 0.5f * h * (previous_rho + rho[i]);
+        previous_rho = rho[i];
+        float a = exp(-kappa * cumulative);
+        float weight = (i == 0 || i == n) ? 0.5f * h : h;
+        sum_b += weight * a * c[i] * rho[i];
+        wt += weight * a * rho[i] * (seg.x + length_m * float(i) / float(n));
+      }
+      float sum_d = cumulative;
+      weighted_t = wt * kappa;
+      // Richardson: R(k, j) from R(k, j - 1) and R(k - 1, j - 1).
+      float prev_b = r_b[0], prev_d = r_d[0];
+      r_b[0] = sum_b;
+      r_d[0] = sum_d;
+      float scale = 1.0f;
+      for (int j = 1; j <= k; ++j) {
+        scale *= 4.0f;
+        float next_prev_b = r_b[j], next_prev_d = r_d[j];
+        r_b[j] = r_b[j - 1] + (r_b[j - 1] - prev_b) / (scale - 1.0f);
+        r_d[j] = r_d[j - 1] + (r_d[j - 1] - prev_d) / (scale - 1.0f);
+        prev_b = next_prev_b;
+        prev_d = next_prev_d;
+      }
+    }
+    integral = max(r_b[levels], 0.0f);
+    depth = max(r_d[levels], 0.0f);
+  }
+  float transmittance = exp(-kappa * depth);
+  float opacity = 1.0f - transmittance;
+  float distance_m = opacity > 1e-6f ? clamp(weighted_t / opacity, seg.x, seg.y) : far_m;
+  vec3 mid = eye + dir * distance_m;
+  vec3 air = air_transmittance(length(eye) - frame.radii_m.x, length(mid) - frame.radii_m.x, distance_m);
+  // Scattered light: albedo sigma_s per unit rho times the light and the phase.
+  vec3 radiance = air * frame.sun_at_clouds.rgb * (lit * frame.cloud_shape.w * kappa * phase * integral);
+  write_cloud(pixel, radiance, transmittance, (1.0f - air.g) * opacity, 1.0f, distance_m);
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   int width = frame.cloud_grid.x, height = frame.cloud_grid.y;
@@ -215,4 +323,5 @@ void main() {
                         float(pixel.y), float(width), float(height));
   if (MODEL == CLASSIC_BLINN) blinn(pixel, eye, dir, frame.sun_dir.xyz);
   if (MODEL == CLASSIC_GARDNER) gardner(pixel, eye, dir, frame.sun_dir.xyz);
+  if (MODEL == CLASSIC_KAJIYA) kajiya(pixel, eye, dir, frame.sun_dir.xyz, frame.classic_kajiya.y > 0.5f);
 }

@@ -182,10 +182,12 @@ const std::vector<FlagSpec>& flag_specs() {
        "light volume half extent (km), [0, 1000]; 0 = march every light ray"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
-      {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model), "nephele|blinn|gardner",
+      {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model),
+       "nephele|blinn|gardner|kajiya",
        "the model drawing the [clouds] layer: nephele (default) or a classical one of seed 004: "
-       "blinn (Blinn 1982: a layer of small particles, single scattering) or gardner (Gardner "
-       "1985: textured ellipsoids or sky plane); see [classic]"},
+       "blinn (Blinn 1982: a layer of small particles, single scattering), gardner (Gardner "
+       "1985: textured ellipsoids or sky plane) or kajiya (Kajiya and Von Herzen 1984: a light "
+       "array, then Romberg integration along each eye ray, on nephele's density); see [classic]"},
       {"--voxel-march", &F::voxel_march, "quality.voxel_march", TO(quality.voxel_march),
        "plain|three-phase",
        "how rays cross the voxel clouds: three-phase (default; SDF sphere tracing across their "

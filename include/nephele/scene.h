@@ -67,9 +67,10 @@ enum class CloudModel {
   Nephele,  // the noise clouds marched with multiple-scattering octaves (seeds 000 and 002)
   Blinn,    // Blinn 1982: a uniform layer of small particles, low-albedo single scattering
   Gardner,  // Gardner 1985: textured ellipsoids (cumulus) or a textured sky plane (stratus)
+  Kajiya,   // Kajiya and Von Herzen 1984: light array, then Romberg along each eye ray
 };
 inline constexpr CloudModel kCloudModels[] = {CloudModel::Nephele, CloudModel::Blinn,
-                                              CloudModel::Gardner};
+                                              CloudModel::Gardner, CloudModel::Kajiya};
 
 // Planet and atmosphere (Hillaire 2020, table 1 for the Earth's defaults): Rayleigh and Mie
 // scattering falling off exponentially with altitude, Mie absorption, an ozone layer.
@@ -413,6 +414,10 @@ struct ClassicCloudParams {
   float gardner_ambient = 0.3f;              // f, [0, 1]
   float gardner_texture = 0.4f;              // t, [0, 1]
   float gardner_specular = 0.05f;            // s, [0, 1]
+  // Kajiya and Von Herzen 1984 on nephele's density: Romberg's levels (2^levels + 1 samples
+  // an eye ray), or the brute-force reference march of the same integral instead.
+  int kajiya_levels = 7;                     // [1, 7]
+  bool kajiya_reference = false;
 };
 
 // The lab scene (issue 21): one density grid in vacuum (no planet, no air, a black background)

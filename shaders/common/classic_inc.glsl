@@ -13,6 +13,8 @@
 // The models of classic_clouds.comp (its MODEL specialization constant).
 const int CLASSIC_BLINN = 1;
 const int CLASSIC_GARDNER = 2;
+const int CLASSIC_KAJIYA = 3;
+const int KAJIYA_LEVELS_MAX = 7;  // Romberg's finest trapezoid: 2^7 + 1 = 129 samples
 
 // --- Blinn 1982: phase functions -------------------------------------------------------------
 const int BLINN_PHASE_CONSTANT = 0;     // 1

@@ -202,6 +202,8 @@ struct FrameParams {
   vec4 classic_gardner;
   // Gardner: x f (ambient), y t (texture), z s (specular), w the cumulus cells' spacing (m)
   vec4 classic_gardner_shading;
+  // Kajiya and Von Herzen: x Romberg's levels, y 1 for the brute-force reference march instead
+  vec4 classic_kajiya;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

@@ -76,6 +76,8 @@ const char* to_string(CloudModel model) {
       return "blinn";
     case CloudModel::Gardner:
       return "gardner";
+    case CloudModel::Kajiya:
+      return "kajiya";
   }
   return "unknown";
 }
@@ -264,7 +266,7 @@ const std::vector<Section>& scene_sections() {
       {"clouds",
        {FIELD(clouds, model,
               "\"nephele\" (its noise clouds) or a classical model of seed 004 drawing the same "
-              "layer: \"blinn\" or \"gardner\" (see [classic])"),
+              "layer: \"blinn\", \"gardner\" or \"kajiya\" (see [classic])"),
         FIELD(clouds, bottom_altitude_m, "above ground, [0, 1e6]"),
         FIELD(clouds, top_altitude_m, "above ground, > bottom_altitude_m"),
         FIELD(clouds, coverage, "[0, 1]"),
@@ -405,7 +407,11 @@ const std::vector<Section>& scene_sections() {
         FIELD(classic, gardner_range, "D, the texture's range from clear to opaque, (0, 1]"),
         FIELD(classic, gardner_ambient, "f, the ambient term, [0, 1]"),
         FIELD(classic, gardner_texture, "t, the texture's share of the shading, [0, 1]"),
-        FIELD(classic, gardner_specular, "s, the specular share, [0, 1]")},
+        FIELD(classic, gardner_specular, "s, the specular share, [0, 1]"),
+        FIELD(classic, kajiya_levels, "Kajiya and Von Herzen's Romberg levels: 2^levels + 1 samples an eye ray, [1, 7]"),
+        FIELD(classic, kajiya_reference,
+              "true: a brute-force march of the same single scattering instead (1024 samples, "
+              "the light marched at each), to check their method against")},
        {}},
       {"lab",
        {FIELD(lab, grid, "a density grid (.vdb, .nvdb) in vacuum for render --reference; empty = none"),

@@ -386,6 +386,7 @@ void check_classic(const Checker& check, const CloudParams& clouds, const Classi
   check.in_range("classic.gardner_ambient", c.gardner_ambient, 0.0f, 1.0f);
   check.in_range("classic.gardner_texture", c.gardner_texture, 0.0f, 1.0f);
   check.in_range("classic.gardner_specular", c.gardner_specular, 0.0f, 1.0f);
+  check.in_range("classic.kajiya_levels", c.kajiya_levels, 1, 7);
 }
 
 // The particle clouds' grid: bounded so that spawning a field takes seconds, not hours.

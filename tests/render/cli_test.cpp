@@ -102,10 +102,10 @@ TEST_F(CliTest, GalleryClassicShowsEveryModelWithItsFrameTime) {
   int w = 0, h = 0, n = 0;
   ASSERT_TRUE(stbi_info(out.c_str(), &w, &h, &n));
   EXPECT_EQ(w, 2 * 32 + 4);
-  EXPECT_EQ(h, 2 * 24 + 4);
+  EXPECT_EQ(h, 3 * 24 + 2 * 4);
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
-  ASSERT_EQ(j["models"].size(), 4u);
-  for (const char* model : {"blinn", "gardner", "gardner-stratus", "nephele"})
+  ASSERT_EQ(j["models"].size(), 5u);
+  for (const char* model : {"blinn", "gardner", "gardner-stratus", "kajiya", "nephele"})
     EXPECT_GT(j["models"][model].get<double>(), 0.0) << model;
   const CliRun bad = run_cli("gallery --json " + path("bad.json") + " -o " + path("bad.png"));
   EXPECT_EQ(bad.status, 2);

@@ -15,7 +15,8 @@ int blinn_phase_kind(const std::string& name) {
 ClassicCloudsModule::ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     : set_(set),
       blinn_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_BLINN}),
-      gardner_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_GARDNER}) {}
+      gardner_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_GARDNER}),
+      kajiya_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_KAJIYA}) {}
 
 void ClassicCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) {
   const ClassicCloudParams& c = scene.classic;
@@ -30,6 +31,7 @@ void ClassicCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) 
                                      c.gardner_t2, c.gardner_range);
   params.classic_gardner_shading = glm::vec4(c.gardner_ambient, c.gardner_texture,
                                              c.gardner_specular, c.gardner_spacing_m);
+  params.classic_kajiya = glm::vec4(float(c.kajiya_levels), c.kajiya_reference ? 1.0f : 0.0f, 0.0f, 0.0f);
 }
 
 void ClassicCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model,
@@ -39,6 +41,9 @@ void ClassicCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, Clo
                   8, 8, 1);
   if (model == CloudModel::Gardner)
     gpu::dispatch(cmd, gardner_, set_, timer, "classic_gardner", uint32_t(width), uint32_t(height),
+                  1, 8, 8, 1);
+  if (model == CloudModel::Kajiya)
+    gpu::dispatch(cmd, kajiya_, set_, timer, "classic_kajiya", uint32_t(width), uint32_t(height),
                   1, 8, 8, 1);
 }
 

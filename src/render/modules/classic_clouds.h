@@ -21,7 +21,7 @@ class ClassicCloudsModule {
 
  private:
   gpu::DescriptorSet& set_;
-  gpu::Kernel blinn_, gardner_;
+  gpu::Kernel blinn_, gardner_, kajiya_;
 };
 
 // Blinn's phase function's kind (classic_inc.glsl's BLINN_PHASE_*) for [classic] blinn_phase.
