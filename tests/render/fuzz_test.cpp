@@ -66,7 +66,7 @@ constexpr int kSceneFileCases = 4000;    // TOML texts through parse_scene_toml 
 constexpr int kCommandLineCases = 3000;  // command lines through CLI11 + resolve_scene
 constexpr int kProcessCases = 12;        // generated command lines run as processes
 constexpr int kCli11ProcessCases = 40;   // CLI11 errors judged on a process (rejected at once)
-constexpr int kRandomRenderCases = 24;   // accepted scenes rendered, besides the edge scenes
+constexpr int kRandomRenderCases = 16;   // accepted scenes rendered, besides the edge scenes
 constexpr int kRenderSize = 16;          // rendered images are 16x16
 // The light volume costs about 5 s a render on lavapipe whatever the image size, and nearly
 // every fuzzed scene rebuilds it; it is left on in these many sampled renders and turned off
