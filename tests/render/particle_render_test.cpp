@@ -244,6 +244,21 @@ TEST_F(ParticleRenderTest, ImpostorsShrinkToFitASmallAtlas) {
       EXPECT_GE(q.impostor_resolution_scale, 0.25) << method;
     }
   }
+  // Room for fewer images than far clouds (64 tiles): the clouds left over are drawn particle
+  // by particle, and the image is still the same, also in a second still, turned, that
+  // replaces the first's images.
+  s.particle_clouds.atlas_size = 256;
+  s.particle_clouds.atlas_tile = 32;
+  s.camera.view_dir = glm::vec3(std::sin(0.05f), std::cos(0.05f), -0.08f);
+  render(s);
+  s.camera.view_dir = glm::vec3(0.0f, 1.0f, -0.08f);  // the view of `all`
+  const nephele::Frame full = render(s);
+  const nephele::ParticleCloudStats& p = *full.stats.particle_clouds;
+  std::printf("tiles in a 64-tile atlas: %d impostors, %d far clouds waiting\n", p.impostors,
+              p.impostors_waiting);
+  EXPECT_GT(p.impostors_waiting, 0);
+  EXPECT_LE(p.impostors, 64);
+  EXPECT_NEAR(full.stats.mean_luminance / all.stats.mean_luminance, 1.0, 0.03);
 }
 
 }  // namespace

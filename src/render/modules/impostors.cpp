@@ -212,6 +212,7 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
   std::vector<Candidate> candidates;
   const float cos_angle = std::cos(glm::radians(params.impostor_max_angle_deg));
   const bool cramped = on && room() < kLowRoom;
+  std::vector<char> far_cloud(field.clouds.size(), 0);
   int shrinking = 0;  // images waiting to be drawn smaller
   for (size_t i = 0; i < field.clouds.size(); ++i) {
     const particles::ParticleCloud& cloud = field.clouds[i];
@@ -224,10 +225,10 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
       plan.particle_clouds.push_back(i);
       continue;
     }
+    far_cloud[i] = 1;
     if (!im.has_image) {
       plan.particle_clouds.push_back(i);  // until its image exists
       candidates.push_back({i, 1e9f});
-      ++stats_.waiting;
       continue;
     }
     const float angle = std::acos(std::clamp(glm::dot(im.dir, rel / d), -1.0f, 1.0f));
@@ -250,9 +251,14 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
                    [](const Candidate& a, const Candidate& b) { return a.staleness > b.staleness; });
   if (!still && int(candidates.size()) > params.impostor_updates_per_frame)
     candidates.resize(size_t(params.impostor_updates_per_frame));
-  // A still has nothing to cross-fade: the images it replaces make room at once.
+  // A still has nothing to cross-fade: the images it replaces make room at once (their clouds
+  // drawn particle by particle should the new image not fit).
   if (still && on)
-    for (const Candidate& c : candidates) release(impostors_[c.cloud]);
+    for (const Candidate& c : candidates) {
+      if (!impostors_[c.cloud].has_image) continue;
+      release(impostors_[c.cloud]);
+      plan.particle_clouds.push_back(c.cloud);
+    }
   // Each chosen cloud's view and image size: the image's resolution on the screen (texels per
   // unit of tangent) times the option and the scale for the atlas's room, within
   // [kMinSide, kMaxSide] keeping its proportions.
@@ -363,11 +369,14 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
     updates_.push_back(u);
     plan.updates.push_back(c.cloud);
   }
-  // A cloud whose first image is drawn this frame is an impostor already.
+  // A cloud whose first image is drawn this frame is an impostor already; the far ones left
+  // wait for theirs.
   std::vector<size_t> kept;
   for (size_t i : plan.particle_clouds)
-    if (!impostors_[i].has_image) kept.push_back(i);
-  stats_.waiting -= int(plan.particle_clouds.size() - kept.size());
+    if (!impostors_[i].has_image) {
+      kept.push_back(i);
+      stats_.waiting += far_cloud[i];
+    }
   plan.particle_clouds = std::move(kept);
   if (on) adapt_resolution(short_of_room, shrinking);
   return plan;
