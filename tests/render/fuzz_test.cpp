@@ -1471,8 +1471,13 @@ std::vector<RenderJob> edge_jobs() {
       for (size_t i = 1; i < components; ++i) value += ", " + std::string(digits);
       value += "]";
     }
-    return "preset = \"default\"\n" + (section.empty() ? "" : "[" + section + "]\n") + key +
-           " = " + value + "\n";
+    // A classical model's parameter is rendered by its model.
+    std::string model;
+    for (const char* name : {"blinn", "gardner", "kajiya"})
+      if (section == "classic" && key.rfind(std::string(name) + "_", 0) == 0)
+        model = "[clouds]\nmodel = \"" + std::string(name) + "\"\n";
+    return "preset = \"default\"\n" + model + (section.empty() ? "" : "[" + section + "]\n") +
+           key + " = " + value + "\n";
   };
   auto try_value = [&](const std::string& section, const std::string& key, size_t components,
                        double number) {

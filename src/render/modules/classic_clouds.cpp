@@ -13,10 +13,9 @@ int blinn_phase_kind(const std::string& name) {
 }
 
 ClassicCloudsModule::ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : set_(set),
-      blinn_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_BLINN}),
-      gardner_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_GARDNER}),
-      kajiya_(ctx, set, "classic_clouds.comp.spv", {glsl::CLASSIC_KAJIYA}) {}
+    : ctx_(ctx), set_(set) {}
+
+ClassicCloudsModule::~ClassicCloudsModule() = default;
 
 void ClassicCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) {
   const ClassicCloudParams& c = scene.classic;
@@ -36,15 +35,22 @@ void ClassicCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) 
 
 void ClassicCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model,
                                  int width, int height) {
-  if (model == CloudModel::Blinn)
-    gpu::dispatch(cmd, blinn_, set_, timer, "classic_blinn", uint32_t(width), uint32_t(height), 1,
-                  8, 8, 1);
-  if (model == CloudModel::Gardner)
-    gpu::dispatch(cmd, gardner_, set_, timer, "classic_gardner", uint32_t(width), uint32_t(height),
-                  1, 8, 8, 1);
-  if (model == CloudModel::Kajiya)
-    gpu::dispatch(cmd, kajiya_, set_, timer, "classic_kajiya", uint32_t(width), uint32_t(height),
-                  1, 8, 8, 1);
+  struct Pass {
+    CloudModel model;
+    int constant;
+    const char* name;
+  };
+  static constexpr Pass kPasses[] = {{CloudModel::Blinn, glsl::CLASSIC_BLINN, "classic_blinn"},
+                                     {CloudModel::Gardner, glsl::CLASSIC_GARDNER, "classic_gardner"},
+                                     {CloudModel::Kajiya, glsl::CLASSIC_KAJIYA, "classic_kajiya"}};
+  for (const Pass& pass : kPasses) {
+    if (pass.model != model) continue;
+    std::unique_ptr<gpu::Kernel>& kernel = kernels_[model];
+    if (!kernel)
+      kernel = std::make_unique<gpu::Kernel>(ctx_, set_, "classic_clouds.comp.spv",
+                                             std::vector<int32_t>{pass.constant});
+    gpu::dispatch(cmd, *kernel, set_, timer, pass.name, uint32_t(width), uint32_t(height), 1, 8, 8, 1);
+  }
 }
 
 }  // namespace nephele

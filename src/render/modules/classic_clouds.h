@@ -1,8 +1,12 @@
 // The classical cloud models of seed 004 (issue 23): drawn in place of nephele's march when
 // clouds.model names one, by classic_clouds.comp into this frame's cloud buffer (as the
 // temporal resolve writes it), so that compose.comp puts them in the sky unchanged. Their
-// formulas are common/classic_inc.glsl's.
+// formulas are common/classic_inc.glsl's. Each model's pipeline is made when first drawn:
+// scenes that never use one do not pay for its compilation (time, and on a CPU device memory).
 #pragma once
+
+#include <map>
+#include <memory>
 
 #include "gpu/kernel.h"
 #include "nephele/scene.h"
@@ -13,6 +17,7 @@ namespace nephele {
 class ClassicCloudsModule {
  public:
   ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  ~ClassicCloudsModule();
 
   // Fills params.classic_*: the scene's [classic] values in the shader's terms.
   static void prepare(const Scene& scene, gpu::FrameParams& params);
@@ -20,8 +25,9 @@ class ClassicCloudsModule {
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model, int width, int height);
 
  private:
+  gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
-  gpu::Kernel blinn_, gardner_, kajiya_;
+  std::map<CloudModel, std::unique_ptr<gpu::Kernel>> kernels_;
 };
 
 // Blinn's phase function's kind (classic_inc.glsl's BLINN_PHASE_*) for [classic] blinn_phase.
