@@ -240,8 +240,7 @@ ImpostorCache::Plan ImpostorCache::plan(const particles::ParticleField& field,
     if (im.scale > kRescale * scale_) {
       candidates.push_back({i, cramped ? 2e9f : 5e8f});
       ++shrinking;
-    }
-    else if (glm::dot(im.dir, rel / d) < cos_angle || ratio > params.impostor_distance_factor ||
+    } else if (glm::dot(im.dir, rel / d) < cos_angle || ratio > params.impostor_distance_factor ||
              rescale > kRescale || relit)
       candidates.push_back({i, relit ? 1e6f : angle / glm::radians(params.impostor_max_angle_deg) +
                                                   std::log(ratio) / std::log(params.impostor_distance_factor) +
