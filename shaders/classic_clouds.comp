@@ -15,6 +15,8 @@
 //     shadows on the ground: his model has none.
 //   CLASSIC_KAJIYA: Kajiya and Von Herzen 1984's two passes on nephele's own density field
 //     (kajiya() below).
+//   CLASSIC_NISHITA: Nishita and Nakamae 1996's metaball clouds on their voxel grid, lit by
+//     nishita_light.comp and nishita_scatter.comp (nishita() below).
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
@@ -22,6 +24,7 @@
 #include "common/classic_inc.glsl"
 #include "air_inc.glsl"
 #include "common/phase_inc.glsl"
+#include "nishita_volume_inc.glsl"
 
 const int MARCH_MODE = 0;  // cloud_field_inc.glsl's density and light lookups, nephele's own
 #include "cloud_field_inc.glsl"
@@ -313,6 +316,61 @@ void kajiya(ivec2 pixel, vec3 eye, vec3 dir, vec3 light, bool reference) {
   write_cloud(pixel, radiance, transmittance, (1.0f - air.g) * opacity, 1.0f, distance_m);
 }
 
+// Nishita and Nakamae 1996: the eye ray through their grid (on a flat earth, as Gardner's),
+// L = integral of T sigma_s rho (E (T_sun p(theta) + J_2) + J_sky) dt with each step's
+// extinction integrated exactly at its density: the first order from the sun's transmittance,
+// the second from the gathered sums (nishita_second_order, the phase's mean cosine), the sky's
+// isotropic. The ground's shadow: the sun's transmittance through the grid from the ground.
+void nishita(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light) {
+  float radius_m = frame.radii_m.x;
+  vec3 eye = vec3(eye_planet.xy, length(eye_planet) - radius_m);
+  float t_ground = dir.z < 0.0f ? -eye.z / dir.z : FAR_M;
+  float shadow = 1.0f;
+  if (t_ground < FAR_M) shadow = exp(-nishita_optical_depth(eye + dir * t_ground, light, nishita_voxel_m()));
+  vec2 box = nishita_box(eye, dir);
+  box.x = max(box.x, 0.0f);
+  box.y = min(box.y, t_ground);
+  if (box.y <= box.x) {
+    write_cloud(pixel, vec3(0.0f), 1.0f, 0.0f, shadow, t_ground);
+    return;
+  }
+  float sigma_t = frame.classic_nishita_light.x, albedo = frame.classic_nishita_light.y;
+  bool second = frame.classic_nishita_light.z > 1.5f;
+  vec3 e_sun = frame.sun_at_clouds.rgb;
+  vec3 e_key = frame.sun_illuminance.rgb;  // the sky light's unit
+  float phase = dual_lobe_hg(frame.cloud_phase.x, frame.cloud_phase.y, frame.cloud_phase.z, dot(dir, light));
+  float g_mean = mix(frame.cloud_phase.y, frame.cloud_phase.x, frame.cloud_phase.z);
+  float step_m = 0.75f * nishita_voxel_m();
+  int steps = min(int(ceil((box.y - box.x) / step_m)), 512);
+  float dt = (box.y - box.x) / float(max(steps, 1));
+  // Start each pixel's steps at its own offset (interleaved gradient noise): banding becomes
+  // fine grain.
+  float jitter = fract(52.9829189f * fract(0.06711056f * float(pixel.x) + 0.00583715f * float(pixel.y)));
+  vec3 radiance = vec3(0.0f);
+  float transmittance = 1.0f, weighted_t = 0.0f;
+  for (int i = 0; i < steps && transmittance > 1e-3f; ++i) {
+    float t = box.x + (float(i) + jitter) * dt;
+    vec3 p = eye + dir * t;
+    float rho = nishita_sample(0, p).r;
+    if (rho <= 0.0f) continue;
+    vec4 first = nishita_sample(1, p);
+    float j = first.r * phase;
+    if (second) {
+      vec4 gathered = nishita_sample(2, p);
+      j += nishita_second_order(gathered.x, gathered.yzw, g_mean, -dir);
+    }
+    float step_t = exp(-sigma_t * rho * dt);
+    float absorbed = transmittance * (1.0f - step_t);
+    radiance += absorbed * albedo * (e_sun * j + e_key * first.gba);
+    weighted_t += absorbed * t;
+    transmittance *= step_t;
+  }
+  float opacity = 1.0f - transmittance;
+  float distance_m = opacity > 1e-6f ? weighted_t / opacity : t_ground;
+  vec3 air = air_transmittance(eye.z, eye.z + dir.z * distance_m, distance_m);
+  write_cloud(pixel, air * radiance, transmittance, (1.0f - air.g) * opacity, shadow, distance_m);
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   int width = frame.cloud_grid.x, height = frame.cloud_grid.y;
@@ -323,5 +381,6 @@ void main() {
                         float(pixel.y), float(width), float(height));
   if (MODEL == CLASSIC_BLINN) blinn(pixel, eye, dir, frame.sun_dir.xyz);
   if (MODEL == CLASSIC_GARDNER) gardner(pixel, eye, dir, frame.sun_dir.xyz);
+  if (MODEL == CLASSIC_NISHITA) nishita(pixel, eye, dir, frame.sun_dir.xyz);
   if (MODEL == CLASSIC_KAJIYA) kajiya(pixel, eye, dir, frame.sun_dir.xyz, frame.classic_kajiya.y > 0.5f);
 }

@@ -117,5 +117,10 @@ layout(std430, set = 0, binding = 59) readonly buffer TileJobBlock { ImpostorTil
 layout(std430, set = 0, binding = 60) readonly buffer ParticleSplatBlock { ParticleSplatGpu particle_splats[]; };
 layout(std430, set = 0, binding = 61) readonly buffer ParticleLightCloudBlock { ParticleLightCloudGpu particle_light_clouds[]; };
 layout(std430, set = 0, binding = 62) writeonly buffer ParticleLightBlock { float particle_lights[]; };
+// Nishita and Nakamae's metaball clouds (render/modules/metaball_clouds.h): three volumes of
+// the grid stacked in depth (NISHITA_SLABS): the density field (r), the sun's transmittance and
+// the sky's light (r, gba), the second order's light (x its total, yzw its flux vector).
+layout(set = 0, binding = 63, rgba32f) uniform writeonly image3D nishita_volume_out;
+layout(set = 0, binding = 64) uniform sampler3D nishita_volume;
 
 #endif

@@ -14,6 +14,7 @@
 const int CLASSIC_BLINN = 1;
 const int CLASSIC_GARDNER = 2;
 const int CLASSIC_KAJIYA = 3;
+const int CLASSIC_NISHITA = 4;
 const int KAJIYA_LEVELS_MAX = 7;  // Romberg's finest trapezoid: 2^7 + 1 = 129 samples
 
 // --- Blinn 1982: phase functions -------------------------------------------------------------
@@ -211,6 +212,31 @@ vec4 metaball(vec3 p, vec4 centre_radius, float q) {
   float r2 = centre_radius.w * centre_radius.w;
   float u = sqrt(dot(d, d) / r2);
   return vec4(q * metaball_falloff(u), q * metaball_falloff_d_u2(u) * 2.0f * d / r2);
+}
+
+// --- Nishita and Nakamae 1996: the light on their voxel grid -----------------------------------
+const int NISHITA_SLABS = 3;           // density; sun transmittance and sky light; second order
+const int NISHITA_GATHER_RADIUS = 3;   // the second order gathers from voxels this close (in voxels)
+const int NISHITA_SKY_DIRECTIONS = 16; // directions the sky's light is gathered from
+
+// Direction i of n spread evenly over the sphere (a Fibonacci lattice): each stands for a
+// solid angle of 4 pi / n.
+vec3 nishita_sphere_dir(int i, int n) {
+  float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
+  float r = sqrt(max(1.0f - z * z, 0.0f));
+  float phi = float(i) * 2.39996323f;  // the golden angle
+  return vec3(r * cos(phi), r * sin(phi), z);
+}
+
+// The second order's light scattered into the direction w_out, per unit volume and unit
+// sigma_s, from the irradiance reaching a voxel summed over the directions it travels:
+// `total` = sum E_k and `flux` = sum E_k s_k (s_k unit, the direction light k travels). The
+// Henyey-Greenstein phase with mean cosine g is p(s . w) = sum_l (2l + 1) g^l P_l(s . w) /
+// (4 pi); kept to its first two terms (l = 0, 1), the sum over k is
+// (total + 3 g flux . w_out) / (4 pi): exact for an isotropic phase, and anisotropic to first
+// order (an incident field whose flux is its total times a unit vector gets 1 + 3 g cos).
+float nishita_second_order(float total, vec3 flux, float g, vec3 w_out) {
+  return max(total + 3.0f * g * dot(flux, w_out), 0.0f) / (4.0f * PI);
 }
 
 #endif

@@ -204,6 +204,12 @@ struct FrameParams {
   vec4 classic_gardner_shading;
   // Kajiya and Von Herzen: x Romberg's levels, y 1 for the brute-force reference march instead
   vec4 classic_kajiya;
+  // Nishita and Nakamae (render/modules/metaball_clouds.h): the voxel grid's corner (xyz, ENU
+  // on a flat earth, m) and its voxels' edge (w, m); its size in voxels (xyz); x sigma_t at
+  // density 1 (1/m), y albedo, z the scattering orders (1 or 2), w 1: sky light
+  vec4 classic_nishita;
+  vec4 classic_nishita_grid;
+  vec4 classic_nishita_light;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

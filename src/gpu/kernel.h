@@ -77,6 +77,8 @@ enum Binding : uint32_t {
   kParticleSplats = 60,
   kParticleLightClouds = 61,
   kParticleLights = 62,
+  kNishitaVolumeOut = 63,
+  kNishitaVolume = 64,
   kBindingCount
 };
 

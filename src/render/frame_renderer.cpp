@@ -418,20 +418,22 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
   voxel_clouds.prepare(scene, params);
   if (lab) params.voxel_light.z = 0.0f;  // the grid as the file has it: no surface erosion
-  light_volume.prepare(scene, density_key(scene), WeatherModule::weather_time(scene), still, params);
+  // A classical model (seed 004) draws instead of the march; a sky without volumetric clouds
+  // (clear, or particle clouds only) skips it. Only the march and Kajiya's model read the
+  // light volume.
+  const bool classic = scene.clouds.model != CloudModel::Nephele;
+  const bool volumetric = !classic && (scene.clouds.coverage > 0.0f ||
+                                       scene.high_clouds.coverage > 0.0f || !scene.voxel_clouds.empty());
+  light_volume.prepare(scene, density_key(scene), WeatherModule::weather_time(scene), still,
+                       volumetric || scene.clouds.model == CloudModel::Kajiya, params);
   sky_view.prepare(still, params);
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);
   weather.prepare(scene, params);
   particles.prepare(scene, slot, s.width, s.height, still, params);
-  ClassicCloudsModule::prepare(scene, params);
+  classic_clouds.prepare(scene, params);
   clouds.swap_history();
 
-  // A classical model (seed 004) draws instead of the march; a sky without volumetric clouds
-  // (clear, or particle clouds only) skips it.
-  const bool classic = scene.clouds.model != CloudModel::Nephele;
-  const bool volumetric = !classic && (scene.clouds.coverage > 0.0f ||
-                                       scene.high_clouds.coverage > 0.0f || !scene.voxel_clouds.empty());
   const bool in_bands = still && progress && volumetric;
   band_timings.clear();
   if (in_bands) march_in_bands(scene, params);
@@ -449,8 +451,12 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   else
     clouds.record_clear_sky(cmd);
   particles.record(cmd, *s.timer);
-  // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe).
-  if (light_volume.completed() || params.light_volume.w == 0.0f)
+  // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe). Without
+  // nephele's clouds the gaps pass all the sky's light (a classical model's shadow is its
+  // own, in the cloud buffer).
+  if (!volumetric)
+    clouds.record_clear_ground_light(cmd);
+  else if (light_volume.completed() || params.light_volume.w == 0.0f)
     clouds.record_ground_light(cmd, *s.timer, scene.quality.mode);
   pass_compose(cmd, s, scene.atmosphere.model);
   pass_stars(cmd, s);

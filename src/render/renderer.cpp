@@ -55,7 +55,7 @@ Frame Renderer::render_frame(const Scene& scene, bool still, bool read_back) {
     frame.stats.mean_luminance = measured.mean_luminance;
     frame.stats.cloud_cover_fraction = measured.cloud_cover_fraction;
   }
-  if (still && read_back) {
+  if (still && read_back && scene.clouds.model == CloudModel::Nephele) {  // nephele's clouds
     double ms = 0.0;
     frame.stats.sky_cover_fraction = f.measure_sky_cover(f.last_params, scene.quality.mode, ms);
     frame.stats.passes.push_back({"sky_dome", ms});

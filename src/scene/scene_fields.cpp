@@ -78,6 +78,8 @@ const char* to_string(CloudModel model) {
       return "gardner";
     case CloudModel::Kajiya:
       return "kajiya";
+    case CloudModel::Nishita:
+      return "nishita";
   }
   return "unknown";
 }
@@ -411,7 +413,16 @@ const std::vector<Section>& scene_sections() {
         FIELD(classic, kajiya_levels, "Kajiya and Von Herzen's Romberg levels: 2^levels + 1 samples an eye ray, [1, 7]"),
         FIELD(classic, kajiya_reference,
               "true: a brute-force march of the same single scattering instead (1024 samples, "
-              "the light marched at each), to check their method against")},
+              "the light marched at each), to check their method against"),
+        FIELD(classic, nishita_metaballs, "Nishita and Nakamae's metaballs in all, [1, 4096]"),
+        FIELD(classic, nishita_clouds, "the cumulus they make, [1, 64], at most nishita_metaballs"),
+        FIELD(classic, nishita_extent_m, "the side of the square the clouds stand in (m), [500, 1e5]"),
+        FIELD(classic, nishita_center_m, "its centre (east, north; m), [-1e6, 1e6] each"),
+        FIELD(classic, nishita_sigma_t_per_m, "sigma_t at a ball's centre of density 1 (1/m), (0, 10]"),
+        FIELD(classic, nishita_albedo, "single-scattering albedo, [0, 1]"),
+        FIELD(classic, nishita_voxels, "the voxel grid's cells along its longest side, [16, 192]"),
+        FIELD(classic, nishita_order, "scattering orders summed: 1 or 2 (the paper's second order)"),
+        FIELD(classic, nishita_sky_light, "light the clouds by the sky and the ground as well as the sun")},
        {}},
       {"lab",
        {FIELD(lab, grid, "a density grid (.vdb, .nvdb) in vacuum for render --reference; empty = none"),

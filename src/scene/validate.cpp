@@ -1,6 +1,7 @@
 // nephele — range checks on a resolved scene.
 #include <stb/stb_image.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -387,6 +388,14 @@ void check_classic(const Checker& check, const CloudParams& clouds, const Classi
   check.in_range("classic.gardner_texture", c.gardner_texture, 0.0f, 1.0f);
   check.in_range("classic.gardner_specular", c.gardner_specular, 0.0f, 1.0f);
   check.in_range("classic.kajiya_levels", c.kajiya_levels, 1, 7);
+  check.in_range("classic.nishita_metaballs", c.nishita_metaballs, 1, 4096);
+  check.in_range("classic.nishita_clouds", c.nishita_clouds, 1, std::min(64, std::max(c.nishita_metaballs, 1)));
+  check.in_range("classic.nishita_extent_m", c.nishita_extent_m, 500.0f, 1.0e5f);
+  check.in_range("classic.nishita_center_m", c.nishita_center_m, -1.0e6f, 1.0e6f);
+  check.in_range("classic.nishita_sigma_t_per_m", c.nishita_sigma_t_per_m, 0.0f, 10.0f, true);
+  check.in_range("classic.nishita_albedo", c.nishita_albedo, 0.0f, 1.0f);
+  check.in_range("classic.nishita_voxels", c.nishita_voxels, 16, 192);
+  check.in_range("classic.nishita_order", c.nishita_order, 1, 2);
 }
 
 // The particle clouds' grid: bounded so that spawning a field takes seconds, not hours.

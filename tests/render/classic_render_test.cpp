@@ -8,6 +8,7 @@
 #include "nephele/scene_io.h"
 #include "render/frame_params.h"
 #include "render/modules/classic_clouds.h"
+#include "render/modules/metaball_clouds.h"
 #include "render/glsl.h"
 #include "render_fixture.h"
 
@@ -266,6 +267,90 @@ TEST_F(KajiyaRenderTest, RombergOnTheLightArrayMatchesTheBruteForceMarch) {
     EXPECT_LT(relative, previous);
     previous = relative;
   }
+}
+
+}  // namespace
+}  // namespace nephele
+
+namespace nephele {
+namespace {
+
+class NishitaRenderTest : public RenderTest {};
+
+// One cumulus of 60 metaballs 6 km north of a camera on the ground looking at it, the sun high
+// in the south-east behind the camera; a 32-voxel grid.
+Scene nishita_scene() {
+  Scene s = load_preset("default");
+  s.output.width = 32;
+  s.output.height = 24;
+  s.output.auto_exposure = false;
+  s.quality.cloud_downsample = 1;
+  s.camera.view_dir = glm::vec3(0.0f, 1.0f, 0.3f);
+  s.camera.fov_deg = 40.0f;
+  s.sun.direction = glm::normalize(glm::vec3(0.4f, -0.6f, 0.7f));
+  s.clouds.model = CloudModel::Nishita;
+  s.classic.nishita_metaballs = 60;
+  s.classic.nishita_clouds = 1;
+  s.classic.nishita_extent_m = 3000.0f;
+  s.classic.nishita_center_m = glm::vec2(0.0f, 6000.0f);
+  s.classic.nishita_voxels = 32;
+  return s;
+}
+
+// The cloud is where its balls are: opaque where a pixel's ray passes near a ball's centre
+// (within 0.4 of its radius), clear where it passes every ball by more than two voxels.
+TEST_F(NishitaRenderTest, TheCloudStandsWhereItsMetaballsAre) {
+  const Scene s = nishita_scene();
+  const std::vector<Metaball> balls = make_cumulus_metaballs(s, s.noise_seed);
+  const MetaballGrid grid = voxelize_metaballs(balls, s.classic.nishita_voxels);
+  const Frame f = render(s);
+  const CameraBasis b = camera_basis(s.camera);
+  const float tan_half = std::tan(glm::radians(s.camera.fov_deg) * 0.5f);
+  int cores = 0, clear = 0;
+  for (int y = 0; y < s.output.height; ++y)
+    for (int x = 0; x < s.output.width; ++x) {
+      const glm::vec3 d = glsl::camera_ray(b.forward, b.right, b.up, tan_half, 32.0f / 24.0f,
+                                           float(x), float(y), 32.0f, 24.0f);
+      float nearest = 1e30f, margin = 1e30f;  // in radii; beyond the surface (m)
+      for (const Metaball& ball : balls) {
+        const glm::vec3 to = ball.centre_m - s.camera.position_m;
+        const float miss_m = glm::length(to - d * glm::dot(to, d));
+        nearest = std::min(nearest, miss_m / ball.radius_m);
+        margin = std::min(margin, miss_m - ball.radius_m);
+      }
+      const float transmittance = f.clouds.pixels[size_t(y * s.output.width + x)].a;
+      if (nearest < 0.4f) {
+        ++cores;
+        EXPECT_LT(transmittance, 0.3f) << "pixel " << x << ", " << y;
+      } else if (margin > 2.0f * grid.voxel_m) {
+        ++clear;
+        EXPECT_GT(transmittance, 0.999f) << "pixel " << x << ", " << y;
+      }
+    }
+  std::printf("%d pixels through balls' cores, %d clear\n", cores, clear);
+  EXPECT_GT(cores, 20);
+  EXPECT_GT(clear, 200);
+}
+
+// Each of the paper's lights adds to the cloud: the second order to the first, the sky's light
+// to both; the second order adds a share of the first that the physics bounds (more than a
+// tenth, less than double: higher orders are left out).
+TEST_F(NishitaRenderTest, TheSecondOrderAndTheSkyAddLight) {
+  Scene s = nishita_scene();
+  const auto cloud_light = [&](int order, bool sky) {
+    s.classic.nishita_order = order;
+    s.classic.nishita_sky_light = sky;
+    const Frame f = render(s);
+    double sum = 0.0;
+    for (const glm::vec4& p : f.clouds.pixels) sum += p.r + p.g + p.b;
+    return sum;
+  };
+  const double first = cloud_light(1, false), second = cloud_light(2, false), sky = cloud_light(2, true);
+  std::printf("cloud light: first order %.4g, + second %.4g (x%.3f), + sky %.4g (x%.3f)\n", first,
+              second, second / first, sky, sky / second);
+  EXPECT_GT(second / first, 1.1);
+  EXPECT_LT(second / first, 2.0);
+  EXPECT_GT(sky / second, 1.02);
 }
 
 }  // namespace

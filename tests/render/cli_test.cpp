@@ -104,8 +104,8 @@ TEST_F(CliTest, GalleryClassicShowsEveryModelWithItsFrameTime) {
   EXPECT_EQ(w, 2 * 32 + 4);
   EXPECT_EQ(h, 3 * 24 + 2 * 4);
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
-  ASSERT_EQ(j["models"].size(), 5u);
-  for (const char* model : {"blinn", "gardner", "gardner-stratus", "kajiya", "nephele"})
+  ASSERT_EQ(j["models"].size(), 6u);
+  for (const char* model : {"blinn", "gardner", "gardner-stratus", "kajiya", "nishita", "nephele"})
     EXPECT_GT(j["models"][model].get<double>(), 0.0) << model;
   const CliRun bad = run_cli("gallery --json " + path("bad.json") + " -o " + path("bad.png"));
   EXPECT_EQ(bad.status, 2);

@@ -13,7 +13,7 @@ int blinn_phase_kind(const std::string& name) {
 }
 
 ClassicCloudsModule::ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set) {}
+    : ctx_(ctx), set_(set), metaballs_(ctx, set) {}
 
 ClassicCloudsModule::~ClassicCloudsModule() = default;
 
@@ -31,6 +31,7 @@ void ClassicCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) 
   params.classic_gardner_shading = glm::vec4(c.gardner_ambient, c.gardner_texture,
                                              c.gardner_specular, c.gardner_spacing_m);
   params.classic_kajiya = glm::vec4(float(c.kajiya_levels), c.kajiya_reference ? 1.0f : 0.0f, 0.0f, 0.0f);
+  if (scene.clouds.model == CloudModel::Nishita) metaballs_.prepare(scene, params);
 }
 
 void ClassicCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model,
@@ -42,7 +43,9 @@ void ClassicCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, Clo
   };
   static constexpr Pass kPasses[] = {{CloudModel::Blinn, glsl::CLASSIC_BLINN, "classic_blinn"},
                                      {CloudModel::Gardner, glsl::CLASSIC_GARDNER, "classic_gardner"},
-                                     {CloudModel::Kajiya, glsl::CLASSIC_KAJIYA, "classic_kajiya"}};
+                                     {CloudModel::Kajiya, glsl::CLASSIC_KAJIYA, "classic_kajiya"},
+                                     {CloudModel::Nishita, glsl::CLASSIC_NISHITA, "classic_nishita"}};
+  if (model == CloudModel::Nishita) metaballs_.record_light(cmd, timer);
   for (const Pass& pass : kPasses) {
     if (pass.model != model) continue;
     std::unique_ptr<gpu::Kernel>& kernel = kernels_[model];

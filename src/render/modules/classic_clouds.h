@@ -11,6 +11,7 @@
 #include "gpu/kernel.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
+#include "render/modules/metaball_clouds.h"
 
 namespace nephele {
 
@@ -19,15 +20,18 @@ class ClassicCloudsModule {
   ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
   ~ClassicCloudsModule();
 
-  // Fills params.classic_*: the scene's [classic] values in the shader's terms.
-  static void prepare(const Scene& scene, gpu::FrameParams& params);
+  // Fills params.classic_*: the scene's [classic] values in the shader's terms (and, when the
+  // scene draws Nishita's metaballs, makes them).
+  void prepare(const Scene& scene, gpu::FrameParams& params);
   // One thread per pixel of the width x height cloud buffer bound as clouds_a_out / _b_out.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model, int width, int height);
+  const MetaballCloudsModule& metaballs() const { return metaballs_; }
 
  private:
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   std::map<CloudModel, std::unique_ptr<gpu::Kernel>> kernels_;
+  MetaballCloudsModule metaballs_;
 };
 
 // Blinn's phase function's kind (classic_inc.glsl's BLINN_PHASE_*) for [classic] blinn_phase.

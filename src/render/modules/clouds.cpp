@@ -88,6 +88,10 @@ void CloudsModule::record_clear_sky(VkCommandBuffer cmd) {
   clouds_b_[current_].record_clear(cmd, {{0.0f, 1.0f, 0.0f, 1.0f}});
 }
 
+void CloudsModule::record_clear_ground_light(VkCommandBuffer cmd) {
+  ground_light_.record_clear(cmd, {{1.0f, 1.0f, 1.0f, 1.0f}});
+}
+
 void CloudsModule::record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer,
                                        MarchMode mode) {
   gpu::dispatch(cmd, mode == MarchMode::Baseline ? ground_baseline_ : ground_default_, set_,

@@ -41,6 +41,8 @@ class CloudsModule {
   void record_clear_sky(VkCommandBuffer cmd);
   // The clouds' mean diffuse transmittance over the ground around the camera (one texel).
   void record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode);
+  // The same with no clouds: all of the sky's light.
+  void record_clear_ground_light(VkCommandBuffer cmd);
   // The march over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME) into dome_a and
   // dome_b, and the cloud profile into dome_a (bind_march(true) first).
   void record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode);

@@ -37,11 +37,12 @@ bool LightVolumeModule::stale(const Key& built, const Key& now, float half_m) co
 }
 
 void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_key,
-                                double weather_time, bool still, gpu::FrameParams& params) {
+                                double weather_time, bool still, bool needed,
+                                gpu::FrameParams& params) {
   completed_ = false;
   first_row_ = rows_ = 0;
   const float half_m = float(scene.quality.light_volume_km) * 1000.0f;
-  if (half_m <= 0.0f || scene.quality.mode == MarchMode::Baseline) {
+  if (!needed || half_m <= 0.0f || scene.quality.mode == MarchMode::Baseline) {
     params.light_volume = glm::vec4(0.0f);
     read_key_.reset();
     build_key_.reset();

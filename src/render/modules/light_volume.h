@@ -33,8 +33,11 @@ class LightVolumeModule {
   // light_volume_build and light_volume_rows (the band built), and the bindings. `clouds_key`
   // changes with anything that shapes the clouds; `weather_time` is the evolving weather's
   // (in clouds.weather_evolution_s). `still`: a volume that is stale is rebuilt whole now.
+  // `needed`: false when nothing this frame reads the volume (a clear sky, particle clouds
+  // only, a classical model other than Kajiya's): none is built or read, and the next frame
+  // that needs one builds it at once.
   void prepare(const Scene& scene, const std::string& clouds_key, double weather_time,
-               bool still, gpu::FrameParams& params);
+               bool still, bool needed, gpu::FrameParams& params);
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // A volume was completed this frame (what the ground's light follows).
   bool completed() const { return completed_; }
