@@ -13,6 +13,11 @@
 //     T1 at an ellipsoid's centre to T2 at its limb, shaded by his I = (1 - f){(1 - t)
 //     [(1 - s) I_d + s I_s] + t T} + f times the sunlight of a white diffuser (E / pi). No
 //     shadows on the ground: his model has none.
+//   CLASSIC_GARDNER_QUADRICS: Gardner's impressionistic scenes: in the same cells, clouds of
+//     convex objects, each a quadric cut by planes (classic_inc.glsl, gardner_cell_object),
+//     found by casting the ray against each and textured and shaded as above.
+//   A third form of his plane is cirrus: the plane at the cirrus's altitude, its texture
+//     stretched along x into streaks, thin.
 //   CLASSIC_KAJIYA: Kajiya and Von Herzen 1984's two passes on nephele's own density field
 //     (kajiya() below).
 //   CLASSIC_NISHITA: Nishita and Nakamae 1996's metaball clouds on their voxel grid, lit by
@@ -112,8 +117,9 @@ void blinn(ivec2 pixel, vec3 eye, vec3 dir, vec3 light) {
   write_cloud(pixel, air * radiance, transmittance, haze, shadow, t_mid);
 }
 
-// Gardner's texture at a point (ENU, m) and the translucency (opacity) there for limb curve g.
-vec2 gardner_surface(vec3 p, float g) {
+// Gardner's texture at a point (ENU, m) and the translucency (opacity) there for limb curve g;
+// `stretch` divides the texture's x frequencies (cirrus's streaks along x).
+vec2 gardner_surface(vec3 p, float g, float stretch) {
   bool seed_form = frame.classic_options.x > 0.5f;
   int terms = int(frame.classic_options.z);
   // k and T0 keep the original's T in [0, 1]: each factor's sum lies within +-S, S = sum C_i.
@@ -124,7 +130,7 @@ vec2 gardner_surface(vec3 p, float g) {
     c *= 0.707f;
   }
   float f1 = frame.classic_gardner.x;
-  float t = gardner_texture(p, vec2(f1), s, 1.0f / (4.0f * s * s), terms, seed_form);
+  float t = gardner_texture(p, vec2(f1 / stretch, f1), s, 1.0f / (4.0f * s * s), terms, seed_form);
   if (seed_form) t = fract(t);  // the seed's printing grows without bound: seen modulo 1
   return vec2(t, gardner_translucency(t, frame.classic_gardner.y, frame.classic_gardner.z,
                                       frame.classic_gardner.w, g));
@@ -138,7 +144,7 @@ float gardner_shade(vec3 n, vec3 to_eye, vec3 light, float texture_value) {
   return gardner_intensity(i_d, i_s, texture_value, k.x, k.y, k.z);
 }
 
-void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light) {
+void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light, bool quadrics) {
   float radius_m = frame.radii_m.x;
   vec3 eye = vec3(eye_planet.xy, length(eye_planet) - radius_m);  // ENU on a flat earth
   float bottom_m = frame.radii_m.z - radius_m, top_m = frame.radii_m.w - radius_m;
@@ -155,12 +161,13 @@ void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light) {
       weighted_t += (t_hit) * transmittance * (opacity);                                   \
       transmittance *= 1.0f - (opacity);                                                   \
     }
-  if (frame.classic_options.y > 0.5f) {  // stratus: the sky plane
-    float t = abs(dir.z) > 1e-6f ? (bottom_m - eye.z) / dir.z : -1.0f;
+  if (!quadrics && frame.classic_options.y > 0.5f) {  // stratus or cirrus: the sky plane
+    vec4 plane = frame.classic_gardner_plane;
+    float t = abs(dir.z) > 1e-6f ? (plane.x - eye.z) / dir.z : -1.0f;
     if (t > 0.0f && t < t_ground) {
       vec3 n = vec3(0.0f, 0.0f, dir.z > 0.0f ? -1.0f : 1.0f);
-      vec2 surface = gardner_surface(eye + dir * t, 1.0f);
-      GARDNER_HIT(t, surface.y, gardner_shade(n, -dir, light, surface.x));
+      vec2 surface = gardner_surface(eye + dir * t, 1.0f, plane.y);
+      GARDNER_HIT(t, plane.z * surface.y, gardner_shade(n, -dir, light, surface.x));
     }
   } else {  // cumulus: the cells the ray crosses within the layer, in order
     float spacing = frame.classic_gardner_shading.w;
@@ -188,12 +195,35 @@ void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light) {
       for (int i = 0; i < 160 && transmittance > 0.01f; ++i) {
         GardnerEllipsoid e = gardner_cell_ellipsoid(cell, spacing, bottom_m, top_m,
                                                     frame.classic_options.w, seed);
-        if (e.present) {
+        if (e.present && quadrics) {
+          // The impressionistic cloud's objects the ray enters, nearest first.
+          vec4 hits[GARDNER_CELL_OBJECTS];
+          vec3 normals[GARDNER_CELL_OBJECTS];
+          int count = 0;
+          for (int k = 0; k < GARDNER_CELL_OBJECTS; ++k) {
+            ConvexObject object = gardner_cell_object(cell, k, spacing, bottom_m, top_m, seed);
+            vec4 hit = ray_convex_object(object, eye, dir);
+            if (hit.x >= hit.y || hit.x <= 0.0f || hit.x >= t_ground) continue;
+            vec3 n = hit.z < 0.0f ? quadric_gradient(object.shape, eye + dir * hit.x)
+                                  : object.planes[int(hit.z)].xyz;
+            int j = count++;
+            for (; j > 0 && hits[j - 1].x > hit.x; --j) {
+              hits[j] = hits[j - 1];
+              normals[j] = normals[j - 1];
+            }
+            hits[j] = hit;
+            normals[j] = normalize(n);
+          }
+          for (int j = 0; j < count; ++j) {
+            vec2 surface = gardner_surface(eye + dir * hits[j].x, hits[j].w, 1.0f);
+            GARDNER_HIT(hits[j].x, surface.y, gardner_shade(normals[j], -dir, light, surface.x));
+          }
+        } else if (e.present) {
           vec2 hit = ray_ellipsoid(eye, dir, e.centre, e.radii);
           if (hit.x > 0.0f && hit.x < t_ground) {
             vec3 q = eye + dir * hit.x;
             vec3 n = normalize((q - e.centre) / (e.radii * e.radii));
-            vec2 surface = gardner_surface(q, hit.y);
+            vec2 surface = gardner_surface(q, hit.y, 1.0f);
             GARDNER_HIT(hit.x, surface.y, gardner_shade(n, -dir, light, surface.x));
           }
         }
@@ -380,7 +410,8 @@ void main() {
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
                         float(pixel.y), float(width), float(height));
   if (MODEL == CLASSIC_BLINN) blinn(pixel, eye, dir, frame.sun_dir.xyz);
-  if (MODEL == CLASSIC_GARDNER) gardner(pixel, eye, dir, frame.sun_dir.xyz);
+  if (MODEL == CLASSIC_GARDNER) gardner(pixel, eye, dir, frame.sun_dir.xyz, false);
+  if (MODEL == CLASSIC_GARDNER_QUADRICS) gardner(pixel, eye, dir, frame.sun_dir.xyz, true);
   if (MODEL == CLASSIC_NISHITA) nishita(pixel, eye, dir, frame.sun_dir.xyz);
   if (MODEL == CLASSIC_KAJIYA) kajiya(pixel, eye, dir, frame.sun_dir.xyz, frame.classic_kajiya.y > 0.5f);
 }

@@ -67,6 +67,8 @@ std::vector<ClassicTile> classic_gallery_tiles(int tile_width, int tile_height) 
   add("blinn", CloudModel::Blinn, "cumulus");
   add("gardner", CloudModel::Gardner, "cumulus");
   add("gardner-stratus", CloudModel::Gardner, "stratus");
+  add("gardner-cirrus", CloudModel::Gardner, "cirrus");
+  add("gardner-quadrics", CloudModel::GardnerQuadrics, "cumulus");
   add("kajiya", CloudModel::Kajiya, "cumulus");
   add("nishita", CloudModel::Nishita, "cumulus");
   add("nephele", CloudModel::Nephele, "cumulus");
@@ -104,7 +106,7 @@ void add_gallery_flags(CLI::App& cmd, GalleryOptions& options) {
       ->capture_default_str();
   cmd.add_option("--columns", options.columns, "tiles per row, [1, 16]")->capture_default_str();
   cmd.add_flag("--classic", options.classic,
-               "the classical cloud models of seed 004 (blinn, gardner cumulus and stratus, kajiya, nishita) "
+               "the classical cloud models of seed 004 (blinn, gardner cumulus, stratus and cirrus, gardner-quadrics, kajiya, nishita) "
                "and nephele's own on one scene, each labelled with its frame time on this device");
   cmd.add_option("--json", options.json,
                  "with --classic: write {\"models\": {name: frame_ms}} (the median GPU time of "

@@ -183,10 +183,11 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
       {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model),
-       "nephele|blinn|gardner|kajiya|nishita",
+       "nephele|blinn|gardner|gardner-quadrics|kajiya|nishita",
        "the model drawing the [clouds] layer: nephele (default) or a classical one of seed 004: "
        "blinn (Blinn 1982: a layer of small particles, single scattering), gardner (Gardner "
-       "1985: textured ellipsoids or sky plane), kajiya (Kajiya and Von Herzen 1984: a light "
+       "1985: textured ellipsoids, sky plane or cirrus), gardner-quadrics (his impressionistic "
+       "scenes: convex objects of a quadric and planes, ray cast), kajiya (Kajiya and Von Herzen 1984: a light "
        "array, then Romberg integration along each eye ray, on nephele's density) or nishita "
        "(Nishita and Nakamae 1996: metaball cumulus, second-order scattering and sky light); "
        "see [classic]"},

@@ -69,10 +69,11 @@ enum class CloudModel {
   Gardner,  // Gardner 1985: textured ellipsoids (cumulus) or a textured sky plane (stratus)
   Kajiya,   // Kajiya and Von Herzen 1984: light array, then Romberg along each eye ray
   Nishita,  // Nishita and Nakamae 1996: metaballs, second-order anisotropic scattering, sky light
+  GardnerQuadrics,  // Gardner's impressionistic scenes: convex objects of a quadric and planes
 };
 inline constexpr CloudModel kCloudModels[] = {CloudModel::Nephele, CloudModel::Blinn,
-                                              CloudModel::Gardner, CloudModel::Kajiya,
-                                              CloudModel::Nishita};
+                                              CloudModel::Gardner, CloudModel::GardnerQuadrics,
+                                              CloudModel::Kajiya, CloudModel::Nishita};
 
 // Planet and atmosphere (Hillaire 2020, table 1 for the Earth's defaults): Rayleigh and Mie
 // scattering falling off exponentially with altitude, Mie absorption, an ozone layer.
@@ -402,7 +403,9 @@ struct ClassicCloudParams {
   float blinn_particles_per_m3 = 1.0e6f;     // [0, 1e12]: tau 0.79 over the default layer
   float blinn_albedo = 0.9f;                 // omega, [0, 1]
   // Gardner 1985: "cumulus" (an ellipsoid in a share `coverage` of the cells of
-  // gardner_spacing_m over the layer) or "stratus" (a sky plane at the layer's bottom), both
+  // gardner_spacing_m over the layer), "stratus" (a sky plane at the layer's bottom) or
+  // "cirrus" (a thin plane at cirrus.altitude_m, its texture stretched east-west into streaks);
+  // clouds.model = gardner-quadrics draws his impressionistic cumulus in the same cells; all
   // textured by his function T with gardner_terms sines from the wavelength gardner_period_m;
   // translucency from the thresholds T1 (centre), T2 (edge) over the range D; shading
   // I = (1 - f){(1 - t)[(1 - s) I_d + s I_s] + t T} + f.

@@ -15,6 +15,7 @@ const int CLASSIC_BLINN = 1;
 const int CLASSIC_GARDNER = 2;
 const int CLASSIC_KAJIYA = 3;
 const int CLASSIC_NISHITA = 4;
+const int CLASSIC_GARDNER_QUADRICS = 5;
 const int KAJIYA_LEVELS_MAX = 7;  // Romberg's finest trapezoid: 2^7 + 1 = 129 samples
 
 // --- Blinn 1982: phase functions -------------------------------------------------------------
@@ -186,6 +187,163 @@ vec2 ray_ellipsoid(vec3 o, vec3 d, vec3 centre, vec3 radii) {
   float t = (-b - sqrt(disc)) / a;
   float q2 = c + 1.0f - b * b / a;
   return vec2(t, sqrt(max(1.0f - q2, 0.0f)));
+}
+
+// --- Gardner's impressionistic scenes: convex objects of a quadric and planes -------------------
+// A quadric in the seed's coefficients, Q(x, y, z) = Q1 x^2 + Q2 y^2 + Q3 z^2 + Q4 xy + Q5 yz +
+// Q6 xz + Q7 x + Q8 y + Q9 z + Q10, q[0] = Q1 ... q[9] = Q10; its inside is Q <= 0.
+struct Quadric {
+  float q[10];
+};
+
+float quadric_value(Quadric s, vec3 p) {
+  return s.q[0] * p.x * p.x + s.q[1] * p.y * p.y + s.q[2] * p.z * p.z + s.q[3] * p.x * p.y +
+         s.q[4] * p.y * p.z + s.q[5] * p.x * p.z + s.q[6] * p.x + s.q[7] * p.y + s.q[8] * p.z + s.q[9];
+}
+
+vec3 quadric_gradient(Quadric s, vec3 p) {
+  return vec3(2.0f * s.q[0] * p.x + s.q[3] * p.y + s.q[5] * p.z + s.q[6],
+              2.0f * s.q[1] * p.y + s.q[3] * p.x + s.q[4] * p.z + s.q[7],
+              2.0f * s.q[2] * p.z + s.q[4] * p.y + s.q[5] * p.x + s.q[8]);
+}
+
+// The ellipsoid (p - c)^T R diag(1/a^2, 1/b^2, 1/c^2) R^T (p - c) <= 1, R the turn by `yaw`
+// (rad) about the vertical, in the seed's ten coefficients.
+Quadric quadric_ellipsoid(vec3 centre, vec3 radii, float yaw) {
+  vec3 inv = 1.0f / (radii * radii);
+  float c = cos(yaw), s = sin(yaw);
+  // A = R D R^T: the horizontal block turned, the vertical untouched.
+  float a00 = c * c * inv.x + s * s * inv.y, a11 = s * s * inv.x + c * c * inv.y;
+  float a01 = c * s * (inv.x - inv.y), a22 = inv.z;
+  Quadric q;
+  q.q[0] = a00;
+  q.q[1] = a11;
+  q.q[2] = a22;
+  q.q[3] = 2.0f * a01;
+  q.q[4] = 0.0f;
+  q.q[5] = 0.0f;
+  vec3 ac = vec3(a00 * centre.x + a01 * centre.y, a01 * centre.x + a11 * centre.y, a22 * centre.z);
+  q.q[6] = -2.0f * ac.x;
+  q.q[7] = -2.0f * ac.y;
+  q.q[8] = -2.0f * ac.z;
+  q.q[9] = dot(centre, ac) - 1.0f;
+  return q;
+}
+
+// A dome: the elliptic paraboloid z <= apex.z - h ((x - apex.x)^2 / a^2 + (y - apex.y)^2 / b^2).
+Quadric quadric_dome(vec3 apex, vec2 radii, float h) {
+  vec2 k = h / (radii * radii);
+  Quadric q;
+  q.q[0] = k.x;
+  q.q[1] = k.y;
+  q.q[2] = 0.0f;
+  q.q[3] = 0.0f;
+  q.q[4] = 0.0f;
+  q.q[5] = 0.0f;
+  q.q[6] = -2.0f * k.x * apex.x;
+  q.q[7] = -2.0f * k.y * apex.y;
+  q.q[8] = 1.0f;
+  q.q[9] = k.x * apex.x * apex.x + k.y * apex.y * apex.y - apex.z;
+  return q;
+}
+
+// A convex object: a quadric whose inside is convex (its quadratic part positive
+// semi-definite: ellipsoids, elliptic paraboloids and cylinders) cut by up to two planes,
+// each keeping n . p + w <= 0 (plane = (n, w)).
+const int QUADRIC_PLANES_MAX = 2;
+struct ConvexObject {
+  Quadric shape;
+  vec4 planes[QUADRIC_PLANES_MAX];
+  int plane_count;
+};
+
+// The ray o + t d (d unit) through the object: x the entering t, y the leaving t (x >= y: a
+// miss), z the surface entered (-1 the quadric, k plane k), w the limb curve there
+// (|cos| between the surface's normal and the ray: 1 face on, 0 at the silhouette). What a
+// ray cast finds is what Gardner's key-point algorithm outlines: the nearest visible surface.
+vec4 ray_convex_object(ConvexObject object, vec3 o, vec3 d) {
+  Quadric s = object.shape;
+  float a = s.q[0] * d.x * d.x + s.q[1] * d.y * d.y + s.q[2] * d.z * d.z + s.q[3] * d.x * d.y +
+            s.q[4] * d.y * d.z + s.q[5] * d.x * d.z;
+  float b = dot(d, quadric_gradient(s, o));  // Q(o + t d) = a t^2 + b t + c
+  float c = quadric_value(s, o);
+  float t0, t1;
+  if (a > 1e-20f) {
+    float disc = b * b - 4.0f * a * c;
+    if (disc <= 0.0f) return vec4(1.0f, 0.0f, -1.0f, 0.0f);
+    float root = sqrt(disc);
+    // The numerically stable pair of roots.
+    float qq = -0.5f * (b + (b >= 0.0f ? root : -root));
+    float r0 = qq / a, r1 = abs(qq) > 0.0f ? c / qq : r0;
+    t0 = min(r0, r1);
+    t1 = max(r0, r1);
+  } else if (abs(b) > 1e-20f) {  // linear along this ray (a paraboloid's axis)
+    float t = -c / b;
+    t0 = b < 0.0f ? t : -1e30f;
+    t1 = b < 0.0f ? 1e30f : t;
+  } else {
+    if (c > 0.0f) return vec4(1.0f, 0.0f, -1.0f, 0.0f);
+    t0 = -1e30f;
+    t1 = 1e30f;
+  }
+  float face = -1.0f;
+  for (int k = 0; k < QUADRIC_PLANES_MAX; ++k) {
+    if (k >= object.plane_count) break;
+    vec3 n = vec3(object.planes[k]);
+    float dn = dot(n, d), on = dot(n, o) + object.planes[k].w;
+    if (abs(dn) < 1e-20f) {
+      if (on > 0.0f) return vec4(1.0f, 0.0f, -1.0f, 0.0f);
+      continue;
+    }
+    float t = -on / dn;
+    if (dn < 0.0f) {  // entering the half-space
+      if (t > t0) {
+        t0 = t;
+        face = float(k);
+      }
+    } else {
+      t1 = min(t1, t);
+    }
+  }
+  vec3 n = face < 0.0f ? quadric_gradient(s, o + d * t0) : vec3(object.planes[int(face)]);
+  float g = abs(dot(normalize(n), d));
+  return vec4(t0, t1, face, g);
+}
+
+// Gardner's impressionistic cumulus in one cell of the cumulus grid (where
+// gardner_cell_ellipsoid stands one): object k of GARDNER_CELL_OBJECTS, all cut flat by the
+// layer's bottom: 0 a wide ellipsoid, 1 a smaller one beside it, 2 a dome (a paraboloid)
+// rising from them, its top sheared off by a slanting plane. All within the cell's column.
+const int GARDNER_CELL_OBJECTS = 3;
+
+ConvexObject gardner_cell_object(ivec2 cell, int k, float spacing_m, float bottom_m, float top_m,
+                                 uint seed) {
+  vec3 h = hash_cell(ivec3(cell, 7), seed);
+  vec3 r = hash_cell(ivec3(cell, 13), seed);
+  vec3 u = hash_cell(ivec3(cell, 17 + k), seed);
+  float a = spacing_m * (0.22f + 0.1f * r.x), b = a * (0.6f + 0.4f * r.y);
+  float c = 0.5f * (top_m - bottom_m) * (0.5f + 0.4f * r.z);
+  float reach = 1.1f * a;  // the furthest any object reaches from the cloud's axis
+  vec2 axis = (vec2(cell) + 0.5f) * spacing_m + (vec2(h.y, h.z) * 2.0f - 1.0f) * (0.5f * spacing_m - reach);
+  float yaw = 2.0f * PI * u.x;
+  ConvexObject o;
+  o.planes[0] = vec4(0.0f, 0.0f, -1.0f, bottom_m);  // z >= bottom
+  o.plane_count = 1;
+  if (k == 0) {
+    o.shape = quadric_ellipsoid(vec3(axis, bottom_m + 0.35f * c), vec3(a, b, c), yaw);
+  } else if (k == 1) {
+    vec2 side = 0.5f * a * vec2(cos(yaw), sin(yaw));
+    o.shape = quadric_ellipsoid(vec3(axis + side, bottom_m + 0.2f * c), 0.6f * vec3(a, b, c), yaw);
+  } else {
+    float apex_m = min(bottom_m + (0.9f + 0.4f * u.y) * c, top_m);
+    vec3 apex = vec3(axis + 0.2f * a * vec2(u.z * 2.0f - 1.0f, u.y * 2.0f - 1.0f), apex_m);
+    o.shape = quadric_dome(apex, 0.5f * vec2(a, b), apex_m - bottom_m);
+    vec3 n = normalize(vec3(cos(yaw), sin(yaw), 2.5f));
+    vec3 through = apex - vec3(0.0f, 0.0f, 0.2f * (apex_m - bottom_m));
+    o.planes[1] = vec4(n, -dot(n, through));
+    o.plane_count = 2;
+  }
+  return o;
 }
 
 // --- Nishita and Nakamae 1996: metaballs -------------------------------------------------------

@@ -202,6 +202,9 @@ struct FrameParams {
   vec4 classic_gardner;
   // Gardner: x f (ambient), y t (texture), z s (specular), w the cumulus cells' spacing (m)
   vec4 classic_gardner_shading;
+  // Gardner's sky plane: x its altitude (m), y the texture's stretch (FY_1 / FX_1: 1 for stratus,
+  // more for cirrus's streaks), z its greatest opacity; w unused
+  vec4 classic_gardner_plane;
   // Kajiya and Von Herzen: x Romberg's levels, y 1 for the brute-force reference march instead
   vec4 classic_kajiya;
   // Nishita and Nakamae (render/modules/metaball_clouds.h): the voxel grid's corner (xyz, ENU

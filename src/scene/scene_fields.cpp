@@ -80,6 +80,8 @@ const char* to_string(CloudModel model) {
       return "kajiya";
     case CloudModel::Nishita:
       return "nishita";
+    case CloudModel::GardnerQuadrics:
+      return "gardner-quadrics";
   }
   return "unknown";
 }
@@ -400,7 +402,7 @@ const std::vector<Section>& scene_sections() {
         FIELD(classic, blinn_particle_radius_m, "r, (0, 1]"),
         FIELD(classic, blinn_particles_per_m3, "n, [0, 1e12]; tau = n pi r^2 (top - bottom)"),
         FIELD(classic, blinn_albedo, "omega, [0, 1]"),
-        FIELD(classic, gardner_clouds, "Gardner's clouds: cumulus (textured ellipsoids) or stratus (a textured sky plane)"),
+        FIELD(classic, gardner_clouds, "Gardner's clouds: cumulus (textured ellipsoids), stratus (a textured sky plane) or cirrus (a thin streaked plane at cirrus.altitude_m)"),
         FIELD(classic, gardner_spacing_m, "the cumulus cells' side (m), [100, 1e5]; one ellipsoid in a share clouds.coverage of them"),
         FIELD(classic, gardner_period_m, "his texture's longest wavelength (m), [10, 1e6]"),
         FIELD(classic, gardner_terms, "the texture's sines per axis, frequencies doubling, [1, 8]"),

@@ -375,9 +375,9 @@ void check_classic(const Checker& check, const CloudParams& clouds, const Classi
   check.in_range("classic.blinn_particle_radius_m", c.blinn_particle_radius_m, 0.0f, 1.0f, true);
   check.in_range("classic.blinn_particles_per_m3", c.blinn_particles_per_m3, 0.0f, 1.0e12f);
   check.in_range("classic.blinn_albedo", c.blinn_albedo, 0.0f, 1.0f);
-  if (c.gardner_clouds != "cumulus" && c.gardner_clouds != "stratus")
+  if (c.gardner_clouds != "cumulus" && c.gardner_clouds != "stratus" && c.gardner_clouds != "cirrus")
     check.fail("classic.gardner_clouds", scene_detail::toml_quote(c.gardner_clouds),
-               "must be \"cumulus\" or \"stratus\"");
+               "must be \"cumulus\", \"stratus\" or \"cirrus\"");
   check.in_range("classic.gardner_spacing_m", c.gardner_spacing_m, 100.0f, 1.0e5f);
   check.in_range("classic.gardner_period_m", c.gardner_period_m, 10.0f, 1.0e6f);
   check.in_range("classic.gardner_terms", c.gardner_terms, 1, 8);

@@ -198,23 +198,53 @@ TEST_F(GardnerRenderTest, TheSkyPlaneShowsHisTexturePixelByPixel) {
   EXPECT_LT(hi / lo, 1.06);
 }
 
-// Cumulus: no ellipsoid at coverage 0, more cloud with more coverage.
+double mean_opacity(const Frame& f) {
+  double opacity = 0.0;
+  for (const glm::vec4& p : f.clouds.pixels) opacity += 1.0 - p.a;
+  return opacity / double(f.clouds.pixels.size());
+}
+
+// Cumulus, his ellipsoids and his impressionistic objects: no cloud at coverage 0, more cloud
+// with more coverage.
 TEST_F(GardnerRenderTest, CumulusCoverFollowsTheCoverage) {
   Scene s = blinn_scene();
-  s.clouds.model = CloudModel::Gardner;
   s.camera.view_dir = glm::vec3(0.0f, 1.0f, 0.25f);
-  double previous = -1.0;
-  for (const float coverage : {0.0f, 0.3f, 0.8f}) {
-    s.clouds.coverage = coverage;
-    const Frame f = render(s);
-    double opacity = 0.0;
-    for (const glm::vec4& p : f.clouds.pixels) opacity += 1.0 - p.a;
-    opacity /= double(f.clouds.pixels.size());
-    std::printf("coverage %.1f: mean opacity %.3f\n", coverage, opacity);
-    if (coverage == 0.0f) EXPECT_EQ(opacity, 0.0);
-    EXPECT_GT(opacity, previous + (coverage > 0.0f ? 0.02 : -1.0));
-    previous = opacity;
+  for (const CloudModel model : {CloudModel::Gardner, CloudModel::GardnerQuadrics}) {
+    s.clouds.model = model;
+    double previous = -1.0;
+    for (const float coverage : {0.0f, 0.3f, 0.8f}) {
+      s.clouds.coverage = coverage;
+      const double opacity = mean_opacity(render(s));
+      std::printf("%s, coverage %.1f: mean opacity %.3f\n", to_string(model), coverage, opacity);
+      if (coverage == 0.0f) EXPECT_EQ(opacity, 0.0);
+      EXPECT_GT(opacity, previous + (coverage > 0.0f ? 0.02 : -1.0));
+      previous = opacity;
+    }
   }
+}
+
+// Cirrus: his plane at the cirrus's altitude, thin (never more than 0.6 opaque) and streaked:
+// the texture varies far more across the streaks (north-south) than along them.
+TEST_F(GardnerRenderTest, CirrusIsAThinStreakedPlaneAtItsAltitude) {
+  Scene s = blinn_scene();
+  s.clouds.model = CloudModel::Gardner;
+  s.classic.gardner_clouds = "cirrus";
+  s.camera.view_dir = glm::vec3(0.0f, 0.0f, 1.0f);  // straight up: x east, y north in the image
+  s.camera.fov_deg = 90.0f;
+  const Frame f = render(s);
+  double along = 0.0, across = 0.0, max_opacity = 0.0;
+  for (int y = 1; y < s.output.height; ++y)
+    for (int x = 1; x < s.output.width; ++x) {
+      const auto at = [&](int i, int j) { return f.clouds.pixels[size_t(j * s.output.width + i)].a; };
+      max_opacity = std::max(max_opacity, 1.0 - at(x, y));
+      along += std::abs(at(x, y) - at(x - 1, y));
+      across += std::abs(at(x, y) - at(x, y - 1));
+    }
+  std::printf("cirrus: opacity up to %.3f, change along the streaks %.3f, across %.3f\n", max_opacity,
+              along, across);
+  EXPECT_GT(max_opacity, 0.2);
+  EXPECT_LE(max_opacity, 0.6 + 1e-4);
+  EXPECT_GT(across, 2.0 * along);
 }
 
 }  // namespace

@@ -102,10 +102,11 @@ TEST_F(CliTest, GalleryClassicShowsEveryModelWithItsFrameTime) {
   int w = 0, h = 0, n = 0;
   ASSERT_TRUE(stbi_info(out.c_str(), &w, &h, &n));
   EXPECT_EQ(w, 2 * 32 + 4);
-  EXPECT_EQ(h, 3 * 24 + 2 * 4);
+  EXPECT_EQ(h, 4 * 24 + 3 * 4);
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
-  ASSERT_EQ(j["models"].size(), 6u);
-  for (const char* model : {"blinn", "gardner", "gardner-stratus", "kajiya", "nishita", "nephele"})
+  ASSERT_EQ(j["models"].size(), 8u);
+  for (const char* model : {"blinn", "gardner", "gardner-stratus", "gardner-cirrus",
+                            "gardner-quadrics", "kajiya", "nishita", "nephele"})
     EXPECT_GT(j["models"][model].get<double>(), 0.0) << model;
   const CliRun bad = run_cli("gallery --json " + path("bad.json") + " -o " + path("bad.png"));
   EXPECT_EQ(bad.status, 2);

@@ -268,3 +268,102 @@ TEST(GardnerCumulus, RayEllipsoidHitsAndItsLimbCurve) {
 
 }  // namespace
 }  // namespace nephele
+
+namespace nephele {
+namespace {
+
+// Gardner's impressionistic objects: the quadric in the seed's ten coefficients, its value and
+// gradient against the ellipsoid they stand for.
+TEST(GardnerQuadrics, TheEllipsoidsCoefficientsDescribeIt) {
+  const glm::vec3 centre(300.0f, -200.0f, 2500.0f), radii(900.0f, 500.0f, 700.0f);
+  const float yaw = 0.6f;
+  const glsl::Quadric q = glsl::quadric_ellipsoid(centre, radii, yaw);
+  const glm::vec3 e1(std::cos(yaw), std::sin(yaw), 0.0f), e2(-std::sin(yaw), std::cos(yaw), 0.0f),
+      e3(0.0f, 0.0f, 1.0f);
+  for (int i = 0; i < 50; ++i) {
+    const float th = 0.37f * float(i), ph = 0.11f * float(i) - 2.0f;
+    const glm::vec3 unit(std::cos(th) * std::cos(ph), std::sin(th) * std::cos(ph), std::sin(ph));
+    const glm::vec3 p = centre + radii.x * unit.x * e1 + radii.y * unit.y * e2 + radii.z * unit.z * e3;
+    EXPECT_NEAR(glsl::quadric_value(q, p), 0.0f, 1e-4f);
+    EXPECT_LT(glsl::quadric_value(q, centre + 0.9f * (p - centre)), 0.0f);
+    EXPECT_GT(glsl::quadric_value(q, centre + 1.1f * (p - centre)), 0.0f);
+    for (int k = 0; k < 3; ++k) {
+      glm::vec3 h(0.0f);
+      h[k] = 0.5f;
+      const float numeric = (glsl::quadric_value(q, p + h) - glsl::quadric_value(q, p - h)) / 1.0f;
+      EXPECT_NEAR(glsl::quadric_gradient(q, p)[k], numeric, 1e-5f);
+    }
+  }
+}
+
+// A sphere cut by the plane z >= 0, seen from the side along +y: rays hit exactly the half
+// disc above the cut (the outline Gardner's key points bound: the limb curve above the
+// intersection line), entering the sphere where it is; from below, rays enter the flat face
+// at the plane, face on. A dome sheared by a slanting plane is entered, from above, through
+// that plane.
+TEST(GardnerQuadrics, RaysFindTheVisibleSurfacesOfACutSphereAndDome) {
+  glsl::ConvexObject o;
+  o.shape = glsl::quadric_ellipsoid(glm::vec3(0.0f), glm::vec3(1000.0f), 0.0f);
+  o.planes[0] = glm::vec4(0.0f, 0.0f, -1.0f, 0.0f);
+  o.plane_count = 1;
+  int hits = 0;
+  for (int i = -20; i <= 20; ++i)
+    for (int j = -20; j <= 20; ++j) {
+      const float x = 52.0f * float(i) + 1.0f, z = 52.0f * float(j) + 1.0f;
+      const glm::vec4 side = glsl::ray_convex_object(o, glm::vec3(x, -5000.0f, z), glm::vec3(0.0f, 1.0f, 0.0f));
+      const bool inside = x * x + z * z < 1.0e6f && z > 0.0f;
+      EXPECT_EQ(side.x < side.y, inside) << x << ", " << z;
+      if (!inside) continue;
+      ++hits;
+      EXPECT_NEAR(side.x, 5000.0f - std::sqrt(1.0e6f - x * x - z * z), 0.05f);
+      EXPECT_EQ(side.z, -1.0f);
+      const glm::vec4 below = glsl::ray_convex_object(o, glm::vec3(x, z, -5000.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+      EXPECT_NEAR(below.x, 5000.0f, 1e-3f);
+      EXPECT_EQ(below.z, 0.0f);
+      EXPECT_NEAR(below.w, 1.0f, 1e-6f);
+    }
+  EXPECT_GT(hits, 500);
+  glsl::ConvexObject dome;
+  dome.shape = glsl::quadric_dome(glm::vec3(0.0f, 0.0f, 1000.0f), glm::vec2(400.0f, 300.0f), 1000.0f);
+  const glm::vec3 n = glm::normalize(glm::vec3(1.0f, 0.0f, 2.5f));
+  dome.planes[0] = glm::vec4(0.0f, 0.0f, -1.0f, 0.0f);
+  dome.planes[1] = glm::vec4(n, -glm::dot(n, glm::vec3(0.0f, 0.0f, 800.0f)));
+  dome.plane_count = 2;
+  const glm::vec4 top = glsl::ray_convex_object(dome, glm::vec3(0.0f, 0.0f, 5000.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+  EXPECT_EQ(top.z, 1.0f);
+  EXPECT_NEAR(top.x, 4200.0f, 1e-2f);
+  EXPECT_NEAR(top.y, 5000.0f, 1e-2f);
+  EXPECT_NEAR(top.w, n.z, 1e-5f);
+  // Beside the dome's rim at the base (400 m east of its axis it meets the ground): a miss.
+  const glm::vec4 beside = glsl::ray_convex_object(dome, glm::vec3(410.0f, 0.0f, 5000.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+  EXPECT_GE(beside.x, beside.y);
+}
+
+// Every object of a cell's impressionistic cloud stays in the cell's column and above the
+// layer's bottom and below its top: vertical rays over the cell and its neighbours hit them
+// only over the cell, between those heights.
+TEST(GardnerQuadrics, ACellsObjectsStayInItsColumn) {
+  const float spacing = 3000.0f, bottom = 1500.0f, top = 4000.0f;
+  for (const glm::ivec2 cell : {glm::ivec2(3, -2), glm::ivec2(-7, 11), glm::ivec2(0, 0)}) {
+    int hits = 0;
+    for (int k = 0; k < glsl::GARDNER_CELL_OBJECTS; ++k) {
+      const glsl::ConvexObject o = glsl::gardner_cell_object(cell, k, spacing, bottom, top, 9u);
+      for (int i = 0; i < 90; ++i)
+        for (int j = 0; j < 90; ++j) {
+          const glm::vec2 xy = (glm::vec2(cell) - 1.0f + (glm::vec2(i, j) + 0.5f) / 30.0f) * spacing;
+          const glm::vec4 hit = glsl::ray_convex_object(o, glm::vec3(xy, 20000.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+          if (hit.x >= hit.y) continue;
+          ++hits;
+          const glm::vec2 in_cell = xy / spacing - glm::vec2(cell);
+          EXPECT_TRUE(in_cell.x >= 0.0f && in_cell.x <= 1.0f && in_cell.y >= 0.0f && in_cell.y <= 1.0f)
+              << "object " << k << " at " << xy.x << ", " << xy.y;
+          EXPECT_LE(20000.0f - hit.x, top + 1.0f);
+          EXPECT_GE(20000.0f - hit.y, bottom - 1.0f);  // nothing below the flat base
+        }
+    }
+    EXPECT_GT(hits, 150);
+  }
+}
+
+}  // namespace
+}  // namespace nephele
