@@ -250,7 +250,8 @@ void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light, bool quadrics) 
 // light). Pass 2 integrates each eye ray through the layer, B = integral of A C rho dt with
 // A = exp(-kappa integral rho) and C = I p(cos theta) (single scattering, nephele's phase),
 // by Romberg's method: trapezoid sums on 2^k + 1 samples, k = 0 ... levels, each with its own
-// A from the cumulative trapezoid of rho on the same samples, extrapolated by Richardson.
+// A from the cumulative trapezoid of rho on the same samples, extrapolated by Richardson (the
+// sums of every level gathered in one pass over the finest samples).
 // `reference`: instead, a brute-force march of the same integral (1024 midpoint samples, the
 // light marched at each), to check the method against.
 void kajiya(ivec2 pixel, vec3 eye, vec3 dir, vec3 light, bool reference) {
@@ -289,48 +290,56 @@ void kajiya(ivec2 pixel, vec3 eye, vec3 dir, vec3 light, bool reference) {
   } else {
     int levels = int(frame.classic_kajiya.x);
     int n = 1 << levels;
-    float rho[129], c[129];
-    for (int i = 0; i <= n; ++i) {
-      vec3 p = eye + dir * (seg.x + length_m * float(i) / float(n));
-      rho[i] = cloud_density(p, true);
-      // The array's trilinear lookup smooths the depth over a voxel, where the light changes
-      // fastest: as nephele's march does, the first voxel towards the light is marched.
-      float near_m = light_volume_voxel_at(p);
-      float d = light_volume_covers(p + light * near_m)
-                    ? march_light(p, light, 0.0f, near_m, 4) + light_volume_lookup(p + light * near_m)
-                    : march_light(p, light, 0.0f, light_ray_length(p, light), 16);
-      c[i] = exp(-kappa_light * d);
-    }
-    float r_b[KAJIYA_LEVELS_MAX + 1], r_d[KAJIYA_LEVELS_MAX + 1];  // Romberg's last row
+    // One pass over the finest level's 2^levels + 1 samples: sample i belongs to level k when
+    // i is a multiple of 2^(levels - k); each level keeps its own trapezoid sums of rho (the
+    // optical depth) and of A C rho, A from the cumulative trapezoid of rho on its samples.
+    float sum_b[KAJIYA_LEVELS_MAX + 1], cumulative[KAJIYA_LEVELS_MAX + 1];
+    float previous_rho[KAJIYA_LEVELS_MAX + 1], wt[KAJIYA_LEVELS_MAX + 1];
     for (int k = 0; k <= levels; ++k) {
-      int stride = 1 << (levels - k);
-      float h = length_m / float(1 << k);
-      // The trapezoid sums on level k: of rho (the optical depth) and of A C rho, A from the
-      // cumulative trapezoid of rho on the same samples.
-      float sum_b = 0.0f, cumulative = 0.0f, previous_rho = rho[0];
-      float wt = 0.0f;
-      for (int i = 0; i <= n; i += stride) {
-        if (i > 0) cumulative += 0.5f * h * (previous_rho + rho[i]);
-        previous_rho = rho[i];
-        float a = exp(-kappa * cumulative);
-        float weight = (i == 0 || i == n) ? 0.5f * h : h;
-        sum_b += weight * a * c[i] * rho[i];
-        wt += weight * a * rho[i] * (seg.x + length_m * float(i) / float(n));
+      sum_b[k] = 0.0f;
+      cumulative[k] = 0.0f;
+      previous_rho[k] = 0.0f;
+      wt[k] = 0.0f;
+    }
+    for (int i = 0; i <= n; ++i) {
+      float t = seg.x + length_m * float(i) / float(n);
+      vec3 p = eye + dir * t;
+      float rho = cloud_density(p, true);
+      float c = 0.0f;
+      if (rho > 0.0f) {
+        // The array's trilinear lookup smooths the depth over a voxel, where the light changes
+        // fastest: as nephele's march does, the first voxel towards the light is marched.
+        float near_m = light_volume_voxel_at(p);
+        float d = light_volume_covers(p + light * near_m)
+                      ? march_light(p, light, 0.0f, near_m, 4) + light_volume_lookup(p + light * near_m)
+                      : march_light(p, light, 0.0f, light_ray_length(p, light), 16);
+        c = exp(-kappa_light * d);
       }
-      float sum_d = cumulative;
-      weighted_t = wt * kappa;
-      // Richardson: R(k, j) from R(k, j - 1) and R(k - 1, j - 1).
-      float prev_b = r_b[0], prev_d = r_d[0];
-      r_b[0] = sum_b;
-      r_d[0] = sum_d;
-      float scale = 1.0f;
-      for (int j = 1; j <= k; ++j) {
-        scale *= 4.0f;
-        float next_prev_b = r_b[j], next_prev_d = r_d[j];
-        r_b[j] = r_b[j - 1] + (r_b[j - 1] - prev_b) / (scale - 1.0f);
-        r_d[j] = r_d[j - 1] + (r_d[j - 1] - prev_d) / (scale - 1.0f);
-        prev_b = next_prev_b;
-        prev_d = next_prev_d;
+      for (int k = 0; k <= levels; ++k) {
+        int stride = 1 << (levels - k);
+        if (i % stride != 0) continue;
+        float h = length_m / float(1 << k);
+        if (i > 0) cumulative[k] += 0.5f * h * (previous_rho[k] + rho);
+        previous_rho[k] = rho;
+        float weight = (i == 0 || i == n) ? 0.5f * h : h;
+        float a = exp(-kappa * cumulative[k]);
+        sum_b[k] += weight * a * c * rho;
+        wt[k] += weight * a * rho * t;
+      }
+    }
+    weighted_t = wt[levels] * kappa;
+    // Richardson: R(k, j) = R(k, j - 1) + (R(k, j - 1) - R(k - 1, j - 1)) / (4^j - 1).
+    float r_b[KAJIYA_LEVELS_MAX + 1], r_d[KAJIYA_LEVELS_MAX + 1];
+    for (int k = 0; k <= levels; ++k) {
+      r_b[k] = sum_b[k];
+      r_d[k] = cumulative[k];
+    }
+    float scale = 1.0f;
+    for (int j = 1; j <= levels; ++j) {
+      scale *= 4.0f;
+      for (int k = levels; k >= j; --k) {
+        r_b[k] = r_b[k] + (r_b[k] - r_b[k - 1]) / (scale - 1.0f);
+        r_d[k] = r_d[k] + (r_d[k] - r_d[k - 1]) / (scale - 1.0f);
       }
     }
     integral = max(r_b[levels], 0.0f);

@@ -421,7 +421,7 @@ struct ClassicCloudParams {
   float gardner_specular = 0.05f;            // s, [0, 1]
   // Kajiya and Von Herzen 1984 on nephele's density: Romberg's levels (2^levels + 1 samples
   // an eye ray), or the brute-force reference march of the same integral instead.
-  int kajiya_levels = 7;                     // [1, 7]
+  int kajiya_levels = 7;                     // [1, 10]
   bool kajiya_reference = false;
   // Nishita and Nakamae 1996: nishita_clouds cumulus of nishita_metaballs metaballs in all
   // (seed 004 times 338 and 358), standing on the layer's bottom within a square of

@@ -16,7 +16,7 @@ const int CLASSIC_GARDNER = 2;
 const int CLASSIC_KAJIYA = 3;
 const int CLASSIC_NISHITA = 4;
 const int CLASSIC_GARDNER_QUADRICS = 5;
-const int KAJIYA_LEVELS_MAX = 7;  // Romberg's finest trapezoid: 2^7 + 1 = 129 samples
+const int KAJIYA_LEVELS_MAX = 10;  // Romberg's finest trapezoid: 2^10 + 1 = 1025 samples
 
 // --- Blinn 1982: phase functions -------------------------------------------------------------
 const int BLINN_PHASE_CONSTANT = 0;     // 1

@@ -412,7 +412,7 @@ const std::vector<Section>& scene_sections() {
         FIELD(classic, gardner_ambient, "f, the ambient term, [0, 1]"),
         FIELD(classic, gardner_texture, "t, the texture's share of the shading, [0, 1]"),
         FIELD(classic, gardner_specular, "s, the specular share, [0, 1]"),
-        FIELD(classic, kajiya_levels, "Kajiya and Von Herzen's Romberg levels: 2^levels + 1 samples an eye ray, [1, 7]"),
+        FIELD(classic, kajiya_levels, "Kajiya and Von Herzen's Romberg levels: 2^levels + 1 samples an eye ray, [1, 10]"),
         FIELD(classic, kajiya_reference,
               "true: a brute-force march of the same single scattering instead (1024 samples, "
               "the light marched at each), to check their method against"),

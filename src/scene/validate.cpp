@@ -387,7 +387,7 @@ void check_classic(const Checker& check, const CloudParams& clouds, const Classi
   check.in_range("classic.gardner_ambient", c.gardner_ambient, 0.0f, 1.0f);
   check.in_range("classic.gardner_texture", c.gardner_texture, 0.0f, 1.0f);
   check.in_range("classic.gardner_specular", c.gardner_specular, 0.0f, 1.0f);
-  check.in_range("classic.kajiya_levels", c.kajiya_levels, 1, 7);
+  check.in_range("classic.kajiya_levels", c.kajiya_levels, 1, 10);
   check.in_range("classic.nishita_metaballs", c.nishita_metaballs, 1, 4096);
   check.in_range("classic.nishita_clouds", c.nishita_clouds, 1, std::min(64, std::max(c.nishita_metaballs, 1)));
   check.in_range("classic.nishita_extent_m", c.nishita_extent_m, 500.0f, 1.0e5f);

@@ -1471,13 +1471,16 @@ std::vector<RenderJob> edge_jobs() {
       for (size_t i = 1; i < components; ++i) value += ", " + std::string(digits);
       value += "]";
     }
-    // A classical model's parameter is rendered by its model.
-    std::string model;
-    for (const char* name : {"blinn", "gardner", "kajiya"})
+    // A classical model's parameter is rendered by its model (Nishita's on a small grid of few
+    // metaballs: their light passes cost seconds at the default 96 voxels).
+    std::string model, extra;
+    for (const char* name : {"blinn", "gardner", "kajiya", "nishita"})
       if (section == "classic" && key.rfind(std::string(name) + "_", 0) == 0)
         model = "[clouds]\nmodel = \"" + std::string(name) + "\"\n";
+    if (section == "classic" && key.rfind("nishita_", 0) == 0)
+      extra = "nishita_voxels = 16\nnishita_metaballs = 16\n";
     return "preset = \"default\"\n" + model + (section.empty() ? "" : "[" + section + "]\n") +
-           key + " = " + value + "\n";
+           key + " = " + value + "\n" + extra;
   };
   auto try_value = [&](const std::string& section, const std::string& key, size_t components,
                        double number) {
