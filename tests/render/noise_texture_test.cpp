@@ -11,6 +11,7 @@
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
+#include "render/modules/metaball_clouds.h"
 #include "render/modules/noise.h"
 #include "render/modules/particle_clouds.h"
 #include "render/modules/particle_light_gpu.h"
@@ -85,7 +86,8 @@ struct Modules {
         clouds(ctx, s.set),
         particles(ctx, s.set),
         particle_light(ctx, s.set),
-        path_tracer(ctx, s.set) {}
+        path_tracer(ctx, s.set),
+        metaballs(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
@@ -96,6 +98,7 @@ struct Modules {
   nephele::ParticleCloudsModule particles;
   nephele::ParticleLightGpuModule particle_light;
   nephele::PathTracerModule path_tracer;
+  nephele::MetaballCloudsModule metaballs;
 };
 
 // Runs `passes` with the default scene's parameters.

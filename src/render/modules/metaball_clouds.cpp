@@ -147,8 +147,18 @@ void MetaballCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params)
                                        : glm::vec4(0.0f)};
 }
 
+bool MetaballCloudsModule::LightKey::close_to(const LightKey& other) const {
+  // The sun moves 0.25 deg a minute: relit once it has moved 0.25 deg, or the sky's colour by
+  // 2%, not every frame of a flight.
+  const float cos_quarter_deg = 0.99999048f;
+  const glm::vec4 sky_change = glm::abs(sky - other.sky) / glm::max(glm::abs(other.sky), glm::vec4(1e-12f));
+  return shape == other.shape && nishita_light == other.nishita_light && phase == other.phase &&
+         glm::dot(light, other.light) >= cos_quarter_deg &&
+         std::max(std::max(sky_change.x, sky_change.y), sky_change.z) <= 0.02f;
+}
+
 void MetaballCloudsModule::record_light(VkCommandBuffer cmd, gpu::PassTimer& timer) {
-  if (lit_key_ == want_) return;
+  if (lit_key_ && lit_key_->close_to(want_)) return;
   if (!light_) {
     light_ = std::make_unique<gpu::Kernel>(ctx_, set_, "nishita_light.comp.spv");
     scatter_ = std::make_unique<gpu::Kernel>(ctx_, set_, "nishita_scatter.comp.spv");

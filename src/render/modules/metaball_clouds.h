@@ -70,7 +70,7 @@ class MetaballCloudsModule {
     Key shape;
     glm::vec3 light{0.0f};
     glm::vec4 nishita_light{0.0f}, phase{0.0f}, sky{0.0f};
-    bool operator==(const LightKey&) const = default;
+    bool close_to(const LightKey& other) const;
   };
   void upload();
 
