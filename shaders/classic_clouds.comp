@@ -195,7 +195,11 @@ void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light, bool quadrics) 
       for (int i = 0; i < 160 && transmittance > 0.01f; ++i) {
         GardnerEllipsoid e = gardner_cell_ellipsoid(cell, spacing, bottom_m, top_m,
                                                     frame.classic_options.w, seed);
-        if (e.present && quadrics) {
+        vec3 axis = quadrics ? gardner_cell_axis(cell, spacing, seed) : vec3(0.0f);
+        vec2 to_axis = axis.xy - eye.xy;
+        float along = dot(to_axis, d) / max(dot(d, d), 1e-12f);  // the closest approach in xy
+        bool near_axis = length(to_axis - d * along) <= axis.z;
+        if (e.present && quadrics && near_axis) {
           // The impressionistic cloud's objects the ray enters, nearest first.
           vec4 hits[GARDNER_CELL_OBJECTS];
           vec3 normals[GARDNER_CELL_OBJECTS];
@@ -218,7 +222,7 @@ void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light, bool quadrics) 
             vec2 surface = gardner_surface(eye + dir * hits[j].x, hits[j].w, 1.0f);
             GARDNER_HIT(hits[j].x, surface.y, gardner_shade(normals[j], -dir, light, surface.x));
           }
-        } else if (e.present) {
+        } else if (e.present && !quadrics) {
           vec2 hit = ray_ellipsoid(eye, dir, e.centre, e.radii);
           if (hit.x > 0.0f && hit.x < t_ground) {
             vec3 q = eye + dir * hit.x;

@@ -316,15 +316,22 @@ vec4 ray_convex_object(ConvexObject object, vec3 o, vec3 d) {
 // rising from them, its top sheared off by a slanting plane. All within the cell's column.
 const int GARDNER_CELL_OBJECTS = 3;
 
+// The cloud's vertical axis (xy, m) and how far from it its objects reach (z, m).
+vec3 gardner_cell_axis(ivec2 cell, float spacing_m, uint seed) {
+  vec3 h = hash_cell(ivec3(cell, 7), seed);
+  float a = spacing_m * (0.22f + 0.1f * hash_cell(ivec3(cell, 13), seed).x);
+  float reach = 1.1f * a;
+  return vec3((vec2(cell) + 0.5f) * spacing_m + (vec2(h.y, h.z) * 2.0f - 1.0f) * (0.5f * spacing_m - reach),
+              reach);
+}
+
 ConvexObject gardner_cell_object(ivec2 cell, int k, float spacing_m, float bottom_m, float top_m,
                                  uint seed) {
-  vec3 h = hash_cell(ivec3(cell, 7), seed);
   vec3 r = hash_cell(ivec3(cell, 13), seed);
   vec3 u = hash_cell(ivec3(cell, 17 + k), seed);
   float a = spacing_m * (0.22f + 0.1f * r.x), b = a * (0.6f + 0.4f * r.y);
   float c = 0.5f * (top_m - bottom_m) * (0.5f + 0.4f * r.z);
-  float reach = 1.1f * a;  // the furthest any object reaches from the cloud's axis
-  vec2 axis = (vec2(cell) + 0.5f) * spacing_m + (vec2(h.y, h.z) * 2.0f - 1.0f) * (0.5f * spacing_m - reach);
+  vec2 axis = vec2(gardner_cell_axis(cell, spacing_m, seed));
   float yaw = 2.0f * PI * u.x;
   ConvexObject o;
   o.planes[0] = vec4(0.0f, 0.0f, -1.0f, bottom_m);  // z >= bottom

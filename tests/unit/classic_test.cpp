@@ -341,7 +341,8 @@ TEST(GardnerQuadrics, RaysFindTheVisibleSurfacesOfACutSphereAndDome) {
 
 // Every object of a cell's impressionistic cloud stays in the cell's column and above the
 // layer's bottom and below its top: vertical rays over the cell and its neighbours hit them
-// only over the cell, between those heights.
+// only over the cell, between those heights, and within the reach of the cloud's axis that
+// the march culls by.
 TEST(GardnerQuadrics, ACellsObjectsStayInItsColumn) {
   const float spacing = 3000.0f, bottom = 1500.0f, top = 4000.0f;
   for (const glm::ivec2 cell : {glm::ivec2(3, -2), glm::ivec2(-7, 11), glm::ivec2(0, 0)}) {
@@ -358,6 +359,8 @@ TEST(GardnerQuadrics, ACellsObjectsStayInItsColumn) {
           EXPECT_TRUE(in_cell.x >= 0.0f && in_cell.x <= 1.0f && in_cell.y >= 0.0f && in_cell.y <= 1.0f)
               << "object " << k << " at " << xy.x << ", " << xy.y;
           EXPECT_LE(20000.0f - hit.x, top + 1.0f);
+          const glm::vec3 axis = glsl::gardner_cell_axis(cell, spacing, 9u);
+          EXPECT_LE(glm::length(xy - glm::vec2(axis)), axis.z);  // the march's cull
           EXPECT_GE(20000.0f - hit.y, bottom - 1.0f);  // nothing below the flat base
         }
     }
