@@ -8,6 +8,7 @@
 #include "bench_realtime.h"
 #include "nephele/exposure.h"
 #include "nephele/image.h"
+#include "sample_stats.h"
 
 namespace nephele::cli {
 
@@ -32,12 +33,6 @@ double clouds_pass_ms(const FrameStats& stats) {
   for (const PassTiming& p : stats.passes)
     if (p.name == "clouds") ms += p.ms;
   return ms;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace

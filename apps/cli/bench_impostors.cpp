@@ -14,6 +14,7 @@
 #include "particles/particle_field.h"
 #include "particles/particle_lighting.h"
 #include "render/particle_light_timing.h"
+#include "sample_stats.h"
 
 namespace nephele::cli {
 
@@ -42,11 +43,6 @@ double particle_ms(const FrameStats& stats) {
   for (const PassTiming& p : stats.passes)
     if (p.name == "particles" || p.name.rfind("impostor", 0) == 0) ms += p.ms;
   return ms;
-}
-
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, size_t(q * double(v.size() - 1) + 0.5))];
 }
 
 // Mean |L_a - L_b| over the mean of L_b.

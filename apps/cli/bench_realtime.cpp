@@ -10,26 +10,11 @@
 #include <glm/trigonometric.hpp>
 
 #include "nephele/image_compare.h"
+#include "sample_stats.h"
 
 namespace nephele::cli {
 
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// The q-quantile (0 < q <= 1) of `v` by the nearest-rank method: the smallest value with at
-// least a share q of the values at or below it (q = 1: the maximum).
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t rank = size_t(std::ceil(q * double(v.size())));
-  return v[std::clamp<size_t>(rank, 1, v.size()) - 1];
-}
 
 // Host wall time (ms) of the frames, each submitted and waited for, no read-back, and the
 // device time of each pass. Real time means every frame: the median, p95, p99 and the worst

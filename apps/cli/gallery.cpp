@@ -19,6 +19,7 @@
 #include "nephele/scene_io.h"
 #include "progress.h"
 #include "render_command.h"
+#include "sample_stats.h"
 
 namespace nephele::cli {
 
@@ -47,8 +48,7 @@ double animation_frame_ms(Renderer& renderer, const Scene& scene) {
     next.time_s += float(f) / 30.0f;
     ms.push_back(renderer.render_next(next, false).stats.frame_ms);
   }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
+  return median(ms);
 }
 
 }  // namespace
