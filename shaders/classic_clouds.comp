@@ -11,8 +11,8 @@
 //     ray in order, front to back), or stratus as a sky plane at the layer's bottom; both
 //     textured by his T(x, y, z), translucent where T falls below the threshold that goes from
 //     T1 at an ellipsoid's centre to T2 at its limb, shaded by his I = (1 - f){(1 - t)
-//     [(1 - s) I_d + s I_s] + t T} + f times the sunlight of a white diffuser (E / pi). No
-//     shadows on the ground: his model has none.
+//     [(1 - s) I_d + s I_s] + t T} + f, its ambient term f lit by the sky and the rest by the
+//     sun, each as a white diffuser (E / pi). No shadows on the ground: his model has none.
 //   CLASSIC_GARDNER_QUADRICS: Gardner's impressionistic scenes: in the same cells, clouds of
 //     convex objects, each a quadric cut by planes (classic_inc.glsl, gardner_cell_object),
 //     found by casting the ray against each and textured and shaded as above.
@@ -136,12 +136,16 @@ vec2 gardner_surface(vec3 p, float g, float stretch) {
                                       frame.classic_gardner.w, g));
 }
 
-// Gardner's intensity at a surface point with normal n facing the eye.
-float gardner_shade(vec3 n, vec3 to_eye, vec3 light, float texture_value) {
+// Gardner's intensity at a surface point with normal n facing the eye, as radiance: his
+// I = (1 - f){...} + f with the ambient term f lit by the sky (a white diffuser facing up at
+// the layer: the sky's light, blue by day, dark at night) and the rest by the key light.
+vec3 gardner_shade(vec3 n, vec3 to_eye, vec3 light, float texture_value) {
   vec4 k = frame.classic_gardner_shading;
   float i_d = max(dot(n, light), 0.0f);
   float i_s = pow(max(dot(n, normalize(light + to_eye)), 0.0f), 16.0f);
-  return gardner_intensity(i_d, i_s, texture_value, k.x, k.y, k.z);
+  float intensity = gardner_intensity(i_d, i_s, texture_value, k.x, k.y, k.z);
+  vec3 sunlight = frame.sun_at_clouds.rgb / PI * (light.z > 0.0f ? 1.0f : 0.0f);
+  return sunlight * (intensity - k.x) + frame.ambient_at_clouds.rgb * k.x;
 }
 
 void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light, bool quadrics) {
@@ -149,14 +153,13 @@ void gardner(ivec2 pixel, vec3 eye_planet, vec3 dir, vec3 light, bool quadrics) 
   vec3 eye = vec3(eye_planet.xy, length(eye_planet) - radius_m);  // ENU on a flat earth
   float bottom_m = frame.radii_m.z - radius_m, top_m = frame.radii_m.w - radius_m;
   float t_ground = dir.z < 0.0f ? -eye.z / dir.z : FAR_M;
-  vec3 sunlight = frame.sun_at_clouds.rgb / PI * (light.z > 0.0f ? 1.0f : 0.0f);
   vec3 radiance = vec3(0.0f);
   float transmittance = 1.0f, haze = 0.0f, weighted_t = 0.0f;
   // One surface: composited front to back with the air in front of it.
-  #define GARDNER_HIT(t_hit, opacity, intensity)                                          \
+  #define GARDNER_HIT(t_hit, opacity, shade)                                              \
     {                                                                                      \
       vec3 air = air_transmittance(eye.z, eye.z + dir.z * (t_hit), (t_hit));              \
-      radiance += transmittance * (opacity) * air * sunlight * (intensity);                \
+      radiance += transmittance * (opacity) * air * (shade);                               \
       haze += transmittance * (opacity) * (1.0f - air.g);                                  \
       weighted_t += (t_hit) * transmittance * (opacity);                                   \
       transmittance *= 1.0f - (opacity);                                                   \
