@@ -1,6 +1,7 @@
 #version 450
-// Pass: the display image. The linear HDR image times the exposure, tone-mapped (ACES fit)
-// and sRGB-encoded into 8 bits, exactly as the PNG writer encodes a file.
+// Pass: the display image. The linear HDR image times the exposure, through the scene's tone
+// map (frame.display.z: output.tonemap) and sRGB-encoded into 8 bits, exactly as the PNG
+// writer encodes a file (common/tonemap_inc.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/tonemap_inc.glsl"
@@ -11,6 +12,5 @@ void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (p.x >= frame.size.x || p.y >= frame.size.y) return;
   vec3 c = imageLoad(color_rw, p).rgb * frame.display.x;
-  imageStore(display_out,
-             p, vec4(display_channel(c.r), display_channel(c.g), display_channel(c.b), 1.0f));
+  imageStore(display_out, p, vec4(display_rgb(int(frame.display.z), c), 1.0f));
 }

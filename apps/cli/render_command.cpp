@@ -410,7 +410,8 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
     write_exr_layers({{"", &image.mean, 4}, {"variance", &image.variance, 3}}, options.output,
                      pixels);
   else
-    write_image(image.mean, options.output, still_exposure(scene.output, image.mean), pixels);
+    write_image(image.mean, options.output, still_exposure(scene.output, image.mean), pixels,
+                scene.output.tonemap);
   if (!options.quiet)
     std::fprintf(stderr, "nephele: reference %dx%d, %d samples per pixel in %.1f s on %s\n",
                  image.mean.width, image.mean.height, image.spp, image.seconds,
@@ -483,7 +484,7 @@ int run_render(const RenderOptions& options) {
     if (layers)
       write_film_exr(*layers, frame_scene, path, {exr, options.holdout, *ev100});
     else
-      write_image(frame.color, path, exposure, exr);
+      write_image(frame.color, path, exposure, exr, frame_scene.output.tonemap);
     if (!options.stats_json.empty())
       write_text_output(stats_to_stdout
                             ? options.stats_json

@@ -26,7 +26,8 @@ using Target = std::variant<std::monostate, float& (*)(Scene&), int& (*)(Scene&)
                             std::string& (*)(Scene&), MarchMode& (*)(Scene&),
                             bool& (*)(Scene&), SkyModel& (*)(Scene&),
                             ConditionsMode& (*)(Scene&), VoxelMarch& (*)(Scene&),
-                            VoxelShadow& (*)(Scene&), CloudModel& (*)(Scene&)>;
+                            VoxelShadow& (*)(Scene&), CloudModel& (*)(Scene&),
+                            ToneMap& (*)(Scene&)>;
 
 struct FlagSpec {
   const char* flag;
@@ -216,6 +217,10 @@ const std::vector<FlagSpec>& flag_specs() {
        "true|false",
        "expose each frame by a meter within --ev100-min..--ev100-max (true, the default) or at "
        "--ev100 (false)"},
+      {"--tonemap", &F::tonemap, "output.tonemap", TO(output.tonemap),
+       "aces|agx|uncharted2|reinhard|none",
+       "the PNG's and the viewer's tone map: aces (default; Narkowicz's fit), agx (Sobotka), "
+       "uncharted2 (Hable's filmic curve, the seed's), reinhard (x / (1 + x)) or none (clamped)"},
       {"--ev100", &F::ev100, "output.ev100", TO(output.ev100), "EV",
        "manual exposure at ISO 100, [-20, 30] (15 sunny day, 9 sunset, 4 civil twilight, -2.5 "
        "full moon); turns auto exposure off unless --auto-exposure true"},
@@ -320,6 +325,11 @@ void parse_into(const std::string& flag, const std::string& text, ConditionsMode
   std::optional<ConditionsMode> mode = parse_conditions_mode(text);
   if (!mode) fail(flag, text, "expected off, artist or overlay");
   out = *mode;
+}
+void parse_into(const std::string& flag, const std::string& text, ToneMap& out) {
+  std::optional<ToneMap> op = parse_tonemap(text);
+  if (!op) fail(flag, text, "expected aces, agx, uncharted2, reinhard or none");
+  out = *op;
 }
 void parse_into(const std::string& flag, const std::string& text, SkyModel& out) {
   std::optional<SkyModel> model = parse_sky_model(text);

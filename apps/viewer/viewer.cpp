@@ -414,7 +414,7 @@ bool Viewer::take_screenshot(const std::string& path) {
   const Scene& scene = editor_.scene();
   const float exposure = still_exposure(scene.output, frame.color);
   try {
-    write_image(frame.color, path, exposure);
+    write_image(frame.color, path, exposure, ExrPixels::kHalf, scene.output.tonemap);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nephele-view: screenshot: %s\n", e.what());
     file_message_ = e.what();

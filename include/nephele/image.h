@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "nephele/tonemap.h"
+
 namespace nephele {
 
 // Linear HDR RGBA, row-major, row 0 at the top.
@@ -24,9 +26,10 @@ struct Image {
 // Relative luminance of linear Rec.709 RGB.
 float luminance(const glm::vec4& rgb);
 
-// Tone map (exposure, ACES fit) and encode as 8-bit sRGB RGBA, alpha 255; 4 bytes a pixel.
+// Tone map (exposure, then `op`) and encode as 8-bit sRGB RGBA, alpha 255; 4 bytes a pixel.
 // NaN and negative values give 0, large ones 255.
-std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure);
+std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure,
+                                         ToneMap op = ToneMap::Aces);
 
 // What an EXR stores: half floats (the default; values beyond the largest half, 65504, are
 // clamped to it, so the sun's disk does not become inf) or 32-bit floats (the true values).
@@ -39,7 +42,7 @@ enum class ExrPixels { kHalf, kFloat };
 // behind. Throws InputError for an unsupported extension or an empty image, RuntimeError
 // naming the path on I/O failure.
 void write_image(const Image& image, const std::string& path, float exposure = 1.0f,
-                 ExrPixels exr = ExrPixels::kHalf);
+                 ExrPixels exr = ExrPixels::kHalf, ToneMap op = ToneMap::Aces);
 
 // One layer of a multi-layer EXR: `image`'s first `channels` channels (1 to 4: R, G, B, A),
 // named "R", "G", ... or, with a prefix, "prefix.R", ... (OpenEXR's layer convention); with

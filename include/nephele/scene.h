@@ -18,6 +18,7 @@
 #include <glm/vec3.hpp>
 
 #include "nephele/conditions.h"
+#include "nephele/tonemap.h"
 
 namespace nephele {
 
@@ -273,6 +274,7 @@ struct OutputParams {
   float ev100_max = 17.0f;                // ev100_min a night stays dark, as the eye sees it
   float exposure_compensation_ev = 0.0f;  // auto: + brightens, [-10, 10]
   float adaptation_ev_per_s = 2.0f;       // auto, sequences and viewer, [0, 1e6]; 0 = at once
+  ToneMap tonemap = ToneMap::Aces;        // the display's tone map (PNG files, the viewer)
 };
 
 // Where the scene is on the earth: the ENU origin (on the ground below the start position).

@@ -140,7 +140,8 @@ struct FrameParams {
   vec4 display;              // x exposure (linear scale before the tone map, tonemap.comp);
                              // y the film layer compose.comp writes: 0 the image, 1 the sky
                              // behind the clouds, 2 the clouds premultiplied (a = 1 - T),
-                             // 3 the clouds' depth (m)
+                             // 3 the clouds' depth (m); z the tone map (TONEMAP_*,
+                             // output.tonemap)
   // The light volume being built (light_volume.comp), a band of its rows each frame while the
   // clouds pass reads the last one completed (light_volume): xy its centre in cloud space (m),
   // z half extent (m); light_volume_rows x its first row, y the rows this frame (a row is one

@@ -38,6 +38,7 @@
 
 #include "nephele/error.h"
 #include "nephele/output_file.h"
+#include "render/glsl.h"
 
 namespace nephele {
 namespace {
@@ -62,24 +63,13 @@ std::string quoted(const std::string& s) {
   return "'" + s + "'";
 }
 
-// Narkowicz 2015 fit of the ACES filmic curve; input must be finite and >= 0.
-float aces_fit(float x) {
-  const float y = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
-  return std::clamp(y, 0.0f, 1.0f);
-}
+static_assert(int(ToneMap::Aces) == glsl::TONEMAP_ACES && int(ToneMap::Agx) == glsl::TONEMAP_AGX &&
+              int(ToneMap::Uncharted2) == glsl::TONEMAP_UNCHARTED2 &&
+              int(ToneMap::Reinhard) == glsl::TONEMAP_REINHARD && int(ToneMap::None) == glsl::TONEMAP_NONE);
 
-// Exact sRGB opto-electronic transfer function (IEC 61966-2-1) for v in [0, 1].
-float srgb_oetf(float v) {
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
-
-// One linear channel (already exposed) to an 8-bit sRGB code value.
-unsigned char encode_channel(float v) {
-  // NaN and negatives give black; the curve saturates at ~7.2, so clamping far above that
-  // only keeps the products inside the fit finite (inf would give inf/inf = NaN).
-  if (!(v > 0.0f)) v = 0.0f;
-  v = std::min(v, 1.0e4f);
-  return static_cast<unsigned char>(std::lround(srgb_oetf(aces_fit(v)) * 255.0f));
+// One sRGB value in [0, 1] to its 8-bit code.
+unsigned char code_of(float v) {
+  return static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
 void check_writable_image(const Image& image, const std::string& path) {
@@ -93,8 +83,8 @@ void check_writable_image(const Image& image, const std::string& path) {
 
 // --- encoders ----------------------------------------------------------------------------
 
-std::vector<unsigned char> encode_png(const Image& image, float exposure) {
-  const std::vector<unsigned char> rgba = tonemap_srgb8(image, exposure);
+std::vector<unsigned char> encode_png(const Image& image, float exposure, ToneMap op) {
+  const std::vector<unsigned char> rgba = tonemap_srgb8(image, exposure, op);
   std::vector<unsigned char> out;
   auto append = [](void* context, void* data, int size) {
     auto* sink = static_cast<std::vector<unsigned char>*>(context);
@@ -257,20 +247,23 @@ float luminance(const glm::vec4& rgb) {
   return 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b;
 }
 
-std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure) {
+std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure, ToneMap op) {
   std::vector<unsigned char> out(image.pixels.size() * 4);
   unsigned char* o = out.data();
   for (const glm::vec4& p : image.pixels) {
-    o[0] = encode_channel(p.r * exposure);
-    o[1] = encode_channel(p.g * exposure);
-    o[2] = encode_channel(p.b * exposure);
+    // NaN and negatives give black (display_rgb), as in the display pass.
+    const glm::vec3 c = glsl::display_rgb(int(op), glm::vec3(p) * exposure);
+    o[0] = code_of(c.r);
+    o[1] = code_of(c.g);
+    o[2] = code_of(c.b);
     o[3] = 255;
     o += 4;
   }
   return out;
 }
 
-void write_image(const Image& image, const std::string& path, float exposure, ExrPixels exr) {
+void write_image(const Image& image, const std::string& path, float exposure, ExrPixels exr,
+                 ToneMap op) {
   const ImageFormat format = format_of(path);
   if (format == ImageFormat::kUnsupported) {
     throw InputError("image path " + quoted(path) + ": unsupported image format " +
@@ -279,7 +272,7 @@ void write_image(const Image& image, const std::string& path, float exposure, Ex
   check_writable_image(image, path);
   std::vector<unsigned char> bytes;
   try {
-    bytes = format == ImageFormat::kPng ? encode_png(image, exposure)
+    bytes = format == ImageFormat::kPng ? encode_png(image, exposure, op)
                                         : encode_exr({ExrLayer{"", &image, 4}}, exr);
   } catch (const std::exception& e) {
     throw RuntimeError("cannot encode image " + quoted(path) + ": " + e.what());

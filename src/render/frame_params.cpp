@@ -442,7 +442,8 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   // The display's exposure: output.ev100. A live display with auto exposure sets it each frame
   // from the device's meter (FrameStats::metered_luminance, exposure.h's live_ev100), as
   // nephele-view does.
-  f.display = glm::vec4(float(exposure_from_ev100(scene.output.ev100)), 0.0f, 0.0f, 0.0f);
+  f.display = glm::vec4(float(exposure_from_ev100(scene.output.ev100)), 0.0f,
+                        float(int(scene.output.tonemap)), 0.0f);
   return f;
 }
 

@@ -55,6 +55,7 @@ namespace {
 #include "common/particle_inc.glsl"
 #include "common/impostor_inc.glsl"
 #include "common/classic_inc.glsl"
+#include "common/tonemap_inc.glsl"
 }  // namespace
 }  // namespace nephele::glsl
 #pragma GCC diagnostic pop

@@ -38,6 +38,28 @@ const char* to_string(SkyModel model) {
   return "unknown";
 }
 
+const char* to_string(ToneMap op) {
+  switch (op) {
+    case ToneMap::Aces:
+      return "aces";
+    case ToneMap::Agx:
+      return "agx";
+    case ToneMap::Uncharted2:
+      return "uncharted2";
+    case ToneMap::Reinhard:
+      return "reinhard";
+    case ToneMap::None:
+      return "none";
+  }
+  return "unknown";
+}
+
+std::optional<ToneMap> parse_tonemap(std::string_view text) {
+  for (ToneMap op : kToneMaps)
+    if (text == to_string(op)) return op;
+  return std::nullopt;
+}
+
 std::optional<SkyModel> parse_sky_model(std::string_view text) {
   for (SkyModel m : {SkyModel::Hillaire, SkyModel::Preetham, SkyModel::Reference})
     if (text == to_string(m)) return m;
@@ -333,6 +355,9 @@ const std::vector<Section>& scene_sections() {
         FIELD(output, ev100_min, "auto exposure's lower limit, [-20, 30]: darker nights stay dark"),
         FIELD(output, ev100_max, "auto exposure's upper limit, [-20, 30], >= ev100_min"),
         FIELD(output, exposure_compensation_ev, "auto exposure: + brightens, [-10, 10]"),
+        FIELD(output, tonemap,
+              "the display's tone map: aces (default), agx, uncharted2 (the seed's filmic curve), "
+              "reinhard or none"),
         FIELD(output, adaptation_ev_per_s,
               "auto exposure's adaptation in sequences and the viewer (EV/s), [0, 1e6]; 0 = at "
               "once")},

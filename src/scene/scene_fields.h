@@ -20,7 +20,7 @@ using FieldAccess =
                  glm::vec2& (*)(Scene&), glm::vec3& (*)(Scene&), std::string& (*)(Scene&),
                  MarchMode& (*)(Scene&), bool& (*)(Scene&), SkyModel& (*)(Scene&),
                  ConditionsMode& (*)(Scene&), VoxelMarch& (*)(Scene&), VoxelShadow& (*)(Scene&),
-                 CloudModel& (*)(Scene&)>;
+                 CloudModel& (*)(Scene&), ToneMap& (*)(Scene&)>;
 
 struct Field {
   std::string_view name;  // key inside its table, e.g. "coverage"

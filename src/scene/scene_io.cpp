@@ -511,6 +511,12 @@ class SceneReader {
     if (!model) fail_value(node, key, "expected " + cloud_model_names(true));
     out = *model;
   }
+  void read_value(const toml::node& node, const std::string& key, ToneMap& out) const {
+    const auto* s = node.as_string();
+    std::optional<ToneMap> op = s ? parse_tonemap(s->get()) : std::nullopt;
+    if (!op) fail_value(node, key, "expected \"aces\", \"agx\", \"uncharted2\", \"reinhard\" or \"none\"");
+    out = *op;
+  }
   void read_value(const toml::node& node, const std::string& key, SkyModel& out) const {
     const auto* s = node.as_string();
     std::optional<SkyModel> model = s ? parse_sky_model(s->get()) : std::nullopt;

@@ -50,6 +50,9 @@ void describe_type(SceneParameter& parameter) {
   } else if constexpr (std::is_same_v<T, CloudModel>) {
     parameter.kind = K::kEnum;
     for (CloudModel m : kCloudModels) parameter.allowed.emplace_back(to_string(m));
+  } else if constexpr (std::is_same_v<T, ToneMap>) {
+    parameter.kind = K::kEnum;
+    for (ToneMap op : kToneMaps) parameter.allowed.emplace_back(to_string(op));
   } else if constexpr (std::is_same_v<T, SkyModel>) {
     parameter.kind = K::kEnum;
     for (SkyModel m : {SkyModel::Hillaire, SkyModel::Preetham, SkyModel::Reference})

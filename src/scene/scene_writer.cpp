@@ -33,6 +33,9 @@ std::string toml_value(ConditionsMode mode) {
 std::string toml_value(CloudModel model) {
   return scene_detail::toml_quote(to_string(model));
 }
+std::string toml_value(ToneMap op) {
+  return scene_detail::toml_quote(to_string(op));
+}
 std::string toml_value(SkyModel model) {
   return scene_detail::toml_quote(to_string(model));
 }

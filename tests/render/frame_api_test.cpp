@@ -174,6 +174,7 @@ nephele::Scene small_scene() {
   nephele::Scene scene = nephele::load_preset("default");
   scene.output.width = 40;
   scene.output.height = 28;
+  scene.output.tonemap = nephele::ToneMap::Agx;  // the display follows the scene's tone map
   return scene;
 }
 
@@ -221,7 +222,8 @@ TEST(FrameApi, TwoFramesInFlightOnTheHostsDeviceWithSynchronisationValidation) {
     const nephele::Frame frame = sky.read_back();
     ASSERT_EQ(frame.color.width, scene.output.width);
     const std::vector<unsigned char> expected =
-        nephele::tonemap_srgb8(frame.color, float(nephele::exposure_from_ev100(scene.output.ev100)));
+        nephele::tonemap_srgb8(frame.color, float(nephele::exposure_from_ev100(scene.output.ev100)),
+                               scene.output.tonemap);
     const auto* got = static_cast<const unsigned char*>(display.mapped);
     int worst = 0;
     for (size_t i = 0; i < expected.size(); ++i)
