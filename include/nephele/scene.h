@@ -275,6 +275,14 @@ struct OutputParams {
   float exposure_compensation_ev = 0.0f;  // auto: + brightens, [-10, 10]
   float adaptation_ev_per_s = 2.0f;       // auto, sequences and viewer, [0, 1e6]; 0 = at once
   ToneMap tonemap = ToneMap::Aces;        // the display's tone map (PNG files, the viewer)
+  // Bloom and glare: the lens spreads a share bloom_strength of the light above
+  // bloom_threshold_cd_m2 over a Gaussian of bloom_radius_deg (its sigma, in degrees of view),
+  // keeping the image's total light (render/modules/bloom.h). Strength 0: off. Threshold 0:
+  // every pixel's light, as a lens's veiling glare; above 0, only the brightest (the sun,
+  // sunlit cloud edges).
+  float bloom_strength = 0.0f;            // [0, 1]
+  float bloom_threshold_cd_m2 = 0.0f;     // [0, 1e12]
+  float bloom_radius_deg = 1.0f;          // [0.01, 30]
 };
 
 // Where the scene is on the earth: the ENU origin (on the ground below the start position).

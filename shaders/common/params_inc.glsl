@@ -206,6 +206,10 @@ struct FrameParams {
   // Gardner's sky plane: x its altitude (m), y the texture's stretch (FY_1 / FX_1: 1 for stratus,
   // more for cirrus's streaks), z its greatest opacity; w unused
   vec4 classic_gardner_plane;
+  // Bloom (bloom.comp): x the share of the light spread, y the threshold (the image's units,
+  // cd/m^2), z the Gaussian's sigma (pixels), w its taps each side (R; the weights are
+  // normalised over -R..R)
+  vec4 bloom;
   // Kajiya and Von Herzen: x Romberg's levels, y 1 for the brute-force reference march instead
   vec4 classic_kajiya;
   // Nishita and Nakamae (render/modules/metaball_clouds.h): the voxel grid's corner (xyz, ENU

@@ -358,6 +358,12 @@ const std::vector<Section>& scene_sections() {
         FIELD(output, tonemap,
               "the display's tone map: aces (default), agx, uncharted2 (the seed's filmic curve), "
               "reinhard or none"),
+        FIELD(output, bloom_strength,
+              "the share of the light the lens spreads (bloom and glare), [0, 1]; 0 = off; the "
+              "image's total light is kept"),
+        FIELD(output, bloom_threshold_cd_m2,
+              "only light above this luminance is spread (cd/m^2), [0, 1e12]; 0 = all of it"),
+        FIELD(output, bloom_radius_deg, "the spread's Gaussian sigma (deg of view), [0.01, 30]"),
         FIELD(output, adaptation_ev_per_s,
               "auto exposure's adaptation in sequences and the viewer (EV/s), [0, 1e6]; 0 = at "
               "once")},

@@ -532,6 +532,9 @@ void check_output(const Checker& check, const OutputParams& output) {
                "must be <= output.ev100_max (" + format_float(output.ev100_max) + ")");
   check.in_range("output.exposure_compensation_ev", output.exposure_compensation_ev, -10.0f, 10.0f);
   check.in_range("output.adaptation_ev_per_s", output.adaptation_ev_per_s, 0.0f, 1.0e6f);
+  check.in_range("output.bloom_strength", output.bloom_strength, 0.0f, 1.0f);
+  check.in_range("output.bloom_threshold_cd_m2", output.bloom_threshold_cd_m2, 0.0f, 1.0e12f);
+  check.in_range("output.bloom_radius_deg", output.bloom_radius_deg, 0.01f, 30.0f);
   if (parse_tonemap(to_string(output.tonemap)) != output.tonemap)
     check.fail("output.tonemap", std::to_string(static_cast<int>(output.tonemap)),
                "must be aces, agx, uncharted2, reinhard or none");

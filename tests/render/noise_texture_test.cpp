@@ -10,6 +10,7 @@
 #include "render/frame_params.h"
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
+#include "render/modules/bloom.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/metaball_clouds.h"
 #include "render/modules/noise.h"
@@ -87,7 +88,8 @@ struct Modules {
         particles(ctx, s.set),
         particle_light(ctx, s.set),
         path_tracer(ctx, s.set),
-        metaballs(ctx, s.set) {}
+        metaballs(ctx, s.set),
+        bloom(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
@@ -99,6 +101,7 @@ struct Modules {
   nephele::ParticleLightGpuModule particle_light;
   nephele::PathTracerModule path_tracer;
   nephele::MetaballCloudsModule metaballs;
+  nephele::BloomModule bloom;
 };
 
 // Runs `passes` with the default scene's parameters.
