@@ -181,6 +181,10 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--light-volume-km", &F::light_volume_km, "quality.light_volume_km",
        TO(quality.light_volume_km), "KM",
        "light volume half extent (km), [0, 1000]; 0 = march every light ray"},
+      {"--light-shafts", &F::light_shafts, "quality.light_shafts", TO(quality.light_shafts),
+       "volumetric|screen|off",
+       "light shafts: volumetric (the air's light shadowed by the clouds), screen (seed 002's "
+       "screen-space god rays and radial blur) or off (default)"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
       {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model),

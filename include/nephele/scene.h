@@ -254,6 +254,15 @@ struct QualityParams {
   VoxelShadow voxel_shadow = VoxelShadow::LightMarch;
   // The SDF cone's half-angle tangent (the seed's LightTangent): larger, softer shadows.
   float sdf_light_tangent = 0.1f;  // [0.001, 10]
+  // Light shafts: "volumetric" (the air's single scattering shadowed by the clouds: beams
+  // below broken clouds, consistent with the aerial perspective), "screen" (seed 002's
+  // screen-space god rays after GPU Gems 3 ch. 13 and its radial blur, which add light) or
+  // "off" (the default for now: the volumetric march costs some 20 times compose's frame on
+  // lavapipe). The screen method's samples (the seed's 10), strength and decay per sample.
+  std::string light_shafts = "off";
+  int screen_shaft_samples = 10;        // [1, 128]
+  float screen_shaft_strength = 0.3f;   // [0, 10]
+  float screen_shaft_decay = 0.95f;     // [0, 1]
 };
 
 struct OutputParams {
@@ -494,6 +503,9 @@ float vertical_fov_deg(const CameraParams& camera, float aspect);
 float vertical_fov_deg(const Scene& scene);  // for scene.output's aspect
 // The horizontal field of view (deg) of a focal length on a sensor: 2 atan(width / (2 f)).
 float horizontal_fov_from_focal_deg(float focal_length_mm, float sensor_width_mm);
+
+// quality.light_shafts as its index (0 off, 1 volumetric, 2 screen); -1 for anything else.
+int light_shafts_method(const std::string& name);
 
 const char* to_string(MarchMode mode);
 const char* to_string(CloudModel model);

@@ -210,6 +210,9 @@ struct FrameParams {
   // cd/m^2), z the Gaussian's sigma (pixels), w its taps each side (R; the weights are
   // normalised over -R..R)
   vec4 bloom;
+  // Light shafts: x the method (LIGHT_SHAFTS_*: quality.light_shafts), y the screen-space rays'
+  // samples, z their strength, w their decay per sample
+  vec4 light_shafts;
   // Kajiya and Von Herzen: x Romberg's levels, y 1 for the brute-force reference march instead
   vec4 classic_kajiya;
   // Nishita and Nakamae (render/modules/metaball_clouds.h): the voxel grid's corner (xyz, ENU
@@ -225,6 +228,10 @@ struct FrameParams {
 // FrameParams::path_grid.z metres, PATH_GRID_XY per horizontal axis around the camera; in
 // height, each layer's shell (padded PATH_SHELL_PAD_M above and below) in PATH_GRID_BINS
 // shells, layer l's bins at depth l * PATH_GRID_BINS.
+const int LIGHT_SHAFTS_OFF = 0;
+const int LIGHT_SHAFTS_VOLUMETRIC = 1;  // the air's single scattering shadowed (compose.comp)
+const int LIGHT_SHAFTS_SCREEN = 2;      // seed 002's screen-space god rays (god_rays.comp)
+
 const int PATH_GRID_XY = 256;
 const int PATH_GRID_BINS = 8;
 const float PATH_SHELL_PAD_M = 100.0f;

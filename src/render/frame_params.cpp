@@ -442,6 +442,9 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   // The display's exposure: output.ev100. A live display with auto exposure sets it each frame
   // from the device's meter (FrameStats::metered_luminance, exposure.h's live_ev100), as
   // nephele-view does.
+  f.light_shafts = glm::vec4(float(light_shafts_method(scene.quality.light_shafts)),
+                             float(scene.quality.screen_shaft_samples),
+                             scene.quality.screen_shaft_strength, scene.quality.screen_shaft_decay);
   f.display = glm::vec4(float(exposure_from_ev100(scene.output.ev100)), 0.0f,
                         float(int(scene.output.tonemap)), 0.0f);
   return f;

@@ -54,6 +54,13 @@ const char* to_string(ToneMap op) {
   return "unknown";
 }
 
+int light_shafts_method(const std::string& name) {
+  if (name == "off") return 0;
+  if (name == "volumetric") return 1;
+  if (name == "screen") return 2;
+  return -1;
+}
+
 std::optional<ToneMap> parse_tonemap(std::string_view text) {
   for (ToneMap op : kToneMaps)
     if (text == to_string(op)) return op;
@@ -343,7 +350,13 @@ const std::vector<Section>& scene_sections() {
         FIELD(quality, voxel_shadow,
               "\"march\" (light march through the voxel clouds) or \"sdf-cone\" (cone traced "
               "through their distance field)"),
-        FIELD(quality, sdf_light_tangent, "the SDF cone's half-angle tangent, [0.001, 10]")},
+        FIELD(quality, sdf_light_tangent, "the SDF cone's half-angle tangent, [0.001, 10]"),
+        FIELD(quality, light_shafts,
+              "volumetric (the air's light shadowed by the clouds: beams below broken clouds), "
+              "screen (seed 002's screen-space god rays and radial blur) or off"),
+        FIELD(quality, screen_shaft_samples, "screen: samples towards the sun (and of the radial blur), [1, 128]"),
+        FIELD(quality, screen_shaft_strength, "screen: the rays' strength, [0, 10]"),
+        FIELD(quality, screen_shaft_decay, "screen: each sample's weight over the one before, [0, 1]")},
        {}},
       {"output",
        {FIELD(output, width, "pixels, [1, 16384]"), FIELD(output, height, "pixels, [1, 16384]"),

@@ -355,6 +355,12 @@ void check_quality(const Checker& check, const QualityParams& quality) {
     check.fail("quality.voxel_shadow", std::to_string(static_cast<int>(quality.voxel_shadow)),
                "must be march or sdf-cone");
   check.in_range("quality.sdf_light_tangent", quality.sdf_light_tangent, 0.001f, 10.0f);
+  if (light_shafts_method(quality.light_shafts) < 0)
+    check.fail("quality.light_shafts", scene_detail::toml_quote(quality.light_shafts),
+               "must be \"volumetric\", \"screen\" or \"off\"");
+  check.in_range("quality.screen_shaft_samples", quality.screen_shaft_samples, 1, 128);
+  check.in_range("quality.screen_shaft_strength", quality.screen_shaft_strength, 0.0f, 10.0f);
+  check.in_range("quality.screen_shaft_decay", quality.screen_shaft_decay, 0.0f, 1.0f);
 }
 
 // The classical models (seed 004): checked whichever model draws, so a scene file stays valid
