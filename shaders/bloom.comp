@@ -1,10 +1,10 @@
 #version 450
-// Pass: bloom and glare (render/modules/bloom.h). The lens spreads a share s (frame.bloom.x) of
+// Pass: bloom and glare (render/modules/post.h). The lens spreads a share s (frame.bloom.x) of
 // the light above the threshold over a Gaussian: out = c - s B(c) + s (G * B(c)), B(c) =
 // max(c - threshold, 0) per channel, G separable, truncated at R taps each side and normalised
 // over them, reflected at the image's edges (about -0.5 and size - 0.5): with a symmetric
 // kernel, a reflected gather is exactly a scatter that folds back what would leave the image,
-// so the sum of the image is kept. PASS 0: B(c) blurred along x into bloom_temp; PASS 1: that
+// so the sum of the image is kept. PASS 0: B(c) blurred along x into post_temp; PASS 1: that
 // blurred along y, the result added to the image.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
@@ -35,11 +35,11 @@ void main() {
     if (PASS == 0)
       sum += w * bright(imageLoad(color_rw, ivec2(reflected(p.x + d, size.x), p.y)).rgb);
     else
-      sum += w * imageLoad(bloom_temp, ivec2(p.x, reflected(p.y + d, size.y))).rgb;
+      sum += w * imageLoad(post_temp, ivec2(p.x, reflected(p.y + d, size.y))).rgb;
   }
   sum /= norm;
   if (PASS == 0) {
-    imageStore(bloom_temp, p, vec4(sum, 0.0f));
+    imageStore(post_temp, p, vec4(sum, 0.0f));
   } else {
     vec4 c = imageLoad(color_rw, p);
     float s = frame.bloom.x;

@@ -123,6 +123,6 @@ layout(std430, set = 0, binding = 62) writeonly buffer ParticleLightBlock { floa
 layout(set = 0, binding = 63, rgba32f) uniform writeonly image3D nishita_volume_out;
 layout(set = 0, binding = 64) uniform sampler3D nishita_volume;
 // Bloom's horizontal pass's result (bloom.comp), read by its vertical pass.
-layout(set = 0, binding = 65, rgba32f) uniform image2D bloom_temp;
+layout(set = 0, binding = 65, rgba32f) uniform image2D post_temp;
 
 #endif

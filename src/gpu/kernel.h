@@ -79,7 +79,7 @@ enum Binding : uint32_t {
   kParticleLights = 62,
   kNishitaVolumeOut = 63,
   kNishitaVolume = 64,
-  kBloomTemp = 65,
+  kPostTemp = 65,
   kBindingCount
 };
 

@@ -304,7 +304,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       clouds(ctx, state.set),
       particles(ctx, state.set),
       classic_clouds(ctx, state.set),
-      bloom(ctx, state.set),
+      post(ctx, state.set),
       particle_light(ctx, state.set),
       path_tracer(ctx, state.set) {}
 
@@ -433,7 +433,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   weather.prepare(scene, params);
   particles.prepare(scene, slot, s.width, s.height, still, params);
   classic_clouds.prepare(scene, params);
-  const bool bloomed = bloom.prepare(scene, s.width, s.height, params);
+  const bool post_processed = post.prepare(scene, s.width, s.height, params);
   clouds.swap_history();
 
   const bool in_bands = still && progress && volumetric;
@@ -462,7 +462,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     clouds.record_ground_light(cmd, *s.timer, scene.quality.mode);
   pass_compose(cmd, s, scene.atmosphere.model);
   pass_stars(cmd, s);
-  if (bloomed) bloom.record(cmd, *s.timer, s.width, s.height);
+  if (post_processed) post.record(cmd, *s.timer, s.width, s.height);
   pass_meter(cmd, s);
   if (options.display) pass_tonemap(cmd, s);
   gpu::frame_end_barrier(cmd, ctx.has_graphics());

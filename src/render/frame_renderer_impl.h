@@ -12,7 +12,7 @@
 #include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
-#include "render/modules/bloom.h"
+#include "render/modules/post.h"
 #include "render/modules/classic_clouds.h"
 #include "render/modules/particle_clouds.h"
 #include "render/modules/particle_light_gpu.h"
@@ -55,7 +55,7 @@ struct FrameRenderer::Impl {
   CloudsModule clouds;
   ParticleCloudsModule particles;
   ClassicCloudsModule classic_clouds;  // seed 004's models, when clouds.model names one
-  BloomModule bloom;                   // the lens's bloom and glare, when output.bloom_strength > 0
+  PostModule post;                      // screen-space god rays, bloom and glare
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
 

@@ -88,3 +88,47 @@ TEST_F(LightShaftsTest, BeamsOnlyBelowBrokenCloudsAndNeverAddedLight) {
 
 }  // namespace
 }  // namespace nephele
+
+namespace nephele {
+namespace {
+
+// The seed's screen-space god rays: light added about the sun when it is in view (more near it
+// than far from it), nothing when it is behind the camera; the image otherwise as without.
+TEST_F(LightShaftsTest, ScreenSpaceRaysAddLightAboutTheSunInView) {
+  Scene s = shaft_scene(0.4f);
+  s.atmosphere = load_preset("default").atmosphere;
+  s.quality.light_volume_km = 0;  // the rays read the cloud buffer only; no volume to build
+  const auto gain = [&](const Scene& scene) {
+    Scene off = scene, on = scene;
+    off.quality.light_shafts = "off";
+    on.quality.light_shafts = "screen";
+    const Frame a = render(off), b = render(on);
+    Image out = a.color;
+    for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = b.color.pixels[i] - a.color.pixels[i];
+    return out;
+  };
+  const Image in_view = gain(s);
+  // The sun's pixel: straight ahead of the camera's direction, projected.
+  double near = 0.0, far = 0.0, total = 0.0;
+  const int cx = s.output.width / 2;
+  for (int y = 0; y < s.output.height; ++y)
+    for (int x = 0; x < s.output.width; ++x) {
+      const double g = luminance(in_view.at(x, y));
+      EXPECT_GE(g, -1e-3 * std::max(1.0, g));
+      total += g;
+      if (std::abs(x - cx) < 4 && y < s.output.height / 2) near += g / 4.0;
+      if (x < 4) far += g / 4.0;
+    }
+  std::printf("screen rays: %.4g added in all, near the sun's column %.4g, at the edge %.4g\n", total,
+              near, far);
+  EXPECT_GT(total, 0.0);
+  EXPECT_GT(near, 2.0 * far);
+  Scene behind = s;
+  behind.camera.view_dir = -s.camera.view_dir;
+  behind.camera.view_dir.z = 0.1f;
+  const Image none = gain(behind);
+  for (const glm::vec4& p : none.pixels) EXPECT_NEAR(luminance(p), 0.0f, 1e-3f);
+}
+
+}  // namespace
+}  // namespace nephele

@@ -10,7 +10,7 @@
 #include "render/frame_params.h"
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
-#include "render/modules/bloom.h"
+#include "render/modules/post.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/metaball_clouds.h"
 #include "render/modules/noise.h"
@@ -89,7 +89,7 @@ struct Modules {
         particle_light(ctx, s.set),
         path_tracer(ctx, s.set),
         metaballs(ctx, s.set),
-        bloom(ctx, s.set) {}
+        post(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
@@ -101,7 +101,7 @@ struct Modules {
   nephele::ParticleLightGpuModule particle_light;
   nephele::PathTracerModule path_tracer;
   nephele::MetaballCloudsModule metaballs;
-  nephele::BloomModule bloom;
+  nephele::PostModule post;
 };
 
 // Runs `passes` with the default scene's parameters.

@@ -1,4 +1,4 @@
-#include "render/modules/bloom.h"
+#include "render/modules/post.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,34 +14,43 @@ glm::vec2 bloom_kernel(float radius_deg, float vertical_fov_deg, int width, int 
   return glm::vec2(std::min(sigma, std::max(float(taps), 1.0f) / 3.0f), float(taps));
 }
 
-BloomModule::BloomModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+PostModule::PostModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     : ctx_(ctx), set_(set),
       temp_(ctx, 1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
-  set_.bind_storage_image(gpu::kBloomTemp, temp_);
+  set_.bind_storage_image(gpu::kPostTemp, temp_);
 }
 
-bool BloomModule::prepare(const Scene& scene, int width, int height, gpu::FrameParams& params) {
+bool PostModule::prepare(const Scene& scene, int width, int height, gpu::FrameParams& params) {
   const OutputParams& o = scene.output;
   const glm::vec2 kernel = bloom_kernel(
       o.bloom_radius_deg, vertical_fov_deg(scene.camera, float(width) / float(height)), width, height);
   params.bloom = glm::vec4(o.bloom_strength, o.bloom_threshold_cd_m2, kernel.x, kernel.y);
-  if (o.bloom_strength <= 0.0f || kernel.y < 1.0f) return false;
+  bloom_ = o.bloom_strength > 0.0f && kernel.y >= 1.0f;
+  god_rays_ = light_shafts_method(scene.quality.light_shafts) == gpu::LIGHT_SHAFTS_SCREEN;
+  if (!bloom_ && !god_rays_) return false;
   if (temp_.width() != uint32_t(width) || temp_.height() != uint32_t(height)) {
     ctx_.wait_queue_idle();  // a frame in flight may still use the old one
     temp_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    set_.bind_storage_image(gpu::kBloomTemp, temp_);
+    set_.bind_storage_image(gpu::kPostTemp, temp_);
   }
   return true;
 }
 
-void BloomModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int width, int height) {
-  if (!horizontal_) {
-    horizontal_ = std::make_unique<gpu::Kernel>(ctx_, set_, "bloom.comp.spv", std::vector<int32_t>{0});
-    vertical_ = std::make_unique<gpu::Kernel>(ctx_, set_, "bloom.comp.spv", std::vector<int32_t>{1});
+void PostModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int width, int height) {
+  const auto pass = [&](std::unique_ptr<gpu::Kernel>& kernel, const char* spv, int constant,
+                        const char* name) {
+    if (!kernel) kernel = std::make_unique<gpu::Kernel>(ctx_, set_, spv, std::vector<int32_t>{constant});
+    gpu::dispatch(cmd, *kernel, set_, timer, name, uint32_t(width), uint32_t(height), 1, 8, 8, 1);
+  };
+  if (god_rays_) {
+    pass(rays_, "god_rays.comp.spv", 0, "god_rays");
+    pass(rays_blur_, "god_rays.comp.spv", 1, "god_rays_blur");
   }
-  gpu::dispatch(cmd, *horizontal_, set_, timer, "bloom_x", uint32_t(width), uint32_t(height), 1, 8, 8, 1);
-  gpu::dispatch(cmd, *vertical_, set_, timer, "bloom_y", uint32_t(width), uint32_t(height), 1, 8, 8, 1);
+  if (bloom_) {
+    pass(bloom_x_, "bloom.comp.spv", 0, "bloom_x");
+    pass(bloom_y_, "bloom.comp.spv", 1, "bloom_y");
+  }
 }
 
 }  // namespace nephele
