@@ -17,8 +17,6 @@
 #include "common/sky_view_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
 #include "common/clouds_inc.glsl"
-const int MARCH_MODE = 0;  // cloud_field_inc.glsl's lookups, for the light shafts
-#include "light_shafts_inc.glsl"
 #include "cirrus_inc.glsl"
 
 layout(constant_id = 0) const int REFERENCE = 0;
@@ -143,20 +141,22 @@ void main() {
     discs = mix(discs, frame.conditions_disk_fog.rgb,
                 fog_ramp(elevation_deg, frame.conditions_fog_deg.z, frame.conditions_fog_deg.w));
   vec3 background = sky + ground_sun.rgb * ground_shadow + discs;
-  // Volumetric light shafts: the air's single scattering lost to the clouds' shadows, along the
-  // whole ray behind the clouds (seen through them) and in front of them (over the haze).
-  vec3 shaft_front = vec3(0.0f), shaft_behind = vec3(0.0f);
+  // Volumetric light shafts (light_shafts.comp, a quarter of the resolution): the air's light
+  // dimmed by the share of its sunlight the clouds' shadows take, along the whole ray behind
+  // the clouds (the sky seen through them; the ground's sky-lit part keeps its own shadowing)
+  // and in front of them (the haze).
+  float haze_kept = 1.0f;
   if (int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC && REFERENCE == 0 && conditions != 1) {
-    float jitter = fract(52.9829189f * fract(0.06711056f * float(pixel.x) + 0.00583715f * float(pixel.y)));
-    light_shaft_loss(frame.camera_pos_m.xyz, dir, cloud.a < 0.999f ? cloud_b.z * 1000.0f : SHAFT_FAR_M,
-                     jitter, shaft_front, shaft_behind);
-    background = max(background - shaft_front - shaft_behind, vec3(0.0f));
+    vec4 shaft = textureLod(light_shafts, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f);
+    vec3 ground_sky = ground_sun.a * albedo * frame_ground_sky() * sky_share;
+    vec3 air = max(sky - ground_sky, vec3(0.0f));
+    background -= air * shaft.rgb;
+    haze_kept = 1.0f - shaft.a;
   }
   if (conditions == 1) haze = 0.0f;  // the keyframes' fog stands for the aerial perspective
   vec3 illuminance = frame.sun_illuminance.rgb;
   // The air in front of a cloud scatters as the sky does along this direction.
-  vec3 cloud_light = max(haze_color * haze * illuminance + cloud.rgb -
-                             (1.0f - cloud.a) * shaft_front * illuminance, vec3(0.0f));
+  vec3 cloud_light = haze_color * haze * haze_kept * illuminance + cloud.rgb;
   if (conditions != 0) {  // the keyframes' fog on the ground and the clouds, by distance
     vec3 fog = frame.conditions_fog.rgb * illuminance;
     vec2 ground = ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x);

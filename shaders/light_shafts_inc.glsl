@@ -1,10 +1,10 @@
-// Volumetric light shafts (quality.light_shafts = "volumetric"): the sunlight the air scatters
-// once towards the eye, lost where the clouds shadow the air. The sky-view table and the
-// aerial perspective hold the air's light as if no cloud stood between it and the sun;
-// subtracting the shadowed part of its single scattering leaves beams of lit air between
-// shadowed air below broken clouds (crepuscular rays), a darker air under a closed deck, and
-// nothing changed under a clear sky: no light is ever added to the sky model's. GLSL only; the
-// includer defines MARCH_MODE (cloud_field_inc.glsl) and includes frame_atmosphere_inc.glsl.
+// Volumetric light shafts (quality.light_shafts = "volumetric"): the share of the sunlight the
+// air scatters once towards the eye that the clouds' shadows take away. The sky-view table
+// and the aerial perspective hold the air's light as if no cloud stood between it and the sun;
+// dimming it by that share leaves beams of lit air between shadowed air below broken clouds
+// (crepuscular rays), a darker air under a closed deck, and nothing changed under a clear sky:
+// no light is ever added to the sky model's, and none taken beyond it. GLSL only; the includer
+// defines MARCH_MODE (cloud_field_inc.glsl) and includes frame_atmosphere_inc.glsl.
 #ifndef NEPHELE_LIGHT_SHAFTS_INC
 #define NEPHELE_LIGHT_SHAFTS_INC
 
@@ -12,12 +12,13 @@
 #include "cloud_field_inc.glsl"
 
 const int SHAFT_STEPS = 32;
-const float SHAFT_FAR_M = 80000.0f;  // the longest stretch of air below the clouds' tops marched
+const float SHAFT_FAR_M = 300000.0f;  // the longest stretch of air marched
 
 // The clouds' transmittance towards the sun from p (cloud_field_inc.glsl's light transmittance,
 // as the ground's shadow has it): from the light volume, where the sun's ray from p leaves the
-// cloud shell's bottom, or p itself within the shell; 1 above the shell, beyond the volume, or
-// without one (its march would cost too much here).
+// cloud shell's bottom, or p itself within the shell; 1 above the shell. Beyond the volume,
+// the clouds' mean transmittance about the camera (ground_light.comp): the weather there taken
+// to be like the weather here, so a deck does not end in a band of lit air at the horizon.
 float shaft_visibility(vec3 p, vec3 sun) {
   float r = length(p);
   if (r >= frame.radii_m.w) return 1.0f;
@@ -27,23 +28,27 @@ float shaft_visibility(vec3 p, vec3 sun) {
     if (inner.y <= 0.0f) return 1.0f;
     base = p + sun * inner.y;
   }
-  if (!light_volume_covers(base)) return 1.0f;
+  if (!light_volume_covers(base)) return texelFetch(ground_light, ivec2(0), 0).r;
   return light_transmittance(light_volume_lookup(base));
 }
 
-// The air's shadowed single scattering along the view ray, per unit key-light illuminance:
-// `front` over [0, cloud_m) (the air in front of the clouds), `behind` beyond it, to the ground
-// or the cloud shell's top (at most SHAFT_FAR_M). SHAFT_STEPS steps spaced as the sky's
-// (t ~ (i / n)^2), offset by `jitter` in [0, 1).
-void light_shaft_loss(vec3 eye, vec3 dir, float cloud_m, float jitter, out vec3 front, out vec3 behind) {
-  front = vec3(0.0f);
-  behind = vec3(0.0f);
+// The air's single scattering of the key light along the view ray, per unit illuminance, and
+// the part of it the clouds shadow, in front of the clouds (t < cloud_m) and behind them, to
+// the ground or the atmosphere's top (at most SHAFT_FAR_M): SHAFT_STEPS steps spaced as the
+// sky's (t ~ (i / n)^2), offset by `jitter` in [0, 1).
+struct ShaftLight {
+  vec3 single_front, lost_front, single_behind, lost_behind;
+};
+
+ShaftLight light_shaft_light(vec3 eye, vec3 dir, float cloud_m, float jitter) {
+  ShaftLight s;
+  s.single_front = s.lost_front = s.single_behind = s.lost_behind = vec3(0.0f);
   Atmosphere a = frame_atmosphere();
   vec3 sun = frame.sun_dir.xyz;
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
-  vec2 top = ray_sphere(eye, dir, frame.radii_m.w);
+  vec2 top = ray_sphere(eye, dir, a.top_radius_m);
   float end_m = min(ground.x > 0.0f ? ground.x : max(top.y, 0.0f), SHAFT_FAR_M);
-  if (end_m <= 0.0f || frame.light_volume.w < 0.5f) return;
+  if (end_m <= 0.0f || frame.light_volume.w < 0.5f) return s;
   float mu = dot(dir, sun);
   float phase_r = rayleigh_phase(mu), phase_m = cornette_shanks_phase(a.mie_g, mu);
   vec3 optical_depth = vec3(0.0f);
@@ -51,19 +56,23 @@ void light_shaft_loss(vec3 eye, vec3 dir, float cloud_m, float jitter, out vec3 
   for (int i = 0; i < SHAFT_STEPS; ++i) {
     float u = (float(i) + jitter) / float(SHAFT_STEPS);
     float t = end_m * u * u;
-    float dt = t - previous_t;
     vec3 p = eye + dir * t;
     AtmosphereMedium m = atmosphere_medium(a, length(p) - a.planet_radius_m);
-    optical_depth += m.extinction * dt;
+    optical_depth += m.extinction * (t - previous_t);
     previous_t = t;
-    float shadow = 1.0f - shaft_visibility(p, sun);
-    if (shadow <= 0.0f) continue;
     vec3 t_sun = transmittance_to_light(a, transmittance_lut, false, p, sun);
-    vec3 lost = exp(-optical_depth) * (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) *
-                t_sun * shadow * (end_m * 2.0f * u / float(SHAFT_STEPS));  // dt/du du
-    if (t < cloud_m) front += lost;
-    else behind += lost;
+    vec3 single = exp(-optical_depth) * (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) *
+                  t_sun * (end_m * 2.0f * u / float(SHAFT_STEPS));  // dt/du du
+    vec3 lost = single * (1.0f - shaft_visibility(p, sun));
+    if (t < cloud_m) {
+      s.single_front += single;
+      s.lost_front += lost;
+    } else {
+      s.single_behind += single;
+      s.lost_behind += lost;
+    }
   }
+  return s;
 }
 
 #endif

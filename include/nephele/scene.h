@@ -257,8 +257,9 @@ struct QualityParams {
   // Light shafts: "volumetric" (the air's single scattering shadowed by the clouds: beams
   // below broken clouds, consistent with the aerial perspective), "screen" (seed 002's
   // screen-space god rays after GPU Gems 3 ch. 13 and its radial blur, which add light) or
-  // "off" (the default for now: the volumetric march costs some 20 times compose's frame on
-  // lavapipe). The screen method's samples (the seed's 10), strength and decay per sample.
+  // "off" (the default for now: under a closed deck the volumetric method darkens the haze
+  // towards the horizon, since the air's light from the deck's own diffuse glow is not yet
+  // modelled). The screen method's samples (the seed's 10), strength and decay per sample.
   std::string light_shafts = "off";
   int screen_shaft_samples = 10;        // [1, 128]
   float screen_shaft_strength = 0.3f;   // [0, 10]

@@ -124,5 +124,9 @@ layout(set = 0, binding = 63, rgba32f) uniform writeonly image3D nishita_volume_
 layout(set = 0, binding = 64) uniform sampler3D nishita_volume;
 // Bloom's horizontal pass's result (bloom.comp), read by its vertical pass.
 layout(set = 0, binding = 65, rgba32f) uniform image2D post_temp;
+// Volumetric light shafts (light_shafts.comp, read by compose.comp): rgb the air's light lost to
+// the clouds' shadows, a the share of it in front of the clouds.
+layout(set = 0, binding = 66, rgba32f) uniform writeonly image2D light_shafts_out;
+layout(set = 0, binding = 67) uniform sampler2D light_shafts;
 
 #endif

@@ -80,6 +80,8 @@ enum Binding : uint32_t {
   kNishitaVolumeOut = 63,
   kNishitaVolume = 64,
   kPostTemp = 65,
+  kLightShaftsOut = 66,
+  kLightShafts = 67,
   kBindingCount
 };
 

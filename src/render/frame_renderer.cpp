@@ -305,6 +305,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       particles(ctx, state.set),
       classic_clouds(ctx, state.set),
       post(ctx, state.set),
+      light_shafts(ctx, state.set),
       particle_light(ctx, state.set),
       path_tracer(ctx, state.set) {}
 
@@ -434,6 +435,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   particles.prepare(scene, slot, s.width, s.height, still, params);
   classic_clouds.prepare(scene, params);
   const bool post_processed = post.prepare(scene, s.width, s.height, params);
+  const bool shafts = light_shafts.prepare(scene, s.width, s.height);
   clouds.swap_history();
 
   const bool in_bands = still && progress && volumetric;
@@ -460,6 +462,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     clouds.record_clear_ground_light(cmd);
   else if (light_volume.completed() || params.light_volume.w == 0.0f)
     clouds.record_ground_light(cmd, *s.timer, scene.quality.mode);
+  if (shafts) light_shafts.record(cmd, *s.timer);
   pass_compose(cmd, s, scene.atmosphere.model);
   pass_stars(cmd, s);
   if (post_processed) post.record(cmd, *s.timer, s.width, s.height);

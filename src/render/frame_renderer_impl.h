@@ -12,6 +12,7 @@
 #include "render/modules/clouds.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
+#include "render/modules/light_shafts.h"
 #include "render/modules/post.h"
 #include "render/modules/classic_clouds.h"
 #include "render/modules/particle_clouds.h"
@@ -56,6 +57,7 @@ struct FrameRenderer::Impl {
   ParticleCloudsModule particles;
   ClassicCloudsModule classic_clouds;  // seed 004's models, when clouds.model names one
   PostModule post;                      // screen-space god rays, bloom and glare
+  LightShaftsModule light_shafts;       // volumetric light shafts, read by compose
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
 

@@ -10,6 +10,7 @@
 #include "render/frame_params.h"
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
+#include "render/modules/light_shafts.h"
 #include "render/modules/post.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/metaball_clouds.h"
@@ -89,7 +90,8 @@ struct Modules {
         particle_light(ctx, s.set),
         path_tracer(ctx, s.set),
         metaballs(ctx, s.set),
-        post(ctx, s.set) {}
+        post(ctx, s.set),
+        light_shafts(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
@@ -102,6 +104,7 @@ struct Modules {
   nephele::PathTracerModule path_tracer;
   nephele::MetaballCloudsModule metaballs;
   nephele::PostModule post;
+  nephele::LightShaftsModule light_shafts;
 };
 
 // Runs `passes` with the default scene's parameters.
