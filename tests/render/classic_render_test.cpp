@@ -383,5 +383,32 @@ TEST_F(NishitaRenderTest, TheSecondOrderAndTheSkyAddLight) {
   EXPECT_GT(sky / second, 1.02);
 }
 
+// The light passes run when the balls or the light change, not every frame of a flight: a
+// sun that moved 0.1 deg keeps the light, one that moved 1 deg relights; a camera that moved
+// keeps it.
+TEST_F(NishitaRenderTest, RelitOnlyWhenTheLightMoves) {
+  Scene s = nishita_scene();
+  s.classic.nishita_metaballs = 59;  // balls no other test lit
+  const auto relit = [&](const Scene& scene) {
+    const Frame f = shared_renderer().render_next(scene, false);
+    for (const PassTiming& p : f.stats.passes)
+      if (p.name == "nishita_light") return true;
+    return false;
+  };
+  EXPECT_TRUE(relit(s));
+  s.camera.position_m.x += 200.0f;
+  EXPECT_FALSE(relit(s));
+  const auto turned = [](glm::vec3 d, float deg) {
+    const float a = glm::radians(deg);
+    return glm::vec3(d.x * std::cos(a) - d.y * std::sin(a), d.x * std::sin(a) + d.y * std::cos(a), d.z);
+  };
+  s.sun.direction = turned(s.sun.direction, 0.1f);
+  EXPECT_FALSE(relit(s));
+  s.sun.direction = turned(s.sun.direction, 1.0f);
+  EXPECT_TRUE(relit(s));
+  s.classic.nishita_metaballs = 61;
+  EXPECT_TRUE(relit(s));
+}
+
 }  // namespace
 }  // namespace nephele

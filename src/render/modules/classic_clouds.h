@@ -25,7 +25,6 @@ class ClassicCloudsModule {
   void prepare(const Scene& scene, gpu::FrameParams& params);
   // One thread per pixel of the width x height cloud buffer bound as clouds_a_out / _b_out.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model, int width, int height);
-  const MetaballCloudsModule& metaballs() const { return metaballs_; }
 
  private:
   gpu::Context& ctx_;

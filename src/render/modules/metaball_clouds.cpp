@@ -168,7 +168,6 @@ void MetaballCloudsModule::record_light(VkCommandBuffer cmd, gpu::PassTimer& tim
   if (want_.nishita_light.z > 1.5f)  // the second order
     gpu::dispatch(cmd, *scatter_, set_, timer, "nishita_scatter", d.x, d.y, d.z, 4, 4, 4);
   lit_key_ = want_;
-  ++lightings_;
 }
 
 }  // namespace nephele

@@ -54,10 +54,6 @@ class MetaballCloudsModule {
   // The light passes, when the balls or the light changed since they last ran.
   void record_light(VkCommandBuffer cmd, gpu::PassTimer& timer);
 
-  const std::vector<Metaball>& balls() const { return balls_; }
-  const MetaballGrid& grid() const { return grid_; }
-  int lightings() const { return lightings_; }
-
  private:
   struct Key {
     int metaballs = 0, clouds = 0, voxels = 0;
@@ -83,7 +79,6 @@ class MetaballCloudsModule {
   std::optional<LightKey> lit_key_;
   LightKey want_;
   std::unique_ptr<gpu::Kernel> light_, scatter_;
-  int lightings_ = 0;
 };
 
 }  // namespace nephele
