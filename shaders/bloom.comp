@@ -28,10 +28,10 @@ void main() {
   float sigma = frame.bloom.z;
   int taps = int(frame.bloom.w);
   float norm = 0.0f;
-  for (int d = -taps; d <= taps; ++d) norm += exp(-0.5f * float(d * d) / (sigma * sigma));
   vec3 sum = vec3(0.0f);
   for (int d = -taps; d <= taps; ++d) {
     float w = exp(-0.5f * float(d * d) / (sigma * sigma));
+    norm += w;
     if (PASS == 0)
       sum += w * bright(imageLoad(color_rw, ivec2(reflected(p.x + d, size.x), p.y)).rgb);
     else

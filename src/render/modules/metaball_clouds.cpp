@@ -101,11 +101,11 @@ MetaballGrid voxelize_metaballs(const std::vector<Metaball>& balls, int longest)
 }
 
 MetaballCloudsModule::MetaballCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set) {
-  // A texel of nothing until a scene draws metaballs: the passes that declare the volume bind it.
-  volume_ = gpu::Texture(ctx_, 1, 1, glsl::NISHITA_SLABS, VK_FORMAT_R32G32B32A32_SFLOAT,
-                         VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-  ctx_.submit_and_wait([&](VkCommandBuffer cmd) { volume_.record_clear(cmd); });
+    : ctx_(ctx), set_(set),
+      // A placeholder until a scene draws metaballs (only Nishita's passes read it): the
+      // passes that declare the volume bind it.
+      volume_(ctx, 1, 1, glsl::NISHITA_SLABS, VK_FORMAT_R32G32B32A32_SFLOAT,
+              VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set_.bind_image(gpu::kNishitaVolumeOut, gpu::kNishitaVolume, volume_);
 }
 
@@ -130,8 +130,7 @@ void MetaballCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params)
                 scene.clouds.bottom_altitude_m, scene.clouds.top_altitude_m, c.nishita_center_m,
                 scene.noise_seed};
   if (key_ != key) {
-    balls_ = make_cumulus_metaballs(scene, scene.noise_seed);
-    grid_ = voxelize_metaballs(balls_, c.nishita_voxels);
+    grid_ = voxelize_metaballs(make_cumulus_metaballs(scene, scene.noise_seed), c.nishita_voxels);
     upload();
     key_ = key;
     lit_key_.reset();

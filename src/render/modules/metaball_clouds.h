@@ -73,7 +73,6 @@ class MetaballCloudsModule {
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::Texture volume_;
-  std::vector<Metaball> balls_;
   MetaballGrid grid_;
   std::optional<Key> key_;
   std::optional<LightKey> lit_key_;
