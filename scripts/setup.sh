@@ -8,7 +8,7 @@ PACKAGES=(
   cmake ninja-build g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers glslc vulkan-validationlayers
   libglm-dev libstb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libopenexr-dev
-  libgtest-dev libnova-dev
+  libgtest-dev libnova-dev libgdal-dev
   libopenvdb-dev libnanovdb-dev libtinyobjloader-dev libboost-iostreams-dev
   libglfw3-dev libimgui-dev xvfb xauth python3-matplotlib
 )

@@ -25,27 +25,17 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "cloud_field_inc.glsl"
 #include "cirrus_inc.glsl"
 #include "air_inc.glsl"
+#include "terrain_inc.glsl"
 
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
 const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance
 const float TAU_STEP_96 = 0.5f;     // optical depth per step in dense cloud at 96 primary steps
 
-// Cloud shadow on the ground: the share of the sunlight that reaches the ground point this ray
-// hits through the cloud layer (direct and scattered forward), 1 when the ray misses the
-// ground. From the light volume where its voxels are small against the distance (at most 2%
-// of it: a few pixels), else 16 samples: nearer, its coarse voxels would draw blocks.
-// `ground` is ray_sphere(eye, dir, planet radius).
+// Cloud shadow on the ground where this ray hits it (cloud_shadow_at), 1 where it misses the
+// ground. `ground` is ray_sphere(eye, dir, planet radius).
 float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   if (ground.x <= 0.0f) return 1.0f;
-  vec3 p = normalize(eye + dir * ground.x) * (frame.radii_m.x + 1.0f);
-  vec2 inner = ray_sphere(p, sun, frame.radii_m.z);
-  vec2 outer = ray_sphere(p, sun, frame.radii_m.w);
-  if (inner.y <= 0.0f || outer.y <= inner.y) return 1.0f;
-  vec3 base = p + sun * inner.y;  // where the sunlight leaves the cloud layer
-  bool covered = MARCH_MODE == 0 && light_volume_covers(base) &&
-                 light_volume_voxel_at(base) < 0.02f * ground.x;
-  float depth = depth_towards_sun(base, sun, covered, 16);
-  return light_transmittance(depth);
+  return cloud_shadow_at(normalize(eye + dir * ground.x) * (frame.radii_m.x + 1.0f), sun, ground.x);
 }
 
 // Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):
@@ -135,6 +125,13 @@ void main() {
     vec2 boxes = voxel_boxes_segment(eye, dir);
     segment = vec2(max(segment.x, boxes.x), min(segment.y, boxes.y));
   }
+  // The terrain hides what lies behind it (terrain.comp, at the image's resolution: the pixel
+  // under this sample's centre); the sky dome is an observer's sky and sees past it.
+  float terrain_m = frame.steps.w == PROJECTION_SKY_DOME
+                        ? 0.0f
+                        : terrain_distance_at((vec2(pixel) + 0.5f) / vec2(width, height));
+  if (terrain_m > 0.0f) segment.y = min(segment.y, terrain_m);
+  float surface_m = terrain_m > 0.0f ? terrain_m : ground.x;
   float shadow = ground_shadow(eye, dir, sun, ground);
   // The sky dome counts cloud of any kind as an observer does: a visible cirrus sheet
   // (vertical optical depth 0.03 or more) covers its direction as thick cloud does.
@@ -142,7 +139,7 @@ void main() {
   bool cirrus_covers = cirrus_m > 0.0f && cirrus_optical_depth(eye + dir * cirrus_m) >= 0.03f;
   if (segment.y <= segment.x) {
     write_sample(block, vec3(0.0f), cirrus_covers ? 0.0f : 1.0f, 0.0f, shadow,
-                 ground.x > 0.0f ? ground.x : FAR_M);
+                 surface_m > 0.0f ? surface_m : FAR_M);
     return;
   }
   float eye_alt_m = length(eye) - frame.radii_m.x;
@@ -397,8 +394,8 @@ void main() {
   if (cirrus_covers) t_mean = 0.0f;
   float opacity = 1.0f - (MARCH_MODE == 1 ? transmittance.g : transmittance.x);
   // Where the pixel's content is, for reprojection: the cloud's opacity-weighted distance,
-  // else the ground, else the middle of the cloud shell along the ray.
-  float empty_m = ground.x > 0.0f ? ground.x : 0.5f * (segment.x + segment.y);
+  // else the terrain or the ground, else the middle of the cloud shell along the ray.
+  float empty_m = surface_m > 0.0f ? surface_m : 0.5f * (segment.x + segment.y);
   float distance_m = opacity > 1e-3f ? weighted_t / opacity : empty_m;
   write_sample(block, scattered, t_mean, haze, shadow, distance_m);
 }

@@ -18,6 +18,7 @@
 #include "frame_atmosphere_inc.glsl"
 #include "common/clouds_inc.glsl"
 #include "cirrus_inc.glsl"
+#include "terrain_inc.glsl"
 
 layout(constant_id = 0) const int REFERENCE = 0;
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -146,12 +147,26 @@ void main() {
   // the clouds (the sky seen through them; the ground's sky-lit part keeps its own shadowing)
   // and in front of them (the haze).
   float haze_kept = 1.0f;
+  vec4 shaft = vec4(0.0f);
   if (int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC && REFERENCE == 0 && conditions != 1) {
-    vec4 shaft = textureLod(light_shafts, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f);
+    shaft = textureLod(light_shafts, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f);
     vec3 ground_sky = ground_sun.a * albedo * frame_ground_sky() * sky_share;
     vec3 air = max(sky - ground_sky, vec3(0.0f));
     background -= air * shaft.rgb;
     haze_kept = 1.0f - shaft.a;
+  }
+  // The terrain (terrain.comp) in place of the sky and the ground behind it, seen through the
+  // air in front (the aerial perspective at its distance, its sunlight dimmed by the shafts'
+  // share); clouds whose light lies mostly beyond it are hidden.
+  float terrain_m = terrain_distance_at((vec2(pixel) + 0.5f) / vec2(width, height));
+  for (int i = 0; i < (terrain_m > 0.0f ? 1 : 0); ++i) {  // a loop: see the cirrus' below
+    vec4 air = air_in_front(uv, terrain_m);
+    vec3 lit = texelFetch(terrain_image, pixel, 0).rgb;
+    background = lit * air.a + air.rgb * (1.0f - shaft.rgb);
+    if (cloud_b.z * 1000.0f > terrain_m) {
+      cloud = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+      haze = 0.0f;
+    }
   }
   if (conditions == 1) haze = 0.0f;  // the keyframes' fog stands for the aerial perspective
   vec3 illuminance = frame.sun_illuminance.rgb;
@@ -160,7 +175,8 @@ void main() {
   if (conditions != 0) {  // the keyframes' fog on the ground and the clouds, by distance
     vec3 fog = frame.conditions_fog.rgb * illuminance;
     vec2 ground = ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x);
-    if (ground.x > 0.0f) background = mix(background, frame.conditions_fog.rgb, distance_fog(ground.x));
+    float surface_m = terrain_m > 0.0f ? terrain_m : ground.x;
+    if (surface_m > 0.0f) background = mix(background, frame.conditions_fog.rgb, distance_fog(surface_m));
     cloud_light = mix(cloud_light, fog * (1.0f - cloud.a), distance_fog(cloud_b.z * 1000.0f));
   }
   // The cirrus sheet: seen from below, over the sky and the discs and behind the volumetric
@@ -172,6 +188,7 @@ void main() {
   float cirrus_m = cirrus_distance(eye, dir);
   vec4 cirrus = vec4(0.0f, 0.0f, 0.0f, 1.0f);
   bool cirrus_in_front = length(eye) > frame.cirrus.x;
+  if (terrain_m > 0.0f && cirrus_m > terrain_m) cirrus_m = 0.0f;  // behind the terrain
   for (int i = 0; i < (cirrus_m > 0.0f ? 1 : 0); ++i) {
     cirrus = cirrus_layer(frame_atmosphere(), eye, dir, cirrus_m);
     if (cirrus_in_front || conditions == 1) continue;
@@ -196,6 +213,7 @@ void main() {
   vec4 particles = textureLod(particle_layer, pixel_uv, 0.0f);
   for (int i = 0; i < (particles.a > 1e-4f ? 1 : 0); ++i) {
     float particles_m = textureLod(particle_depth, pixel_uv, 0.0f).x / particles.a * 1000.0f;
+    if (terrain_m > 0.0f && particles_m > terrain_m) break;  // behind the terrain
     vec4 air = air_in_front(uv, particles_m);
     vec3 particle_light = particles.rgb * air.a + air.rgb * illuminance * particles.a;
     bool in_front = alpha < 1e-3f || particles_m < cloud_b.z * 1000.0f;

@@ -10,6 +10,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
+#include "terrain_inc.glsl"
 
 layout(constant_id = 0) const int PASS = 0;
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -35,6 +36,7 @@ float occlusion(vec2 q, vec2 size) {
   vec3 up = normalize(frame.camera_pos_m.xyz);
   if (dot(dir, up) < 0.0f) return 0.0f;
   float transmittance = textureLod(clouds_a, (q + 0.5f) / size, 0.0f).a;
+  if (terrain_distance_at((q + 0.5f) / size) > 0.0f) transmittance = 0.0f;  // the terrain occludes
   return transmittance * pow(max(dot(dir, frame.sun_dir.xyz), 0.0f), 16.0f);
 }
 

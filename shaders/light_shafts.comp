@@ -13,6 +13,7 @@
 #include "frame_atmosphere_inc.glsl"
 const int MARCH_MODE = 0;  // cloud_field_inc.glsl's lookups
 #include "light_shafts_inc.glsl"
+#include "terrain_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -28,7 +29,9 @@ void main() {
   float transmittance = textureLod(clouds_a, uv, 0.0f).a;
   float cloud_m = transmittance < 0.999f ? textureLod(clouds_b, uv, 0.0f).z * 1000.0f : SHAFT_FAR_M;
   float jitter = fract(52.9829189f * fract(0.06711056f * float(q.x) + 0.00583715f * float(q.y)));
-  ShaftLight s = light_shaft_light(frame.camera_pos_m.xyz, dir, cloud_m, jitter);
+  float terrain_m = terrain_distance_at(uv);
+  ShaftLight s = light_shaft_light(frame.camera_pos_m.xyz, dir, cloud_m,
+                                   terrain_m > 0.0f ? terrain_m : SHAFT_FAR_M, jitter);
   vec3 single = s.single_front + s.single_behind, lost = s.lost_front + s.lost_behind;
   const vec3 Y = vec3(0.2126f, 0.7152f, 0.0722f);
   vec3 share = lost / max(single, vec3(1e-30f));

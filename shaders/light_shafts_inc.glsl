@@ -34,20 +34,20 @@ float shaft_visibility(vec3 p, vec3 sun) {
 
 // The air's single scattering of the key light along the view ray, per unit illuminance, and
 // the part of it the clouds shadow, in front of the clouds (t < cloud_m) and behind them, to
-// the ground or the atmosphere's top (at most SHAFT_FAR_M): SHAFT_STEPS steps spaced as the
+// the ground or the atmosphere's top (at most SHAFT_FAR_M and end_limit_m: the terrain): SHAFT_STEPS steps spaced as the
 // sky's (t ~ (i / n)^2), offset by `jitter` in [0, 1).
 struct ShaftLight {
   vec3 single_front, lost_front, single_behind, lost_behind;
 };
 
-ShaftLight light_shaft_light(vec3 eye, vec3 dir, float cloud_m, float jitter) {
+ShaftLight light_shaft_light(vec3 eye, vec3 dir, float cloud_m, float end_limit_m, float jitter) {
   ShaftLight s;
   s.single_front = s.lost_front = s.single_behind = s.lost_behind = vec3(0.0f);
   Atmosphere a = frame_atmosphere();
   vec3 sun = frame.sun_dir.xyz;
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   vec2 top = ray_sphere(eye, dir, a.top_radius_m);
-  float end_m = min(ground.x > 0.0f ? ground.x : max(top.y, 0.0f), SHAFT_FAR_M);
+  float end_m = min(min(ground.x > 0.0f ? ground.x : max(top.y, 0.0f), SHAFT_FAR_M), end_limit_m);
   if (end_m <= 0.0f || frame.light_volume.w < 0.5f) return s;
   float mu = dot(dir, sun);
   float phase_r = rayleigh_phase(mu), phase_m = cornette_shanks_phase(a.mie_g, mu);

@@ -10,6 +10,7 @@
 #include "common/math_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"
+#include "terrain_inc.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -35,6 +36,7 @@ void main() {
   float cloud = int(frame.display.y) == 1
                     ? 1.0f
                     : textureLod(clouds_a, uv, 0.0f).a * (1.0f - textureLod(particle_layer, uv, 0.0f).a);
+  if (terrain_distance_at(uv) > 0.0f) cloud = 0.0f;  // behind the terrain
   float visibility = frame.conditions_sky_fog.w;  // the keyframes' star visibility, 1 when off
   vec3 radiance = star.irradiance.rgb * frame.stars.x / frame.stars.z * air * cloud * visibility;
   imageStore(color_rw, pixel, imageLoad(color_rw, pixel) + vec4(radiance, 0.0f));

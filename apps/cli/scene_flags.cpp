@@ -185,6 +185,15 @@ const std::vector<FlagSpec>& flag_specs() {
        "volumetric|screen|off",
        "light shafts: volumetric (the air's light shadowed by the clouds), screen (seed 002's "
        "screen-space god rays and radial blur) or off (default)"},
+      {"--terrain", &F::terrain, "terrain.file", TO(terrain.file), "FILE|mountains",
+       "a terrain under the clouds: a heightfield (.png 16-bit grey, .exr, .tif GeoTIFF placed "
+       "by its coordinates, .obj mesh) or mountains (procedural)"},
+      {"--terrain-extent-m", &F::terrain_extent_m, "terrain.extent_m", TO(terrain.extent_m),
+       "W,H", "the terrain's size east-west, north-south (m; PNG, EXR, mountains)"},
+      {"--terrain-center-m", &F::terrain_center_m, "terrain.center_m", TO(terrain.center_m),
+       "E,N", "the terrain's centre (m; default the origin; not GeoTIFF)"},
+      {"--terrain-height-m", &F::terrain_height_m, "terrain.height_m", TO(terrain.height_m), "H",
+       "the height of the file's largest value (PNG, EXR) or of the highest peak (mountains), m"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
       {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model),
@@ -566,6 +575,12 @@ Scene resolve_scene(const SceneFlags& flags) {
             parse_into(spec.flag, *text, target(scene));
         },
         spec.target);
+  }
+  if (flags.terrain && *flags.terrain == "mountains") {  // the procedural range, not a file
+    scene.terrain.file.clear();
+    scene.terrain.preset = "mountains";
+  } else if (flags.terrain) {
+    scene.terrain.preset.clear();
   }
   apply_sun_angles(flags, scene);
   apply_legacy_light(flags, scene);

@@ -475,6 +475,29 @@ struct LabParams {
   float sun_irradiance = 1.0f;       // W/m^2, perpendicular to the light, [0, 1e6]
 };
 
+// A terrain under the clouds (issue 24): a heightfield from a file, or the procedural
+// `mountains`, standing on the ground sphere in the scene's east-north-up frame (scene.h's ENU;
+// heights above the ground at location.altitude_m). Lit by the sun and the sky, shadowed by
+// the clouds, fogged by the air; it hides the sky and the clouds behind it.
+struct TerrainParams {
+  // .png (16-bit grey), .exr (its first channel), .tif/.tiff (a GeoTIFF elevation model, placed
+  // by its georeferencing relative to location.lat_deg/lon_deg, heights above sea level) or
+  // .obj (a mesh in metres, x east, y up, -z north, as Blender writes it, centred on center_m);
+  // empty = none.
+  std::string file;
+  std::string preset;                  // "mountains": procedural; at most one of file and preset
+  glm::vec2 extent_m{40000.0f, 40000.0f};  // east-west, north-south size (PNG, EXR, mountains), (0, 1e6]
+  glm::vec2 center_m{0.0f, 0.0f};      // its centre (east, north), [-1e6, 1e6] each (not GeoTIFF)
+  float height_m = 2500.0f;            // PNG, EXR: the height of the file's largest value; mountains:
+                                       // the highest peak, [0, 1e4]
+  float base_m = 0.0f;                 // PNG, EXR, mountains: the height of the value 0, [-1e4, 1e4]
+  glm::vec3 albedo{0.13f, 0.12f, 0.09f};  // Lambertian albedo of the bare ground, [0, 1] each
+  float snow_altitude_m = 0.0f;        // snow (albedo 0.8) above this height on slopes under
+                                       // 40 deg, [0, 1e4]; 0 = none
+  int resolution = 512;                // mountains: grid points along each axis, [16, 4096]
+  uint32_t seed = 1;                   // mountains
+};
+
 struct Scene {
   CameraParams camera;
   SunParams sun;
@@ -495,6 +518,7 @@ struct Scene {
   ParticleCloudParams particle_clouds;
   ClassicCloudParams classic;
   LabParams lab;
+  TerrainParams terrain;
 };
 
 // The camera's vertical field of view (deg) for an image of width / height `aspect`, from

@@ -221,6 +221,14 @@ struct FrameParams {
   vec4 classic_nishita;
   vec4 classic_nishita_grid;
   vec4 classic_nishita_light;
+  // The terrain (render/modules/terrain.h, terrain_inc.glsl): its rectangle (x west, y north
+  // edge, z, w extent east-west, north-south, m); x its lowest, y its highest height (m above
+  // the ground), z 1 when there is one, w the snow's lower edge (m; 0 none); the bare ground's
+  // albedo (rgb); its grid (xy points) and block maxima (z the block's cells, w blocks along x)
+  vec4 terrain_rect;
+  vec4 terrain_shape;
+  vec4 terrain_albedo;
+  ivec4 terrain_grid;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

@@ -82,6 +82,10 @@ enum Binding : uint32_t {
   kPostTemp = 65,
   kLightShaftsOut = 66,
   kLightShafts = 67,
+  kTerrainHeights = 68,
+  kTerrainBlocks = 69,
+  kTerrainOut = 70,
+  kTerrain = 71,
   kBindingCount
 };
 

@@ -175,11 +175,7 @@ void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FramePar
     }
   };
   progress("clouds", 0, bands + 1);
-  keep(state.run_once(params, [&](VkCommandBuffer cmd) {
-    weather.record(cmd, *state.timer);
-    sky_view.record(cmd, *state.timer);
-    light_volume.record(cmd, *state.timer);
-  }));
+  keep(state.run_once(params, [&](VkCommandBuffer cmd) { record_before_march(cmd, scene, params, true); }));
   progress("clouds", 1, bands + 1);
   for (int b = 0; b < bands; ++b) {
     gpu::FrameParams band = params;
@@ -190,6 +186,21 @@ void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FramePar
     }));
     progress("clouds", b + 2, bands + 1);
   }
+}
+
+void FrameRenderer::Impl::record_before_march(VkCommandBuffer cmd, const Scene& scene,
+                                              const gpu::FrameParams& params, bool volumetric) {
+  weather.record(cmd, *state.timer);
+  sky_view.record(cmd, *state.timer);
+  light_volume.record(cmd, *state.timer);
+  // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe). Without
+  // nephele's clouds the gaps pass all the sky's light (a classical model's shadow is its
+  // own, in the cloud buffer).
+  if (!volumetric)
+    clouds.record_clear_ground_light(cmd);
+  else if (light_volume.completed() || params.light_volume.w == 0.0f)
+    clouds.record_ground_light(cmd, *state.timer, scene.quality.mode);
+  if (params.terrain_shape.z > 0.0f) terrain.record(cmd, *state.timer);
 }
 
 void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
@@ -306,6 +317,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       classic_clouds(ctx, state.set),
       post(ctx, state.set),
       light_shafts(ctx, state.set),
+      terrain(ctx, state.set),
       particle_light(ctx, state.set),
       path_tracer(ctx, state.set) {}
 
@@ -436,6 +448,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   classic_clouds.prepare(scene, params);
   const bool post_processed = post.prepare(scene, s.width, s.height, params);
   const bool shafts = light_shafts.prepare(scene, s.width, s.height);
+  terrain.prepare(scene, s.width, s.height, params);
   clouds.swap_history();
 
   const bool in_bands = still && progress && volumetric;
@@ -443,9 +456,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   if (in_bands) march_in_bands(scene, params);
   s.begin(cmd, slot, params);
   if (!in_bands) {
-    weather.record(cmd, *s.timer);
-    sky_view.record(cmd, *s.timer);
-    light_volume.record(cmd, *s.timer);
+    record_before_march(cmd, scene, params, volumetric);
     if (volumetric) clouds.record_march(cmd, *s.timer, scene.quality.mode);
   }
   if (classic)
@@ -455,13 +466,6 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   else
     clouds.record_clear_sky(cmd);
   particles.record(cmd, *s.timer);
-  // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe). Without
-  // nephele's clouds the gaps pass all the sky's light (a classical model's shadow is its
-  // own, in the cloud buffer).
-  if (!volumetric)
-    clouds.record_clear_ground_light(cmd);
-  else if (light_volume.completed() || params.light_volume.w == 0.0f)
-    clouds.record_ground_light(cmd, *s.timer, scene.quality.mode);
   if (shafts) light_shafts.record(cmd, *s.timer);
   pass_compose(cmd, s, scene.atmosphere.model);
   pass_stars(cmd, s);

@@ -19,6 +19,7 @@
 #include "render/modules/particle_light_gpu.h"
 #include "render/modules/path_tracer.h"
 #include "render/modules/sky_view.h"
+#include "render/modules/terrain.h"
 #include "render/modules/voxel_clouds.h"
 #include "render/modules/weather.h"
 #include "render/passes.h"
@@ -58,6 +59,7 @@ struct FrameRenderer::Impl {
   ClassicCloudsModule classic_clouds;  // seed 004's models, when clouds.model names one
   PostModule post;                      // screen-space god rays, bloom and glare
   LightShaftsModule light_shafts;       // volumetric light shafts, read by compose
+  TerrainModule terrain;                // the heightfield under the clouds
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
 
@@ -69,6 +71,11 @@ struct FrameRenderer::Impl {
   // A still image with progress: the modules' work, then the clouds pass in bands of rows,
   // each submitted and waited for and reported; what remains is recorded into the frame.
   void march_in_bands(const Scene& scene, const gpu::FrameParams& params);
+  // What the clouds' march reads, recorded before it: the weather, the sky-view table, the
+  // light volume, the ground's light under the clouds (`volumetric`: nephele's clouds are
+  // drawn), the terrain.
+  void record_before_march(VkCommandBuffer cmd, const Scene& scene, const gpu::FrameParams& params,
+                           bool volumetric);
   std::vector<PassTiming> band_timings;  // of march_in_bands, for the frame's stats
   // After the frame of `slot` completed: its stats with the passes' timings (moved into
   // `completed`); nothing when none is pending there.

@@ -479,6 +479,37 @@ bool ends_with_ignoring_case(const std::string& text, std::string_view suffix) {
   return true;
 }
 
+void check_terrain(const Checker& check, const TerrainParams& t) {
+  const auto text = [&](const std::string& key, const std::string& value) {
+    return check.is_flag(key) ? value : scene_detail::toml_quote(value);
+  };
+  if (!t.file.empty() && !t.preset.empty())
+    check.fail("terrain.file", text("terrain.file", t.file),
+               "terrain.preset = " + scene_detail::toml_quote(t.preset) +
+                   " is given too; give at most one of file and preset");
+  if (!t.preset.empty() && t.preset != "mountains")
+    check.fail("terrain.preset", text("terrain.preset", t.preset), "must be mountains (or empty: none)");
+  if (!t.file.empty()) {
+    static const char* kSuffixes[] = {".png", ".exr", ".tif", ".tiff", ".obj"};
+    bool known = false;
+    for (const char* suffix : kSuffixes) known = known || ends_with_ignoring_case(t.file, suffix);
+    if (!known)
+      check.fail("terrain.file", text("terrain.file", t.file),
+                 "must name a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file");
+    check.readable_file("terrain.file", t.file);
+  }
+  for (int i = 0; i < 2; ++i)
+    if (!(t.extent_m[i] > 0.0f && t.extent_m[i] <= 1.0e6f))
+      check.fail("terrain.extent_m", check.vector_text("terrain.extent_m", t.extent_m),
+                 "each component must be in (0, 1e6] (east-west, north-south, m)");
+  check.in_range("terrain.center_m", t.center_m, -1.0e6f, 1.0e6f);
+  check.in_range("terrain.height_m", t.height_m, 0.0f, 1.0e4f);
+  check.in_range("terrain.base_m", t.base_m, -1.0e4f, 1.0e4f);
+  check.in_range("terrain.albedo", t.albedo, 0.0f, 1.0f);
+  check.in_range("terrain.snow_altitude_m", t.snow_altitude_m, 0.0f, 1.0e4f);
+  check.in_range("terrain.resolution", t.resolution, 16, 4096);
+}
+
 void check_voxel_cloud(const Checker& check, const VoxelCloudParams& cloud, size_t index) {
   const std::string prefix = scene_detail::voxel_cloud_key(index);
   const std::string file_key = prefix + ".file", preset_key = prefix + ".preset";
@@ -592,6 +623,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_output(check, scene.output);
   check_voxel_clouds(check, scene.voxel_clouds);
   check_lab(check, scene.lab);
+  check_terrain(check, scene.terrain);
   check_particle_clouds(check, scene.particle_clouds);
   check_classic(check, scene.clouds, scene.classic);
   check_conditions(check, scene);

@@ -11,6 +11,7 @@
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
 #include "render/modules/light_shafts.h"
+#include "render/modules/terrain.h"
 #include "render/modules/post.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/metaball_clouds.h"
@@ -91,7 +92,8 @@ struct Modules {
         path_tracer(ctx, s.set),
         metaballs(ctx, s.set),
         post(ctx, s.set),
-        light_shafts(ctx, s.set) {}
+        light_shafts(ctx, s.set),
+        terrain(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
@@ -105,6 +107,7 @@ struct Modules {
   nephele::MetaballCloudsModule metaballs;
   nephele::PostModule post;
   nephele::LightShaftsModule light_shafts;
+  nephele::TerrainModule terrain;
 };
 
 // Runs `passes` with the default scene's parameters.

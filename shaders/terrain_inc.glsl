@@ -1,0 +1,125 @@
+// The terrain's heightfield (render/modules/terrain.h) and rays cast against it: the terrain
+// stands on the ground sphere, its points at altitude |p| - R over the planet frame's east and
+// north (p.xy, the ENU tangent plane's: camera_path.h's enu_from_lat_lon). A ray crosses the
+// blocks of the block-maxima grid and skips each it passes above; in the others it steps half
+// a cell at a time and refines a crossing by bisection. GLSL only; the includer includes
+// bindings_inc.glsl and math_inc.glsl.
+#ifndef NEPHELE_TERRAIN_INC
+#define NEPHELE_TERRAIN_INC
+
+const int TERRAIN_MAX_BLOCKS = 512;   // blocks a ray crosses at most
+const int TERRAIN_MAX_STEPS = 1024;   // half-cell steps a ray takes at most
+const float TERRAIN_NONE_M = -1.0e9f;  // the height outside the terrain's rectangle
+
+bool terrain_present() { return frame.terrain_shape.z > 0.5f; }
+
+vec2 terrain_points() { return vec2(frame.terrain_grid.xy); }
+
+// The grid position (in cells: x east from the west edge, y south from the north edge) of the
+// east-north point p, and a direction's rate in cells per metre.
+vec2 terrain_cell(vec2 p) {
+  return vec2(p.x - frame.terrain_rect.x, frame.terrain_rect.y - p.y) / frame.terrain_rect.zw *
+         (terrain_points() - 1.0f);
+}
+vec2 terrain_cell_rate(vec2 d) {
+  return vec2(d.x, -d.y) / frame.terrain_rect.zw * (terrain_points() - 1.0f);
+}
+
+// Height (m above the ground) at grid position c (bilinear); TERRAIN_NONE_M off the grid.
+float terrain_height_cell(vec2 c) {
+  vec2 n = terrain_points();
+  if (any(lessThan(c, vec2(0.0f))) || any(greaterThan(c, n - 1.0f))) return TERRAIN_NONE_M;
+  return textureLod(terrain_heights, (c + 0.5f) / n, 0.0f).r;
+}
+float terrain_height_at(vec2 p) { return terrain_height_cell(terrain_cell(p)); }
+
+// The surface's unit normal at the east-north point p, in the planet frame at `p3` (its local
+// up is normalize(p3)): central differences one cell either way.
+vec3 terrain_normal(vec3 p3) {
+  vec2 c = terrain_cell(p3.xy);
+  vec2 n = terrain_points() - 1.0f;
+  vec2 spacing = frame.terrain_rect.zw / n;
+  float e = terrain_height_cell(clamp(c + vec2(1.0f, 0.0f), vec2(0.0f), n));
+  float w = terrain_height_cell(clamp(c - vec2(1.0f, 0.0f), vec2(0.0f), n));
+  float s = terrain_height_cell(clamp(c + vec2(0.0f, 1.0f), vec2(0.0f), n));
+  float north = terrain_height_cell(clamp(c - vec2(0.0f, 1.0f), vec2(0.0f), n));
+  vec3 local = normalize(vec3(-(e - w) / (2.0f * spacing.x), -(north - s) / (2.0f * spacing.y), 1.0f));
+  return normalize(vec3(local.xy, 0.0f) + local.z * normalize(p3));
+}
+
+// The ray's height above the terrain at t (negative below it).
+float terrain_clearance(vec3 eye, vec3 dir, float t) {
+  vec3 p = eye + dir * t;
+  return length(p) - frame.radii_m.x - terrain_height_at(p.xy);
+}
+
+// Distance along the ray from `eye` to the terrain within (0, t_max), or -1 where it misses.
+float terrain_ray(vec3 eye, vec3 dir, float t_max) {
+  if (!terrain_present()) return -1.0f;
+  float radius = frame.radii_m.x;
+  vec2 top = ray_sphere(eye, dir, radius + frame.terrain_shape.y + 1.0f);
+  float t0 = max(top.x, 0.0f), t1 = min(top.y, t_max);
+  // The rectangle's slab in grid cells.
+  vec2 n = terrain_points() - 1.0f;
+  vec2 c0 = terrain_cell(eye.xy), dc = terrain_cell_rate(dir.xy);
+  for (int axis = 0; axis < 2; ++axis) {
+    if (abs(dc[axis]) < 1e-12f) {
+      if (c0[axis] < 0.0f || c0[axis] > n[axis]) return -1.0f;
+      continue;
+    }
+    float a = (0.0f - c0[axis]) / dc[axis], b = (n[axis] - c0[axis]) / dc[axis];
+    t0 = max(t0, min(a, b));
+    t1 = min(t1, max(a, b));
+  }
+  if (!(t0 < t1)) return -1.0f;
+  float block = float(frame.terrain_grid.z);
+  ivec2 blocks = textureSize(terrain_blocks, 0);
+  float half_cell_t = 0.5f / max(length(dc), 1e-12f);  // t of half a cell's horizontal travel
+  float closest = -dot(eye, dir);                        // where the ray is nearest the centre
+  float t = t0;
+  int steps = 0;
+  for (int i = 0; i < TERRAIN_MAX_BLOCKS && t < t1 && steps < TERRAIN_MAX_STEPS; ++i) {
+    vec2 c = clamp(c0 + dc * t, vec2(0.0f), n);
+    ivec2 b = clamp(ivec2(floor(c / block)), ivec2(0), blocks - 1);
+    float t_exit = t1;
+    for (int axis = 0; axis < 2; ++axis) {
+      if (abs(dc[axis]) < 1e-12f) continue;
+      float edge = (float(b[axis]) + (dc[axis] > 0.0f ? 1.0f : 0.0f)) * block;
+      t_exit = min(t_exit, (edge - c0[axis]) / dc[axis]);
+    }
+    t_exit = max(t_exit, t + 1e-3f);
+    float top_m = texelFetch(terrain_blocks, b, 0).r;
+    float lowest_m = length(eye + dir * clamp(closest, t, t_exit)) - radius;
+    if (lowest_m > top_m) {  // the ray passes above the whole block
+      t = t_exit * (1.0f + 1e-6f) + 1e-3f;
+      continue;
+    }
+    float previous = t;
+    while (previous < t_exit && steps < TERRAIN_MAX_STEPS) {
+      float next = min(previous + half_cell_t, t_exit);
+      ++steps;
+      if (terrain_clearance(eye, dir, next) <= 0.0f) {
+        float lo = previous, hi = next;  // above at lo, below at hi
+        for (int k = 0; k < 10; ++k) {
+          float mid = 0.5f * (lo + hi);
+          if (terrain_clearance(eye, dir, mid) <= 0.0f) hi = mid;
+          else lo = mid;
+        }
+        return hi;
+      }
+      previous = next;
+    }
+    t = t_exit * (1.0f + 1e-6f) + 1e-3f;
+  }
+  return -1.0f;
+}
+
+// The terrain's distance (m) along the view through image position uv ([0, 1]^2), as
+// terrain.comp found it at the pixel there; 0 where the ray misses it or there is none.
+float terrain_distance_at(vec2 uv) {
+  ivec2 size = textureSize(terrain_image, 0);
+  float m = texelFetch(terrain_image, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0).a;
+  return terrain_present() ? m : 0.0f;
+}
+
+#endif

@@ -1,0 +1,45 @@
+// The terrain under the clouds (issue 24): the scene's heightfield (terrain/heightfield.h) on
+// the device with its block maxima, and terrain.comp, which casts every view ray against it
+// before the clouds are marched (they stop at it) and lights what it hits; compose puts the
+// air in front of it and hides the sky behind it.
+//
+// Ray casting in compute rather than a raster pipeline with depth: every pass that needs the
+// terrain (the clouds' march, the light shafts, compose) is a compute pass reading a per-pixel
+// distance, which the cast writes directly at the image's resolution, with no mesh of the
+// heightfield to build or level-of-detail to manage.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "gpu/kernel.h"
+#include "nephele/scene.h"
+#include "render/gpu_params.h"
+
+namespace nephele {
+
+class TerrainModule {
+ public:
+  // Cells a side of the blocks whose maxima let rays skip the space above the terrain.
+  static constexpr int kBlock = 8;
+
+  TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+
+  // Loads the scene's terrain when it changed (InputError for bad input), sizes the output
+  // for a width x height frame and fills params.terrain_*; false when the scene has none (then
+  // params.terrain_shape.z stays 0 and the passes that read the output ignore it).
+  bool prepare(const Scene& scene, int width, int height, gpu::FrameParams& params);
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  const gpu::Texture& output() const { return out_; }
+
+ private:
+  gpu::Context& ctx_;
+  gpu::DescriptorSet& set_;
+  gpu::Texture heights_, blocks_, out_;
+  std::unique_ptr<gpu::Kernel> kernel_;  // made when first recorded
+  std::string key_;                      // what the heights were made from
+  glm::vec4 rect_{0.0f}, shape_{0.0f};
+  glm::ivec4 grid_{0};
+};
+
+}  // namespace nephele
