@@ -12,6 +12,7 @@
 #include "nephele/scene_io.h"
 #include "nephele/sky.h"
 #include "scene/scene_fields.h"
+#include "terrain/heightfield.h"
 
 namespace nephele {
 namespace {
@@ -497,6 +498,8 @@ void check_terrain(const Checker& check, const TerrainParams& t) {
       check.fail("terrain.file", text("terrain.file", t.file),
                  "must name a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file");
     check.readable_file("terrain.file", t.file);
+    if (const std::string why = terrain::heightfield_file_problem(t.file); !why.empty())
+      check.fail("terrain.file", text("terrain.file", t.file), why);
   }
   for (int i = 0; i < 2; ++i)
     if (!(t.extent_m[i] > 0.0f && t.extent_m[i] <= 1.0e6f))

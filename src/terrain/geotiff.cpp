@@ -38,26 +38,40 @@ glm::dvec2 lat_lon_from_enu(const Scene& scene, double e, double n) {
   return {glm::degrees(std::asin(std::clamp(p.z / r, -1.0, 1.0))), glm::degrees(std::atan2(p.y, p.x))};
 }
 
+// The file opened read-only, errors kept quiet (they are reported as InputErrors instead).
+std::unique_ptr<GDALDataset, Closer> open(const std::string& path) {
+  GDALAllRegister();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  std::unique_ptr<GDALDataset, Closer> data(static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly)));
+  CPLPopErrorHandler();
+  return data;
+}
+
+std::string problem_of(GDALDataset* data) {
+  if (!data) return std::string("cannot read the GeoTIFF (") + CPLGetLastErrorMsg() + ")";
+  if (data->GetRasterCount() < 1) return "holds no raster band of heights";
+  double gt[6];
+  if (data->GetGeoTransform(gt) != CE_None || !data->GetSpatialRef())
+    return "has no georeferencing (a geotransform and a coordinate system are needed to place it; "
+           "a plain heightfield is a 16-bit PNG or an EXR with --terrain-extent-m)";
+  const int w = data->GetRasterXSize(), h = data->GetRasterYSize();
+  if (w < 2 || h < 2 || w > kMaxSide || h > kMaxSide)
+    return std::to_string(w) + " x " + std::to_string(h) + " points: from 2 x 2 to 16384 a side are allowed";
+  return "";
+}
+
 }  // namespace
+
+std::string geotiff_problem(const std::string& path) { return problem_of(open(path).get()); }
 
 Heightfield read_geotiff(const Scene& scene, const std::string& key) {
   const std::string& path = scene.terrain.file;
-  GDALAllRegister();
-  CPLPushErrorHandler(CPLQuietErrorHandler);  // errors are reported as InputErrors instead
-  std::unique_ptr<GDALDataset, Closer> data(
-      static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly)));
-  CPLPopErrorHandler();
-  if (!data) fail(key, path, std::string("cannot read the GeoTIFF (") + CPLGetLastErrorMsg() + ")");
-  if (data->GetRasterCount() < 1) fail(key, path, "holds no raster band of heights");
+  const std::unique_ptr<GDALDataset, Closer> data = open(path);
+  if (const std::string why = problem_of(data.get()); !why.empty()) fail(key, path, why);
   double gt[6];
+  data->GetGeoTransform(gt);
   const OGRSpatialReference* srs = data->GetSpatialRef();
-  if (data->GetGeoTransform(gt) != CE_None || !srs)
-    fail(key, path, "has no georeferencing (a geotransform and a coordinate system are needed to "
-                    "place it; a plain heightfield is a 16-bit PNG or an EXR with --terrain-extent-m)");
   const int w = data->GetRasterXSize(), h = data->GetRasterYSize();
-  if (w < 2 || h < 2 || w > kMaxSide || h > kMaxSide)
-    fail(key, path, std::to_string(w) + " x " + std::to_string(h) +
-                        " points: from 2 x 2 to 16384 x 16384 are allowed");
   GDALRasterBand* band = data->GetRasterBand(1);
   std::vector<float> dem(size_t(w) * size_t(h));
   if (band->RasterIO(GF_Read, 0, 0, w, h, dem.data(), w, h, GDT_Float32, 0, 0) != CE_None)

@@ -9,6 +9,10 @@
 
 namespace nephele::terrain {
 
+// Why the file cannot be placed as a heightfield ("" when it can): unreadable, no raster band,
+// no georeferencing, or outside 2 to kMaxSide points a side.
+std::string geotiff_problem(const std::string& path);
+
 // Throws InputError naming `key` and scene.terrain.file: unreadable, no georeferencing (no
 // geotransform or no coordinate system), or too many points.
 Heightfield read_geotiff(const Scene& scene, const std::string& key);

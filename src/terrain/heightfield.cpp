@@ -76,13 +76,46 @@ bool ends_with(const std::string& text, const char* suffix) {
   return true;
 }
 
-void check_size(const std::string& key, const std::string& path, long long w, long long h) {
-  if (w < 2 || h < 2)
-    fail(key, path, std::to_string(w) + " x " + std::to_string(h) +
-                        " points: a heightfield needs at least 2 x 2");
-  if (w > kMaxSide || h > kMaxSide)
-    fail(key, path, std::to_string(w) + " x " + std::to_string(h) +
-                        " points: at most 16384 a side are allowed (resample it smaller)");
+// Why a grid of w x h points cannot be a heightfield; "" when it can.
+std::string size_problem(long long w, long long h) {
+  const std::string size = std::to_string(w) + " x " + std::to_string(h) + " points: ";
+  if (w < 2 || h < 2) return size + "a heightfield needs at least 2 x 2";
+  if (w > kMaxSide || h > kMaxSide) return size + "at most 16384 a side are allowed (resample it smaller)";
+  return "";
+}
+
+// The EXR channel heights are read from: Y, R, Z or height, or a file's only channel; "" none.
+std::string exr_height_channel(const Imf::Header& header) {
+  const Imf::ChannelList& list = header.channels();
+  for (const char* name : {"Y", "R", "Z", "height"})
+    if (list.findChannel(name)) return name;
+  if (list.begin() != list.end() && ++list.begin() == list.end()) return list.begin().name();
+  return "";
+}
+
+std::string png_problem(const std::string& path) {
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info(path.c_str(), &w, &h, &channels)) {
+    const char* reason = stbi_failure_reason();
+    return std::string("cannot read the PNG (") + (reason ? reason : "unknown error") + ")";
+  }
+  if (!stbi_is_16_bit(path.c_str()))
+    return "is an 8-bit PNG; heights need a 16-bit greyscale PNG (256 levels are too coarse for a terrain)";
+  if (channels != 1)
+    return "has " + std::to_string(channels) + " channels; heights need a 16-bit greyscale PNG (1 channel)";
+  return size_problem(w, h);
+}
+
+std::string exr_problem(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    if (exr_height_channel(file.header()).empty())
+      return "has no Y, R, Z or height channel (heights are read from one of them)";
+    const Imath::Box2i window = file.header().dataWindow();
+    return size_problem(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+  } catch (const std::exception& e) {
+    return std::string("cannot read the EXR: ") + e.what();
+  }
 }
 
 // Values scaled so that the largest is base + height (PNG, EXR).
@@ -95,22 +128,10 @@ Heightfield scaled(const TerrainParams& t, int w, int h, std::vector<float> valu
 }
 
 Heightfield read_png(const TerrainParams& t, const std::string& key) {
-  const std::string& path = t.file;
   int w = 0, h = 0, channels = 0;
-  if (!stbi_info(path.c_str(), &w, &h, &channels)) {
-    const char* reason = stbi_failure_reason();
-    fail(key, path, std::string("cannot read the PNG (") + (reason ? reason : "unknown error") + ")");
-  }
-  if (!stbi_is_16_bit(path.c_str()))
-    fail(key, path, "is an 8-bit PNG; heights need a 16-bit greyscale PNG (256 levels are too "
-                    "coarse for a terrain)");
-  if (channels != 1)
-    fail(key, path, "has " + std::to_string(channels) +
-                        " channels; heights need a 16-bit greyscale PNG (1 channel)");
-  check_size(key, path, w, h);
-  std::unique_ptr<stbi_us, void (*)(void*)> pixels(stbi_load_16(path.c_str(), &w, &h, &channels, 1),
+  std::unique_ptr<stbi_us, void (*)(void*)> pixels(stbi_load_16(t.file.c_str(), &w, &h, &channels, 1),
                                                    stbi_image_free);
-  if (!pixels) fail(key, path, "cannot decode the PNG");
+  if (!pixels) fail(key, t.file, "cannot decode the PNG");
   std::vector<float> values(size_t(w) * size_t(h));
   for (size_t i = 0; i < values.size(); ++i) values[i] = float(pixels.get()[i]);
   return scaled(t, w, h, std::move(values));
@@ -120,20 +141,9 @@ Heightfield read_exr(const TerrainParams& t, const std::string& key) {
   const std::string& path = t.file;
   try {
     Imf::InputFile file(path.c_str());
-    const Imf::ChannelList& list = file.header().channels();
-    std::string channel;
-    for (const char* name : {"Y", "R", "Z", "height"})
-      if (list.findChannel(name)) {
-        channel = name;
-        break;
-      }
-    if (channel.empty() && list.begin() != list.end() && ++list.begin() == list.end())
-      channel = list.begin().name();  // a file of one channel, whatever its name
-    if (channel.empty())
-      fail(key, path, "has no Y, R, Z or height channel (heights are read from one of them)");
+    const std::string channel = exr_height_channel(file.header());
     const Imath::Box2i window = file.header().dataWindow();
     const long long w = window.max.x - window.min.x + 1, h = window.max.y - window.min.y + 1;
-    check_size(key, path, w, h);
     std::vector<float> values(size_t(w) * size_t(h));
     char* origin = reinterpret_cast<char*>(values.data() - window.min.x - ptrdiff_t(window.min.y) * w);
     Imf::FrameBuffer frame;
@@ -269,15 +279,23 @@ Heightfield make_mountains(const TerrainParams& t) {
   return field;
 }
 
+std::string heightfield_file_problem(const std::string& path) {
+  if (ends_with(path, ".png")) return png_problem(path);
+  if (ends_with(path, ".exr")) return exr_problem(path);
+  if (ends_with(path, ".tif") || ends_with(path, ".tiff")) return geotiff_problem(path);
+  if (ends_with(path, ".obj")) return "";
+  return "must be a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file";
+}
+
 Heightfield load_heightfield(const Scene& scene, const std::string& file_key) {
   const TerrainParams& t = scene.terrain;
   if (t.preset == "mountains") return make_mountains(t);
   if (t.file.empty()) return {};
+  if (const std::string why = heightfield_file_problem(t.file); !why.empty()) fail(file_key, t.file, why);
   if (ends_with(t.file, ".png")) return read_png(t, file_key);
   if (ends_with(t.file, ".exr")) return read_exr(t, file_key);
   if (ends_with(t.file, ".obj")) return read_obj(t, file_key);
-  if (ends_with(t.file, ".tif") || ends_with(t.file, ".tiff")) return read_geotiff(scene, file_key);
-  fail(file_key, t.file, "must be a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file");
+  return read_geotiff(scene, file_key);
 }
 
 }  // namespace nephele::terrain

@@ -42,6 +42,11 @@ struct Heightfield {
 // georeferencing, more than kMaxSide points a side.
 Heightfield load_heightfield(const Scene& scene, const std::string& file_key = "terrain.file");
 
+// Why the file cannot be a heightfield, told from its name and header ("" when it may be one):
+// an unknown extension, an unreadable file, a PNG that is not 16-bit grey, an EXR without a
+// height channel, a GeoTIFF without georeferencing, more than kMaxSide points a side.
+std::string heightfield_file_problem(const std::string& path);
+
 // The procedural range: ridged fractal noise, eroded towards the valleys, its highest point
 // terrain.height_m above terrain.base_m, falling to base_m at the extent's edges.
 Heightfield make_mountains(const TerrainParams& params);

@@ -1,0 +1,224 @@
+// The terrain's heightfields (src/terrain): each file format read into heights in metres, north
+// up, at the right place; the procedural mountains; bad input refused with one line naming the
+// parameter, the value and what is allowed, at validation (before anything is rendered) and
+// from the command line (nothing written).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "nephele/camera_path.h"
+#include "nephele/error.h"
+#include "nephele/image.h"
+#include "nephele/scene_io.h"
+#include "support/process_run.h"
+#include "support/terrain_files.h"
+#include "terrain/heightfield.h"
+
+namespace nephele {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TerrainFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(NEPHELE_TEST_OUTPUT_DIR) /
+           ("terrain_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // The message validate_scene throws for the scene's terrain, "" when it accepts it.
+  static std::string rejection(const Scene& scene) {
+    try {
+      validate_scene(scene);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+Scene with_file(const std::string& file) {
+  Scene s = load_preset("default");
+  s.terrain.file = file;
+  s.terrain.extent_m = glm::vec2(3000.0f, 2000.0f);
+  s.terrain.center_m = glm::vec2(100.0f, 5000.0f);
+  s.terrain.height_m = 1200.0f;
+  s.terrain.base_m = 50.0f;
+  return s;
+}
+
+TEST_F(TerrainFiles, Png16IsReadNorthUpScaledToTheHeightAndPlaced) {
+  // 4 x 3 points: 0 everywhere but 1000 at the north-east corner and 4000 at the south-west.
+  std::vector<unsigned short> v(12, 0);
+  v[3] = 1000;
+  v[8] = 4000;
+  test::write_png16(path("h.png"), 4, 3, 1, v);
+  const Scene s = with_file(path("h.png"));
+  ASSERT_EQ(rejection(s), "");
+  const terrain::Heightfield f = terrain::load_heightfield(s);
+  ASSERT_EQ(f.width, 4);
+  ASSERT_EQ(f.height, 3);
+  EXPECT_FLOAT_EQ(f.at(0, 2), 1250.0f);  // the largest value: base + height
+  EXPECT_FLOAT_EQ(f.at(3, 0), 50.0f + 1200.0f * 0.25f);
+  EXPECT_FLOAT_EQ(f.at(1, 1), 50.0f);
+  // The south-west corner is at centre - extent / 2, the north-east at centre + extent / 2.
+  EXPECT_NEAR(f.sample({100.0f - 1500.0f, 5000.0f - 1000.0f}, -1.0f), 1250.0f, 1e-3f);
+  EXPECT_NEAR(f.sample({100.0f + 1500.0f, 5000.0f + 1000.0f}, -1.0f), 350.0f, 1e-3f);
+  EXPECT_EQ(f.sample({100.0f + 1600.0f, 5000.0f}, -7.0f), -7.0f);  // off the extent
+}
+
+TEST_F(TerrainFiles, ExrHeightsAreReadFromItsFirstColourChannel) {
+  Image image(3, 2);
+  for (int i = 0; i < 6; ++i) image.pixels[size_t(i)] = glm::vec4(float(i * 100), 9999.0f, 9999.0f, 1.0f);
+  write_image(image, path("h.exr"), 1.0f, ExrPixels::kFloat);
+  const terrain::Heightfield f = terrain::load_heightfield(with_file(path("h.exr")));
+  ASSERT_EQ(f.width, 3);
+  EXPECT_FLOAT_EQ(f.at(2, 1), 1250.0f);              // R 500, the largest
+  EXPECT_FLOAT_EQ(f.at(1, 0), 50.0f + 1200.0f * 0.2f);  // R 100
+}
+
+TEST_F(TerrainFiles, ObjMeshIsSeenFromAbove) {
+  // A pyramid 400 m high on a 2 km square (x east, y up, -z north), its apex north-east of
+  // the square's centre by (200, 300) m.
+  std::ofstream(path("p.obj")) << "v -1000 0 1000\nv 1000 0 1000\nv 1000 0 -1000\nv -1000 0 -1000\n"
+                                  "v 200 400 -300\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n";
+  Scene s = with_file(path("p.obj"));
+  s.terrain.resolution = 201;  // 10 m cells
+  const terrain::Heightfield f = terrain::load_heightfield(s);
+  EXPECT_NEAR(f.extent_m.x, 2000.0f, 1e-3f);
+  EXPECT_NEAR(f.max_height_m(), 400.0f, 1.0f);
+  EXPECT_NEAR(f.sample(s.terrain.center_m + glm::vec2(200.0f, 300.0f), -1.0f), 400.0f, 1.0f);
+  // Halfway from the apex to the south edge's middle, on the south face: 200 m.
+  EXPECT_NEAR(f.sample(s.terrain.center_m + glm::vec2(100.0f, -350.0f), -1.0f), 200.0f, 2.0f);
+  EXPECT_NEAR(f.sample(s.terrain.center_m + glm::vec2(-1000.0f, -1000.0f), -1.0f), 0.0f, 1e-3f);
+}
+
+TEST_F(TerrainFiles, GeoTiffIsPlacedByItsCoordinates) {
+  // 41 x 41 cells of 0.001 deg, a 1500 m plateau of 5 x 5 cells about (46.52 N, 7.98 E),
+  // 800 m elsewhere.
+  const int n = 41;
+  std::vector<float> h(size_t(n * n), 800.0f);
+  for (int y = 18; y <= 22; ++y)
+    for (int x = 18; x <= 22; ++x) h[size_t(y * n + x)] = 1500.0f;
+  test::write_geotiff(path("dem.tif"), n, n, h, 46.5405, 7.9595, 0.001);
+  Scene s = load_preset("default");
+  s.terrain.file = path("dem.tif");
+  s.location.lat_deg = 46.5f;
+  s.location.lon_deg = 7.95f;
+  s.location.altitude_m = 600.0f;
+  ASSERT_EQ(rejection(s), "");
+  const terrain::Heightfield f = terrain::load_heightfield(s);
+  // The plateau's middle cell's centre is at (46.5405 - 20.5 x 0.001, 7.9595 + 20.5 x 0.001).
+  const glm::dvec3 centre = enu_from_lat_lon(s, 46.5405 - 0.0205, 7.9595 + 0.0205, 0.0);
+  EXPECT_NEAR(f.sample(glm::vec2(centre), -1.0f), 1500.0f - 600.0f, 1.0f);
+  EXPECT_NEAR(f.sample(glm::vec2(centre) + glm::vec2(300.0f, 0.0f), -1.0f), 200.0f, 1.0f);
+  EXPECT_NEAR(f.sample(glm::vec2(centre) + glm::vec2(0.0f, -350.0f), -1.0f), 200.0f, 1.0f);
+  EXPECT_NEAR(f.max_height_m(), 900.0f, 1e-3f);
+  // About 41 x 0.001 deg: 3.1 km east-west at this latitude, 4.6 km north-south.
+  EXPECT_NEAR(f.extent_m.x, 41 * 0.001 * 111195.0 * std::cos(46.52 * 3.14159265 / 180.0), 60.0);
+  EXPECT_NEAR(f.extent_m.y, 41 * 0.001 * 111195.0 * 6360.0 / 6371.0, 60.0);
+}
+
+TEST_F(TerrainFiles, BadFilesAreRefusedNamingTheParameterAndWhatIsAllowed) {
+  std::vector<unsigned short> v(16, 7);
+  test::write_png16(path("rgb16.png"), 4, 4, 3, v);
+  std::ofstream(path("grey8.png"), std::ios::binary);  // replaced just below
+  {
+    Image image(4, 4);
+    write_image(image, path("grey8.png"));  // an 8-bit PNG (write_image writes 8 bits)
+  }
+  test::write_geotiff(path("plain.tif"), 8, 8, std::vector<float>(64, 10.0f), 0, 0, 0, false);
+  test::write_png16(path("wide.png"), 16385, 2, 1, std::vector<unsigned short>(16385 * 2, 1));
+  const struct {
+    std::string file, expected;
+  } cases[] = {
+      {path("missing.png"), "cannot read the file"},
+      {path("grey8.png"), "is an 8-bit PNG; heights need a 16-bit greyscale PNG"},
+      {path("rgb16.png"), "has 3 channels; heights need a 16-bit greyscale PNG (1 channel)"},
+      {path("plain.tif"), "has no georeferencing"},
+      {path("wide.png"), "16385 x 2 points: at most 16384 a side"},
+      {path("heights.jpg"), "must name a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file"},
+  };
+  for (const auto& c : cases) {
+    const std::string message = rejection(with_file(c.file));
+    EXPECT_EQ(message.rfind("terrain.file = \"", 0), 0u) << message;  // long paths are shortened
+    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+    EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 0) << message;
+  }
+  Scene s = load_preset("default");
+  s.terrain.preset = "mountains";
+  s.terrain.extent_m = glm::vec2(0.0f, 1000.0f);
+  EXPECT_NE(rejection(s).find("terrain.extent_m = (0, 1000): each component must be in (0, 1e6]"),
+            std::string::npos)
+      << rejection(s);
+  s.terrain.extent_m = glm::vec2(1000.0f);
+  s.terrain.file = path("rgb16.png");
+  EXPECT_NE(rejection(s).find("give at most one of file and preset"), std::string::npos) << rejection(s);
+}
+
+TEST_F(TerrainFiles, CommandLineRefusesBadTerrainWithOneLineAndWritesNothing) {
+  std::vector<unsigned short> v(16, 7);
+  test::write_png16(path("rgb16.png"), 4, 4, 3, v);
+  const std::string out = path("out.png");
+  for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"--terrain " + path("rgb16.png"), "has 3 channels; heights need a 16-bit greyscale PNG"},
+           {"--terrain " + path("none.exr"), "cannot read the file"},
+           {"--terrain mountains --terrain-extent-m 0,5", "--terrain-extent-m 0,5: each component must be in (0, 1e6]"},
+           {"--terrain mountains --terrain-height-m -3", "--terrain-height-m -3: must be in [0, 10000]"}}) {
+    const test::ProcessRun r = test::run_cli("render --width 8 --height 8 " + args + " --output " + out);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << "'" << expected << "' in " << r.output;
+    EXPECT_NE(r.output.find("error: --terrain"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+}
+
+TEST(TerrainMountains, TheRangeReachesItsHeightAndStandsOnItsBase) {
+  TerrainParams t;
+  t.resolution = 128;
+  t.base_m = 100.0f;
+  t.height_m = 2500.0f;
+  const terrain::Heightfield a = terrain::make_mountains(t), b = terrain::make_mountains(t);
+  EXPECT_EQ(a.height_m, b.height_m);  // the same seed, the same range
+  EXPECT_NEAR(a.max_height_m(), 2600.0f, 1e-2f);
+  EXPECT_NEAR(a.min_height_m(), 100.0f, 1e-2f);
+  for (int i = 0; i < 128; ++i) {  // the edges are at the base
+    EXPECT_FLOAT_EQ(a.at(i, 0), 100.0f);
+    EXPECT_FLOAT_EQ(a.at(0, i), 100.0f);
+  }
+  // A range, not a lone spike: a tenth of the land within the inner two thirds stands above
+  // half the height.
+  int high = 0, inner = 0;
+  for (int y = 22; y < 106; ++y)
+    for (int x = 22; x < 106; ++x, ++inner) high += a.at(x, y) > 1350.0f;
+  EXPECT_GT(double(high) / inner, 0.1);
+  t.seed = 2;
+  EXPECT_NE(terrain::make_mountains(t).height_m, a.height_m);
+}
+
+TEST(TerrainBlocks, EachBlockBoundsEveryHeightInsideIt) {
+  TerrainParams t;
+  t.resolution = 37;  // 36 cells: blocks of 8 leave a partial one
+  const terrain::Heightfield f = terrain::make_mountains(t);
+  int bx = 0, by = 0;
+  const std::vector<float> m = terrain::block_maxima(f, 8, bx, by);
+  ASSERT_EQ(bx, 5);
+  ASSERT_EQ(by, 5);
+  for (int y = 0; y < 36; ++y)
+    for (int x = 0; x < 36; ++x) {
+      const float top = m[size_t((y / 8) * bx + x / 8)];
+      for (int dy = 0; dy <= 1; ++dy)
+        for (int dx = 0; dx <= 1; ++dx) EXPECT_LE(f.at(x + dx, y + dy), top);
+    }
+}
+
+}  // namespace
+}  // namespace nephele
