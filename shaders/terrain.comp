@@ -79,7 +79,8 @@ void main() {
   float clouds = cloud_shadow_at(p, sun, t);
   vec3 direct = vec3(0.0f);
   for (int i = 0; i < (cos_sun > 0.0f ? 1 : 0); ++i) {  // a loop, not a branch: see compose
-    float self = terrain_ray(p + n * 0.5f, sun, 1.0e9f) > 0.0f ? 0.0f : 1.0f;
+    // Lifted 5 m off the surface: altitudes |p| - R are floats good to half a metre.
+    float self = terrain_ray(p + n * 5.0f, sun, 1.0e9f) > 0.0f ? 0.0f : 1.0f;
     direct = transmittance_to_light(frame_atmosphere(), transmittance_lut, false, p, sun) *
              (cos_sun * clouds * self / PI);
   }

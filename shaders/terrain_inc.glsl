@@ -72,6 +72,9 @@ float terrain_ray(vec3 eye, vec3 dir, float t_max) {
     t1 = min(t1, max(a, b));
   }
   if (!(t0 < t1)) return -1.0f;
+  // Entering below the heights (through the side of the rectangle's edge, or from inside):
+  // the first point is the hit.
+  if (terrain_clearance(eye, dir, t0) <= 0.0f) return max(t0, 1e-3f);
   float block = float(frame.terrain_grid.z);
   ivec2 blocks = textureSize(terrain_blocks, 0);
   float half_cell_t = 0.5f / max(length(dc), 1e-12f);  // t of half a cell's horizontal travel
@@ -100,7 +103,7 @@ float terrain_ray(vec3 eye, vec3 dir, float t_max) {
       ++steps;
       if (terrain_clearance(eye, dir, next) <= 0.0f) {
         float lo = previous, hi = next;  // above at lo, below at hi
-        for (int k = 0; k < 10; ++k) {
+        for (int k = 0; k < 16; ++k) {
           float mid = 0.5f * (lo + hi);
           if (terrain_clearance(eye, dir, mid) <= 0.0f) hi = mid;
           else lo = mid;
