@@ -84,8 +84,8 @@ const std::vector<std::string>& gallery_presets() {
   return names;
 }
 
-const std::vector<std::string>& gallery_particle_presets() {
-  static const std::vector<std::string> names = {"particle-cumulus", "particle-cockpit"};
+const std::vector<std::string>& gallery_scene_presets() {
+  static const std::vector<std::string> names = {"particle-cumulus", "particle-cockpit", "mountains"};
   return names;
 }
 
@@ -141,7 +141,7 @@ int run_gallery(const GalleryOptions& options) {
     }
   } else {
     names = gallery_presets();
-    for (const std::string& name : gallery_particle_presets()) names.push_back(name);
+    for (const std::string& name : gallery_scene_presets()) names.push_back(name);
     for (const std::string& name : names) {
       scenes.push_back(load_preset(name));
       scenes.back().output.width = options.tile_width;

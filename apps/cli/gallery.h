@@ -15,9 +15,9 @@ namespace nephele::cli {
 // The presets of the gallery, in its order: the okta presets from clear to overcast, then the
 // named skies.
 const std::vector<std::string>& gallery_presets();
-// The particle-cloud presets the gallery shows after those (their labels say particles and
-// impostors: the sky cover is measured on the volumetric clouds).
-const std::vector<std::string>& gallery_particle_presets();
+// The scenes the gallery shows after those: the particle-cloud presets (their labels say
+// impostors: the sky cover is measured on the volumetric clouds) and the mountains at sunset.
+const std::vector<std::string>& gallery_scene_presets();
 
 // The okta range [lo, hi] a gallery preset stands for (sky_cover_oktas): clear 0, few 1-2,
 // scattered 3-4, broken 5-7, overcast 8; the named skies have their own.
