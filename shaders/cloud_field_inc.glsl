@@ -237,10 +237,10 @@ float depth_towards_sun(vec3 base, vec3 sun, bool from_volume, int samples) {
 // Cloud shadow at p, a point of the ground or the terrain `distance_m` from the eye, below the
 // cloud shell or inside it (a peak in the layer): the share of the sunlight that reaches it
 // through the clouds (direct and scattered forward). From the light volume where its voxels are
-// small against the distance (at most 2% of it: a few pixels), else 16 samples of the density
-// towards the sun (seed 002's mesh shadowing): nearer, the volume's coarse voxels would draw
-// blocks. 1 above the shell.
-float cloud_shadow_at(vec3 p, vec3 sun, float distance_m) {
+// small against the distance (at most 2% of it: a few pixels), else `samples` samples of the
+// density towards the sun (seed 002's mesh shadowing): nearer, the volume's coarse voxels would
+// draw blocks. 1 above the shell.
+float cloud_shadow_at(vec3 p, vec3 sun, float distance_m, int samples) {
   float r = length(p);
   if (r >= frame.radii_m.w) return 1.0f;
   vec3 base = p;  // where the sunlight leaves the cloud shell, or p inside it
@@ -252,7 +252,7 @@ float cloud_shadow_at(vec3 p, vec3 sun, float distance_m) {
   }
   bool covered = MARCH_MODE == 0 && light_volume_covers(base) &&
                  light_volume_voxel_at(base) < 0.02f * distance_m;
-  return light_transmittance(depth_towards_sun(base, sun, covered, 16));
+  return light_transmittance(depth_towards_sun(base, sun, covered, samples));
 }
 
 // Share of the clear sky's light that the ground and the air below the clouds receive around

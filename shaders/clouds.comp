@@ -35,7 +35,7 @@ const float TAU_STEP_96 = 0.5f;     // optical depth per step in dense cloud at 
 // ground. `ground` is ray_sphere(eye, dir, planet radius).
 float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   if (ground.x <= 0.0f) return 1.0f;
-  return cloud_shadow_at(normalize(eye + dir * ground.x) * (frame.radii_m.x + 1.0f), sun, ground.x);
+  return cloud_shadow_at(normalize(eye + dir * ground.x) * (frame.radii_m.x + 1.0f), sun, ground.x, 16);
 }
 
 // Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):

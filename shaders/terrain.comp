@@ -59,7 +59,7 @@ void main() {
                         float(pixel.y), float(frame.size.x), float(frame.size.y));
   vec3 eye = frame.camera_pos_m.xyz;
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
-  float t = terrain_ray(eye, dir, ground.x > 0.0f ? ground.x : 1.0e9f);
+  float t = terrain_ray(eye, dir, ground.x > 0.0f ? ground.x : 1.0e9f, false);
   if (t <= 0.0f) {
     imageStore(terrain_out, pixel, vec4(0.0f));
     return;
@@ -76,11 +76,11 @@ void main() {
                    : 0.0f;
   vec3 albedo = mix(frame.terrain_albedo.rgb, vec3(SNOW_ALBEDO), snow);
   float cos_sun = dot(n, sun);
-  float clouds = cloud_shadow_at(p, sun, t);
+  float clouds = cloud_shadow_at(p, sun, t, 8);  // half the flat ground's samples: 40 ms less at 640 x 400 on lavapipe
   vec3 direct = vec3(0.0f);
   for (int i = 0; i < (cos_sun > 0.0f ? 1 : 0); ++i) {  // a loop, not a branch: see compose
     // Lifted 5 m off the surface: altitudes |p| - R are floats good to half a metre.
-    float self = terrain_ray(p + n * 5.0f, sun, 1.0e9f) > 0.0f ? 0.0f : 1.0f;
+    float self = terrain_ray(p + n * 5.0f, sun, 1.0e9f, true) > 0.0f ? 0.0f : 1.0f;
     direct = transmittance_to_light(frame_atmosphere(), transmittance_lut, false, p, sun) *
              (cos_sun * clouds * self / PI);
   }

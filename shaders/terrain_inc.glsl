@@ -1,14 +1,12 @@
 // The terrain's heightfield (render/modules/terrain.h) and rays cast against it: the terrain
 // stands on the ground sphere, its points at altitude |p| - R over the planet frame's east and
-// north (p.xy, the ENU tangent plane's: camera_path.h's enu_from_lat_lon). A ray crosses the
-// blocks of the block-maxima grid and skips each it passes above; in the others it steps half
-// a cell at a time and refines a crossing by bisection. GLSL only; the includer includes
-// bindings_inc.glsl and math_inc.glsl.
+// north (p.xy, the ENU tangent plane's: camera_path.h's enu_from_lat_lon). Rays walk a pyramid
+// of the heights' maxima (terrain_ray). GLSL only; the includer includes bindings_inc.glsl and
+// math_inc.glsl.
 #ifndef NEPHELE_TERRAIN_INC
 #define NEPHELE_TERRAIN_INC
 
-const int TERRAIN_MAX_BLOCKS = 512;   // blocks a ray crosses at most
-const int TERRAIN_MAX_STEPS = 1024;   // half-cell steps a ray takes at most
+const int TERRAIN_MAX_STEPS = 2048;   // squares a ray visits at most
 const float TERRAIN_NONE_M = -1.0e9f;  // the height outside the terrain's rectangle
 
 bool terrain_present() { return frame.terrain_shape.z > 0.5f; }
@@ -53,8 +51,31 @@ float terrain_clearance(vec3 eye, vec3 dir, float t) {
   return length(p) - frame.radii_m.x - terrain_height_at(p.xy);
 }
 
+// The largest height in square `cell` of pyramid level `level` (terrain::MaxPyramid): level 0
+// is a single cell (its four corner points), levels 1 and up are read from the packed image.
+float terrain_max(int level, ivec2 cell) {
+  if (level == 0) {
+    vec4 corners = vec4(texelFetch(terrain_heights, cell, 0).r, texelFetch(terrain_heights, cell + ivec2(1, 0), 0).r,
+                        texelFetch(terrain_heights, cell + ivec2(0, 1), 0).r, texelFetch(terrain_heights, cell + ivec2(1, 1), 0).r);
+    return max(max(corners.x, corners.y), max(corners.z, corners.w));
+  }
+  ivec2 offset = ivec2(0);
+  if (level >= 2) {
+    offset.x = frame.terrain_grid.w;
+    ivec2 cells = frame.terrain_grid.xy - 1;
+    for (int k = 2; k < level; ++k) offset.y += (cells.y + (1 << k) - 1) >> k;
+  }
+  return texelFetch(terrain_maxima, offset + cell, 0).r;
+}
+
 // Distance along the ray from `eye` to the terrain within (0, t_max), or -1 where it misses.
-float terrain_ray(vec3 eye, vec3 dir, float t_max) {
+// The ray walks the pyramid of maxima (Tevs, Ihrke and Seidel 2008, "Maximum mipmaps for fast,
+// accurate, and scalable dynamic height field rendering"): it passes over a square whose
+// largest height lies below it whole, and climbs a level after it; it goes down a level into a
+// square it may meet; in a single cell it tests the bilinear surface at the cell's middle and
+// exit and refines a crossing by bisection. With `shadow`, the first crossing ends it (no
+// bisection: only whether there is one matters).
+float terrain_ray(vec3 eye, vec3 dir, float t_max, bool shadow) {
   if (!terrain_present()) return -1.0f;
   float radius = frame.radii_m.x;
   vec2 top = ray_sphere(eye, dir, radius + frame.terrain_shape.y + 1.0f);
@@ -75,44 +96,49 @@ float terrain_ray(vec3 eye, vec3 dir, float t_max) {
   // Entering below the heights (through the side of the rectangle's edge, or from inside):
   // the first point is the hit.
   if (terrain_clearance(eye, dir, t0) <= 0.0f) return max(t0, 1e-3f);
-  float block = float(frame.terrain_grid.z);
-  ivec2 blocks = textureSize(terrain_blocks, 0);
-  float half_cell_t = 0.5f / max(length(dc), 1e-12f);  // t of half a cell's horizontal travel
-  float closest = -dot(eye, dir);                        // where the ray is nearest the centre
+  int top_level = frame.terrain_grid.z;
+  ivec2 cells = frame.terrain_grid.xy - 1;
+  float closest = -dot(eye, dir);  // where the ray is nearest the planet's centre
+  int level = top_level;
   float t = t0;
-  int steps = 0;
-  for (int i = 0; i < TERRAIN_MAX_BLOCKS && t < t1 && steps < TERRAIN_MAX_STEPS; ++i) {
-    vec2 c = clamp(c0 + dc * t, vec2(0.0f), n);
-    ivec2 b = clamp(ivec2(floor(c / block)), ivec2(0), blocks - 1);
+  for (int i = 0; i < TERRAIN_MAX_STEPS && t < t1; ++i) {
+    float size = float(1 << level);
+    vec2 c = clamp(c0 + dc * t, vec2(0.0f), n - 1e-3f);
+    ivec2 cell = min(ivec2(floor(c / size)), (cells - 1) >> level);
     float t_exit = t1;
     for (int axis = 0; axis < 2; ++axis) {
       if (abs(dc[axis]) < 1e-12f) continue;
-      float edge = (float(b[axis]) + (dc[axis] > 0.0f ? 1.0f : 0.0f)) * block;
+      float edge = (float(cell[axis]) + (dc[axis] > 0.0f ? 1.0f : 0.0f)) * size;
       t_exit = min(t_exit, (edge - c0[axis]) / dc[axis]);
     }
     t_exit = max(t_exit, t + 1e-3f);
-    float top_m = texelFetch(terrain_blocks, b, 0).r;
+    float next = t_exit * (1.0f + 1e-6f) + 1e-3f;  // just inside the next square
     float lowest_m = length(eye + dir * clamp(closest, t, t_exit)) - radius;
-    if (lowest_m > top_m) {  // the ray passes above the whole block
-      t = t_exit * (1.0f + 1e-6f) + 1e-3f;
+    if (lowest_m > terrain_max(level, cell)) {  // over the whole square
+      t = next;
+      level = min(level + 1, top_level);
       continue;
     }
-    float previous = t;
-    while (previous < t_exit && steps < TERRAIN_MAX_STEPS) {
-      float next = min(previous + half_cell_t, t_exit);
-      ++steps;
-      if (terrain_clearance(eye, dir, next) <= 0.0f) {
-        float lo = previous, hi = next;  // above at lo, below at hi
-        for (int k = 0; k < 16; ++k) {
-          float mid = 0.5f * (lo + hi);
-          if (terrain_clearance(eye, dir, mid) <= 0.0f) hi = mid;
-          else lo = mid;
-        }
-        return hi;
-      }
-      previous = next;
+    if (level > 0) {
+      --level;
+      continue;
     }
-    t = t_exit * (1.0f + 1e-6f) + 1e-3f;
+    // One cell: its bilinear surface along the ray, at the middle and the exit.
+    float mid = 0.5f * (t + t_exit);
+    bool below_mid = terrain_clearance(eye, dir, mid) <= 0.0f;
+    bool below_exit = below_mid || terrain_clearance(eye, dir, t_exit) <= 0.0f;
+    if (below_exit) {
+      if (shadow) return t_exit;
+      float lo = below_mid ? t : mid, hi = below_mid ? mid : t_exit;  // above at lo, below at hi
+      for (int k = 0; k < 12; ++k) {
+        float m = 0.5f * (lo + hi);
+        if (terrain_clearance(eye, dir, m) <= 0.0f) hi = m;
+        else lo = m;
+      }
+      return hi;
+    }
+    t = next;
+    level = min(level + 1, top_level);
   }
   return -1.0f;
 }

@@ -129,11 +129,12 @@ layout(set = 0, binding = 65, rgba32f) uniform image2D post_temp;
 layout(set = 0, binding = 66, rgba32f) uniform writeonly image2D light_shafts_out;
 layout(set = 0, binding = 67) uniform sampler2D light_shafts;
 // The terrain (render/modules/terrain.h): its heights (r, m above the ground; row 0 the north
-// edge), their maxima over blocks of cells (texelFetch), and per pixel what terrain.comp finds
+// edge), their maxima over squares of 2^k cells (terrain::MaxPyramid's packed levels;
+// texelFetch), and per pixel what terrain.comp finds
 // (read by compose, the clouds and the shafts): rgb its radiance per unit key-light
 // illuminance before the air in front, a its distance (m; 0 where the ray misses it).
 layout(set = 0, binding = 68) uniform sampler2D terrain_heights;
-layout(set = 0, binding = 69) uniform sampler2D terrain_blocks;
+layout(set = 0, binding = 69) uniform sampler2D terrain_maxima;
 layout(set = 0, binding = 70, rgba32f) uniform writeonly image2D terrain_out;
 layout(set = 0, binding = 71) uniform sampler2D terrain_image;
 

@@ -83,7 +83,7 @@ enum Binding : uint32_t {
   kLightShaftsOut = 66,
   kLightShafts = 67,
   kTerrainHeights = 68,
-  kTerrainBlocks = 69,
+  kTerrainMaxima = 69,
   kTerrainOut = 70,
   kTerrain = 71,
   kBindingCount

@@ -45,21 +45,51 @@ glm::vec2 Heightfield::spacing_m() const {
   return extent_m / glm::vec2(float(width - 1), float(height - 1));
 }
 
-std::vector<float> block_maxima(const Heightfield& field, int block, int& blocks_x, int& blocks_y) {
-  blocks_x = (field.width - 1 + block - 1) / block;
-  blocks_y = (field.height - 1 + block - 1) / block;
-  std::vector<float> out(size_t(blocks_x) * size_t(blocks_y), -std::numeric_limits<float>::max());
-  for (int y = 0; y < field.height; ++y)
-    for (int x = 0; x < field.width; ++x) {
-      // A point bounds the cells on both sides of it: the blocks of cells x - 1 and x.
-      const float h = field.at(x, y);
-      for (int by = std::max(y - 1, 0) / block; by <= std::min(y, field.height - 2) / block; ++by)
-        for (int bx = std::max(x - 1, 0) / block; bx <= std::min(x, field.width - 2) / block; ++bx) {
-          float& m = out[size_t(by) * size_t(blocks_x) + size_t(bx)];
-          m = std::max(m, h);
-        }
+glm::ivec2 MaxPyramid::size(int level) const {
+  return glm::ivec2((cells_x + (1 << level) - 1) >> level, (cells_y + (1 << level) - 1) >> level);
+}
+
+glm::ivec2 MaxPyramid::offset(int level) const {
+  if (level <= 1) return glm::ivec2(0);
+  int y = 0;
+  for (int k = 2; k < level; ++k) y += size(k).y;
+  return glm::ivec2(size(1).x, y);
+}
+
+MaxPyramid max_pyramid(const Heightfield& field) {
+  MaxPyramid p;
+  p.cells_x = field.width - 1;
+  p.cells_y = field.height - 1;
+  p.levels = 1;
+  while (p.size(p.levels).x > 1 || p.size(p.levels).y > 1) ++p.levels;
+  p.width = p.size(1).x + (p.levels >= 2 ? p.size(2).x : 0);
+  p.height = p.size(1).y;
+  if (p.levels >= 2) p.height = std::max(p.height, p.offset(p.levels).y + p.size(p.levels).y);
+  p.texels.assign(size_t(p.width) * size_t(p.height), 0.0f);
+  const auto put = [&](int level, int x, int y, float v) {
+    const glm::ivec2 o = p.offset(level);
+    p.texels[size_t(o.y + y) * size_t(p.width) + size_t(o.x + x)] = v;
+  };
+  // Level 1: the points of each 2 x 2 cells (3 x 3 points, fewer at the far edges).
+  const glm::ivec2 one = p.size(1);
+  for (int y = 0; y < one.y; ++y)
+    for (int x = 0; x < one.x; ++x) {
+      float m = -std::numeric_limits<float>::max();
+      for (int py = 2 * y; py <= std::min(2 * y + 2, field.height - 1); ++py)
+        for (int px = 2 * x; px <= std::min(2 * x + 2, field.width - 1); ++px) m = std::max(m, field.at(px, py));
+      put(1, x, y, m);
     }
-  return out;
+  for (int level = 2; level <= p.levels; ++level) {
+    const glm::ivec2 n = p.size(level), below = p.size(level - 1);
+    for (int y = 0; y < n.y; ++y)
+      for (int x = 0; x < n.x; ++x) {
+        float m = -std::numeric_limits<float>::max();
+        for (int cy = 2 * y; cy <= std::min(2 * y + 1, below.y - 1); ++cy)
+          for (int cx = 2 * x; cx <= std::min(2 * x + 1, below.x - 1); ++cx) m = std::max(m, p.at(level - 1, cx, cy));
+        put(level, x, y, m);
+      }
+  }
+  return p;
 }
 
 namespace {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <glm/vec2.hpp>
+#include <glm/ext/vector_int2.hpp>
 
 #include <cstddef>
 #include <string>
@@ -51,8 +52,26 @@ std::string heightfield_file_problem(const std::string& path);
 // terrain.height_m above terrain.base_m, falling to base_m at the extent's edges.
 Heightfield make_mountains(const TerrainParams& params);
 
-// The heights' maxima over blocks of `block` x `block` cells (a cell spans grid points i..i+1,
-// so a block's maximum covers every bilinear height inside it), ceil((n - 1) / block) per axis.
-std::vector<float> block_maxima(const Heightfield& field, int block, int& blocks_x, int& blocks_y);
+// The heights' maxima over squares of cells, for rays to skip the space above the terrain
+// (terrain_inc.glsl): level k >= 1 holds, per square of 2^k x 2^k cells (a cell spans grid
+// points i..i+1, so its bilinear heights are bounded by its four corners), the largest height
+// in it; ceil((n - 1) / 2^k) squares per axis, up to the level of one square. The levels are
+// packed into one image: level 1 at the origin, levels 2 and up stacked down a column to its
+// right (offset() says where).
+struct MaxPyramid {
+  int cells_x = 0, cells_y = 0;  // the heightfield's cells (points - 1)
+  int levels = 0;                // the top level (1 square); level 0 is the cells themselves
+  int width = 0, height = 0;     // the packed image
+  std::vector<float> texels;
+
+  glm::ivec2 size(int level) const;    // squares per axis at a level >= 1
+  glm::ivec2 offset(int level) const;  // where a level >= 1 starts in the image
+  float at(int level, int x, int y) const {
+    const glm::ivec2 o = offset(level);
+    return texels[size_t(o.y + y) * size_t(width) + size_t(o.x + x)];
+  }
+};
+
+MaxPyramid max_pyramid(const Heightfield& field);
 
 }  // namespace nephele::terrain

@@ -204,20 +204,28 @@ TEST(TerrainMountains, TheRangeReachesItsHeightAndStandsOnItsBase) {
   EXPECT_NE(terrain::make_mountains(t).height_m, a.height_m);
 }
 
-TEST(TerrainBlocks, EachBlockBoundsEveryHeightInsideIt) {
+TEST(TerrainPyramid, EachSquareBoundsEveryHeightInsideIt) {
   TerrainParams t;
-  t.resolution = 37;  // 36 cells: blocks of 8 leave a partial one
+  t.resolution = 38;  // 37 cells: odd, so the squares at the far edges are partial
   const terrain::Heightfield f = terrain::make_mountains(t);
-  int bx = 0, by = 0;
-  const std::vector<float> m = terrain::block_maxima(f, 8, bx, by);
-  ASSERT_EQ(bx, 5);
-  ASSERT_EQ(by, 5);
-  for (int y = 0; y < 36; ++y)
-    for (int x = 0; x < 36; ++x) {
-      const float top = m[size_t((y / 8) * bx + x / 8)];
-      for (int dy = 0; dy <= 1; ++dy)
-        for (int dx = 0; dx <= 1; ++dx) EXPECT_LE(f.at(x + dx, y + dy), top);
-    }
+  const terrain::MaxPyramid p = terrain::max_pyramid(f);
+  ASSERT_EQ(p.levels, 6);  // 19, 10, 5, 3, 2, 1 squares a side
+  EXPECT_EQ(p.size(1), glm::ivec2(19));
+  EXPECT_EQ(p.size(6), glm::ivec2(1));
+  EXPECT_FLOAT_EQ(p.at(6, 0, 0), f.max_height_m());
+  for (int level = 1; level <= p.levels; ++level)
+    for (int y = 0; y <= 37; ++y)
+      for (int x = 0; x <= 37; ++x) {
+        // Point (x, y) belongs to the cells x - 1 and x (and y - 1, y): both squares bound it.
+        for (int cy = std::max(y - 1, 0); cy <= std::min(y, 36); ++cy)
+          for (int cx = std::max(x - 1, 0); cx <= std::min(x, 36); ++cx)
+            ASSERT_LE(f.at(x, y), p.at(level, cx >> level, cy >> level)) << level;
+      }
+  // ... and is tight: the top of level 1's first square is one of its points.
+  float m = 0.0f;
+  for (int y = 0; y <= 2; ++y)
+    for (int x = 0; x <= 2; ++x) m = std::max(m, f.at(x, y));
+  EXPECT_FLOAT_EQ(p.at(1, 0, 0), m);
 }
 
 }  // namespace

@@ -33,13 +33,13 @@ void upload(gpu::Context& ctx, const gpu::Texture& texture, const std::vector<fl
 }  // namespace
 
 TerrainModule::TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set), heights_(r32f(ctx, 1, 1)), blocks_(r32f(ctx, 1, 1)),
+    : ctx_(ctx), set_(set), heights_(r32f(ctx, 1, 1)), maxima_(r32f(ctx, 1, 1)),
       out_(ctx, 1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set_.bind_sampled_image(gpu::kTerrainHeights, heights_);
-  set_.bind_sampled_image(gpu::kTerrainBlocks, blocks_);
+  set_.bind_sampled_image(gpu::kTerrainMaxima, maxima_);
   set_.bind_image(gpu::kTerrainOut, gpu::kTerrain, out_);
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
-    for (const gpu::Texture* t : {&heights_, &blocks_, &out_}) t->record_clear(cmd);
+    for (const gpu::Texture* t : {&heights_, &maxima_, &out_}) t->record_clear(cmd);
   });
 }
 
@@ -62,19 +62,18 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, gpu::Fram
       throw InputError("terrain.file '" + scene.terrain.file + "': " + std::to_string(field.width) +
                        " x " + std::to_string(field.height) + " points exceed this device's largest image (" +
                        std::to_string(largest) + " a side); resample it smaller");
-    int blocks_x = 0, blocks_y = 0;
-    const std::vector<float> maxima = terrain::block_maxima(field, kBlock, blocks_x, blocks_y);
+    const terrain::MaxPyramid pyramid = terrain::max_pyramid(field);
     ctx_.wait_queue_idle();
     heights_ = r32f(ctx_, uint32_t(field.width), uint32_t(field.height));
-    blocks_ = r32f(ctx_, uint32_t(blocks_x), uint32_t(blocks_y));
+    maxima_ = r32f(ctx_, uint32_t(pyramid.width), uint32_t(pyramid.height));
     upload(ctx_, heights_, field.height_m);
-    upload(ctx_, blocks_, maxima);
+    upload(ctx_, maxima_, pyramid.texels);
     set_.bind_sampled_image(gpu::kTerrainHeights, heights_);
-    set_.bind_sampled_image(gpu::kTerrainBlocks, blocks_);
+    set_.bind_sampled_image(gpu::kTerrainMaxima, maxima_);
     rect_ = glm::vec4(field.center_m.x - 0.5f * field.extent_m.x, field.center_m.y + 0.5f * field.extent_m.y,
                       field.extent_m);
     shape_ = glm::vec4(field.min_height_m(), field.max_height_m(), 1.0f, 0.0f);
-    grid_ = glm::ivec4(field.width, field.height, kBlock, blocks_x);
+    grid_ = glm::ivec4(field.width, field.height, pyramid.levels, pyramid.size(1).x);
     key_ = key;
   }
   params.terrain_rect = rect_;

@@ -1,5 +1,5 @@
 // The terrain under the clouds (issue 24): the scene's heightfield (terrain/heightfield.h) on
-// the device with its block maxima, and terrain.comp, which casts every view ray against it
+// the device with its pyramid of maxima, and terrain.comp, which casts every view ray against it
 // before the clouds are marched (they stop at it) and lights what it hits; compose puts the
 // air in front of it and hides the sky behind it.
 //
@@ -20,9 +20,6 @@ namespace nephele {
 
 class TerrainModule {
  public:
-  // Cells a side of the blocks whose maxima let rays skip the space above the terrain.
-  static constexpr int kBlock = 8;
-
   TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set);
 
   // Loads the scene's terrain when it changed (InputError for bad input), sizes the output
@@ -35,7 +32,7 @@ class TerrainModule {
  private:
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
-  gpu::Texture heights_, blocks_, out_;
+  gpu::Texture heights_, maxima_, out_;  // maxima_: terrain::MaxPyramid
   std::unique_ptr<gpu::Kernel> kernel_;  // made when first recorded
   std::string key_;                      // what the heights were made from
   glm::vec4 rect_{0.0f}, shape_{0.0f};
