@@ -74,7 +74,10 @@ void main() {
                    ? saturate((height_m - frame.terrain_shape.w) / 150.0f) *
                          saturate((dot(n, up) - SNOW_MAX_SLOPE_COS) / 0.1f)
                    : 0.0f;
-  vec3 albedo = mix(frame.terrain_albedo.rgb, vec3(SNOW_ALBEDO), snow);
+  vec3 bare = frame.terrain_albedo.w > 0.5f
+                  ? textureLod(terrain_albedo_map, terrain_cell(p.xy) / (terrain_points() - 1.0f), 0.0f).rgb
+                  : frame.terrain_albedo.rgb;
+  vec3 albedo = mix(bare, vec3(SNOW_ALBEDO), snow);
   float cos_sun = dot(n, sun);
   float clouds = cloud_shadow_at(p, sun, t, 8);  // half the flat ground's samples: 40 ms less at 640 x 400 on lavapipe
   vec3 direct = vec3(0.0f);

@@ -492,6 +492,9 @@ struct TerrainParams {
                                        // the highest peak, [0, 1e4]
   float base_m = 0.0f;                 // PNG, EXR, mountains: the height of the value 0, [-1e4, 1e4]
   glm::vec3 albedo{0.13f, 0.12f, 0.09f};  // Lambertian albedo of the bare ground, [0, 1] each
+  // An image of the ground's albedo over the terrain's rectangle (row 0 north): .png (sRGB) or
+  // .exr (linear RGB); empty = `albedo` everywhere.
+  std::string albedo_map;
   float snow_altitude_m = 0.0f;        // snow (albedo 0.8) above this height on slopes under
                                        // 40 deg, [0, 1e4]; 0 = none
   int resolution = 512;                // mountains: grid points along each axis, [16, 4096]

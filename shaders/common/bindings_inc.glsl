@@ -137,5 +137,7 @@ layout(set = 0, binding = 68) uniform sampler2D terrain_heights;
 layout(set = 0, binding = 69) uniform sampler2D terrain_maxima;
 layout(set = 0, binding = 70, rgba32f) uniform writeonly image2D terrain_out;
 layout(set = 0, binding = 71) uniform sampler2D terrain_image;
+// The terrain's albedo map (terrain.albedo_map; linear rgb), over its rectangle, row 0 north.
+layout(set = 0, binding = 72) uniform sampler2D terrain_albedo_map;
 
 #endif

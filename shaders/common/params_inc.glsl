@@ -224,7 +224,7 @@ struct FrameParams {
   // The terrain (render/modules/terrain.h, terrain_inc.glsl): its rectangle (x west, y north
   // edge, z, w extent east-west, north-south, m); x its lowest, y its highest height (m above
   // the ground), z 1 when there is one, w the snow's lower edge (m; 0 none); the bare ground's
-  // albedo (rgb); its grid (xy points) and pyramid of maxima (z its top level, w the width of
+  // albedo (rgb; w 1: from the albedo map instead); its grid (xy points) and pyramid of maxima (z its top level, w the width of
   // its level 1, where the levels above start)
   vec4 terrain_rect;
   vec4 terrain_shape;

@@ -43,7 +43,7 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       kSampled, kStorage, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kSampled, kStorage, kStorage, kSampled,
-      kSampled, kSampled, kStorage, kSampled};
+      kSampled, kSampled, kStorage, kSampled, kSampled};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
   static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];

@@ -86,6 +86,7 @@ enum Binding : uint32_t {
   kTerrainMaxima = 69,
   kTerrainOut = 70,
   kTerrain = 71,
+  kTerrainAlbedo = 72,
   kBindingCount
 };
 

@@ -480,6 +480,7 @@ const std::vector<Section>& scene_sections() {
         FIELD(terrain, height_m, "PNG, EXR: the height of the largest value; mountains: the highest peak (m), [0, 1e4]"),
         FIELD(terrain, base_m, "PNG, EXR, mountains: the height of the value 0 (m), [-1e4, 1e4]"),
         FIELD(terrain, albedo, "Lambertian albedo of the bare ground, [0, 1] each"),
+        FIELD(terrain, albedo_map, "an image of the albedo over the terrain (row 0 north): .png (sRGB) or .exr (linear); empty = albedo"),
         FIELD(terrain, snow_altitude_m, "snow above this height on slopes under 40 deg (m), [0, 1e4]; 0 = none"),
         FIELD(terrain, resolution, "mountains: grid points along each axis, [16, 4096]"),
         FIELD(terrain, seed, "mountains: the range's seed")},

@@ -501,6 +501,11 @@ void check_terrain(const Checker& check, const TerrainParams& t) {
     if (const std::string why = terrain::heightfield_file_problem(t.file); !why.empty())
       check.fail("terrain.file", text("terrain.file", t.file), why);
   }
+  if (!t.albedo_map.empty()) {
+    if (!ends_with_ignoring_case(t.albedo_map, ".png") && !ends_with_ignoring_case(t.albedo_map, ".exr"))
+      check.fail("terrain.albedo_map", text("terrain.albedo_map", t.albedo_map), "must name a .png (sRGB) or .exr (linear) image");
+    check.readable_file("terrain.albedo_map", t.albedo_map);
+  }
   for (int i = 0; i < 2; ++i)
     if (!(t.extent_m[i] > 0.0f && t.extent_m[i] <= 1.0e6f))
       check.fail("terrain.extent_m", check.vector_text("terrain.extent_m", t.extent_m),

@@ -284,5 +284,43 @@ TEST_F(TerrainRenderTest, FarTerrainFadesIntoTheHazeAtTheHorizon) {
   EXPECT_LT(far, 0.5 * near);
 }
 
+TEST_F(TerrainRenderTest, AlbedoMapColoursTheGroundAndPngsAreDecodedFromSrgb) {
+  // A plain seen from straight above, its west half under a red albedo, its east half green.
+  Scene s = base_scene(32, 32);
+  s.terrain.file = write_heights("plain.exr", 2, 2, {1.0f, 1.0f, 1.0f, 1.0f});
+  s.terrain.extent_m = glm::vec2(4000.0f);
+  s.terrain.height_m = 100.0f;
+  s.clouds.coverage = 0.0f;
+  s.camera.position_m = glm::vec3(0.0f, 0.0f, 2000.0f);
+  s.camera.view_dir = glm::vec3(0.0f, 1e-4f, -1.0f);
+  s.camera.fov_deg = 40.0f;
+  Image halves(2, 1);
+  halves.pixels = {glm::vec4(0.5f, 0.0f, 0.0f, 1.0f), glm::vec4(0.0f, 0.5f, 0.0f, 1.0f)};
+  s.terrain.albedo_map = (dir_ / "halves.exr").string();
+  write_image(halves, s.terrain.albedo_map, 1.0f, ExrPixels::kFloat);
+  const Frame split = render(s);
+  const glm::vec4 west = split.color.at(4, 16), east = split.color.at(27, 16);
+  EXPECT_GT(west.r, 3.0f * west.g);
+  EXPECT_GT(east.g, 3.0f * east.r);
+  // A grey of linear 0.5 three ways: the colour, an EXR, an 8-bit sRGB PNG (188 = 0.503).
+  const auto centre = [&](Scene scene) { return double(luminance(render(scene).color.at(16, 16))); };
+  Scene grey = s;
+  grey.terrain.albedo_map.clear();
+  grey.terrain.albedo = glm::vec3(0.5f);
+  const double plain = centre(grey);
+  Image flat(1, 1);
+  flat.pixels = {glm::vec4(0.5f, 0.5f, 0.5f, 1.0f)};
+  grey.terrain.albedo_map = (dir_ / "grey.exr").string();
+  write_image(flat, grey.terrain.albedo_map, 1.0f, ExrPixels::kFloat);
+  const double exr = centre(grey);
+  grey.terrain.albedo_map = (dir_ / "grey.png").string();  // the writer encodes 0.5 as sRGB 188
+  write_image(flat, grey.terrain.albedo_map, 1.0f, ExrPixels::kHalf, ToneMap::None);
+  ASSERT_EQ(int(std::lround(read_image(grey.terrain.albedo_map).pixels[0].r * 255.0f)), 188);
+  const double png = centre(grey);
+  std::printf("a grey plain: %.1f (colour), %.1f (EXR map), %.1f (sRGB PNG map) cd/m^2\n", plain, exr, png);
+  EXPECT_NEAR(exr / plain, 1.0, 0.01);
+  EXPECT_NEAR(png / plain, 1.0, 0.02);  // read as linear, 188 would give 1.47 times
+}
+
 }  // namespace
 }  // namespace nephele

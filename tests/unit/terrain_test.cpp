@@ -159,6 +159,10 @@ TEST_F(TerrainFiles, BadFilesAreRefusedNamingTheParameterAndWhatIsAllowed) {
             std::string::npos)
       << rejection(s);
   s.terrain.extent_m = glm::vec2(1000.0f);
+  s.terrain.albedo_map = path("albedo.jpg");
+  EXPECT_NE(rejection(s).find("terrain.albedo_map = \""), std::string::npos) << rejection(s);
+  EXPECT_NE(rejection(s).find("must name a .png (sRGB) or .exr (linear) image"), std::string::npos) << rejection(s);
+  s.terrain.albedo_map.clear();
   s.terrain.file = path("rgb16.png");
   EXPECT_NE(rejection(s).find("give at most one of file and preset"), std::string::npos) << rejection(s);
 }

@@ -1,8 +1,12 @@
 #include "render/modules/terrain.h"
 
+#include <cmath>
 #include <cstring>
 
+#include <glm/gtc/packing.hpp>
+
 #include "nephele/error.h"
+#include "nephele/image.h"
 #include "nephele/scene_io.h"
 #include "terrain/heightfield.h"
 
@@ -21,7 +25,35 @@ std::string terrain_key(const Scene& scene) {
   only.atmosphere.planet_radius_km = scene.atmosphere.planet_radius_km;
   only.terrain.albedo = glm::vec3(0.0f);
   only.terrain.snow_altitude_m = 0.0f;
+  only.terrain.albedo_map.clear();
   return scene_to_toml(only);
+}
+
+float linear_from_srgb(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// The albedo map as half floats, linear (a PNG's sRGB decoded), alpha 1.
+gpu::Texture albedo_texture(gpu::Context& ctx, const std::string& path) {
+  Image image;
+  try {
+    image = read_image(path);
+  } catch (const InputError& e) {
+    throw InputError("terrain.albedo_map '" + path + "': " + e.what());
+  }
+  const bool srgb = path.size() >= 4 && (path.substr(path.size() - 4) == ".png" || path.substr(path.size() - 4) == ".PNG");
+  gpu::Texture texture(ctx, uint32_t(image.width), uint32_t(image.height), 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+                       VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  gpu::Buffer staging(ctx, image.pixels.size() * 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  auto* out = static_cast<uint32_t*>(staging.data());
+  for (const glm::vec4& p : image.pixels) {
+    glm::vec3 c = glm::clamp(glm::vec3(p), 0.0f, 1.0f);
+    if (srgb) c = glm::vec3(linear_from_srgb(c.r), linear_from_srgb(c.g), linear_from_srgb(c.b));
+    *out++ = glm::packHalf2x16(glm::vec2(c.r, c.g));
+    *out++ = glm::packHalf2x16(glm::vec2(c.b, 1.0f));
+  }
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) { texture.record_upload(cmd, staging); });
+  return texture;
 }
 
 void upload(gpu::Context& ctx, const gpu::Texture& texture, const std::vector<float>& values) {
@@ -34,12 +66,14 @@ void upload(gpu::Context& ctx, const gpu::Texture& texture, const std::vector<fl
 
 TerrainModule::TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     : ctx_(ctx), set_(set), heights_(r32f(ctx, 1, 1)), maxima_(r32f(ctx, 1, 1)),
+      albedo_(ctx, 1, 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       out_(ctx, 1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set_.bind_sampled_image(gpu::kTerrainHeights, heights_);
   set_.bind_sampled_image(gpu::kTerrainMaxima, maxima_);
   set_.bind_image(gpu::kTerrainOut, gpu::kTerrain, out_);
+  set_.bind_sampled_image(gpu::kTerrainAlbedo, albedo_);
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
-    for (const gpu::Texture* t : {&heights_, &maxima_, &out_}) t->record_clear(cmd);
+    for (const gpu::Texture* t : {&heights_, &maxima_, &out_, &albedo_}) t->record_clear(cmd);
   });
 }
 
@@ -76,9 +110,16 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, gpu::Fram
     grid_ = glm::ivec4(field.width, field.height, pyramid.levels, pyramid.size(1).x);
     key_ = key;
   }
+  if (scene.terrain.albedo_map != albedo_path_ && !scene.terrain.albedo_map.empty()) {
+    gpu::Texture map = albedo_texture(ctx_, scene.terrain.albedo_map);
+    ctx_.wait_queue_idle();
+    albedo_ = std::move(map);
+    set_.bind_sampled_image(gpu::kTerrainAlbedo, albedo_);
+  }
+  albedo_path_ = scene.terrain.albedo_map;
   params.terrain_rect = rect_;
   params.terrain_shape = glm::vec4(shape_.x, shape_.y, 1.0f, scene.terrain.snow_altitude_m);
-  params.terrain_albedo = glm::vec4(scene.terrain.albedo, 0.0f);
+  params.terrain_albedo = glm::vec4(scene.terrain.albedo, albedo_path_.empty() ? 0.0f : 1.0f);
   params.terrain_grid = grid_;
   return true;
 }

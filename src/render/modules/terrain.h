@@ -33,6 +33,8 @@ class TerrainModule {
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::Texture heights_, maxima_, out_;  // maxima_: terrain::MaxPyramid
+  gpu::Texture albedo_;                   // terrain.albedo_map, linear
+  std::string albedo_path_;               // the map albedo_ holds
   std::unique_ptr<gpu::Kernel> kernel_;  // made when first recorded
   std::string key_;                      // what the heights were made from
   glm::vec4 rect_{0.0f}, shape_{0.0f};
