@@ -1,6 +1,7 @@
 #version 450
 // Pass: the terrain (render/modules/terrain.h), before the clouds, one thread per pixel: the
-// view ray cast against the heightfield (terrain_inc.glsl) and the point it hits lit as a
+// view ray cast against the heightfield (terrain_inc.glsl; or its distance read from the mesh
+// drawn with depth, RASTER) and the point it hits lit as a
 // Lambertian surface by the key light (the sun, or the moon at night) through the air
 // (transmittance table), the clouds' shadow (cloud_shadow_at) and the terrain's own, and by the
 // sky's radiance over the hemisphere about its normal (the sky-view table, 8 cosine-weighted
@@ -20,6 +21,9 @@ const int MARCH_MODE = 0;  // cloud_field_inc.glsl's lookups
 #include "terrain_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+// RASTER (specialization constant) 1: the view rays' distances come from the mesh drawn with
+// depth (terrain.vert/.frag, terrain.method = "raster") instead of the ray cast.
+layout(constant_id = 0) const int RASTER = 0;
 
 const int SKY_DIRECTIONS = 8;
 const float SNOW_ALBEDO = 0.8f;
@@ -59,7 +63,9 @@ void main() {
                         float(pixel.y), float(frame.size.x), float(frame.size.y));
   vec3 eye = frame.camera_pos_m.xyz;
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
-  float t = terrain_ray(eye, dir, ground.x > 0.0f ? ground.x : 1.0e9f, false);
+  float t_max = ground.x > 0.0f ? ground.x : 1.0e9f;  // the ground sphere hides what is below it
+  float t = RASTER == 1 ? imageLoad(terrain_out, pixel).a : terrain_ray(eye, dir, t_max, false);
+  if (t > t_max) t = 0.0f;
   if (t <= 0.0f) {
     imageStore(terrain_out, pixel, vec4(0.0f));
     return;

@@ -27,7 +27,7 @@ vec2 terrain_cell_rate(vec2 d) {
 float terrain_height_cell(vec2 c) {
   vec2 n = terrain_points();
   if (any(lessThan(c, vec2(0.0f))) || any(greaterThan(c, n - 1.0f))) return TERRAIN_NONE_M;
-  return textureLod(terrain_heights, (c + 0.5f) / n, 0.0f).r;
+  return textureLod(terrain_heights, (c + 0.5f) / vec2(textureSize(terrain_heights, 0)), 0.0f).r;
 }
 float terrain_height_at(vec2 p) { return terrain_height_cell(terrain_cell(p)); }
 
@@ -52,20 +52,21 @@ float terrain_clearance(vec3 eye, vec3 dir, float t) {
 }
 
 // The largest height in square `cell` of pyramid level `level` (terrain::MaxPyramid): level 0
-// is a single cell (its four corner points), levels 1 and up are read from the packed image.
+// is a single cell (its four corner points), levels 1 and up are read from the packed levels
+// below the heights.
 float terrain_max(int level, ivec2 cell) {
   if (level == 0) {
     vec4 corners = vec4(texelFetch(terrain_heights, cell, 0).r, texelFetch(terrain_heights, cell + ivec2(1, 0), 0).r,
                         texelFetch(terrain_heights, cell + ivec2(0, 1), 0).r, texelFetch(terrain_heights, cell + ivec2(1, 1), 0).r);
     return max(max(corners.x, corners.y), max(corners.z, corners.w));
   }
-  ivec2 offset = ivec2(0);
+  ivec2 offset = ivec2(0, frame.terrain_grid.y);  // the pyramid starts below the heights
   if (level >= 2) {
     offset.x = frame.terrain_grid.w;
     ivec2 cells = frame.terrain_grid.xy - 1;
     for (int k = 2; k < level; ++k) offset.y += (cells.y + (1 << k) - 1) >> k;
   }
-  return texelFetch(terrain_maxima, offset + cell, 0).r;
+  return texelFetch(terrain_heights, offset + cell, 0).r;
 }
 
 // Distance along the ray from `eye` to the terrain within (0, t_max), or -1 where it misses.

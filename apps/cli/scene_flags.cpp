@@ -194,6 +194,9 @@ const std::vector<FlagSpec>& flag_specs() {
        "E,N", "the terrain's centre (m; default the origin; not GeoTIFF)"},
       {"--terrain-height-m", &F::terrain_height_m, "terrain.height_m", TO(terrain.height_m), "H",
        "the height of the file's largest value (PNG, EXR) or of the highest peak (mountains), m"},
+      {"--terrain-method", &F::terrain_method, "terrain.method", TO(terrain.method), "raycast|raster",
+       "how the terrain is found: raycast (default; rays walk a pyramid of maxima) or raster "
+       "(seed 002's mesh drawn with depth)"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
        "march algorithm: default, or baseline (the seed's, as written)"},
       {"--cloud-model", &F::cloud_model, "clouds.model", TO(clouds.model),

@@ -35,7 +35,7 @@ struct SceneFlags {
       voxel_march, voxel_shadow, cloud_model;
   std::optional<std::string> ev100, ev100_min, ev100_max, exposure_compensation_ev,
       adaptation_ev_per_s, tonemap, light_shafts;
-  std::optional<std::string> terrain, terrain_extent_m, terrain_center_m, terrain_height_m;
+  std::optional<std::string> terrain, terrain_extent_m, terrain_center_m, terrain_height_m, terrain_method;
   // --voxel-cloud SPEC, repeatable: FILE@E,N,U or preset:NAME[:SEED]@E,N,U, each appended to
   // the scene's voxel clouds in the order given.
   std::vector<std::string> voxel_clouds;

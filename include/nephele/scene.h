@@ -498,6 +498,9 @@ struct TerrainParams {
   float snow_altitude_m = 0.0f;        // snow (albedo 0.8) above this height on slopes under
                                        // 40 deg, [0, 1e4]; 0 = none
   int resolution = 512;                // mountains: grid points along each axis, [16, 4096]
+  // How the view rays find it: "raycast" (the default: rays walk a pyramid of the heights'
+  // maxima in compute) or "raster" (seed 002's mesh: two triangles a cell drawn with depth).
+  std::string method = "raycast";
   uint32_t seed = 1;                   // mountains
 };
 

@@ -128,16 +128,17 @@ layout(set = 0, binding = 65, rgba32f) uniform image2D post_temp;
 // the clouds' shadows, a the share of it in front of the clouds.
 layout(set = 0, binding = 66, rgba32f) uniform writeonly image2D light_shafts_out;
 layout(set = 0, binding = 67) uniform sampler2D light_shafts;
-// The terrain (render/modules/terrain.h): its heights (r, m above the ground; row 0 the north
-// edge), their maxima over squares of 2^k cells (terrain::MaxPyramid's packed levels;
-// texelFetch), and per pixel what terrain.comp finds
-// (read by compose, the clouds and the shafts): rgb its radiance per unit key-light
-// illuminance before the air in front, a its distance (m; 0 where the ray misses it).
+// The terrain (render/modules/terrain.h): its heights (r, m above the ground; rows [0, H), row
+// 0 the north edge) with their pyramid of maxima packed below them (rows from H:
+// terrain::MaxPyramid; texelFetch); per pixel what terrain.comp finds (read by compose, the
+// clouds and the shafts): rgb its radiance per unit key-light illuminance before the air in
+// front, a its distance (m; 0 where the ray misses it) - with terrain.method "raster" the mesh
+// pass leaves its distances in a first, which terrain.comp reads back; and its albedo map
+// (terrain.albedo_map; linear rgb) over its rectangle, row 0 north. (At most 32 samplers a
+// stage on lavapipe: src/gpu/kernel.cpp.)
 layout(set = 0, binding = 68) uniform sampler2D terrain_heights;
-layout(set = 0, binding = 69) uniform sampler2D terrain_maxima;
-layout(set = 0, binding = 70, rgba32f) uniform writeonly image2D terrain_out;
-layout(set = 0, binding = 71) uniform sampler2D terrain_image;
-// The terrain's albedo map (terrain.albedo_map; linear rgb), over its rectangle, row 0 north.
-layout(set = 0, binding = 72) uniform sampler2D terrain_albedo_map;
+layout(set = 0, binding = 69, rgba32f) uniform image2D terrain_out;
+layout(set = 0, binding = 70) uniform sampler2D terrain_image;
+layout(set = 0, binding = 71) uniform sampler2D terrain_albedo_map;
 
 #endif

@@ -19,10 +19,11 @@ namespace {
 
 constexpr VkShaderStageFlags kRasterStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
-// The bindings the raster passes' shaders read (particles.vert/.frag, impostor.vert/.frag).
+// The bindings the raster passes' shaders read (particles.vert/.frag, impostor.vert/.frag,
+// terrain.vert).
 bool raster_reads(Binding b) {
   return b == kFrameParams || b == kParticles || b == kParticleTextures || b == kImpostors ||
-         b == kImpostorAtlas || b == kImpostorTileSlots;
+         b == kImpostorAtlas || b == kImpostorTileSlots || b == kTerrainHeights;
 }
 
 }  // namespace
@@ -43,8 +44,11 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       kSampled, kStorage, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kSampled, kStorage, kStorage, kSampled,
-      kSampled, kSampled, kStorage, kSampled, kSampled};
+      kSampled, kStorage, kSampled, kSampled};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
+  // lavapipe takes at most 32 combined image samplers (and 32 storage images) a stage, and
+  // every binding is visible to the compute stage: a new texture shares an image with another
+  // (the terrain's heights hold its pyramid of maxima) or reads with imageLoad where it can.
   static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];
   uint32_t count_of[VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT + 1] = {};

@@ -83,10 +83,9 @@ enum Binding : uint32_t {
   kLightShaftsOut = 66,
   kLightShafts = 67,
   kTerrainHeights = 68,
-  kTerrainMaxima = 69,
-  kTerrainOut = 70,
-  kTerrain = 71,
-  kTerrainAlbedo = 72,
+  kTerrainOut = 69,
+  kTerrain = 70,
+  kTerrainAlbedo = 71,
   kBindingCount
 };
 

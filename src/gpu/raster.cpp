@@ -1,12 +1,63 @@
 #include "gpu/raster.h"
 
+#include <utility>
+
 #include "gpu/vk_check.h"
 
 namespace nephele::gpu {
 
+DepthTarget::DepthTarget(Context& ctx, uint32_t width, uint32_t height)
+    : device_(ctx.device()), width_(width), height_(height) {
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = VK_FORMAT_D32_SFLOAT;
+  info.extent = {width, height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  NEPHELE_VK(vkCreateImage(device_, &info, nullptr, &image_));
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(device_, image_, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+  NEPHELE_VK(vkBindImageMemory(device_, image_, memory_, 0));
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = image_;
+  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view.format = VK_FORMAT_D32_SFLOAT;
+  view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+  NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &view_));
+}
+
+DepthTarget& DepthTarget::operator=(DepthTarget&& other) noexcept {
+  if (this != &other) {
+    reset();
+    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+    image_ = std::exchange(other.image_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    width_ = other.width_;
+    height_ = other.height_;
+  }
+  return *this;
+}
+
+void DepthTarget::reset() {
+  if (device_ == VK_NULL_HANDLE) return;
+  vkDestroyImageView(device_, view_, nullptr);
+  vkDestroyImage(device_, image_, nullptr);
+  vkFreeMemory(device_, memory_, nullptr);
+  device_ = VK_NULL_HANDLE;
+}
+
 RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector<VkFormat>& formats,
-                       bool clear, const std::vector<RasterShaders>& pipelines)
-    : device_(ctx.device()), attachments_(formats.size()) {
+                       bool clear, const std::vector<RasterShaders>& pipelines, bool with_depth)
+    : device_(ctx.device()), attachments_(formats.size()), with_depth_(with_depth) {
   if (!ctx.has_graphics())
     throw RuntimeError("the device's queue on " + ctx.device_name() + " cannot draw (no graphics)");
   std::vector<VkAttachmentDescription> attachments;
@@ -14,9 +65,11 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector
   for (VkFormat format : formats) {
     VkFormatProperties props;
     vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &props);
-    if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
-      throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
-                         " cannot be a blended colour attachment on " + ctx.device_name());
+    const VkFormatFeatureFlags needed =
+        with_depth ? VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT;
+    if (!(props.optimalTilingFeatures & needed))
+      throw RuntimeError("Vulkan format " + std::to_string(int(format)) + " cannot be a " +
+                         (with_depth ? "" : "blended ") + "colour attachment on " + ctx.device_name());
     VkAttachmentDescription a{};
     a.format = format;
     a.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -29,24 +82,50 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector
     refs.push_back({uint32_t(attachments.size()), VK_IMAGE_LAYOUT_GENERAL});
     attachments.push_back(a);
   }
+  const VkAttachmentReference depth_ref{uint32_t(attachments.size()),
+                                        VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  if (with_depth) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), VK_FORMAT_D32_SFLOAT, &props);
+    if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+      throw RuntimeError("Vulkan format D32_SFLOAT cannot be a depth attachment on " + ctx.device_name());
+    VkAttachmentDescription a{};
+    a.format = VK_FORMAT_D32_SFLOAT;
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    a.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    attachments.push_back(a);
+  }
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   subpass.colorAttachmentCount = uint32_t(refs.size());
   subpass.pColorAttachments = refs.data();
+  subpass.pDepthStencilAttachment = with_depth ? &depth_ref : nullptr;
   // Before: earlier passes' reads of the targets (compute, fragment) and writes of what the
   // shaders read. After: the targets' writes made visible to the compute and fragment shaders
   // that sample them (an impostor atlas is read by the next raster pass) and to transfers.
   VkSubpassDependency deps[2] = {};
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   deps[0].dstSubpass = 0;
+  // With depth, the last pass's depth writes come before this one's clear.
+  const VkPipelineStageFlags depth_stages =
+      with_depth ? VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT : 0;
   deps[0].srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
                          VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
-                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | depth_stages;
   deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-                         VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+                         VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | depth_stages;
   deps[0].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
-                          VK_ACCESS_HOST_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
+                          VK_ACCESS_HOST_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                          (with_depth ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT : 0);
+  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT |
+                          (with_depth ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                                            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT
+                                      : 0);
   deps[1].srcSubpass = 0;
   deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
   deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -86,7 +165,7 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   // Premultiplied "over": dst = src + (1 - src.a) dst, in every channel.
   VkPipelineColorBlendAttachmentState blend{};
-  blend.blendEnable = VK_TRUE;
+  blend.blendEnable = with_depth ? VK_FALSE : VK_TRUE;
   blend.srcColorBlendFactor = blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.dstColorBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
   blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
@@ -109,6 +188,11 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector
   info.pRasterizationState = &raster;
   info.pMultisampleState = &multisample;
   info.pColorBlendState = &blending;
+  VkPipelineDepthStencilStateCreateInfo depth_state{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth_state.depthTestEnable = VK_TRUE;
+  depth_state.depthWriteEnable = VK_TRUE;
+  depth_state.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed: 1 near, 0 infinitely far
+  info.pDepthStencilState = with_depth ? &depth_state : nullptr;
   info.pDynamicState = &dynamic;
   info.layout = set.pipeline_layout();
   info.renderPass = render_pass_;
@@ -133,9 +217,11 @@ RasterPass::~RasterPass() {
   vkDestroyRenderPass(device_, render_pass_, nullptr);
 }
 
-VkFramebuffer RasterPass::framebuffer_for(const std::vector<const Texture*>& targets) {
+VkFramebuffer RasterPass::framebuffer_for(const std::vector<const Texture*>& targets,
+                                          const DepthTarget* depth) {
   std::vector<VkImageView> views;
   for (const Texture* t : targets) views.push_back(t->storage_view());
+  if (depth) views.push_back(depth->view());
   const uint32_t w = targets[0]->width(), h = targets[0]->height();
   for (const Cached& c : framebuffers_)
     if (c.views == views && c.width == w && c.height == h) return c.framebuffer;
@@ -154,14 +240,17 @@ VkFramebuffer RasterPass::framebuffer_for(const std::vector<const Texture*>& tar
 
 void RasterPass::record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer& timer,
                         const std::string& name, const std::vector<const Texture*>& targets,
-                        const std::vector<RasterDraw>& draws) {
+                        const std::vector<RasterDraw>& draws, const DepthTarget* depth) {
   if (targets.size() != attachments_) throw RuntimeError("RasterPass: wrong number of targets");
+  if (with_depth_ != (depth != nullptr) ||
+      (depth && (depth->width() != targets[0]->width() || depth->height() != targets[0]->height())))
+    throw RuntimeError("RasterPass: a depth buffer of the targets' size is needed exactly when the pass has depth");
   timer.begin(cmd, name);
   const uint32_t w = targets[0]->width(), h = targets[0]->height();
-  std::vector<VkClearValue> clears(targets.size());
+  std::vector<VkClearValue> clears(targets.size() + (depth ? 1 : 0));  // depth cleared to 0: far
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   begin.renderPass = render_pass_;
-  begin.framebuffer = framebuffer_for(targets);
+  begin.framebuffer = framebuffer_for(targets, depth);
   begin.renderArea = {{0, 0}, {w, h}};
   begin.clearValueCount = uint32_t(clears.size());
   begin.pClearValues = clears.data();

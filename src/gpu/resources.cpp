@@ -70,9 +70,9 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
   info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   if (render_target) {
-    if (is_3d || !(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+    if (is_3d || !(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT))
       throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
-                         " cannot be a blended 2D render target on " + ctx.device_name());
+                         " cannot be a 2D render target on " + ctx.device_name());
     info.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   }
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;

@@ -41,7 +41,8 @@ class Texture {
   // device cannot use `format` as a storage image and sample it with linear filtering (and,
   // with mip levels, blit it with linear filtering). Passes write level 0 (storage_view);
   // record_mipmaps fills the others.
-  // `render_target`: a 2D image a raster pass draws into (gpu/raster.h) as well.
+  // `render_target`: a 2D image a raster pass draws into (gpu/raster.h) as well (RasterPass
+  // checks that a blended one can be blended).
   Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
           VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT, uint32_t mip_levels = 1,
           bool render_target = false);

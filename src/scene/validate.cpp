@@ -516,6 +516,8 @@ void check_terrain(const Checker& check, const TerrainParams& t) {
   check.in_range("terrain.albedo", t.albedo, 0.0f, 1.0f);
   check.in_range("terrain.snow_altitude_m", t.snow_altitude_m, 0.0f, 1.0e4f);
   check.in_range("terrain.resolution", t.resolution, 16, 4096);
+  if (t.method != "raycast" && t.method != "raster")
+    check.fail("terrain.method", text("terrain.method", t.method), "must be raycast or raster");
 }
 
 void check_voxel_cloud(const Checker& check, const VoxelCloudParams& cloud, size_t index) {

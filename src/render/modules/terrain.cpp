@@ -1,6 +1,7 @@
 #include "render/modules/terrain.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 
 #include <glm/gtc/packing.hpp>
@@ -15,6 +16,11 @@ namespace {
 
 gpu::Texture r32f(gpu::Context& ctx, uint32_t w, uint32_t h) {
   return gpu::Texture(ctx, w, h, 1, VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+}
+
+// The per-pixel result (terrain.comp's, and the mesh pass's distances before it).
+gpu::Texture output_texture(gpu::Context& ctx, uint32_t w, uint32_t h) {
+  return gpu::Texture(ctx, w, h, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
 }
 
 // What the heights depend on: [terrain], the place (a GeoTIFF's) and the planet's radius.
@@ -65,15 +71,14 @@ void upload(gpu::Context& ctx, const gpu::Texture& texture, const std::vector<fl
 }  // namespace
 
 TerrainModule::TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set), heights_(r32f(ctx, 1, 1)), maxima_(r32f(ctx, 1, 1)),
+    : ctx_(ctx), set_(set), heights_(r32f(ctx, 1, 1)),
       albedo_(ctx, 1, 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
-      out_(ctx, 1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+      out_(output_texture(ctx, 1, 1)) {
   set_.bind_sampled_image(gpu::kTerrainHeights, heights_);
-  set_.bind_sampled_image(gpu::kTerrainMaxima, maxima_);
   set_.bind_image(gpu::kTerrainOut, gpu::kTerrain, out_);
   set_.bind_sampled_image(gpu::kTerrainAlbedo, albedo_);
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
-    for (const gpu::Texture* t : {&heights_, &maxima_, &out_, &albedo_}) t->record_clear(cmd);
+    for (const gpu::Texture* t : {&heights_, &out_, &albedo_}) t->record_clear(cmd);
   });
 }
 
@@ -81,11 +86,15 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, gpu::Fram
   const bool present = !scene.terrain.file.empty() || !scene.terrain.preset.empty();
   if (present && (out_.width() != uint32_t(width) || out_.height() != uint32_t(height))) {
     ctx_.wait_queue_idle();  // a frame in flight may still read the old one
-    out_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-                        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    out_ = output_texture(ctx_, uint32_t(width), uint32_t(height));
     set_.bind_image(gpu::kTerrainOut, gpu::kTerrain, out_);
   }
   if (!present) return false;
+  raster_frame_ = scene.terrain.method == "raster";
+  if (raster_frame_ && (depth_.width() != uint32_t(width) || depth_.height() != uint32_t(height))) {
+    ctx_.wait_queue_idle();
+    depth_ = gpu::DepthTarget(ctx_, uint32_t(width), uint32_t(height));
+  }
   const std::string key = terrain_key(scene);
   if (key != key_) {
     const terrain::Heightfield field = terrain::load_heightfield(scene);
@@ -98,12 +107,17 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, gpu::Fram
                        std::to_string(largest) + " a side); resample it smaller");
     const terrain::MaxPyramid pyramid = terrain::max_pyramid(field);
     ctx_.wait_queue_idle();
-    heights_ = r32f(ctx_, uint32_t(field.width), uint32_t(field.height));
-    maxima_ = r32f(ctx_, uint32_t(pyramid.width), uint32_t(pyramid.height));
-    upload(ctx_, heights_, field.height_m);
-    upload(ctx_, maxima_, pyramid.texels);
+    // The heights, and their pyramid below them (one sampler: lavapipe allows 32 a stage).
+    const int w = std::max(field.width, pyramid.width), h = field.height + pyramid.height;
+    std::vector<float> texels(size_t(w) * size_t(h), 0.0f);
+    for (int y = 0; y < field.height; ++y)
+      std::copy_n(field.height_m.begin() + ptrdiff_t(y) * field.width, field.width, texels.begin() + ptrdiff_t(y) * w);
+    for (int y = 0; y < pyramid.height; ++y)
+      std::copy_n(pyramid.texels.begin() + ptrdiff_t(y) * pyramid.width, pyramid.width,
+                  texels.begin() + ptrdiff_t(field.height + y) * w);
+    heights_ = r32f(ctx_, uint32_t(w), uint32_t(h));
+    upload(ctx_, heights_, texels);
     set_.bind_sampled_image(gpu::kTerrainHeights, heights_);
-    set_.bind_sampled_image(gpu::kTerrainMaxima, maxima_);
     rect_ = glm::vec4(field.center_m.x - 0.5f * field.extent_m.x, field.center_m.y + 0.5f * field.extent_m.y,
                       field.extent_m);
     shape_ = glm::vec4(field.min_height_m(), field.max_height_m(), 1.0f, 0.0f);
@@ -125,8 +139,23 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, gpu::Fram
 }
 
 void TerrainModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
-  if (!kernel_) kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "terrain.comp.spv");
-  gpu::dispatch(cmd, *kernel_, set_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
+  if (!raster_frame_) {
+    if (!kernel_) kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "terrain.comp.spv");
+    gpu::dispatch(cmd, *kernel_, set_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
+    return;
+  }
+  if (!raster_) {
+    raster_ = std::make_unique<gpu::RasterPass>(ctx_, set_, std::vector<VkFormat>{VK_FORMAT_R32G32B32A32_SFLOAT}, true,
+                                                std::vector<gpu::RasterShaders>{{"terrain.vert.spv", "terrain.frag.spv"}},
+                                                true);
+    raster_kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "terrain.comp.spv", std::vector<int32_t>{1});
+  }
+  gpu::RasterDraw mesh;
+  const glm::ivec2 cells = glm::ivec2(grid_) - 1;
+  mesh.vertex_count = uint32_t(cells.x) * uint32_t(cells.y) * 6u;
+  mesh.constants.info = glm::ivec4(cells.x, 0, 0, 0);
+  raster_->record(cmd, set_, timer, "terrain_mesh", {&out_}, {mesh}, &depth_);
+  gpu::dispatch(cmd, *raster_kernel_, set_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
 }
 
 }  // namespace nephele

@@ -3,16 +3,16 @@
 // before the clouds are marched (they stop at it) and lights what it hits; compose puts the
 // air in front of it and hides the sky behind it.
 //
-// Ray casting in compute rather than a raster pipeline with depth: every pass that needs the
-// terrain (the clouds' march, the light shafts, compose) is a compute pass reading a per-pixel
-// distance, which the cast writes directly at the image's resolution, with no mesh of the
-// heightfield to build or level-of-detail to manage.
+// Ray casting in compute by default; terrain.method = "raster" draws the heightfield as a mesh
+// with depth instead (terrain.vert/.frag: seed 002's way) and lights the distances it leaves
+// (README, Terrain: the two measured).
 #pragma once
 
 #include <memory>
 #include <string>
 
 #include "gpu/kernel.h"
+#include "gpu/raster.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
 
@@ -32,9 +32,16 @@ class TerrainModule {
  private:
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
-  gpu::Texture heights_, maxima_, out_;  // maxima_: terrain::MaxPyramid
+  gpu::Texture heights_;                  // and below them terrain::MaxPyramid's levels
   gpu::Texture albedo_;                   // terrain.albedo_map, linear
   std::string albedo_path_;               // the map albedo_ holds
+  gpu::Texture out_;
+  // The raster method's: the mesh pass (its distances into out_) and depth, terrain.comp
+  // reading them.
+  std::unique_ptr<gpu::RasterPass> raster_;
+  gpu::DepthTarget depth_;
+  std::unique_ptr<gpu::Kernel> raster_kernel_;
+  bool raster_frame_ = false;  // this frame draws the mesh
   std::unique_ptr<gpu::Kernel> kernel_;  // made when first recorded
   std::string key_;                      // what the heights were made from
   glm::vec4 rect_{0.0f}, shape_{0.0f};
