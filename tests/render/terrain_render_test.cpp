@@ -254,6 +254,73 @@ TEST_F(TerrainRenderTest, MountainHidesTheSunAndTheCloudsBehindItButNotThoseInFr
   EXPECT_GT(front_with, 0.3);
 }
 
+TEST_F(TerrainRenderTest, PeakThroughACloudDeckIsSunlitAboveItAndHiddenInIt) {
+  // A cone 3000 m high through a closed deck at 1000-2500 m (its cumulus tops reach about
+  // 1800 m), seen from 3.2 km up, 8 km south, the sun behind the camera: its top stands clear
+  // in the sun, its lower flanks are in the cloud.
+  const int n = 65;
+  std::vector<float> cone(size_t(n * n));
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      cone[size_t(y * n + x)] = std::max(0.0f, 1.0f - glm::length(glm::vec2(x - 32, y - 32)) / 32.0f);
+  Scene s = base_scene(64, 64);
+  s.terrain.file = write_heights("cone.exr", n, n, cone);
+  s.terrain.extent_m = glm::vec2(6400.0f);
+  s.terrain.height_m = 3000.0f;
+  s.clouds.bottom_altitude_m = 1000.0f;
+  s.clouds.top_altitude_m = 2500.0f;
+  s.clouds.coverage = 1.0f;
+  s.sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.8f));
+  s.camera.position_m = glm::vec3(0.0f, -8000.0f, 3200.0f);
+  s.camera.view_dir = glm::normalize(glm::vec3(0.0f, 8000.0f, 2600.0f - 3200.0f));
+  s.camera.fov_deg = 30.0f;
+  const FilmLayers layers = shared_renderer().render_layers(s);
+  // Along the image's middle column: the summit's pixels (rays that meet the cone above the
+  // deck's top) and the lower flank's (rays that meet it deep in the deck).
+  const glm::vec3 eye = s.camera.position_m;
+  double top_opacity = 0.0, top_luminance = 1e30, flank_opacity = 1.0;
+  int tops = 0, flanks = 0;
+  for (int y = 0; y < s.output.height; ++y) {
+    const glm::vec3 d = pixel_ray(s, 32.0f, float(y));
+    // Where the ray meets the cone (flat earth is close enough over 8 km): march it.
+    float hit_z = -1.0f;
+    for (float t = 0.0f; t < 12000.0f; t += 2.0f) {
+      const glm::vec3 p = eye + d * t;
+      if (p.z <= 3000.0f * std::max(0.0f, 1.0f - glm::length(glm::vec2(p)) / 3200.0f)) {
+        hit_z = p.z;
+        break;
+      }
+    }
+    const size_t i = size_t(y * s.output.width + 32);
+    if (hit_z > 2650.0f) {
+      top_opacity = std::max(top_opacity, double(layers.clouds.pixels[i].a));
+      top_luminance = std::min(top_luminance, double(luminance(layers.frame.color.pixels[i])));
+      ++tops;
+    } else if (hit_z > 1000.0f && hit_z < 1500.0f) {
+      flank_opacity = std::min(flank_opacity, double(layers.clouds.pixels[i].a));
+      ++flanks;
+    }
+  }
+  std::printf("summit: %d pixels, cloud opacity at most %.3f, luminance at least %.0f cd/m^2; flank in "
+              "the deck: %d pixels, cloud opacity at least %.3f\n", tops, top_opacity, top_luminance, flanks,
+              flank_opacity);
+  ASSERT_GE(tops, 3);
+  ASSERT_GE(flanks, 3);
+  EXPECT_LT(top_opacity, 0.05);   // no cloud drawn over the summit
+  EXPECT_GT(flank_opacity, 0.9);  // the deck hides the flank
+  // Sunlit as under a clear sky (the deck takes only some of its sky light), not shadowed.
+  Scene clear = s;
+  clear.clouds.coverage = 0.0f;
+  const Frame bare = render(clear);
+  double clear_luminance = 1e30;
+  for (int y = 0; y < s.output.height; ++y)
+    if (layers.clouds.pixels[size_t(y * s.output.width + 32)].a < 0.05f && pixel_ray(s, 32.0f, float(y)).z < -0.02f)
+      clear_luminance = std::min(clear_luminance, double(luminance(bare.color.pixels[size_t(y * s.output.width + 32)])));
+  std::printf("the summit's darkest pixel: %.0f cd/m^2 over the deck, %.0f under a clear sky\n", top_luminance,
+              clear_luminance);
+  EXPECT_GT(top_luminance, 0.7 * clear_luminance);
+}
+
 TEST_F(TerrainRenderTest, FarTerrainFadesIntoTheHazeAtTheHorizon) {
   // A plain 200 m high, 600 km across, in hazy air; the camera 1 km up looking at the horizon.
   Scene s = base_scene(32, 96);
