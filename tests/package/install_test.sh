@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Package.InstalledPackageBuildsAHost: installs this build into a temporary prefix, then builds
+# the host in tests/package/consumer against it twice, with find_package and with pkg-config,
+# and runs both (each renders a small image on the Vulkan device).
+# Arguments: the build folder, the work folder (emptied), the cmake to use.
+set -euo pipefail
+build=$1 work=$2 cmake=$3
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$work"
+mkdir -p "$work"
+# Each step's log is shown when it fails.
+step() {
+  local log=$1
+  shift
+  "$@" > "$log" 2>&1 || { tail -n 40 "$log"; echo "failed: $*"; exit 1; }
+}
+step "$work/install.log" "$cmake" --install "$build" --prefix "$work/prefix"
+test -f "$work/prefix/include/nephele/renderer.h"
+test -f "$work/prefix/lib/cmake/nephele/nepheleConfig.cmake"
+step "$work/configure.log" "$cmake" -S "$here/consumer" -B "$work/cmake" -G Ninja \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix"
+step "$work/build.log" "$cmake" --build "$work/cmake"
+"$work/cmake/consumer"
+export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
+flags=$(pkg-config --cflags --libs --static nephele)
+# shellcheck disable=SC2086
+step "$work/pkgconfig.log" g++ -std=c++20 -O1 "$here/consumer/main.cpp" -o "$work/pkgconfig-consumer" $flags
+"$work/pkgconfig-consumer"
