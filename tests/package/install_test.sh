@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Package.InstalledPackageBuildsAHost: installs this build into a temporary prefix, then builds
-# the host in tests/package/consumer against it twice, with find_package and with pkg-config,
-# and runs both (each renders a small image on the Vulkan device).
+# the host in tests/package/consumer against it with find_package (the static library and the
+# shared one) and with pkg-config (the shared one), and runs each (each renders a small image on the
+# Vulkan device).
 # Arguments: the build folder, the work folder (emptied), the cmake to use.
 set -euo pipefail
 build=$1 work=$2 cmake=$3
@@ -21,8 +22,11 @@ step "$work/configure.log" "$cmake" -S "$here/consumer" -B "$work/cmake" -G Ninj
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix"
 step "$work/build.log" "$cmake" --build "$work/cmake"
 "$work/cmake/consumer"
+"$work/cmake/consumer_shared"
+ldd "$work/cmake/consumer_shared" | grep -q "$work/prefix/lib/libnephele.so"
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
-flags=$(pkg-config --cflags --libs --static nephele)
+flags=$(pkg-config --cflags --libs nephele)  # the shared library, as -lnephele finds it first
 # shellcheck disable=SC2086
-step "$work/pkgconfig.log" g++ -std=c++20 -O1 "$here/consumer/main.cpp" -o "$work/pkgconfig-consumer" $flags
+step "$work/pkgconfig.log" g++ -std=c++20 -O1 "$here/consumer/main.cpp" -o "$work/pkgconfig-consumer" $flags \
+  -Wl,-rpath,"$work/prefix/lib"
 "$work/pkgconfig-consumer"
