@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(
-  cmake ninja-build g++ pkg-config
+  cmake ninja-build g++ pkg-config dpkg-dev
   libvulkan-dev mesa-vulkan-drivers glslc vulkan-validationlayers
   libglm-dev libstb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libopenexr-dev
   libgtest-dev libnova-dev libgdal-dev
