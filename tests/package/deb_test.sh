@@ -16,6 +16,8 @@ for path in ./usr/bin/nephele ./usr/lib/libnephele.a ./usr/lib/libnephele.so.0.1
             ./usr/lib/cmake/nephele/nepheleTargets.cmake ./usr/lib/pkgconfig/nephele.pc; do
   grep -qx "$path" "$work/contents.txt" || { echo "the package lacks $path"; exit 1; }
 done
+grep -q '^./usr/lib/python3/dist-packages/nephele\..*\.so$' "$work/contents.txt" ||
+  { echo "the package lacks the Python module"; exit 1; }
 depends=$(dpkg-deb -f "$deb" Depends)
 for package in libvulkan1 libgdal32 libopenvdb10.0 libopenexr-3-1-30 mesa-vulkan-drivers; do
   grep -q "$package" <<< "$depends" || { echo "the package does not depend on $package: $depends"; exit 1; }

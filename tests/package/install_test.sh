@@ -30,3 +30,8 @@ flags=$(pkg-config --cflags --libs nephele)  # the shared library, as -lnephele 
 step "$work/pkgconfig.log" g++ -std=c++20 -O1 "$here/consumer/main.cpp" -o "$work/pkgconfig-consumer" $flags \
   -Wl,-rpath,"$work/prefix/lib"
 "$work/pkgconfig-consumer"
+# The Python module, where it was built, from the prefix.
+if compgen -G "$work/prefix/lib/python3/dist-packages/nephele.*.so" > /dev/null; then
+  PYTHONPATH="$work/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
+    'import nephele; a = nephele.render(width=8, height=6); assert a.shape == (6, 8, 4); print("python: rendered", a.shape)'
+fi

@@ -1,0 +1,49 @@
+"""The Python module `nephele` (python/nephele_module.cpp), run by the test suite with Debian's
+python3 and pytest against the module in the build folder (PYTHONPATH)."""
+import numpy as np
+import pytest
+
+import nephele
+
+
+def luminance(image):
+    return float(np.mean(0.2126 * image[..., 0] + 0.7152 * image[..., 1] + 0.0722 * image[..., 2]))
+
+
+def test_renders_a_preset_into_an_hdr_array():
+    image = nephele.render(preset="default", width=32, height=20)
+    assert image.shape == (20, 32, 4)
+    assert image.dtype == np.float32
+    assert np.all(np.isfinite(image))
+    assert np.all(image[..., 3] == 1.0)
+    assert luminance(image) > 1000.0  # a day sky, cd/m^2
+
+
+def test_a_dict_over_the_preset_changes_the_scene():
+    clear = nephele.render(width=24, height=16, scene={"clouds": {"coverage": 0.0}})
+    overcast = nephele.render(width=24, height=16, scene={"clouds.coverage": 1.0, "clouds.type": 0.0})
+    # Looking up at a deck from below: the upper half of the image is grey cloud, not blue sky.
+    blue = lambda im: float(np.mean(im[:8, :, 2] / np.maximum(im[:8, :, 0], 1e-6)))
+    assert blue(clear) > 1.3 * blue(overcast)
+    toml = nephele.scene_toml(scene={"sun": {"illuminance_lux": 100000.0}, "camera.fov_deg": 50})
+    assert "illuminance_lux = 1e+05" in toml
+    assert "fov_deg = 50.0" in toml
+
+
+def test_layers_compose_into_the_image():
+    out = nephele.render(width=24, height=16, layers=True)
+    assert set(out) == {"image", "sky", "clouds", "clouds_depth_m"}
+    sky, clouds = out["sky"], out["clouds"]
+    over = clouds[..., :3] + (1.0 - clouds[..., 3:4]) * sky[..., :3]
+    assert np.allclose(over, out["image"][..., :3], rtol=1e-3, atol=1e-2)
+    assert out["clouds_depth_m"].shape == (16, 24, 1)
+
+
+def test_bad_input_raises_input_error_with_nephele_s_message():
+    with pytest.raises(nephele.InputError, match=r"clouds.coverage = 1.5: must be in \[0, 1\]"):
+        nephele.render(width=8, height=8, scene={"clouds": {"coverage": 1.5}})
+    with pytest.raises(nephele.InputError, match="unknown preset"):
+        nephele.render(preset="no-such-sky")
+    with pytest.raises(ValueError):  # InputError is a ValueError
+        nephele.render(width=8, height=8, scene={"clouds.no_such_key": 1})
+    assert "mountains" in nephele.presets()
