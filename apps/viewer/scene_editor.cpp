@@ -59,6 +59,7 @@ const std::vector<ParameterGroup>& parameter_groups() {
         {"Cirrus", {"cirrus."}},
         {"Particle clouds", {"particle_clouds."}},
         {"Classical cloud models", {"classic."}},
+        {"Terrain", {"terrain."}},
         {"Conditions", {"conditions."}},
         {"Quality", {"quality."}},
         {"Output", {"output."}},

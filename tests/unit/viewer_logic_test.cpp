@@ -167,7 +167,7 @@ TEST(ViewerPanel, EveryParameterIsInExactlyOneGroupInTheFilesOrder) {
   EXPECT_EQ(titles, (std::vector<std::string>{"Location and time", "Camera", "Sun and moon",
                                                "Atmosphere and sky model", "Clouds", "High clouds",
                                                "Cirrus", "Particle clouds", "Classical cloud models",
-                                               "Conditions", "Quality", "Output", "Lab"}));
+                                               "Terrain", "Conditions", "Quality", "Output", "Lab"}));
   EXPECT_EQ(shown.size(), scene_parameters().size());
   for (const SceneParameter& p : scene_parameters()) EXPECT_EQ(shown.count(p.key), 1u) << p.key;
   EXPECT_EQ(parameter_groups()[0].keys,
