@@ -2,6 +2,7 @@
 #include "scene/scene_fields.h"
 #include "voxel/voxel_grid.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -539,6 +540,14 @@ const std::vector<VoxelField>& voxel_cloud_fields() {
 
 std::string voxel_cloud_key(size_t index) {
   return std::string(kVoxelCloudsKey) + "[" + std::to_string(index) + "]";
+}
+
+bool ends_with_ignoring_case(std::string_view text, std::string_view suffix) {
+  if (text.size() < suffix.size()) return false;
+  for (size_t i = 0; i < suffix.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(text[text.size() - suffix.size() + i])) != suffix[i])
+      return false;
+  return true;
 }
 
 bool is_voxel_cloud_preset(std::string_view name) {

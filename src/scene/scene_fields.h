@@ -57,6 +57,10 @@ inline constexpr std::string_view kVoxelCloudGeoKeys[] = {"lat_deg", "lon_deg", 
 // "voxel_clouds[2]": how messages name cloud i (0-based).
 std::string voxel_cloud_key(size_t index);
 
+// Whether `text` ends with `suffix` (given in lower case), ignoring the case of `text`'s letters:
+// file names' extensions ("CLOUD.VDB" ends with ".vdb").
+bool ends_with_ignoring_case(std::string_view text, std::string_view suffix);
+
 // One of the voxel clouds' presets (voxel::kCloudPresetNames).
 bool is_voxel_cloud_preset(std::string_view name);
 

@@ -17,6 +17,7 @@
 namespace nephele {
 namespace {
 
+using scene_detail::ends_with_ignoring_case;
 using scene_detail::format_float;
 
 // The ranges in which a scene renders finite, meaningful pixels (scene.h documents each).
@@ -471,15 +472,6 @@ std::string string_text(const Checker& check, const std::string& key, const std:
   return check.is_flag(key) ? value : scene_detail::toml_quote(value);
 }
 
-bool ends_with_ignoring_case(const std::string& text, std::string_view suffix) {
-  if (text.size() < suffix.size()) return false;
-  for (size_t i = 0; i < suffix.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(text[text.size() - suffix.size() + i])) !=
-        suffix[i])
-      return false;
-  return true;
-}
-
 void check_terrain(const Checker& check, const TerrainParams& t) {
   const auto text = [&](const std::string& key, const std::string& value) {
     return check.is_flag(key) ? value : scene_detail::toml_quote(value);
@@ -491,12 +483,8 @@ void check_terrain(const Checker& check, const TerrainParams& t) {
   if (!t.preset.empty() && t.preset != "mountains")
     check.fail("terrain.preset", text("terrain.preset", t.preset), "must be mountains (or empty: none)");
   if (!t.file.empty()) {
-    static const char* kSuffixes[] = {".png", ".exr", ".tif", ".tiff", ".obj"};
-    bool known = false;
-    for (const char* suffix : kSuffixes) known = known || ends_with_ignoring_case(t.file, suffix);
-    if (!known)
-      check.fail("terrain.file", text("terrain.file", t.file),
-                 "must name a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file");
+    if (!terrain::has_heightfield_extension(t.file))
+      check.fail("terrain.file", text("terrain.file", t.file), terrain::kHeightfieldExtensions);
     check.readable_file("terrain.file", t.file);
     if (const std::string why = terrain::heightfield_file_problem(t.file); !why.empty())
       check.fail("terrain.file", text("terrain.file", t.file), why);

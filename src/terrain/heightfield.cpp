@@ -16,6 +16,7 @@
 #include <memory>
 
 #include "nephele/error.h"
+#include "scene/scene_fields.h"
 #include "terrain/geotiff.h"
 
 namespace nephele::terrain {
@@ -98,13 +99,7 @@ namespace {
   throw InputError(key + " '" + path + "': " + why);
 }
 
-bool ends_with(const std::string& text, const char* suffix) {
-  const size_t n = std::char_traits<char>::length(suffix);
-  if (text.size() < n) return false;
-  for (size_t i = 0; i < n; ++i)
-    if (std::tolower(static_cast<unsigned char>(text[text.size() - n + i])) != suffix[i]) return false;
-  return true;
-}
+using scene_detail::ends_with_ignoring_case;
 
 // Why a grid of w x h points cannot be a heightfield; "" when it can.
 std::string size_problem(long long w, long long h) {
@@ -309,12 +304,18 @@ Heightfield make_mountains(const TerrainParams& t) {
   return field;
 }
 
+bool has_heightfield_extension(const std::string& path) {
+  for (const char* suffix : {".png", ".exr", ".tif", ".tiff", ".obj"})
+    if (ends_with_ignoring_case(path, suffix)) return true;
+  return false;
+}
+
 std::string heightfield_file_problem(const std::string& path) {
-  if (ends_with(path, ".png")) return png_problem(path);
-  if (ends_with(path, ".exr")) return exr_problem(path);
-  if (ends_with(path, ".tif") || ends_with(path, ".tiff")) return geotiff_problem(path);
-  if (ends_with(path, ".obj")) return "";
-  return "must be a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file";
+  if (ends_with_ignoring_case(path, ".png")) return png_problem(path);
+  if (ends_with_ignoring_case(path, ".exr")) return exr_problem(path);
+  if (ends_with_ignoring_case(path, ".tif") || ends_with_ignoring_case(path, ".tiff")) return geotiff_problem(path);
+  if (ends_with_ignoring_case(path, ".obj")) return "";
+  return kHeightfieldExtensions;
 }
 
 Heightfield load_heightfield(const Scene& scene, const std::string& file_key) {
@@ -322,9 +323,9 @@ Heightfield load_heightfield(const Scene& scene, const std::string& file_key) {
   if (t.preset == "mountains") return make_mountains(t);
   if (t.file.empty()) return {};
   if (const std::string why = heightfield_file_problem(t.file); !why.empty()) fail(file_key, t.file, why);
-  if (ends_with(t.file, ".png")) return read_png(t, file_key);
-  if (ends_with(t.file, ".exr")) return read_exr(t, file_key);
-  if (ends_with(t.file, ".obj")) return read_obj(t, file_key);
+  if (ends_with_ignoring_case(t.file, ".png")) return read_png(t, file_key);
+  if (ends_with_ignoring_case(t.file, ".exr")) return read_exr(t, file_key);
+  if (ends_with_ignoring_case(t.file, ".obj")) return read_obj(t, file_key);
   return read_geotiff(scene, file_key);
 }
 

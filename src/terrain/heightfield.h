@@ -43,6 +43,11 @@ struct Heightfield {
 // georeferencing, more than kMaxSide points a side.
 Heightfield load_heightfield(const Scene& scene, const std::string& file_key = "terrain.file");
 
+// What a heightfield file's name must end with (a message's "what is allowed").
+inline constexpr const char* kHeightfieldExtensions =
+    "must name a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file";
+bool has_heightfield_extension(const std::string& path);
+
 // Why the file cannot be a heightfield, told from its name and header ("" when it may be one):
 // an unknown extension, an unreadable file, a PNG that is not 16-bit grey, an EXR without a
 // height channel, a GeoTIFF without georeferencing, more than kMaxSide points a side.

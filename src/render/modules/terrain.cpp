@@ -9,6 +9,7 @@
 #include "nephele/error.h"
 #include "nephele/image.h"
 #include "nephele/scene_io.h"
+#include "scene/scene_fields.h"
 #include "terrain/heightfield.h"
 
 namespace nephele {
@@ -47,7 +48,7 @@ gpu::Texture albedo_texture(gpu::Context& ctx, const std::string& path) {
   } catch (const InputError& e) {
     throw InputError("terrain.albedo_map '" + path + "': " + e.what());
   }
-  const bool srgb = path.size() >= 4 && (path.substr(path.size() - 4) == ".png" || path.substr(path.size() - 4) == ".PNG");
+  const bool srgb = scene_detail::ends_with_ignoring_case(path, ".png");
   gpu::Texture texture(ctx, uint32_t(image.width), uint32_t(image.height), 1, VK_FORMAT_R16G16B16A16_SFLOAT,
                        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   gpu::Buffer staging(ctx, image.pixels.size() * 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
