@@ -10,6 +10,8 @@ const int TERRAIN_MAX_STEPS = 2048;   // squares a ray visits at most
 const float TERRAIN_NONE_M = -1.0e9f;  // the height outside the terrain's rectangle
 
 bool terrain_present() { return frame.terrain_shape.z > 0.5f; }
+// terrain_out holds surfaces: the terrain's, or the host's geometry (host_scene.comp), or both.
+bool surfaces_present() { return terrain_present() || frame.host_scene.x > 0.5f; }
 
 vec2 terrain_points() { return vec2(frame.terrain_grid.xy); }
 
@@ -144,12 +146,13 @@ float terrain_ray(vec3 eye, vec3 dir, float t_max, bool shadow) {
   return -1.0f;
 }
 
-// The terrain's distance (m) along the view through image position uv ([0, 1]^2), as
-// terrain.comp found it at the pixel there; 0 where the ray misses it or there is none.
+// The distance (m) of the surface along the view through image position uv ([0, 1]^2): the
+// terrain as terrain.comp found it at the pixel there, or the host's geometry nearer; 0 where
+// the ray misses both or there are none.
 float terrain_distance_at(vec2 uv) {
   ivec2 size = textureSize(terrain_image, 0);
   float m = texelFetch(terrain_image, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0).a;
-  return terrain_present() ? m : 0.0f;
+  return surfaces_present() ? m : 0.0f;
 }
 
 #endif

@@ -19,6 +19,8 @@
 #include <memory>
 #include <optional>
 
+#include <glm/mat4x4.hpp>
+
 #include "nephele/renderer.h"
 #include "nephele/scene.h"
 
@@ -36,6 +38,38 @@ struct HostVulkan {
   VkQueue queue = VK_NULL_HANDLE;
 };
 
+// The host's own scene, drawn by the host before record_frame() into a depth buffer and a
+// linear HDR colour image of the frame's size, from the scene's camera (scene.camera: its
+// position, orientation and field of view) and a perspective projection of that field of view.
+// nephele composites its sky and clouds with it: the sky, the clouds, the sun, moon and stars
+// behind the host's geometry are hidden, the clouds in front of it cover it, and the air
+// between the camera and the geometry fogs it (the aerial perspective and the light shafts),
+// as the terrain of [terrain] is. The frame's images (FrameImages) then hold the whole frame,
+// the host's geometry in it, exposed and tone-mapped with it.
+//
+// record_frame() copies both images (vkCmdCopyImageToBuffer): they need
+// VK_IMAGE_USAGE_TRANSFER_SRC_BIT and must be in `layout` when the command buffer reaches the
+// frame's commands. nephele records the barrier from the host's attachment writes (and shader
+// and transfer writes) to its copies itself; the images keep their layout.
+struct HostScene {
+  VkImage depth = VK_NULL_HANDLE;
+  // VK_FORMAT_D32_SFLOAT, D32_SFLOAT_S8_UINT, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT or D16_UNORM.
+  VkFormat depth_format = VK_FORMAT_D32_SFLOAT;
+  // The geometry's radiance (cd/m^2, times color_scale), linear: the units of FrameImages::hdr.
+  // A host lit by the frame's sun and sky lighting in lux (or scaled to it) fits. rgb read.
+  VkImage color = VK_NULL_HANDLE;
+  VkFormat color_format = VK_FORMAT_R16G16B16A16_SFLOAT;  // or VK_FORMAT_R32G32B32A32_SFLOAT
+  float color_scale = 1.0f;
+  // Both images': VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL or VK_IMAGE_LAYOUT_GENERAL.
+  VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  uint32_t width = 0, height = 0;  // both images'; must be scene.output's
+  // The host's projection (view space in metres to Vulkan clip space, depth in [0, 1]): its
+  // field of view and aspect must be the scene camera's (within 1%). Any handedness, a finite
+  // or infinite far plane. reversed_z: the far plane at depth 0 (cleared to 0); else at 1.
+  glm::mat4 projection{1.0f};
+  bool reversed_z = false;
+};
+
 struct FrameOptions {
   // true: every cloud pixel is marched at full resolution (as Renderer::render); false: one
   // pixel of each quality.march_stride^2 block, the others reprojected from the history (as
@@ -44,6 +78,10 @@ struct FrameOptions {
   // false: the display image is not made this frame (it keeps what it held), for a host that
   // reads only `hdr` (Renderer reads the HDR image back and tone-maps files itself).
   bool display = true;
+  // The host's geometry to composite with (above), or none. Not with a scene whose still frame
+  // is marched in bands (RendererOptions::progress): those bands are submitted before the
+  // host's commands run.
+  const HostScene* host_scene = nullptr;
 };
 
 // The images a recorded frame leaves, quality.* and output.* of its scene applied.

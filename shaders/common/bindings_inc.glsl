@@ -140,5 +140,9 @@ layout(set = 0, binding = 68) uniform sampler2D terrain_heights;
 layout(set = 0, binding = 69, rgba32f) uniform image2D terrain_out;
 layout(set = 0, binding = 70) uniform sampler2D terrain_image;
 layout(set = 0, binding = 71) uniform sampler2D terrain_albedo_map;
+// The host's depth and colour texels as the frame copied them from its images (nephele::
+// HostScene; host_scene.comp merges them into terrain_out): the depth from word 0, the colour
+// from word frame.host_layout.x.
+layout(std430, set = 0, binding = 72) readonly buffer HostSceneBlock { uint host_texels[]; };
 
 #endif

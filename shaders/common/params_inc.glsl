@@ -230,6 +230,13 @@ struct FrameParams {
   vec4 terrain_shape;
   vec4 terrain_albedo;
   ivec4 terrain_grid;
+  // The host's scene (nephele::HostScene, render/modules/host_scene.h): its projection's inverse
+  // (clip to view space, m); x 1 when there is one, y 1 for reversed depth (far at 0), z its
+  // depth's texel format (HOST_DEPTH_*), w its colour's (HOST_COLOR_*); x where its colour starts
+  // in host_texels (words), y its colour's scale, zw unused
+  mat4 host_inverse_projection;
+  vec4 host_scene;
+  vec4 host_layout;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 
@@ -237,6 +244,13 @@ struct FrameParams {
 // FrameParams::path_grid.z metres, PATH_GRID_XY per horizontal axis around the camera; in
 // height, each layer's shell (padded PATH_SHELL_PAD_M above and below) in PATH_GRID_BINS
 // shells, layer l's bins at depth l * PATH_GRID_BINS.
+// FrameParams::host_scene.zw: how host_scene.comp reads the host's depth and colour texels.
+const int HOST_DEPTH_FLOAT32 = 0;  // D32_SFLOAT, D32_SFLOAT_S8_UINT (the depth aspect's copy)
+const int HOST_DEPTH_UNORM24 = 1;  // X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT: the low 24 bits
+const int HOST_DEPTH_UNORM16 = 2;  // D16_UNORM: two texels a word
+const int HOST_COLOR_HALF4 = 0;    // R16G16B16A16_SFLOAT
+const int HOST_COLOR_FLOAT4 = 1;   // R32G32B32A32_SFLOAT
+
 const int LIGHT_SHAFTS_OFF = 0;
 const int LIGHT_SHAFTS_VOLUMETRIC = 1;  // the air's single scattering shadowed (compose.comp)
 const int LIGHT_SHAFTS_SCREEN = 2;      // seed 002's screen-space god rays (god_rays.comp)

@@ -86,6 +86,7 @@ enum Binding : uint32_t {
   kTerrainOut = 69,
   kTerrain = 70,
   kTerrainAlbedo = 71,
+  kHostScene = 72,
   kBindingCount
 };
 

@@ -201,6 +201,7 @@ void FrameRenderer::Impl::record_before_march(VkCommandBuffer cmd, const Scene& 
   else if (light_volume.completed() || params.light_volume.w == 0.0f)
     clouds.record_ground_light(cmd, *state.timer, scene.quality.mode);
   if (params.terrain_shape.z > 0.0f) terrain.record(cmd, *state.timer);
+  if (params.host_scene.x > 0.0f) host_scene.record(cmd, *state.timer);
 }
 
 void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
@@ -318,6 +319,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       post(ctx, state.set),
       light_shafts(ctx, state.set),
       terrain(ctx, state.set),
+      host_scene(ctx, state.set),
       particle_light(ctx, state.set),
       path_tracer(ctx, state.set) {}
 
@@ -448,10 +450,12 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   classic_clouds.prepare(scene, params);
   const bool post_processed = post.prepare(scene, s.width, s.height, params);
   const bool shafts = light_shafts.prepare(scene, s.width, s.height);
-  terrain.prepare(scene, s.width, s.height, params);
+  const bool host = host_scene.prepare(options.host_scene, scene, params);
+  terrain.prepare(scene, s.width, s.height, host, params);
   clouds.swap_history();
 
-  const bool in_bands = still && progress && volumetric;
+  // Bands are submitted now, before the host's commands that draw its scene.
+  const bool in_bands = still && progress && volumetric && !host;
   band_timings.clear();
   if (in_bands) march_in_bands(scene, params);
   s.begin(cmd, slot, params);

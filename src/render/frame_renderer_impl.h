@@ -10,6 +10,7 @@
 #include "render/frame_params.h"
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
+#include "render/modules/host_scene.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
 #include "render/modules/light_shafts.h"
@@ -60,6 +61,7 @@ struct FrameRenderer::Impl {
   PostModule post;                      // screen-space god rays, bloom and glare
   LightShaftsModule light_shafts;       // volumetric light shafts, read by compose
   TerrainModule terrain;                // the heightfield under the clouds
+  HostSceneModule host_scene;           // the host's geometry (FrameOptions::host_scene)
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
 

@@ -11,6 +11,7 @@
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
 #include "render/modules/light_shafts.h"
+#include "render/modules/host_scene.h"
 #include "render/modules/terrain.h"
 #include "render/modules/post.h"
 #include "render/modules/light_volume.h"
@@ -93,7 +94,8 @@ struct Modules {
         metaballs(ctx, s.set),
         post(ctx, s.set),
         light_shafts(ctx, s.set),
-        terrain(ctx, s.set) {}
+        terrain(ctx, s.set),
+        host_scene(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
@@ -108,6 +110,7 @@ struct Modules {
   nephele::PostModule post;
   nephele::LightShaftsModule light_shafts;
   nephele::TerrainModule terrain;
+  nephele::HostSceneModule host_scene;
 };
 
 // Runs `passes` with the default scene's parameters.

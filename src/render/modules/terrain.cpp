@@ -83,9 +83,10 @@ TerrainModule::TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set)
   });
 }
 
-bool TerrainModule::prepare(const Scene& scene, int width, int height, gpu::FrameParams& params) {
+bool TerrainModule::prepare(const Scene& scene, int width, int height, bool host_scene,
+                            gpu::FrameParams& params) {
   const bool present = !scene.terrain.file.empty() || !scene.terrain.preset.empty();
-  if (present && (out_.width() != uint32_t(width) || out_.height() != uint32_t(height))) {
+  if ((present || host_scene) && (out_.width() != uint32_t(width) || out_.height() != uint32_t(height))) {
     ctx_.wait_queue_idle();  // a frame in flight may still read the old one
     out_ = output_texture(ctx_, uint32_t(width), uint32_t(height));
     set_.bind_image(gpu::kTerrainOut, gpu::kTerrain, out_);

@@ -23,9 +23,10 @@ class TerrainModule {
   TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set);
 
   // Loads the scene's terrain when it changed (InputError for bad input), sizes the output
-  // for a width x height frame and fills params.terrain_*; false when the scene has none (then
-  // params.terrain_shape.z stays 0 and the passes that read the output ignore it).
-  bool prepare(const Scene& scene, int width, int height, gpu::FrameParams& params);
+  // for a width x height frame (also without terrain when `host_scene`: the host's geometry
+  // goes there) and fills params.terrain_*; false when the scene has none (then
+  // params.terrain_shape.z stays 0).
+  bool prepare(const Scene& scene, int width, int height, bool host_scene, gpu::FrameParams& params);
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   const gpu::Texture& output() const { return out_; }
 
