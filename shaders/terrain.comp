@@ -16,6 +16,7 @@
 #include "common/atmosphere_lut_inc.glsl"
 #include "common/sky_view_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
+#include "sky_light_inc.glsl"
 const int MARCH_MODE = 0;  // cloud_field_inc.glsl's lookups
 #include "cloud_field_inc.glsl"
 #include "terrain_inc.glsl"
@@ -28,16 +29,6 @@ layout(constant_id = 0) const int RASTER = 0;
 const int SKY_DIRECTIONS = 8;
 const float SNOW_ALBEDO = 0.8f;
 const float SNOW_MAX_SLOPE_COS = 0.766f;  // cos 40 deg
-
-// The sky's and the ground's radiance towards -d (per unit illuminance), from the sky-view
-// table: its sky rows, and below the horizon its ground rows too (the ground lit by the sun).
-vec3 sky_radiance(SkyViewFrame f, vec3 d) {
-  vec2 uv = sky_view_uv(f, d);
-  float rows = float(textureSize(sky_view_lut, 0).y / 2);
-  vec3 sky = textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 0.0f), 0.0f).rgb;
-  vec3 ground = uv.y < 0.5f ? textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f).rgb : vec3(0.0f);
-  return sky + ground;
-}
 
 // The mean radiance over the hemisphere about n, cosine-weighted (irradiance / pi).
 vec3 hemisphere_radiance(vec3 n) {

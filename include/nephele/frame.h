@@ -70,6 +70,45 @@ struct HostScene {
   bool reversed_z = false;
 };
 
+// What a host asks of the frame for lighting its own scene (FrameOptions::lighting).
+struct HostLightingOptions {
+  bool enabled = false;  // HostLighting and the cloud shadow map; off: neither is made
+  // The cloud shadow map's square, its side (m, [100, 1e6]) and texels a side ([8, 4096]).
+  float shadow_map_extent_m = 20000.0f;
+  uint32_t shadow_map_size = 256;
+};
+
+// The light at the camera, for the host to light its own scene as nephele lights its terrain
+// (FrameRenderer::completed_lighting()). Directions in ENU (x east, y north, z up); colours
+// linear rgb in the renderer's primaries, in lux and cd/m^2, the units of FrameImages::hdr.
+struct HostLighting {
+  // The sun's and the moon's direction (towards them) and their illuminance on a surface facing
+  // them at the camera, after the air and the clouds (0 below the horizon; the moon's 0 without
+  // a date and place, scene.time), and the share the clouds pass.
+  glm::vec3 sun_direction{0.0f, 0.0f, 1.0f};
+  glm::vec3 sun_illuminance_lux{0.0f};
+  float sun_cloud_transmittance = 1.0f;
+  glm::vec3 moon_direction{0.0f, 0.0f, 1.0f};
+  glm::vec3 moon_illuminance_lux{0.0f};
+  float moon_cloud_transmittance = 1.0f;
+  // The light that reaches the camera's place from every direction but the sun's and the
+  // moon's discs (the sky above, the lit ground below), dimmed under the clouds as nephele's
+  // terrain's sky light is: nine real spherical-harmonic coefficients of its radiance (cd/m^2),
+  // bands 0 to 2 in the order (l, m) = (0, 0), (1, -1), (1, 0), (1, 1), (2, -2), (2, -1), (2, 0),
+  // (2, 1), (2, 2), with Y_1,-1 ~ y, Y_1,0 ~ z, Y_1,1 ~ x.
+  glm::vec3 sky_radiance_sh[9] = {};
+  // The share of the clear sky's light that the clouds let through there (in the coefficients).
+  float sky_cloud_share = 1.0f;
+  // The irradiance (lux) that light gives a surface facing unit `normal` (Ramamoorthi and
+  // Hanrahan 2001: the coefficients convolved with the clamped cosine).
+  glm::vec3 sky_irradiance_lux(const glm::vec3& normal) const;
+  // The clouds' extinction at the camera (1/m; 0 outside them) and the meteorological
+  // visibility there (m): Koschmieder's 3.912 / sigma_t at 550 nm, the air's and the clouds'.
+  float cloud_sigma_t_per_m = 0.0f;
+  bool inside_cloud = false;
+  float visibility_m = 0.0f;
+};
+
 struct FrameOptions {
   // true: every cloud pixel is marched at full resolution (as Renderer::render); false: one
   // pixel of each quality.march_stride^2 block, the others reprojected from the history (as
@@ -82,6 +121,7 @@ struct FrameOptions {
   // is marched in bands (RendererOptions::progress): those bands are submitted before the
   // host's commands run.
   const HostScene* host_scene = nullptr;
+  HostLightingOptions lighting;
 };
 
 // The images a recorded frame leaves, quality.* and output.* of its scene applied.
@@ -103,6 +143,16 @@ struct FrameImages {
   // image, or sample it and write the values unchanged.
   VkImage display = VK_NULL_HANDLE;
   VkImageView display_view = VK_NULL_HANDLE;
+  // With FrameOptions::lighting: the cloud shadow map, VK_FORMAT_R32_SFLOAT, the share of the
+  // key light (the sun; the moon once it lights the night) that passes the clouds. A point p
+  // (ENU, m) below the clouds looks it up at (world_to_cloud_shadow * vec4(p, 1)).xy, texture
+  // coordinates in [0, 1]^2 (row 0 north): p carried along the light onto the plane of the
+  // clouds' bottom, where z is p's height above that plane (exact below it; above it the
+  // clouds between are not known). Clamp to the edge outside (1 there: unknown). Same barrier
+  // and lifetime as the images above; when not asked for, VK_NULL_HANDLE.
+  VkImage cloud_shadow = VK_NULL_HANDLE;
+  VkImageView cloud_shadow_view = VK_NULL_HANDLE;
+  glm::mat4 world_to_cloud_shadow{1.0f};
 };
 
 class FrameRenderer {
@@ -134,6 +184,8 @@ class FrameRenderer {
   // frame recorded frames_in_flight() calls before the last one (collected when its slot is
   // reused). Empty before that. FrameStats::wall_ms is the host time of its record_frame().
   const std::optional<FrameStats>& completed_stats() const;
+  // The lighting of the same frame (FrameOptions::lighting), when it asked for it; else empty.
+  const std::optional<HostLighting>& completed_lighting() const;
 
   // Waits until the device is idle and reads the last recorded frame back (linear HDR colour
   // and the cloud buffer, as Renderer::render returns them): for screenshots, not every frame.

@@ -144,5 +144,12 @@ layout(set = 0, binding = 71) uniform sampler2D terrain_albedo_map;
 // HostScene; host_scene.comp merges them into terrain_out): the depth from word 0, the colour
 // from word frame.host_layout.x.
 layout(std430, set = 0, binding = 72) readonly buffer HostSceneBlock { uint host_texels[]; };
+// The lighting for the host (host_lighting.comp; render/modules/host_lighting.h): [0] x, y the
+// clouds' transmittance at the camera towards the key and the second light, z the clouds'
+// sigma_t there (1/m), w the share of the clear sky's light under the clouds; [1 + k] the sky's
+// radiance's spherical-harmonic coefficient k (rgb, per unit key-light illuminance). And the
+// cloud shadow map (r: the key light's share through the clouds; cloud_shadow_map.comp).
+layout(std430, set = 0, binding = 73) writeonly buffer HostLightingBlock { vec4 host_lighting_out[]; };
+layout(set = 0, binding = 74, r32f) uniform writeonly image2D cloud_shadow_map_out;
 
 #endif

@@ -237,6 +237,11 @@ struct FrameParams {
   mat4 host_inverse_projection;
   vec4 host_scene;
   vec4 host_layout;
+  // The cloud shadow map for the host (render/modules/host_lighting.h): x its west, y its north
+  // edge (ENU m), z its side (m), w the altitude of its plane, the cloud shell's bottom (m);
+  // x its texels a side, y 1 when it is made, zw unused
+  vec4 host_shadow_map;
+  ivec4 host_shadow_grid;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];
 };
 

@@ -87,6 +87,8 @@ enum Binding : uint32_t {
   kTerrain = 70,
   kTerrainAlbedo = 71,
   kHostScene = 72,
+  kHostLighting = 73,
+  kCloudShadowMapOut = 74,
   kBindingCount
 };
 

@@ -31,6 +31,15 @@ glsl::Atmosphere make_atmosphere(const Scene& scene) {
   return a;
 }
 
+glm::vec3 camera_air_transmittance(const Scene& scene, const glm::vec3& dir) {
+  return glsl::atmosphere_transmittance_to_top(make_atmosphere(scene),
+                                               planet_from_enu(scene, scene.camera.position_m), dir, 256);
+}
+
+glm::vec3 camera_air_sigma_t(const Scene& scene) {
+  return glsl::atmosphere_sigma_t(make_atmosphere(scene), scene.camera.position_m.z);
+}
+
 AtmosphereTables compute_atmosphere_tables(const Scene& scene) {
   const glsl::Atmosphere a = make_atmosphere(scene);
   AtmosphereTables t;

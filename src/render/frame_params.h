@@ -16,7 +16,12 @@ namespace nephele {
 // (0, 0, planet radius); ENU axes are the planet frame's axes there.
 glm::vec3 planet_from_enu(const Scene& scene, const glm::vec3& enu_m);
 
-glsl::Atmosphere make_atmosphere(const Scene& scene);
+glsl::Atmosphere make_atmosphere(const Scene& scene);  // (its type is each file's own)
+
+// The air's transmittance from the camera to the top of the atmosphere towards unit `dir`
+// (ENU; 0 when the planet is in the way), and the air's extinction at the camera (1/m).
+glm::vec3 camera_air_transmittance(const Scene& scene, const glm::vec3& dir);
+glm::vec3 camera_air_sigma_t(const Scene& scene);
 
 // Hillaire's transmittance and multiple-scattering tables on the host, for the per-frame
 // lighting computed on the CPU (ambient light at the clouds, sky light on the ground). The

@@ -202,6 +202,7 @@ void FrameRenderer::Impl::record_before_march(VkCommandBuffer cmd, const Scene& 
     clouds.record_ground_light(cmd, *state.timer, scene.quality.mode);
   if (params.terrain_shape.z > 0.0f) terrain.record(cmd, *state.timer);
   if (params.host_scene.x > 0.0f) host_scene.record(cmd, *state.timer);
+  if (params.host_shadow_grid.y > 0) host_lighting.record(cmd, *state.timer);
 }
 
 void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
@@ -320,6 +321,7 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       light_shafts(ctx, state.set),
       terrain(ctx, state.set),
       host_scene(ctx, state.set),
+      host_lighting(ctx, state.set),
       particle_light(ctx, state.set),
       path_tracer(ctx, state.set) {}
 
@@ -339,6 +341,10 @@ int FrameRenderer::validation_messages() const { return impl_->ctx.validation_me
 
 const std::optional<FrameStats>& FrameRenderer::completed_stats() const {
   return impl_->completed;
+}
+
+const std::optional<HostLighting>& FrameRenderer::completed_lighting() const {
+  return impl_->completed_lighting;
 }
 
 FrameImages FrameRenderer::record_frame(VkCommandBuffer cmd, const Scene& scene,
@@ -366,6 +372,7 @@ Frame FrameRenderer::read_back() {
 
 void FrameRenderer::Impl::collect(int slot) {
   if (slot < 0 || !pending[slot]) return;
+  completed_lighting = host_lighting.collect(slot);
   FrameStats stats = std::move(*pending[slot]);
   pending[slot].reset();
   stats.metered_luminance = metered_luminance(state, slot);
@@ -451,6 +458,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   const bool post_processed = post.prepare(scene, s.width, s.height, params);
   const bool shafts = light_shafts.prepare(scene, s.width, s.height);
   const bool host = host_scene.prepare(options.host_scene, scene, params);
+  const bool lighting = host_lighting.prepare(options.lighting, scene, lights, slot, params);
   terrain.prepare(scene, s.width, s.height, host, params);
   clouds.swap_history();
 
@@ -508,13 +516,19 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   pending[slot] = std::move(stats);
   ++frames_recorded;
   last_slot = slot;
-  return FrameImages{slot,
+  FrameImages images{slot,
                      uint32_t(s.width),
                      uint32_t(s.height),
                      s.color[slot].image(),
                      s.color[slot].view(),
                      s.display[slot].image(),
                      s.display[slot].view()};
+  if (lighting) {
+    images.cloud_shadow = host_lighting.shadow_map().image();
+    images.cloud_shadow_view = host_lighting.shadow_map().view();
+    images.world_to_cloud_shadow = host_lighting.world_to_shadow_map();
+  }
+  return images;
 }
 
 }  // namespace nephele

@@ -10,6 +10,7 @@
 #include "render/frame_params.h"
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
+#include "render/modules/host_lighting.h"
 #include "render/modules/host_scene.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
@@ -47,6 +48,7 @@ struct FrameRenderer::Impl {
   // Per slot: the stats of the frame recorded there, waiting for its timings (collect()).
   std::optional<FrameStats> pending[gpu::kFramesInFlight];
   std::optional<FrameStats> completed;
+  std::optional<HostLighting> completed_lighting;  // of the same frame
 
   // The modules, each owning its kernels, textures and rebuild rule (src/render/modules).
   NoiseModule noise;
@@ -62,6 +64,7 @@ struct FrameRenderer::Impl {
   LightShaftsModule light_shafts;       // volumetric light shafts, read by compose
   TerrainModule terrain;                // the heightfield under the clouds
   HostSceneModule host_scene;           // the host's geometry (FrameOptions::host_scene)
+  HostLightingModule host_lighting;     // the host's light (FrameOptions::lighting)
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
 

@@ -45,7 +45,13 @@ TEST(FrameApi, TwoFramesInFlightOnTheHostsDeviceWithSynchronisationValidation) {
       VkCommandBuffer cmd = host.begin(slot);
       scene.time_s += 0.1f;
       scene.camera.position_m.x += 5.0f;
-      last = sky.record_frame(cmd, scene);
+      // Every other frame with the host's lighting and shadow map: their passes and read-backs
+      // under synchronisation validation too.
+      nephele::FrameOptions options;
+      options.lighting.enabled = i % 2 == 0;
+      options.lighting.shadow_map_size = 32;
+      last = sky.record_frame(cmd, scene, options);
+      EXPECT_EQ(last.cloud_shadow != VK_NULL_HANDLE, options.lighting.enabled);
       EXPECT_EQ(last.slot, slot);
       if (i == frames - 1) {  // the host copies the display image after the frame's barrier
         VkBufferImageCopy region{};
@@ -64,6 +70,9 @@ TEST(FrameApi, TwoFramesInFlightOnTheHostsDeviceWithSynchronisationValidation) {
         ASSERT_TRUE(sky.completed_stats().has_value()) << "frame " << i;
         EXPECT_GT(sky.completed_stats()->passes.size(), 4u);
         EXPECT_EQ(sky.completed_stats()->width, scene.output.width);
+        // The frame collected is two before: lit when this one is.
+        EXPECT_EQ(sky.completed_lighting().has_value(), options.lighting.enabled) << "frame " << i;
+        if (sky.completed_lighting()) EXPECT_GT(sky.completed_lighting()->sky_irradiance_lux({0, 0, 1}).g, 100.0f);
       }
     }
     vkWaitForFences(host.vk.device, 2, host.fence, VK_TRUE, UINT64_MAX);

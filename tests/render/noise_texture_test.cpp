@@ -11,6 +11,7 @@
 #include "render/modules/atmosphere.h"
 #include "render/modules/clouds.h"
 #include "render/modules/light_shafts.h"
+#include "render/modules/host_lighting.h"
 #include "render/modules/host_scene.h"
 #include "render/modules/terrain.h"
 #include "render/modules/post.h"
@@ -95,7 +96,8 @@ struct Modules {
         post(ctx, s.set),
         light_shafts(ctx, s.set),
         terrain(ctx, s.set),
-        host_scene(ctx, s.set) {}
+        host_scene(ctx, s.set),
+        host_lighting(ctx, s.set) {}
   nephele::NoiseModule noise;
   nephele::AtmosphereModule atmosphere;
   nephele::WeatherModule weather;
@@ -111,6 +113,7 @@ struct Modules {
   nephele::LightShaftsModule light_shafts;
   nephele::TerrainModule terrain;
   nephele::HostSceneModule host_scene;
+  nephele::HostLightingModule host_lighting;
 };
 
 // Runs `passes` with the default scene's parameters.

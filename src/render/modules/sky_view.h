@@ -32,6 +32,8 @@ class SkyViewModule {
   // sky_view_build_up/forward (the pair built), and the bindings.
   void prepare(bool still, gpu::FrameParams& params);
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  // The table the frames read (its sky rows, then its ground rows).
+  const gpu::Texture& lut() const { return luts_[read_index_]; }
   // The atmosphere changed: the pairs built are no longer valid.
   void invalidate() { read_.reset(), building_.reset(); }
 
