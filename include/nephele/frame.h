@@ -159,7 +159,8 @@ class FrameRenderer {
  public:
   // On nephele's own headless Vulkan context (RendererOptions picks the device).
   explicit FrameRenderer(const RendererOptions& options = {});
-  // On the host's device. options.device is ignored; options.validation only counts messages
+  // On the host's device: InputError naming what it lacks when it is not Vulkan 1.2 or cannot
+  // use nephele's texture formats (filtered storage images). options.device is ignored; options.validation only counts messages
   // of an instance the host created with a debug messenger of its own (it is not added).
   FrameRenderer(const HostVulkan& host, const RendererOptions& options = {});
   // The host must have waited for every command buffer recorded by this renderer.
@@ -174,7 +175,9 @@ class FrameRenderer {
 
   // Validates `scene` (throws InputError and records nothing when it is invalid, so the host can
   // keep the last valid scene) and records the frame into `cmd`, a primary command buffer in
-  // the recording state for a queue of the host's queue family. The host submits it.
+  // the recording state for a queue of the host's queue family. The host submits it. (Vulkan
+  // offers no query of a command buffer's state: one that is not recording is refused as
+  // VK_NULL_HANDLE is only when null; else the validation layer reports it.)
   // The only host waits inside: the first frame (noise textures, about a second on a CPU), a
   // change of the atmosphere (its tables), of the weather map file, or of the output size.
   // Everything else that is expensive (light volume, evolving weather) is spread over frames.

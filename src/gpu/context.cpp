@@ -128,6 +128,34 @@ Context::Context(const ContextOptions& options) {
   create_pool_and_fence(options.verbose);
 }
 
+std::string device_problem(const std::string& who, uint32_t api_version,
+                           const std::function<VkFormatFeatureFlags(VkFormat)>& features) {
+  if (api_version < VK_API_VERSION_1_2)
+    return who + " supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(api_version)) + "." +
+           std::to_string(VK_API_VERSION_MINOR(api_version)) + "; nephele needs Vulkan 1.2";
+  const VkFormatFeatureFlags filtered_storage = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT |
+                                                VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                                VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  const struct {
+    VkFormat format;
+    const char* name;
+    VkFormatFeatureFlags needed;
+  } formats[] = {
+      {VK_FORMAT_R32G32B32A32_SFLOAT, "R32G32B32A32_SFLOAT", filtered_storage},
+      {VK_FORMAT_R16G16B16A16_SFLOAT, "R16G16B16A16_SFLOAT", filtered_storage},
+      {VK_FORMAT_R32_SFLOAT, "R32_SFLOAT", filtered_storage},
+      {VK_FORMAT_R16G16_SFLOAT, "R16G16_SFLOAT", filtered_storage},
+      {VK_FORMAT_R8G8B8A8_UNORM, "R8G8B8A8_UNORM",
+       filtered_storage | VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT},
+  };
+  for (const auto& f : formats)
+    if ((features(f.format) & f.needed) != f.needed)
+      return who + " cannot use VK_FORMAT_" + f.name +
+             " as a linearly filtered storage image" +
+             (f.format == VK_FORMAT_R8G8B8A8_UNORM ? " with blits" : "") + " (optimal tiling); nephele needs it";
+  return {};
+}
+
 Context::Context(const HostDevice& host, bool verbose) : owns_device_(false) {
   if (!host.instance || !host.physical_device || !host.device || !host.queue)
     throw InputError(
@@ -146,6 +174,16 @@ Context::Context(const HostDevice& host, bool verbose) : owns_device_(false) {
     throw InputError("HostVulkan.queue_family = " + std::to_string(queue_family_) +
                      ": must be a queue family with compute (the device has " +
                      std::to_string(count) + " families)");
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(physical_, &props);
+  const std::string problem = device_problem(
+      std::string("HostVulkan.physical_device '") + props.deviceName + "'", props.apiVersion,
+      [&](VkFormat format) {
+        VkFormatProperties p;
+        vkGetPhysicalDeviceFormatProperties(physical_, format, &p);
+        return p.optimalTilingFeatures;
+      });
+  if (!problem.empty()) throw InputError(problem);
   read_device_properties();
   create_pool_and_fence(verbose);
 }

@@ -5,6 +5,7 @@
 #include <vulkan/vulkan.h>
 
 #include <atomic>
+#include <functional>
 #include <string>
 
 namespace nephele::gpu {
@@ -17,6 +18,13 @@ struct HostDevice {
   uint32_t queue_family = 0;
   VkQueue queue = VK_NULL_HANDLE;
 };
+
+// What a device lacks that nephele needs (Vulkan 1.2; its textures' formats as filtered
+// storage images, the noise's with blits for its mip levels), named in one line for `who`
+// (e.g. "HostVulkan.physical_device 'NAME'"), or empty. `features` gives a format's
+// optimal-tiling features (vkGetPhysicalDeviceFormatProperties, or a test's).
+std::string device_problem(const std::string& who, uint32_t api_version,
+                           const std::function<VkFormatFeatureFlags(VkFormat)>& features);
 
 struct ContextOptions {
   std::string device;       // substring of the device name; empty = best by type

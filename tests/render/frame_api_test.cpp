@@ -13,6 +13,7 @@
 #include "nephele/image.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
+#include "gpu/context.h"
 #include "support/vulkan_host.h"
 
 namespace {
@@ -149,6 +150,36 @@ TEST(FrameApi, RefusesNullHandlesAndCommandBuffers) {
   } catch (const nephele::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("HostVulkan"), std::string::npos) << e.what();
   }
+}
+
+// A device without what nephele needs is refused in one line naming what it lacks; the host's
+// own device (lavapipe here) has it all.
+TEST(FrameApi, RefusesADeviceWithoutTheVersionOrFormatsItNeeds) {
+  using nephele::gpu::device_problem;
+  const auto everything = [](VkFormat) { return VkFormatFeatureFlags(~0u); };
+  EXPECT_EQ(device_problem("dev", VK_API_VERSION_1_3, everything), "");
+  const std::string old = device_problem("HostVulkan.physical_device 'old'", VK_API_VERSION_1_1, everything);
+  EXPECT_NE(old.find("Vulkan 1.1"), std::string::npos) << old;
+  EXPECT_NE(old.find("needs Vulkan 1.2"), std::string::npos) << old;
+  const std::string no_filter = device_problem("dev", VK_API_VERSION_1_2, [](VkFormat f) {
+    return f == VK_FORMAT_R32_SFLOAT ? VkFormatFeatureFlags(VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT |
+                                                            VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)
+                                     : VkFormatFeatureFlags(~0u);
+  });
+  EXPECT_NE(no_filter.find("VK_FORMAT_R32_SFLOAT"), std::string::npos) << no_filter;
+  EXPECT_EQ(no_filter.find('\n'), std::string::npos);
+
+  Host host;
+  ASSERT_NE(host.vk.device, VK_NULL_HANDLE);
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(host.vk.physical_device, &props);
+  EXPECT_EQ(device_problem("lavapipe", props.apiVersion,
+                           [&](VkFormat format) {
+                             VkFormatProperties p;
+                             vkGetPhysicalDeviceFormatProperties(host.vk.physical_device, format, &p);
+                             return p.optimalTilingFeatures;
+                           }),
+            "");
 }
 
 }  // namespace
