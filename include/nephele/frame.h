@@ -176,8 +176,8 @@ class FrameRenderer {
   // Validates `scene` (throws InputError and records nothing when it is invalid, so the host can
   // keep the last valid scene) and records the frame into `cmd`, a primary command buffer in
   // the recording state for a queue of the host's queue family. The host submits it. (Vulkan
-  // offers no query of a command buffer's state: one that is not recording is refused as
-  // VK_NULL_HANDLE is only when null; else the validation layer reports it.)
+  // has no query for a command buffer's state: nephele refuses a null one, and the validation
+  // layer reports one that is not recording.)
   // The only host waits inside: the first frame (noise textures, about a second on a CPU), a
   // change of the atmosphere (its tables), of the weather map file, or of the output size.
   // Everything else that is expensive (light volume, evolving weather) is spread over frames.
