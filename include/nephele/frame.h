@@ -21,6 +21,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "nephele/cloud_query.h"
 #include "nephele/renderer.h"
 #include "nephele/scene.h"
 
@@ -194,6 +195,11 @@ class FrameRenderer {
   // and the cloud buffer, as Renderer::render returns them): for screenshots, not every frame.
   // The host must have submitted the command buffer of the last record_frame().
   Frame read_back();
+
+  // The cloud field for queries from the CPU (nephele/cloud_query.h): the noise textures of
+  // scene.noise_seed read back once (a host wait of milliseconds on a GPU; made first, about a
+  // second on a CPU, if this renderer has not made them). Not while a frame is being recorded.
+  CloudQuery cloud_query(const Scene& scene);
 
   const std::string& device_name() const;
   int validation_messages() const;

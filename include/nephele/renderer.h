@@ -14,6 +14,8 @@
 
 namespace nephele {
 
+class CloudQuery;
+
 // Progress of long work, called on the calling thread: `stage` ("noise": the noise textures
 // made for a seed, about 3 s on a CPU; "clouds": a still image marched in bands of rows),
 // `done` of `total` steps.
@@ -195,6 +197,9 @@ class Renderer {
   // The cloud density field averaged per altitude over a square of the ground centred below
   // the camera, one weather-map tile (clouds.weather_period_m) on a side: how the clouds are
   // distributed in height (each cloud type's vertical profile). Validates the scene.
+  // The cloud field for queries from the CPU (nephele/cloud_query.h): the noise textures of
+  // scene.noise_seed read back once (made first if this renderer has not made them).
+  CloudQuery cloud_query(const Scene& scene);
   CloudProfile cloud_profile(const Scene& scene);
 
   // The reference path tracer (unbiased: delta and ratio tracking, next-event estimation

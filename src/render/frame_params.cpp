@@ -338,9 +338,47 @@ gpu::CloudLayerGpu cloud_layer(float planet_m, float bottom_m, float top_m, floa
 }  // namespace
 
 
+void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
+  const CloudParams& c = scene.clouds;
+  const float planet_m = scene.atmosphere.planet_radius_km * 1000.0f;
+  const float top_m = (scene.atmosphere.planet_radius_km + scene.atmosphere.atmosphere_height_km) * 1000.0f;
+  f.radii_m.x = planet_m;
+  f.radii_m.y = top_m;
+  const glm::vec2 shell_m = cloud_shell_m(scene);
+  f.radii_m.z = planet_m + shell_m.x;
+  f.radii_m.w = planet_m + shell_m.y;
+  f.cloud_shape = glm::vec4(0.0f, 0.0f, c.extinction_per_m, c.albedo);
+  f.cloud_layers[0] = cloud_layer(planet_m, c.bottom_altitude_m, c.top_altitude_m, c.coverage,
+                                  c.density, c.type, c.precipitation, c.wind_mps, scene.time_s,
+                                  glm::vec2(0.0f));
+  // The high layer reads another part of the weather map, so its clouds are not stacked over
+  // the low ones. One that is off lies beyond the atmosphere, where no sample reaches.
+  const HighCloudParams& hi = scene.high_clouds;
+  const bool high = hi.coverage > 0.0f;
+  const float off_m = 2.0f * (top_m - planet_m);
+  f.cloud_layers[1] = cloud_layer(planet_m, high ? hi.bottom_altitude_m : off_m,
+                                  high ? hi.top_altitude_m : off_m + 1.0f, hi.coverage,
+                                  hi.density, hi.type, 0.0f, hi.wind_mps, scene.time_s,
+                                  glm::vec2(0.37f, 0.61f));
+  f.cloud_wind = glm::vec4(c.wind_shear_mps, c.wind_skew_s, glsl::shear_time_s(scene.time_s));
+  f.cloud_detail_wind = glm::vec4(c.detail_drift_mps * scene.time_s, c.curl_distortion_m);
+  // The flow map: the curl noise stretched over kFlowMapPeriodM.
+  const double flow_phase = std::fmod(double(scene.time_s) / c.flow_cycle_s, 1.0);
+  f.cloud_flow = glm::vec4(c.flow_speed_mps, c.flow_cycle_s,
+                           float(flow_phase < 0.0 ? flow_phase + 1.0 : flow_phase),
+                           1.0f / kFlowMapPeriodM);
+  f.cloud_light = glm::vec4(c.attenuation, c.light_attenuation, c.powder_strength,
+                            c.ambient_strength);
+  f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight,
+                            c.two_stream_light ? 1.0f : 0.0f);
+  f.cloud_weather = glm::vec4(0.0f);
+  f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
+                            1.0f / c.weather_period_m, c.detail_erosion);
+  f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);
+}
+
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
                                    const AtmosphereTables& tables) {
-  const CloudParams& c = scene.clouds;
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
   const float planet_m = atmosphere.planet_radius_m;
   const CameraBasis basis = camera_basis(scene.camera);
@@ -407,42 +445,12 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
     f.ambient_below_clouds = f.ambient_at_clouds;
     f.ground_sky_light = f.ambient_at_clouds;
   }
-  const glm::vec2 shell_m = cloud_shell_m(scene);
-  f.radii_m.z = planet_m + shell_m.x;
-  f.radii_m.w = planet_m + shell_m.y;
-  f.cloud_shape = glm::vec4(0.0f, 0.0f, c.extinction_per_m, c.albedo);
-  f.cloud_layers[0] = cloud_layer(planet_m, c.bottom_altitude_m, c.top_altitude_m, c.coverage,
-                                  c.density, c.type, c.precipitation, c.wind_mps, scene.time_s,
-                                  glm::vec2(0.0f));
-  // The high layer reads another part of the weather map, so its clouds are not stacked over
-  // the low ones. One that is off lies beyond the atmosphere, where no sample reaches.
-  const HighCloudParams& hi = scene.high_clouds;
-  const bool high = hi.coverage > 0.0f;
-  const float off_m = 2.0f * (f.radii_m.y - planet_m);
-  f.cloud_layers[1] = cloud_layer(planet_m, high ? hi.bottom_altitude_m : off_m,
-                                  high ? hi.top_altitude_m : off_m + 1.0f, hi.coverage,
-                                  hi.density, hi.type, 0.0f, hi.wind_mps, scene.time_s,
-                                  glm::vec2(0.37f, 0.61f));
-  f.cloud_wind = glm::vec4(c.wind_shear_mps, c.wind_skew_s, glsl::shear_time_s(scene.time_s));
-  f.cloud_detail_wind = glm::vec4(c.detail_drift_mps * scene.time_s, c.curl_distortion_m);
-  // The flow map: the curl noise stretched over kFlowMapPeriodM.
-  const double flow_phase = std::fmod(double(scene.time_s) / c.flow_cycle_s, 1.0);
-  f.cloud_flow = glm::vec4(c.flow_speed_mps, c.flow_cycle_s,
-                           float(flow_phase < 0.0 ? flow_phase + 1.0 : flow_phase),
-                           1.0f / kFlowMapPeriodM);
-  f.cloud_light = glm::vec4(c.attenuation, c.light_attenuation, c.powder_strength,
-                            c.ambient_strength);
-  f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight,
-                            c.two_stream_light ? 1.0f : 0.0f);
+  set_cloud_field(f, scene);
   const CirrusParams& ci = scene.cirrus;
   const float wind_speed = glm::length(ci.wind_mps);
   f.cirrus = glm::vec4(f.radii_m.x + ci.altitude_m, ci.coverage, ci.type, ci.optical_depth);
   f.cirrus_wind = glm::vec4(ci.wind_mps * scene.time_s,
                             wind_speed > 0.0f ? ci.wind_mps / wind_speed : glm::vec2(1.0f, 0.0f));
-  f.cloud_weather = glm::vec4(0.0f);
-  f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
-                            1.0f / c.weather_period_m, c.detail_erosion);
-  f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);
   set_previous_frame(f, scene, scene);
   f.size = glm::ivec4(scene.output.width, scene.output.height, frame_index,
                       int(scene.noise_seed & 0x7fffffff));

@@ -111,6 +111,11 @@ glm::vec2 cloud_shell_m(const Scene& scene);
 // the high layer's wind. The light volume is rebuilt as this grows.
 float cloud_relative_drift_m(const Scene& scene);
 
+// The cloud field's part of the frame parameters (what noise_density_inc.glsl reads: the
+// planet's and the atmosphere's radii, the layers, winds, flow, noise scales, extinction);
+// make_frame_params sets it, and the host's CPU queries (render/cloud_query.cpp) alone.
+void set_cloud_field(gpu::FrameParams& f, const Scene& scene);
+
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
                                    const AtmosphereTables& tables);
 inline gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {

@@ -95,6 +95,8 @@ struct FrameRenderer::Impl {
   // image, and read it back. The frame's own image must have been read back before.
   Image compose_layer(const Scene& scene, int layer);
   CloudProfile cloud_profile(const Scene& scene);
+  // FrameRenderer::cloud_query: the noise textures read back (made first when stale).
+  CloudQuery cloud_query(const Scene& scene);
   ReferenceImage render_reference(const Scene& scene, const ReferenceOptions& options);
   gpu::FrameParams lab_reference_params(const Scene& scene, const ReferenceOptions& options);
   gpu::FrameParams planet_reference_params(const Scene& scene, const ReferenceOptions& options);

@@ -2,6 +2,8 @@
 // (FrameRenderer) into a command buffer of its own context, submitted, waited for, read back.
 #include "nephele/renderer.h"
 
+#include "nephele/cloud_query.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -64,6 +66,8 @@ Frame Renderer::render_frame(const Scene& scene, bool still, bool read_back) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return frame;
 }
+
+CloudQuery Renderer::cloud_query(const Scene& scene) { return impl_->frames.cloud_query(scene); }
 
 CloudProfile Renderer::cloud_profile(const Scene& scene) {
   return impl_->frames.impl_->cloud_profile(scene);

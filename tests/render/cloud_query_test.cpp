@@ -1,0 +1,127 @@
+// The cloud field queried from the CPU (nephele/cloud_query.h) against the device's: the
+// shaders' density function compiled as C++ on the noise textures read back must give the
+// density the device computes, point for point (issue 25: within 1%).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "nephele/cloud_query.h"
+#include "nephele/error.h"
+#include "nephele/scene_io.h"
+#include "render/frame_renderer_impl.h"
+#include "render/passes.h"
+
+namespace nephele {
+namespace {
+
+RendererOptions validated() {
+  RendererOptions options;
+  options.validation = true;
+  return options;
+}
+
+// The device's cloud profile pass (cloud_profile.comp) sums the density field along rows of
+// 64 points over the weather map's square about the camera, one row per (row, altitude bin);
+// the query sums the same points.
+void compare_with_device(const char* preset, float time_s) {
+  FrameRenderer::Impl impl(validated());
+  Scene scene = load_preset(preset);
+  scene.time_s = time_s;
+  impl.cloud_profile(scene);
+  const Image sums = download(impl.ctx, impl.clouds.dome(), false);
+  const CloudQuery query = impl.cloud_query(scene);
+  const int n = sums.width;  // PROFILE_SIZE
+  const float planet_m = scene.atmosphere.planet_radius_km * 1000.0f;
+  const glm::vec2 shell_m = cloud_shell_m(scene);
+  const float half_m = 0.5f * scene.clouds.weather_period_m, cell_m = 2.0f * half_m / float(n);
+  double worst = 0.0, worst_relative = 0.0, largest_sum = 0.0, total = 0.0, query_total = 0.0;
+  int rows = 0, differing_points = 0, compared_points = 0, cloud_points = 0;
+  for (int bin = 3; bin < n; bin += 6)
+    for (int row = 1; row < n; row += 9) {
+      // As the pass computes it, in floats of the planet's size (GLSL's mix: x (1 - a) + y a).
+      const float a = (float(bin) + 0.5f) / float(n);
+      const float r = (planet_m + shell_m.x) * (1.0f - a) + (planet_m + shell_m.y) * a;
+      const glm::vec2 start = glm::vec2(scene.camera.position_m) +
+                              glm::vec2(cell_m * 0.5f - half_m, cell_m * (float(row) + 0.5f) - half_m);
+      double sum = 0.0;
+      int in_cloud = 0;
+      for (int i = 0; i < n; ++i) {
+        const glm::vec2 xy = start + glm::vec2(cell_m * float(i), 0.0f);
+        const glm::vec3 enu(xy, std::sqrt(r * r - glm::dot(xy, xy)) - planet_m);
+        const float d = query.density(enu, time_s);
+        sum += d;
+        in_cloud += d > 0.0f;
+      }
+      const glm::vec4 device = sums.at(row, bin);
+      worst = std::max(worst, std::abs(sum - double(device.x)));
+      if (device.x > 0.05f) worst_relative = std::max(worst_relative, std::abs(sum / double(device.x) - 1.0));
+      cloud_points += in_cloud;
+      largest_sum = std::max(largest_sum, double(device.x));
+      total += device.x;
+      differing_points += std::abs(in_cloud - int(device.z));
+      compared_points += n;
+      ++rows;
+      query_total += sum;
+      // Each row within 2% of its sum (or 0.02 where it holds little cloud): at the clouds'
+      // edges the coverage cut magnifies rounding differences (positions are floats 6.4e6 m
+      // from the planet's centre, good to half a metre, on the device and here alike).
+      EXPECT_NEAR(sum, device.x, 0.02 * std::max(double(device.x), 1.0)) << preset << " row " << row << " bin " << bin;
+    }
+  std::printf("%s at %.0f s: %d rows of %d points, %d points in cloud; row sums up to %.2f (mean %.3f); the "
+              "largest difference %.4f, %.3f%% of a row's sum (sums over 0.05); %d of %d points in cloud on one "
+              "side only\n",
+              preset, time_s, rows, n, cloud_points, largest_sum, total / rows, worst, 100.0 * worst_relative,
+              differing_points, compared_points);
+  EXPECT_GT(cloud_points, compared_points / 20) << "the rows should hold clouds";
+  // The field as a whole within 1%.
+  std::printf("%s: the query's total %.3f, the device's %.3f (%.3f%%)\n", preset, query_total, total,
+              100.0 * (query_total / total - 1.0));
+  EXPECT_NEAR(query_total, total, 0.01 * total);
+  EXPECT_LE(differing_points, compared_points / 200);
+  EXPECT_EQ(impl.ctx.validation_messages(), 0);
+}
+
+TEST(CloudQuery, TheDensityIsTheDevicesPointForPoint) { compare_with_device("broken", 0.0f); }
+
+// The evolving weather (two states blended), the flow and the winds at a later time, and the
+// high layer.
+TEST(CloudQuery, TheDensityFollowsTheDeviceInTimeAndInTheHighLayer) { compare_with_device("cumulonimbus-storm", 1234.5f); }
+
+TEST(CloudQuery, OpticalDepthAndInsideFollowTheDensity) {
+  Renderer renderer(validated());
+  Scene overcast = load_preset("overcast");
+  const CloudQuery deck = renderer.cloud_query(overcast);
+  // Straight up through the deck (900 to 4500 m): deep; the same segment's depth is the
+  // density's integral.
+  const glm::vec3 ground(0.0f, 0.0f, 10.0f), above(0.0f, 0.0f, 6000.0f);
+  const float depth = deck.optical_depth(ground, above, 0.0f, 5.0f);
+  double integral = 0.0;
+  for (int i = 0; i < 1000; ++i)
+    integral += deck.sigma_t_per_m(glm::mix(ground, above, (i + 0.5f) / 1000.0f), 0.0f) * 5.99;
+  std::printf("overcast: optical depth through the deck %.1f (a 6 m step integral: %.1f)\n", depth, integral);
+  EXPECT_GT(depth, 5.0f) << "an overcast deck lets little direct light through";
+  EXPECT_NEAR(depth, integral, 0.02 * integral);
+  EXPECT_FALSE(deck.inside_cloud(ground, 0.0f));
+  EXPECT_FALSE(deck.inside_cloud(above, 0.0f));
+  int inside = 0;
+  for (int i = 0; i < 100; ++i) inside += deck.inside_cloud({0.0f, 0.0f, 900.0f + 36.0f * i}, 0.0f);
+  EXPECT_GT(inside, 30) << "the deck's column should be mostly cloud";
+  // Clear skies hold none.
+  const CloudQuery clear = renderer.cloud_query(load_preset("clear"));
+  EXPECT_EQ(clear.optical_depth(ground, above, 0.0f), 0.0f);
+  // Bad arguments: one line naming them.
+  EXPECT_THROW(deck.density({0.0f, std::nanf(""), 0.0f}, 0.0f), InputError);
+  EXPECT_THROW(deck.density(ground, INFINITY), InputError);
+  try {
+    deck.optical_depth(ground, above, 0.0f, 0.0f);
+    ADD_FAILURE() << "step 0 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("step_m"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(renderer.validation_messages(), 0);
+}
+
+}  // namespace
+}  // namespace nephele
