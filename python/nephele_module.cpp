@@ -17,6 +17,7 @@
 #include <string>
 
 #include "nephele/error.h"
+#include "nephele/cloud_query.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
 
@@ -87,6 +88,18 @@ nephele::Scene make_scene(const std::string& preset, const py::object& scene_dic
   return scene;
 }
 
+// Points as an (n, 3) float array of ENU metres; InputError naming `name` otherwise.
+std::vector<glm::vec3> points(const py::object& value, const char* name) {
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  if (!a || !(a.ndim() == 2 && a.shape(1) == 3) && !(a.ndim() == 1 && a.shape(0) == 3))
+    throw nephele::InputError(std::string(name) + ": an (n, 3) array of ENU positions (m) is needed");
+  const size_t n = a.ndim() == 1 ? 1 : size_t(a.shape(0));
+  std::vector<glm::vec3> out(n);
+  const double* v = a.data();
+  for (size_t i = 0; i < n; ++i) out[i] = glm::vec3(float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2]));
+  return out;
+}
+
 // An image as a (height, width, channels) float32 array (a copy).
 py::array_t<float> to_array(const nephele::Image& image, int channels = 4) {
   py::array_t<float> out({image.height, image.width, channels});
@@ -148,4 +161,48 @@ PYBIND11_MODULE(nephele, m) {
       "Renders a still: linear HDR radiance (cd/m^2) as a (height, width, 4) float32 array, or with "
       "layers=True a dict of the image and its film layers (sky, clouds premultiplied, "
       "clouds_depth_m).");
+  m.def(
+      "cloud_density",
+      [](const py::object& positions, const std::string& preset, const py::object& scene_dict, const py::object& toml,
+         const py::object& time_s) {
+        const nephele::Scene scene = make_scene(preset, scene_dict, toml, py::none(), py::none());
+        const std::vector<glm::vec3> p = points(positions, "positions");
+        const float t = time_s.is_none() ? scene.time_s : time_s.cast<float>();
+        py::array_t<float> out(py::ssize_t(p.size()));
+        auto view = out.mutable_unchecked<1>();
+        {
+          py::gil_scoped_release release;
+          const nephele::CloudQuery query = renderer().cloud_query(scene);
+          for (size_t i = 0; i < p.size(); ++i) view(py::ssize_t(i)) = query.density(p[i], t);
+        }
+        return out;
+      },
+      py::arg("positions"), py::arg("preset") = "default", py::arg("scene") = py::none(), py::arg("toml") = py::none(),
+      py::arg("time_s") = py::none(),
+      "The clouds' density field (dimensionless; sigma_t = density x clouds.extinction_per_m) at ENU "
+      "positions (an (n, 3) array, m), at time_s (the scene's time when None), computed on the CPU by the "
+      "shaders' own density function.");
+  m.def(
+      "optical_depth",
+      [](const py::object& from, const py::object& to, const std::string& preset, const py::object& scene_dict,
+         const py::object& toml, const py::object& time_s, float step_m) {
+        const nephele::Scene scene = make_scene(preset, scene_dict, toml, py::none(), py::none());
+        const std::vector<glm::vec3> a = points(from, "from"), b = points(to, "to");
+        if (a.size() != b.size())
+          throw nephele::InputError("from and to: " + std::to_string(a.size()) + " and " + std::to_string(b.size()) +
+                                    " positions; as many of each are needed");
+        const float t = time_s.is_none() ? scene.time_s : time_s.cast<float>();
+        py::array_t<float> out(py::ssize_t(a.size()));
+        auto view = out.mutable_unchecked<1>();
+        {
+          py::gil_scoped_release release;
+          const nephele::CloudQuery query = renderer().cloud_query(scene);
+          for (size_t i = 0; i < a.size(); ++i) view(py::ssize_t(i)) = query.optical_depth(a[i], b[i], t, step_m);
+        }
+        return out;
+      },
+      py::arg("from"), py::arg("to"), py::arg("preset") = "default", py::arg("scene") = py::none(),
+      py::arg("toml") = py::none(), py::arg("time_s") = py::none(), py::arg("step_m") = 10.0f,
+      "The clouds' optical depth along segments from `from` to `to` (ENU, (n, 3) arrays, m): exp(-depth) is "
+      "the direct light's transmittance through the clouds.");
 }

@@ -47,3 +47,17 @@ def test_bad_input_raises_input_error_with_nephele_s_message():
     with pytest.raises(ValueError):  # InputError is a ValueError
         nephele.render(width=8, height=8, scene={"clouds.no_such_key": 1})
     assert "mountains" in nephele.presets()
+
+
+def test_cloud_queries_from_the_cpu():
+    # Straight up through an overcast deck (900 to 4500 m): cloud inside, none below or above.
+    column = np.array([[0.0, 0.0, z] for z in (10.0, 2000.0, 2700.0, 6000.0)])
+    density = nephele.cloud_density(column, preset="overcast")
+    assert density.shape == (4,) and density.dtype == np.float32
+    assert density[0] == 0.0 and density[3] == 0.0
+    assert density[1] > 0.0 or density[2] > 0.0
+    depth = nephele.optical_depth(column[:1], column[3:], preset="overcast")
+    assert depth[0] > 5.0
+    assert nephele.optical_depth(column[:1], column[3:], preset="clear")[0] == 0.0
+    with pytest.raises(nephele.InputError, match="positions"):
+        nephele.cloud_density(np.zeros((2, 2)))
