@@ -18,6 +18,29 @@ const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 // The point at radius r (m) above horizontal position xy (planet frame).
 vec3 point_at_radius(vec2 xy, float r) { return vec3(xy, sqrt(max(r * r - dot(xy, xy), 0.0f))); }
 
+// The part of the view ray inside the cloud shell: (t_enter, t_exit), empty if exit <= enter.
+// `ground` is ray_sphere(eye, dir, planet radius).
+vec2 shell_segment(vec3 eye, vec3 dir, vec2 ground) {
+  float r = length(eye);
+  vec2 inner = ray_sphere(eye, dir, frame.radii_m.z);
+  vec2 outer = ray_sphere(eye, dir, frame.radii_m.w);
+  if (outer.y <= 0.0f) return vec2(0.0f);  // the shell is behind
+  float t_enter;
+  float t_exit;
+  if (r < frame.radii_m.z) {  // below the layer: from leaving the inner sphere to the outer
+    if (ground.x > 0.0f) return vec2(0.0f);  // looking at the ground
+    t_enter = inner.y;
+    t_exit = outer.y;
+  } else if (r <= frame.radii_m.w) {  // inside the layer
+    t_enter = 0.0f;
+    t_exit = inner.x > 0.0f ? inner.x : outer.y;
+  } else {  // above: from entering the outer sphere to the inner sphere or out again
+    t_enter = max(outer.x, 0.0f);
+    t_exit = inner.x > 0.0f ? inner.x : outer.y;
+  }
+  return vec2(t_enter, t_exit);
+}
+
 // Height fraction in the whole cloud shell (all layers): the light volume's vertical axis.
 float altitude_fraction(vec3 pos) {
   return cloud_height_fraction(length(pos), frame.radii_m.z, frame.radii_m.w);

@@ -64,28 +64,6 @@ float multiple_scattering(float tau_light, float mu, float powder, vec4 phases) 
   return energy;
 }
 
-// The part of the view ray inside the cloud shell: (t_enter, t_exit), empty if exit <= enter.
-// `ground` is ray_sphere(eye, dir, planet radius).
-vec2 shell_segment(vec3 eye, vec3 dir, vec2 ground) {
-  float r = length(eye);
-  vec2 inner = ray_sphere(eye, dir, frame.radii_m.z);
-  vec2 outer = ray_sphere(eye, dir, frame.radii_m.w);
-  if (outer.y <= 0.0f) return vec2(0.0f);  // the shell is behind
-  float t_enter;
-  float t_exit;
-  if (r < frame.radii_m.z) {  // below the layer: from leaving the inner sphere to the outer
-    if (ground.x > 0.0f) return vec2(0.0f);  // looking at the ground
-    t_enter = inner.y;
-    t_exit = outer.y;
-  } else if (r <= frame.radii_m.w) {  // inside the layer
-    t_enter = 0.0f;
-    t_exit = inner.x > 0.0f ? inner.x : outer.y;
-  } else {  // above: from entering the outer sphere to the inner sphere or out again
-    t_enter = max(outer.x, 0.0f);
-    t_exit = inner.x > 0.0f ? inner.x : outer.y;
-  }
-  return vec2(t_enter, t_exit);
-}
 
 // Writes the marched sample of `block` (see bindings_inc.glsl).
 void write_sample(ivec2 block, vec3 scattered, float transmittance, float haze, float shadow,

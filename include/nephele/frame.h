@@ -77,6 +77,8 @@ struct HostLightingOptions {
   // The cloud shadow map's square, its side (m, [100, 1e6]) and texels a side ([8, 4096]).
   float shadow_map_extent_m = 20000.0f;
   uint32_t shadow_map_size = 256;
+  // The environment cube map's faces, texels a side ([4, 256]).
+  uint32_t environment_size = 32;
 };
 
 // The light at the camera, for the host to light its own scene as nephele lights its terrain
@@ -154,6 +156,14 @@ struct FrameImages {
   VkImage cloud_shadow = VK_NULL_HANDLE;
   VkImageView cloud_shadow_view = VK_NULL_HANDLE;
   glm::mat4 world_to_cloud_shadow{1.0f};
+  // With FrameOptions::lighting: a small environment cube map about the camera, the clouds in
+  // it (for image-based lighting and reflections): VK_FORMAT_R16G16B16A16_SFLOAT radiance
+  // (cd/m^2), its six faces side by side in one 6 N x N image, in the order and with the texel
+  // directions of a Vulkan cube map's layers +X, -X, +Y, -Y, +Z, -Z, on ENU axes (x east, y
+  // north, z up; a y-up host swaps its axes). Copy each N x N region into a cube image's layer
+  // (vkCmdCopyImage). The sun's and the moon's discs are not in it (HostLighting has them).
+  VkImage environment = VK_NULL_HANDLE;
+  VkImageView environment_view = VK_NULL_HANDLE;
 };
 
 class FrameRenderer {

@@ -151,5 +151,8 @@ layout(std430, set = 0, binding = 72) readonly buffer HostSceneBlock { uint host
 // cloud shadow map (r: the key light's share through the clouds; cloud_shadow_map.comp).
 layout(std430, set = 0, binding = 73) writeonly buffer HostLightingBlock { vec4 host_lighting_out[]; };
 layout(set = 0, binding = 74, r32f) uniform writeonly image2D cloud_shadow_map_out;
+// The host's environment cube map (environment.comp): its six faces side by side, +X -X +Y -Y
+// +Z -Z of ENU, radiance (cd/m^2). (The 32nd storage image: lavapipe's limit a stage.)
+layout(set = 0, binding = 75, rgba16f) uniform writeonly image2D environment_out;
 
 #endif

@@ -239,7 +239,8 @@ struct FrameParams {
   vec4 host_layout;
   // The cloud shadow map for the host (render/modules/host_lighting.h): x its west, y its north
   // edge (ENU m), z its side (m), w the altitude of its plane, the cloud shell's bottom (m);
-  // x its texels a side, y 1 when it is made, zw unused
+  // x its texels a side, y 1 when it is made; z the environment cube map's face (texels a
+  // side), w unused
   vec4 host_shadow_map;
   ivec4 host_shadow_grid;
   VoxelCloudGpu voxel_clouds[MAX_VOXEL_CLOUDS];

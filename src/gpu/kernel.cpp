@@ -45,7 +45,7 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       kSampled, kStorage, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kSampled, kStorage, kStorage, kSampled,
       kSampled, kStorage, kSampled, kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage};
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kStorage};
   constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
   // lavapipe takes at most 32 combined image samplers (and 32 storage images) a stage, and
   // every binding is visible to the compute stage: a new texture shares an image with another

@@ -89,6 +89,7 @@ enum Binding : uint32_t {
   kHostScene = 72,
   kHostLighting = 73,
   kCloudShadowMapOut = 74,
+  kEnvironmentOut = 75,
   kBindingCount
 };
 

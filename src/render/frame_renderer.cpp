@@ -527,6 +527,8 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     images.cloud_shadow = host_lighting.shadow_map().image();
     images.cloud_shadow_view = host_lighting.shadow_map().view();
     images.world_to_cloud_shadow = host_lighting.world_to_shadow_map();
+    images.environment = host_lighting.environment().image();
+    images.environment_view = host_lighting.environment().view();
   }
   return images;
 }

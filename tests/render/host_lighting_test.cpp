@@ -214,6 +214,73 @@ TEST(HostLighting, TheShadowMapsMatrixPutsTheCloudsGroundShadowsWhereTheImageHas
   EXPECT_EQ(impl.ctx.validation_messages(), 0);
 }
 
+// A Vulkan cube map's texel direction (environment.comp's cube_direction), ENU.
+glm::vec3 cube_direction(int face, glm::vec2 st) {
+  const glm::vec3 d = face == 0   ? glm::vec3(1.0f, -st.y, -st.x)
+                      : face == 1 ? glm::vec3(-1.0f, -st.y, st.x)
+                      : face == 2 ? glm::vec3(st.x, 1.0f, st.y)
+                      : face == 3 ? glm::vec3(st.x, -1.0f, -st.y)
+                      : face == 4 ? glm::vec3(st.x, -st.y, 1.0f)
+                                  : glm::vec3(-st.x, -st.y, -1.0f);
+  return glm::normalize(d);
+}
+
+// Without clouds the environment is the sky-view table's sky and ground; under an overcast
+// deck its zenith is the deck's light as the view renders it looking up.
+TEST(HostLighting, TheEnvironmentHoldsTheSkyAndTheClouds) {
+  FrameRenderer::Impl impl(validated());
+  Scene scene = load_preset("clear");
+  scene.output.width = 32;
+  scene.output.height = 32;
+  HostLightingOptions options;
+  options.environment_size = 16;
+  FrameImages images = lit_frame(impl, scene, options);
+  ASSERT_NE(images.environment, VK_NULL_HANDLE);
+  const Image clear = download(impl.ctx, impl.host_lighting.environment(), true);
+  ASSERT_EQ(clear.width, 6 * 16);
+  ASSERT_EQ(clear.height, 16);
+  const Image lut = download(impl.ctx, impl.sky_view.lut(), true);
+  double worst = 0.0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const int face = x / 16;
+      const glm::vec2 st = (glm::vec2(x - 16 * face, y) + 0.5f) / 16.0f * 2.0f - 1.0f;
+      const glm::vec3 expected = table_radiance(lut, impl.last_params, cube_direction(face, st)) *
+                                 glm::vec3(impl.last_params.sun_illuminance);
+      const glm::vec3 got(clear.at(x, y));
+      for (int c = 0; c < 3; ++c) {
+        worst = std::max(worst, std::abs(double(got[c]) / double(expected[c]) - 1.0));
+        EXPECT_NEAR(got[c], expected[c], 0.01f * expected[c] + 1e-3f) << "face " << face << " texel " << x << "," << y;
+      }
+    }
+  std::printf("clear environment against the sky-view table: largest difference %.3f%%\n", 100.0 * worst);
+
+  // Looking straight up under the deck: the environment's zenith and the view's centre.
+  scene = load_preset("overcast");
+  scene.output.width = 32;
+  scene.output.height = 32;
+  scene.camera.view_dir = glm::vec3(0.0f, 0.001f, 1.0f);
+  scene.camera.fov_deg = 20.0f;
+  images = lit_frame(impl, scene, options);
+  const Image deck = download(impl.ctx, impl.host_lighting.environment(), true);
+  const Frame view = impl.download_last(scene);
+  glm::vec3 zenith(0.0f), seen(0.0f);
+  for (int y = 6; y < 10; ++y)
+    for (int x = 4 * 16 + 6; x < 4 * 16 + 10; ++x) zenith += glm::vec3(deck.at(x, y)) / 16.0f;
+  for (int y = 12; y < 20; ++y)
+    for (int x = 12; x < 20; ++x) seen += glm::vec3(view.color.at(x, y)) / 64.0f;
+  const glm::vec3 clear_zenith(clear.at(4 * 16 + 8, 8));
+  std::printf("zenith: clear sky %.0f cd/m^2 (blue/red %.2f); under the deck the environment %.0f, the view %.0f cd/m^2 "
+              "(blue/red %.2f and %.2f)\n",
+              luminance(glm::vec4(clear_zenith, 1.0f)), clear_zenith.b / clear_zenith.r,
+              luminance(glm::vec4(zenith, 1.0f)), luminance(glm::vec4(seen, 1.0f)), zenith.b / zenith.r,
+              seen.b / seen.r);
+  EXPECT_NEAR(luminance(glm::vec4(zenith, 1.0f)), luminance(glm::vec4(seen, 1.0f)),
+              0.2f * luminance(glm::vec4(seen, 1.0f)));
+  EXPECT_LT(zenith.b / zenith.r, 0.8f * clear_zenith.b / clear_zenith.r) << "the deck is grey, not blue";
+  EXPECT_EQ(impl.ctx.validation_messages(), 0);
+}
+
 TEST(HostLighting, TheShadowMapMatrixCarriesPointsAlongTheLightOntoTheCloudsBottom) {
   const glm::vec3 light = glm::normalize(glm::vec3(0.4f, 0.2f, 0.5f));
   const glm::mat4 m = shadow_map_matrix(light, 1500.0f, glm::vec2(-1000.0f, 3000.0f), 4000.0f);

@@ -21,6 +21,10 @@ gpu::Texture shadow_texture(gpu::Context& ctx, uint32_t size) {
   return gpu::Texture(ctx, size, size, 1, VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
 }
 
+gpu::Texture environment_texture(gpu::Context& ctx, uint32_t face) {
+  return gpu::Texture(ctx, 6 * face, face, 1, VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+}
+
 std::string number(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", v);
@@ -90,12 +94,16 @@ glm::mat4 shadow_map_matrix(const glm::vec3& light, float base_m, const glm::vec
 }
 
 HostLightingModule::HostLightingModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set), shadow_map_(shadow_texture(ctx, 1)) {
+    : ctx_(ctx), set_(set), shadow_map_(shadow_texture(ctx, 1)), environment_(environment_texture(ctx, 1)) {
   for (gpu::Buffer& b : buffers_)
     b = gpu::Buffer(ctx, kHostLightingVec4s * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   set_.bind_buffer(gpu::kHostLighting, buffers_[0], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   set_.bind_storage_image(gpu::kCloudShadowMapOut, shadow_map_);
-  ctx_.submit_and_wait([&](VkCommandBuffer cmd) { shadow_map_.record_clear(cmd); });
+  set_.bind_storage_image(gpu::kEnvironmentOut, environment_);
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
+    shadow_map_.record_clear(cmd);
+    environment_.record_clear(cmd);
+  });
 }
 
 bool HostLightingModule::prepare(const HostLightingOptions& options, const Scene& scene, const SkyLights& lights,
@@ -108,6 +116,15 @@ bool HostLightingModule::prepare(const HostLightingOptions& options, const Scene
   if (options.shadow_map_size < 8 || options.shadow_map_size > 4096)
     throw InputError("FrameOptions::lighting.shadow_map_size " + std::to_string(options.shadow_map_size) +
                      " is outside [8, 4096] texels");
+  if (options.environment_size < 4 || options.environment_size > 256)
+    throw InputError("FrameOptions::lighting.environment_size " + std::to_string(options.environment_size) +
+                     " is outside [4, 256] texels");
+  if (options.environment_size != environment_size_) {
+    ctx_.wait_queue_idle();  // a frame in flight may still write the old one
+    environment_ = environment_texture(ctx_, options.environment_size);
+    set_.bind_storage_image(gpu::kEnvironmentOut, environment_);
+    environment_size_ = options.environment_size;
+  }
   if (options.shadow_map_size != map_size_) {
     ctx_.wait_queue_idle();  // a frame in flight may still write the old one
     shadow_map_ = shadow_texture(ctx_, options.shadow_map_size);
@@ -129,24 +146,27 @@ bool HostLightingModule::prepare(const HostLightingOptions& options, const Scene
   const glm::vec2 center = glm::round(foot / texel) * texel;
   const glm::vec2 west_north = center + glm::vec2(-0.5f, 0.5f) * extent;
   params.host_shadow_map = glm::vec4(west_north, extent, base_m);
-  params.host_shadow_grid = glm::ivec4(int(options.shadow_map_size), 1, 0, 0);
+  params.host_shadow_grid = glm::ivec4(int(options.shadow_map_size), 1, int(options.environment_size), 0);
   world_to_map_ = shadow_map_matrix(light, base_m, west_north, extent);
   pending_[slot] = Pending{scene, lights};
   return true;
 }
 
 void HostLightingModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
-  // The host may have read the map of the frame before in this queue (its shaders, copies):
-  // those reads end before it is written again.
+  // The host may have read the map and the environment of the frame before in this queue (its
+  // shaders, copies): those reads end before they are written again.
   VkPipelineStageFlags readers = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
   if (ctx_.has_graphics()) readers |= VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
   vkCmdPipelineBarrier(cmd, readers, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 0, nullptr);
   if (!lighting_kernel_) {
     lighting_kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "host_lighting.comp.spv");
     map_kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "cloud_shadow_map.comp.spv");
+    environment_kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "environment.comp.spv");
   }
   gpu::dispatch(cmd, *lighting_kernel_, set_, timer, "host_lighting", 64, 1, 1, 64, 1, 1);
   gpu::dispatch(cmd, *map_kernel_, set_, timer, "shadow_map", map_size_, map_size_, 1, 8, 8, 1);
+  gpu::dispatch(cmd, *environment_kernel_, set_, timer, "environment", 6 * environment_size_, environment_size_, 1, 8,
+                8, 1);
 }
 
 std::optional<HostLighting> HostLightingModule::collect(int slot) {

@@ -1,8 +1,8 @@
 // The lighting and data a host lights its own scene with (nephele::HostLighting, frame.h): the
 // sun and the moon at the camera after the air (on the CPU) and the clouds, the sky's light as
 // spherical harmonics, the clouds' extinction and the visibility there (host_lighting.comp,
-// read back when the frame's slot is reused), and the cloud shadow map with its matrix
-// (cloud_shadow_map.comp).
+// read back when the frame's slot is reused), the cloud shadow map with its matrix
+// (cloud_shadow_map.comp) and the environment cube map with the clouds (environment.comp).
 #pragma once
 
 #include <memory>
@@ -42,21 +42,22 @@ class HostLightingModule {
   std::optional<HostLighting> collect(int slot);
 
   const gpu::Texture& shadow_map() const { return shadow_map_; }
+  const gpu::Texture& environment() const { return environment_; }
   const glm::mat4& world_to_shadow_map() const { return world_to_map_; }
 
  private:
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::Buffer buffers_[gpu::kFramesInFlight];
-  gpu::Texture shadow_map_;
+  gpu::Texture shadow_map_, environment_;
   glm::mat4 world_to_map_{1.0f};
-  uint32_t map_size_ = 0;
+  uint32_t map_size_ = 0, environment_size_ = 0;
   struct Pending {
     Scene scene;
     SkyLights lights;
   };
   std::optional<Pending> pending_[gpu::kFramesInFlight];
-  std::unique_ptr<gpu::Kernel> lighting_kernel_, map_kernel_;  // made when first recorded
+  std::unique_ptr<gpu::Kernel> lighting_kernel_, map_kernel_, environment_kernel_;  // made when first recorded
 };
 
 }  // namespace nephele
