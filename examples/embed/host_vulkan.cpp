@@ -13,12 +13,13 @@ namespace embed {
 
 void check(VkResult result, const char* what) {
   if (result != VK_SUCCESS)
-    throw std::runtime_error(std::string("Vulkan: ") + what + " failed (VkResult " + std::to_string(int(result)) + ")");
+    throw std::runtime_error(std::string("Vulkan: ") + what + " failed (VkResult " +
+                             std::to_string(int(result)) + ")");
 }
 
-VKAPI_ATTR VkBool32 VKAPI_CALL HostVulkan::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                                      VkDebugUtilsMessageTypeFlagsEXT,
-                                                      const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+VKAPI_ATTR VkBool32 VKAPI_CALL
+HostVulkan::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   static_cast<HostVulkan*>(user)->messages_++;
   std::fprintf(stderr, "validation: %s\n", data->pMessage);
   return VK_FALSE;
@@ -33,10 +34,12 @@ HostVulkan::HostVulkan(GLFWwindow* window, bool validation) {
   if (!glfw_extensions) throw std::runtime_error("GLFW: no Vulkan presentation on this display");
   std::vector<const char*> extensions(glfw_extensions, glfw_extensions + glfw_count);
   const char* layer = "VK_LAYER_KHRONOS_validation";
-  VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messenger.messageSeverity =
-      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
+  VkDebugUtilsMessengerCreateInfoEXT messenger{
+      VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messenger.messageType =
+      VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
   messenger.pfnUserCallback = &HostVulkan::on_message;
   messenger.pUserData = this;
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
@@ -71,11 +74,13 @@ HostVulkan::HostVulkan(GLFWwindow* window, bool validation) {
       VkBool32 present = VK_FALSE;
       vkGetPhysicalDeviceSurfaceSupportKHR(d, i, surface_, &present);
       const VkQueueFlags wanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-      if ((props[i].queueFlags & wanted) == wanted && present) physical_device = d, queue_family = i;
+      if ((props[i].queueFlags & wanted) == wanted && present)
+        physical_device = d, queue_family = i;
     }
     if (physical_device) break;
   }
-  if (!physical_device) throw std::runtime_error("no Vulkan device can draw, compute and present to the window");
+  if (!physical_device)
+    throw std::runtime_error("no Vulkan device can draw, compute and present to the window");
   VkPhysicalDeviceProperties properties;
   vkGetPhysicalDeviceProperties(physical_device, &properties);
   device_name = properties.deviceName;
@@ -97,7 +102,8 @@ HostVulkan::HostVulkan(GLFWwindow* window, bool validation) {
   // The swapchain: a UNORM format (nephele's display image holds sRGB code values, blitted as
   // they are), the window's size, images the frame is blitted into and read back from.
   VkSurfaceCapabilitiesKHR caps;
-  check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(physical_device, surface_, &caps), "surface capabilities");
+  check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(physical_device, surface_, &caps),
+        "surface capabilities");
   uint32_t format_count = 0;
   vkGetPhysicalDeviceSurfaceFormatsKHR(physical_device, surface_, &format_count, nullptr);
   std::vector<VkSurfaceFormatKHR> formats(format_count);
@@ -105,11 +111,13 @@ HostVulkan::HostVulkan(GLFWwindow* window, bool validation) {
   const auto unorm = std::find_if(formats.begin(), formats.end(), [](const VkSurfaceFormatKHR& f) {
     return f.format == VK_FORMAT_B8G8R8A8_UNORM || f.format == VK_FORMAT_R8G8B8A8_UNORM;
   });
-  if (unorm == formats.end()) throw std::runtime_error("the window offers no 8-bit UNORM swapchain format");
+  if (unorm == formats.end())
+    throw std::runtime_error("the window offers no 8-bit UNORM swapchain format");
   swapchain_format = unorm->format;
   int width = 0, height = 0;
   glfwGetFramebufferSize(window, &width, &height);
-  extent = caps.currentExtent.width != UINT32_MAX ? caps.currentExtent : VkExtent2D{uint32_t(width), uint32_t(height)};
+  extent = caps.currentExtent.width != UINT32_MAX ? caps.currentExtent
+                                                  : VkExtent2D{uint32_t(width), uint32_t(height)};
   VkSwapchainCreateInfoKHR swap{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
   swap.surface = surface_;
   swap.minImageCount = std::max(caps.minImageCount, 2u);
@@ -164,8 +172,8 @@ Buffer HostVulkan::make_buffer(VkDeviceSize size, VkBufferUsageFlags usage) cons
   vkGetBufferMemoryRequirements(device, b.buffer, &req);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex =
-      memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  alloc.memoryTypeIndex = memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                              VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   check(vkAllocateMemory(device, &alloc, nullptr, &b.memory), "vkAllocateMemory");
   check(vkBindBufferMemory(device, b.buffer, b.memory, 0), "vkBindBufferMemory");
   check(vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
@@ -178,8 +186,8 @@ void HostVulkan::destroy(Buffer& b) const {
   b = Buffer{};
 }
 
-Image HostVulkan::make_image(uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
-                             VkImageAspectFlags aspect) const {
+Image HostVulkan::make_image(uint32_t width, uint32_t height, VkFormat format,
+                             VkImageUsageFlags usage, VkImageAspectFlags aspect) const {
   Image image;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
@@ -217,7 +225,8 @@ void HostVulkan::destroy(Image& image) const {
 VkShaderModule HostVulkan::load_shader(const std::string& path) const {
   std::ifstream file(path, std::ios::binary);
   std::vector<char> code((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (code.empty() || code.size() % 4 != 0) throw std::runtime_error("cannot read the shader '" + path + "'");
+  if (code.empty() || code.size() % 4 != 0)
+    throw std::runtime_error("cannot read the shader '" + path + "'");
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = code.size();
   info.pCode = reinterpret_cast<const uint32_t*>(code.data());

@@ -61,7 +61,8 @@ class HostVulkan {
  private:
   static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
                                                    VkDebugUtilsMessageTypeFlagsEXT,
-                                                   const VkDebugUtilsMessengerCallbackDataEXT*, void*);
+                                                   const VkDebugUtilsMessengerCallbackDataEXT*,
+                                                   void*);
   uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags wanted) const;
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

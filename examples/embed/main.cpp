@@ -24,13 +24,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "host_vulkan.h"
 #include "nephele/error.h"
@@ -61,7 +60,8 @@ Options parse(int argc, char** argv) {
     };
     if (a == "--size") {
       const std::string v = value();
-      if (std::sscanf(v.c_str(), "%ux%u", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16)
+      if (std::sscanf(v.c_str(), "%ux%u", &o.width, &o.height) != 2 || o.width < 16 ||
+          o.height < 16)
         throw std::invalid_argument("--size '" + v + "': WIDTHxHEIGHT, each at least 16");
     } else if (a == "--frames") {
       o.frames = std::stoi(value());
@@ -88,7 +88,8 @@ Options parse(int argc, char** argv) {
 // default cloud layer), on a 12 km square about its summit; x, y from the summit (m).
 float mountain_height_m(float x, float y) {
   const float d = glm::length(glm::vec2(x, y));
-  const float ridges = 1.0f + 0.15f * std::sin(x / 430.0f) * std::cos(y / 610.0f) + 0.08f * std::sin((x + y) / 170.0f);
+  const float ridges = 1.0f + 0.15f * std::sin(x / 430.0f) * std::cos(y / 610.0f) +
+                       0.08f * std::sin((x + y) / 170.0f);
   return std::max(3800.0f * std::exp(-(d * d) / (2400.0f * 2400.0f)) * ridges - 40.0f, 0.0f);
 }
 
@@ -113,9 +114,9 @@ Mesh mountain_mesh(const nephele::CameraParams& camera) {
     for (int i = 0; i < n; ++i) {
       const float x = -0.5f * extent + float(i) * step, y = -0.5f * extent + float(j) * step;
       const float h = mountain_height_m(x, y);
-      const glm::vec3 normal = glm::normalize(glm::vec3(mountain_height_m(x - 10.0f, y) - mountain_height_m(x + 10.0f, y),
-                                                        mountain_height_m(x, y - 10.0f) - mountain_height_m(x, y + 10.0f),
-                                                        20.0f));
+      const glm::vec3 normal = glm::normalize(
+          glm::vec3(mountain_height_m(x - 10.0f, y) - mountain_height_m(x + 10.0f, y),
+                    mountain_height_m(x, y - 10.0f) - mountain_height_m(x, y + 10.0f), 20.0f));
       mesh.vertices.push_back({glm::vec3(summit + glm::vec2(x, y), h) - camera.position_m, normal});
     }
   for (int j = 0; j + 1 < n; ++j)
@@ -165,11 +166,22 @@ VkRenderPass make_render_pass(VkDevice device) {
                                                  VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
                                                  VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
   VkSubpassDependency dependencies[2] = {};
-  dependencies[0] = {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, attachment_stages, 0,
-                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0};
-  dependencies[1] = {0, VK_SUBPASS_EXTERNAL, attachment_stages, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                     VK_ACCESS_TRANSFER_READ_BIT, 0};
+  dependencies[0] = {
+      VK_SUBPASS_EXTERNAL,
+      0,
+      VK_PIPELINE_STAGE_TRANSFER_BIT,
+      attachment_stages,
+      0,
+      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+      0};
+  dependencies[1] = {
+      0,
+      VK_SUBPASS_EXTERNAL,
+      attachment_stages,
+      VK_PIPELINE_STAGE_TRANSFER_BIT,
+      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+      VK_ACCESS_TRANSFER_READ_BIT,
+      0};
   VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
   info.attachmentCount = 2;
   info.pAttachments = attachments;
@@ -184,9 +196,11 @@ VkRenderPass make_render_pass(VkDevice device) {
 
 VkPipeline make_pipeline(const embed::HostVulkan& vk, VkRenderPass pass, VkPipelineLayout layout) {
   const std::string dir = EMBED_SHADER_DIR;
-  VkShaderModule vert = vk.load_shader(dir + "/terrain.vert.spv"), frag = vk.load_shader(dir + "/terrain.frag.spv");
-  VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                               {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+  VkShaderModule vert = vk.load_shader(dir + "/terrain.vert.spv"),
+                 frag = vk.load_shader(dir + "/terrain.frag.spv");
+  VkPipelineShaderStageCreateInfo stages[2] = {
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
   stages[0].module = vert;
   stages[0].pName = "main";
@@ -194,31 +208,38 @@ VkPipeline make_pipeline(const embed::HostVulkan& vk, VkRenderPass pass, VkPipel
   stages[1].module = frag;
   stages[1].pName = "main";
   VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription attributes[2] = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                                                     {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
-  VkPipelineVertexInputStateCreateInfo input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkVertexInputAttributeDescription attributes[2] = {
+      {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+      {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
+  VkPipelineVertexInputStateCreateInfo input{
+      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   input.vertexBindingDescriptionCount = 1;
   input.pVertexBindingDescriptions = &binding;
   input.vertexAttributeDescriptionCount = 2;
   input.pVertexAttributeDescriptions = attributes;
-  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{
+      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   viewport.viewportCount = 1;
   viewport.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  VkPipelineRasterizationStateCreateInfo raster{
+      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   raster.polygonMode = VK_POLYGON_MODE_FILL;
   raster.cullMode = VK_CULL_MODE_NONE;
   raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  VkPipelineMultisampleStateCreateInfo multisample{
+      VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  VkPipelineDepthStencilStateCreateInfo depth{
+      VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = VK_TRUE;
   depth.depthWriteEnable = VK_TRUE;
   depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth: nearer is larger
   VkPipelineColorBlendAttachmentState blend{};
   blend.colorWriteMask = 0xf;
-  VkPipelineColorBlendStateCreateInfo blending{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  VkPipelineColorBlendStateCreateInfo blending{
+      VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blending.attachmentCount = 1;
   blending.pAttachments = &blend;
   const VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
@@ -239,14 +260,16 @@ VkPipeline make_pipeline(const embed::HostVulkan& vk, VkRenderPass pass, VkPipel
   info.layout = layout;
   info.renderPass = pass;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  check(vkCreateGraphicsPipelines(vk.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateGraphicsPipelines");
+  check(vkCreateGraphicsPipelines(vk.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+        "vkCreateGraphicsPipelines");
   vkDestroyShaderModule(vk.device, vert, nullptr);
   vkDestroyShaderModule(vk.device, frag, nullptr);
   return pipeline;
 }
 
-void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
-                   VkAccessFlags dst_access, VkPipelineStageFlags src, VkPipelineStageFlags dst) {
+void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                   VkAccessFlags src_access, VkAccessFlags dst_access, VkPipelineStageFlags src,
+                   VkPipelineStageFlags dst) {
   VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
   b.srcAccessMask = src_access;
   b.dstAccessMask = dst_access;
@@ -258,7 +281,8 @@ void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkIma
   vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
-void write_png(const std::string& path, uint32_t width, uint32_t height, const unsigned char* rgba) {
+void write_png(const std::string& path, uint32_t width, uint32_t height,
+               const unsigned char* rgba) {
   if (!stbi_write_png(path.c_str(), int(width), int(height), 4, rgba, int(width) * 4))
     throw std::runtime_error("cannot write '" + path + "'");
 }
@@ -272,7 +296,8 @@ int run(const Options& o) {
 
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-  GLFWwindow* window = glfwCreateWindow(int(o.width), int(o.height), "nephele-embed", nullptr, nullptr);
+  GLFWwindow* window =
+      glfwCreateWindow(int(o.width), int(o.height), "nephele-embed", nullptr, nullptr);
   if (!window) throw std::runtime_error("GLFW: cannot open a window (is there a display?)");
   int status = 0;
   {
@@ -281,17 +306,20 @@ int run(const Options& o) {
       throw std::runtime_error("the window is " + std::to_string(vk.extent.width) + " x " +
                                std::to_string(vk.extent.height) + ", not the size asked for");
     std::printf("nephele-embed: %s, %u x %u\n", vk.device_name.c_str(), o.width, o.height);
-    nephele::FrameRenderer sky(nephele::HostVulkan{vk.instance, vk.physical_device, vk.device, vk.queue_family, vk.queue});
+    nephele::FrameRenderer sky(
+        nephele::HostVulkan{vk.instance, vk.physical_device, vk.device, vk.queue_family, vk.queue});
     const int slots = sky.frames_in_flight();
     const size_t slot_count = size_t(slots);
 
     // The host's targets, pass, pipeline and mesh.
-    embed::Image color = vk.make_image(o.width, o.height, kColorFormat,
-                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                       VK_IMAGE_ASPECT_COLOR_BIT);
-    embed::Image depth = vk.make_image(o.width, o.height, kDepthFormat,
-                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                       VK_IMAGE_ASPECT_DEPTH_BIT);
+    embed::Image color =
+        vk.make_image(o.width, o.height, kColorFormat,
+                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                      VK_IMAGE_ASPECT_COLOR_BIT);
+    embed::Image depth =
+        vk.make_image(o.width, o.height, kDepthFormat,
+                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                      VK_IMAGE_ASPECT_DEPTH_BIT);
     VkRenderPass pass = make_render_pass(vk.device);
     VkImageView views[2] = {color.view, depth.view};
     VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
@@ -304,18 +332,21 @@ int run(const Options& o) {
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     check(vkCreateFramebuffer(vk.device, &fb_info, nullptr, &framebuffer), "vkCreateFramebuffer");
     VkDescriptorSetLayoutBinding bindings[2] = {
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
     VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     set_info.bindingCount = 2;
     set_info.pBindings = bindings;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
-    check(vkCreateDescriptorSetLayout(vk.device, &set_info, nullptr, &set_layout), "vkCreateDescriptorSetLayout");
+    check(vkCreateDescriptorSetLayout(vk.device, &set_info, nullptr, &set_layout),
+          "vkCreateDescriptorSetLayout");
     VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layout_info.setLayoutCount = 1;
     layout_info.pSetLayouts = &set_layout;
     VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
-    check(vkCreatePipelineLayout(vk.device, &layout_info, nullptr, &pipeline_layout), "vkCreatePipelineLayout");
+    check(vkCreatePipelineLayout(vk.device, &layout_info, nullptr, &pipeline_layout),
+          "vkCreatePipelineLayout");
     VkPipeline pipeline = make_pipeline(vk, pass, pipeline_layout);
     VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uint32_t(slots)},
                                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(slots)}};
@@ -324,7 +355,8 @@ int run(const Options& o) {
     pool_info.poolSizeCount = 2;
     pool_info.pPoolSizes = sizes;
     VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
-    check(vkCreateDescriptorPool(vk.device, &pool_info, nullptr, &descriptor_pool), "vkCreateDescriptorPool");
+    check(vkCreateDescriptorPool(vk.device, &pool_info, nullptr, &descriptor_pool),
+          "vkCreateDescriptorPool");
     std::vector<VkDescriptorSetLayout> layouts(slot_count, set_layout);
     std::vector<VkDescriptorSet> sets(slot_count);
     VkDescriptorSetAllocateInfo set_alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -340,12 +372,15 @@ int run(const Options& o) {
     check(vkCreateSampler(vk.device, &sampler_info, nullptr, &sampler), "vkCreateSampler");
 
     const Mesh mesh = mountain_mesh(scene.camera);
-    embed::Buffer vertices = vk.make_buffer(mesh.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    embed::Buffer indices = vk.make_buffer(mesh.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    embed::Buffer vertices =
+        vk.make_buffer(mesh.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    embed::Buffer indices =
+        vk.make_buffer(mesh.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     std::memcpy(vertices.mapped, mesh.vertices.data(), mesh.vertices.size() * sizeof(Vertex));
     std::memcpy(indices.mapped, mesh.indices.data(), mesh.indices.size() * 4);
     std::vector<embed::Buffer> uniforms;
-    for (int s = 0; s < slots; ++s) uniforms.push_back(vk.make_buffer(sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
+    for (int s = 0; s < slots; ++s)
+      uniforms.push_back(vk.make_buffer(sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT));
     const VkDeviceSize pixels = VkDeviceSize(o.width) * o.height;
     embed::Buffer screenshot = vk.make_buffer(pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     embed::Buffer depth_texels = vk.make_buffer(pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
@@ -354,7 +389,8 @@ int run(const Options& o) {
     cmd_pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     cmd_pool_info.queueFamilyIndex = vk.queue_family;
     VkCommandPool cmd_pool = VK_NULL_HANDLE;
-    check(vkCreateCommandPool(vk.device, &cmd_pool_info, nullptr, &cmd_pool), "vkCreateCommandPool");
+    check(vkCreateCommandPool(vk.device, &cmd_pool_info, nullptr, &cmd_pool),
+          "vkCreateCommandPool");
     std::vector<VkCommandBuffer> cmds(slot_count);
     VkCommandBufferAllocateInfo cmd_alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     cmd_alloc.commandPool = cmd_pool;
@@ -367,14 +403,17 @@ int run(const Options& o) {
     VkSemaphoreCreateInfo semaphore_info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     for (int s = 0; s < slots; ++s) {
       check(vkCreateFence(vk.device, &fence_info, nullptr, &fences[size_t(s)]), "vkCreateFence");
-      check(vkCreateSemaphore(vk.device, &semaphore_info, nullptr, &acquired[size_t(s)]), "vkCreateSemaphore");
+      check(vkCreateSemaphore(vk.device, &semaphore_info, nullptr, &acquired[size_t(s)]),
+            "vkCreateSemaphore");
     }
-    for (VkSemaphore& f : finished) check(vkCreateSemaphore(vk.device, &semaphore_info, nullptr, &f), "vkCreateSemaphore");
+    for (VkSemaphore& f : finished)
+      check(vkCreateSemaphore(vk.device, &semaphore_info, nullptr, &f), "vkCreateSemaphore");
 
     // The host's camera is the scene's: its view, and a reversed-depth projection (far at 0)
     // with the scene's field of view, y down as Vulkan's clip space has it.
     const nephele::CameraParams& camera = scene.camera;
-    const glm::mat4 view = glm::lookAt(glm::vec3(0.0f), camera.view_dir, glm::vec3(0.0f, 0.0f, 1.0f));
+    const glm::mat4 view =
+        glm::lookAt(glm::vec3(0.0f), camera.view_dir, glm::vec3(0.0f, 0.0f, 1.0f));
     glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(nephele::vertical_fov_deg(scene)),
                                                  float(o.width) / float(o.height), 100000.0f, 1.0f);
     projection[1][1] *= -1.0f;
@@ -397,7 +436,8 @@ int run(const Options& o) {
     std::optional<nephele::FrameImages> last;
     int frame = 0;
     const auto begin = [&](int slot) {
-      check(vkWaitForFences(vk.device, 1, &fences[size_t(slot)], VK_TRUE, UINT64_MAX), "vkWaitForFences");
+      check(vkWaitForFences(vk.device, 1, &fences[size_t(slot)], VK_TRUE, UINT64_MAX),
+            "vkWaitForFences");
       check(vkResetFences(vk.device, 1, &fences[size_t(slot)]), "vkResetFences");
       check(vkResetCommandBuffer(cmds[size_t(slot)], 0), "vkResetCommandBuffer");
       VkCommandBufferBeginInfo begin_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -418,7 +458,8 @@ int run(const Options& o) {
       check(vkQueueSubmit(vk.queue, 1, &submit, fences[size_t(slot)]), "vkQueueSubmit");
     }
 
-    for (int shown = 0; !glfwWindowShouldClose(window) && (o.frames == 0 || shown < o.frames); ++shown) {
+    for (int shown = 0; !glfwWindowShouldClose(window) && (o.frames == 0 || shown < o.frames);
+         ++shown) {
       glfwPollEvents();
       const bool final_frame = o.frames > 0 && shown == o.frames - 1;
       const int slot = frame++ % slots;
@@ -433,12 +474,14 @@ int run(const Options& o) {
       u.world_to_cloud_shadow = last->world_to_cloud_shadow;
       u.camera_m = glm::vec4(camera.position_m, 0.0f);
       u.sun_direction = glm::vec4(light.sun_direction, 0.0f);
-      u.sun_lux = glm::vec4(light.sun_illuminance_lux / std::max(light.sun_cloud_transmittance, 1e-3f), 0.0f);
+      u.sun_lux = glm::vec4(
+          light.sun_illuminance_lux / std::max(light.sun_cloud_transmittance, 1e-3f), 0.0f);
       for (int k = 0; k < 9; ++k) u.sky_sh[k] = glm::vec4(light.sky_radiance_sh[k], 0.0f);
       std::memcpy(uniforms[size_t(slot)].mapped, &u, sizeof u);
       VkDescriptorBufferInfo ubo{uniforms[size_t(slot)].buffer, 0, sizeof(FrameUniforms)};
       VkDescriptorImageInfo shadow{sampler, last->cloud_shadow_view, VK_IMAGE_LAYOUT_GENERAL};
-      VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+      VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                        {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
       writes[0].dstSet = writes[1].dstSet = sets[size_t(slot)];
       writes[0].dstBinding = 0;
       writes[0].descriptorCount = 1;
@@ -465,8 +508,8 @@ int run(const Options& o) {
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout, 0, 1, &sets[size_t(slot)], 0,
-                                nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout, 0, 1,
+                                &sets[size_t(slot)], 0, nullptr);
         VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vertices.buffer, &offset);
         vkCmdBindIndexBuffer(cmd, indices.buffer, 0, VK_INDEX_TYPE_UINT32);
@@ -479,30 +522,35 @@ int run(const Options& o) {
 
       // 3. Into the swapchain.
       uint32_t index = 0;
-      check(vkAcquireNextImageKHR(vk.device, vk.swapchain, UINT64_MAX, acquired[size_t(slot)], VK_NULL_HANDLE, &index),
+      check(vkAcquireNextImageKHR(vk.device, vk.swapchain, UINT64_MAX, acquired[size_t(slot)],
+                                  VK_NULL_HANDLE, &index),
             "vkAcquireNextImageKHR");
       VkImage target = vk.swapchain_images[index];
       image_barrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_PIPELINE_STAGE_TRANSFER_BIT);
       VkImageBlit blit{};
       blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
       blit.srcOffsets[1] = blit.dstOffsets[1] = {int32_t(o.width), int32_t(o.height), 1};
-      vkCmdBlitImage(cmd, last->display, VK_IMAGE_LAYOUT_GENERAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
-                     VK_FILTER_NEAREST);
-      image_barrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                    VK_ACCESS_TRANSFER_WRITE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+      vkCmdBlitImage(cmd, last->display, VK_IMAGE_LAYOUT_GENERAL, target,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+      image_barrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_ACCESS_TRANSFER_WRITE_BIT, 0,
+                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
       if (final_frame) {  // what is presented, and where the mountain is
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {o.width, o.height, 1};
-        vkCmdCopyImageToBuffer(cmd, last->display, VK_IMAGE_LAYOUT_GENERAL, screenshot.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(cmd, last->display, VK_IMAGE_LAYOUT_GENERAL, screenshot.buffer, 1,
+                               &region);
         region.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
-        vkCmdCopyImageToBuffer(cmd, depth.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth_texels.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(cmd, depth.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               depth_texels.buffer, 1, &region);
         VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr,
-                             0, nullptr);
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                             &to_host, 0, nullptr, 0, nullptr);
       }
       check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
       const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
@@ -523,8 +571,11 @@ int run(const Options& o) {
       present.pImageIndices = &index;
       check(vkQueuePresentKHR(vk.queue, &present), "vkQueuePresentKHR");
       if (final_frame) {
-        check(vkWaitForFences(vk.device, 1, &fences[size_t(slot)], VK_TRUE, UINT64_MAX), "vkWaitForFences");
-        if (!o.screenshot.empty()) write_png(o.screenshot, o.width, o.height, static_cast<unsigned char*>(screenshot.mapped));
+        check(vkWaitForFences(vk.device, 1, &fences[size_t(slot)], VK_TRUE, UINT64_MAX),
+              "vkWaitForFences");
+        if (!o.screenshot.empty())
+          write_png(o.screenshot, o.width, o.height,
+                    static_cast<unsigned char*>(screenshot.mapped));
         if (!o.mask.empty()) {
           std::vector<unsigned char> mask(pixels * 4, 255);
           const auto* d = static_cast<const float*>(depth_texels.mapped);
@@ -533,10 +584,12 @@ int run(const Options& o) {
           write_png(o.mask, o.width, o.height, mask.data());
         }
         const nephele::HostLighting& l = *sky.completed_lighting();
-        std::printf("nephele-embed: %d frames; sun %.0f lux at the camera (clouds pass %.2f), sky %.0f lux on the "
-                    "ground, visibility %.0f m\n",
-                    frame, l.sun_illuminance_lux.g, l.sun_cloud_transmittance,
-                    l.sky_irradiance_lux(glm::vec3(0.0f, 0.0f, 1.0f)).g, l.visibility_m);
+        std::printf(
+            "nephele-embed: %d frames; sun %.0f lux at the camera (clouds pass %.2f), sky %.0f lux "
+            "on the "
+            "ground, visibility %.0f m\n",
+            frame, l.sun_illuminance_lux.g, l.sun_cloud_transmittance,
+            l.sky_irradiance_lux(glm::vec3(0.0f, 0.0f, 1.0f)).g, l.visibility_m);
       }
     }
 

@@ -13,9 +13,8 @@
 // scene times (scene.time_s): the wind, the flow and the evolving weather move the clouds.
 #pragma once
 
-#include <memory>
-
 #include <glm/vec3.hpp>
+#include <memory>
 
 #include "nephele/scene.h"
 
@@ -28,11 +27,14 @@ class CloudQuery {
   float density(const glm::vec3& enu_m, float time_s) const;
   // The extinction coefficient there (1/m): density x clouds.extinction_per_m.
   float sigma_t_per_m(const glm::vec3& enu_m, float time_s) const;
-  bool inside_cloud(const glm::vec3& enu_m, float time_s) const { return density(enu_m, time_s) > 0.0f; }
+  bool inside_cloud(const glm::vec3& enu_m, float time_s) const {
+    return density(enu_m, time_s) > 0.0f;
+  }
   // The optical depth (sigma_t integrated, dimensionless) along the segment from `from_m` to
   // `to_m`: midpoint samples at most `step_m` apart ([0.1, 1e4] m); exp(-depth) is the direct
   // light's transmittance through the clouds (the air's not included).
-  float optical_depth(const glm::vec3& from_m, const glm::vec3& to_m, float time_s, float step_m = 10.0f) const;
+  float optical_depth(const glm::vec3& from_m, const glm::vec3& to_m, float time_s,
+                      float step_m = 10.0f) const;
 
   const Scene& scene() const;
 

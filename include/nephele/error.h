@@ -35,4 +35,7 @@ std::string one_line_for_message(std::string_view text);
 constexpr size_t kMaxPathChars = 200;
 std::string shorten_path_for_message(std::string_view path);
 
+// A number as a message shows it: printf's %g (1e+05, 0.25, nan, inf).
+std::string number_for_message(double value);
+
 }  // namespace nephele

@@ -7,11 +7,10 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <glm/gtc/packing.hpp>
 #include <string>
 #include <unordered_map>
 #include <vector>
-
-#include <glm/gtc/packing.hpp>
 
 #include "nephele/error.h"
 #include "nephele/frame.h"
@@ -39,10 +38,18 @@ using namespace glm;
 using namespace nephele::glsl;
 using gpu::CloudLayerGpu;
 
-float unorm8(uint8_t v) { return float(v) / 255.0f; }
-vec4 unorm8(const u8vec4& v) { return vec4(unorm8(v.x), unorm8(v.y), unorm8(v.z), unorm8(v.w)); }
-uint8_t to_unorm8(float v) { return uint8_t(std::lround(glm::clamp(v, 0.0f, 1.0f) * 255.0f)); }
-int wrap(int i, int n) { return ((i % n) + n) % n; }
+float unorm8(uint8_t v) {
+  return float(v) / 255.0f;
+}
+vec4 unorm8(const u8vec4& v) {
+  return vec4(unorm8(v.x), unorm8(v.y), unorm8(v.z), unorm8(v.w));
+}
+uint8_t to_unorm8(float v) {
+  return uint8_t(std::lround(glm::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+int wrap(int i, int n) {
+  return ((i % n) + n) % n;
+}
 
 // The GPU's texture units, filtering linearly with repeat addressing: texel centres at
 // (i + 0.5) / size, as in any Vulkan sampler.
@@ -55,7 +62,9 @@ struct sampler2D {
   int width = 0, height = 0;
 };
 
-ivec3 textureSize(const sampler3D& s, int) { return ivec3(s.size); }
+ivec3 textureSize(const sampler3D& s, int) {
+  return ivec3(s.size);
+}
 
 vec4 textureLod(const sampler3D& s, vec3 uvw, float /*lod: the finest level*/) {
   const vec3 p = uvw * float(s.size) - 0.5f;
@@ -108,20 +117,17 @@ constexpr int MARCH_MODE = 0;
 
 namespace {
 
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
 void require_finite(const glm::vec3& p, const char* what) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-    throw InputError(std::string("CloudQuery: ") + what + " (" + number(p.x) + ", " + number(p.y) + ", " +
-                     number(p.z) + ") must be finite (ENU metres)");
+    throw InputError(std::string("CloudQuery: ") + what + " (" + number_for_message(p.x) + ", " +
+                     number_for_message(p.y) + ", " + number_for_message(p.z) +
+                     ") must be finite (ENU metres)");
 }
 
 void require_finite(float t, const char* what) {
-  if (!std::isfinite(t)) throw InputError(std::string("CloudQuery: ") + what + " " + number(t) + " must be finite (s)");
+  if (!std::isfinite(t))
+    throw InputError(std::string("CloudQuery: ") + what + " " + number_for_message(t) +
+                     " must be finite (s)");
 }
 
 // One evaluation context: the parameters at a time, the samplers over the data, and the
@@ -132,23 +138,26 @@ class Field {
   Field(const CloudQuery::Data& data, float time_s) : data_(data) {
     Scene scene = data.scene;
     scene.time_s = time_s;
-    cloud_cpu::frame_now = nullptr;
     set_cloud_field(params_, scene);
-    const int base_size = int(kBaseNoiseSize), detail_size = int(kDetailNoiseSize), curl_size = int(kCurlNoiseSize);
+    const int base_size = int(kBaseNoiseSize), detail_size = int(kDetailNoiseSize),
+              curl_size = int(kCurlNoiseSize);
     base_ = {[&, base_size](int x, int y, int z) {
                return cloud_cpu::unorm8(data_.base[size_t((z * base_size + y) * base_size + x)]);
              },
              base_size};
-    detail_ = {[&, detail_size](int x, int y, int z) {
-                 return cloud_cpu::unorm8(data_.detail[size_t((z * detail_size + y) * detail_size + x)]);
-               },
-               detail_size};
-    curl_ = {[&, curl_size](int x, int y) { return data_.curl[size_t(y * curl_size + x)]; }, curl_size, curl_size};
+    detail_ = {
+        [&, detail_size](int x, int y, int z) {
+          return cloud_cpu::unorm8(data_.detail[size_t((z * detail_size + y) * detail_size + x)]);
+        },
+        detail_size};
+    curl_ = {[&, curl_size](int x, int y) { return data_.curl[size_t(y * curl_size + x)]; },
+             curl_size, curl_size};
     if (!data.weather_file.empty()) {
-      weather_ = {[&](int x, int y) {
-                    return cloud_cpu::unorm8(data_.weather_file[size_t(y * data_.weather_width + x)]);
-                  },
-                  data.weather_width, data.weather_height};
+      weather_ = {
+          [&](int x, int y) {
+            return cloud_cpu::unorm8(data_.weather_file[size_t(y * data_.weather_width + x)]);
+          },
+          data.weather_width, data.weather_height};
     } else {
       // weather.cpp: the two states about the weather's time, and the later one's share in
       // steps of 1 / kWeatherBlends.
@@ -174,12 +183,14 @@ class Field {
  private:
   glm::vec4 state(long long step, int x, int y) const {
     const int n = int(kWeatherMapSize);
-    const long long whole = step >= 0 ? step / gpu::WEATHER_STEPS : -((-step + gpu::WEATHER_STEPS - 1) / gpu::WEATHER_STEPS);
-    const float time = float(whole) + float(step - whole * gpu::WEATHER_STEPS) / float(gpu::WEATHER_STEPS);
+    const long long whole = step >= 0 ? step / gpu::WEATHER_STEPS
+                                      : -((-step + gpu::WEATHER_STEPS - 1) / gpu::WEATHER_STEPS);
+    const float time =
+        float(whole) + float(step - whole * gpu::WEATHER_STEPS) / float(gpu::WEATHER_STEPS);
     const glm::vec3 uv((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n), time / 6.0f);
     const glm::vec4 s = glsl::weather_state(uv, data_.scene.noise_seed);
-    return glm::vec4(cloud_cpu::to_unorm8(s.x), cloud_cpu::to_unorm8(s.y), cloud_cpu::to_unorm8(s.z),
-                     cloud_cpu::to_unorm8(s.w)) /
+    return glm::vec4(cloud_cpu::to_unorm8(s.x), cloud_cpu::to_unorm8(s.y),
+                     cloud_cpu::to_unorm8(s.z), cloud_cpu::to_unorm8(s.w)) /
            255.0f;
   }
   glm::vec4 weather_texel(int x, int y) {
@@ -207,7 +218,9 @@ class Field {
 
 CloudQuery::CloudQuery(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
 
-const Scene& CloudQuery::scene() const { return data_->scene; }
+const Scene& CloudQuery::scene() const {
+  return data_->scene;
+}
 
 float CloudQuery::density(const glm::vec3& enu_m, float time_s) const {
   require_finite(enu_m, "position");
@@ -222,15 +235,18 @@ float CloudQuery::sigma_t_per_m(const glm::vec3& enu_m, float time_s) const {
   return field.pair(enu_m).y * field.extinction_per_m();
 }
 
-float CloudQuery::optical_depth(const glm::vec3& from_m, const glm::vec3& to_m, float time_s, float step_m) const {
+float CloudQuery::optical_depth(const glm::vec3& from_m, const glm::vec3& to_m, float time_s,
+                                float step_m) const {
   require_finite(from_m, "from");
   require_finite(to_m, "to");
   require_finite(time_s, "time_s");
   if (!(step_m >= 0.1f && step_m <= 1.0e4f))
-    throw InputError("CloudQuery::optical_depth: step_m " + number(step_m) + " is outside [0.1, 1e4] m");
+    throw InputError("CloudQuery::optical_depth: step_m " + number_for_message(step_m) +
+                     " is outside [0.1, 1e4] m");
   const float length_m = glm::distance(from_m, to_m);
   if (length_m > 1.0e7f)
-    throw InputError("CloudQuery::optical_depth: the segment's " + number(length_m) + " m exceed 1e7 m");
+    throw InputError("CloudQuery::optical_depth: the segment's " + number_for_message(length_m) +
+                     " m exceed 1e7 m");
   Field field(*data_, time_s);
   const glm::vec2 shell_m = cloud_shell_m(data_->scene);
   const float planet_m = data_->scene.atmosphere.planet_radius_km * 1000.0f;
@@ -246,7 +262,9 @@ float CloudQuery::optical_depth(const glm::vec3& from_m, const glm::vec3& to_m, 
   return float(depth * ds * field.extinction_per_m());
 }
 
-CloudQuery FrameRenderer::cloud_query(const Scene& scene) { return impl_->cloud_query(scene); }
+CloudQuery FrameRenderer::cloud_query(const Scene& scene) {
+  return impl_->cloud_query(scene);
+}
 
 CloudQuery FrameRenderer::Impl::cloud_query(const Scene& scene) {
   validate_scene(scene);
@@ -258,7 +276,8 @@ CloudQuery FrameRenderer::Impl::cloud_query(const Scene& scene) {
   data->scene = scene;
   const auto read = [&](const gpu::Texture& t, size_t texel_bytes, auto& out) {
     const size_t texels = size_t(t.width()) * t.height() * t.depth();
-    gpu::Buffer staging(f.ctx, VkDeviceSize(texels * texel_bytes), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    gpu::Buffer staging(f.ctx, VkDeviceSize(texels * texel_bytes),
+                        VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     f.ctx.submit_and_wait([&](VkCommandBuffer cmd) {
       gpu::full_barrier(cmd);  // after the frames in flight
       t.record_download(cmd, staging);
@@ -277,8 +296,9 @@ CloudQuery FrameRenderer::Impl::cloud_query(const Scene& scene) {
     for (int row = 0; row < png.height; ++row)
       for (int x = 0; x < png.width; ++x) {
         const glm::vec4& p = png.at(x, png.height - 1 - row);
-        data->weather_file.push_back(glm::u8vec4(cloud_cpu::to_unorm8(p.x), cloud_cpu::to_unorm8(p.y),
-                                                 cloud_cpu::to_unorm8(p.z), cloud_cpu::to_unorm8(p.w)));
+        data->weather_file.push_back(
+            glm::u8vec4(cloud_cpu::to_unorm8(p.x), cloud_cpu::to_unorm8(p.y),
+                        cloud_cpu::to_unorm8(p.z), cloud_cpu::to_unorm8(p.w)));
       }
   }
   return CloudQuery(std::move(data));

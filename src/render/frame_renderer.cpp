@@ -403,6 +403,13 @@ Frame FrameRenderer::Impl::download_last(const Scene& scene) {
 FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& requested,
                                               const FrameOptions& options) {
   validate_scene(requested);
+  // Every argument is checked before any module changes its state: a refused call leaves the
+  // renderer as it was.
+  if (options.host_scene)
+    if (const std::string problem = host_scene_problem(*options.host_scene, requested); !problem.empty())
+      throw InputError("FrameRenderer::record_frame: " + problem);
+  if (const std::string problem = host_lighting_problem(options.lighting); !problem.empty())
+    throw InputError("FrameRenderer::record_frame: " + problem);
   // A lab (a grid in vacuum) is drawn as the scene lab_fast_scene makes of it.
   std::optional<Scene> lab;
   if (!requested.lab.grid.empty())
@@ -457,7 +464,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   classic_clouds.prepare(scene, params);
   const bool post_processed = post.prepare(scene, s.width, s.height, params);
   const bool shafts = light_shafts.prepare(scene, s.width, s.height);
-  const bool host = host_scene.prepare(options.host_scene, scene, params);
+  const bool host = host_scene.prepare(options.host_scene, params);
   const bool lighting = host_lighting.prepare(options.lighting, scene, lights, slot, params);
   terrain.prepare(scene, s.width, s.height, host, params);
   clouds.swap_history();

@@ -1,6 +1,8 @@
 // nephele — helpers for error messages.
 #include "nephele/error.h"
 
+#include <cstdio>
+
 namespace nephele {
 namespace {
 
@@ -35,6 +37,12 @@ std::string shorten_path_for_message(std::string_view path) {
   size_t start = path.size() - (kMaxPathChars - 3);
   while (start < path.size() && utf8_continuation(path[start])) ++start;
   return "..." + printable(path.substr(start));
+}
+
+std::string number_for_message(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
 }  // namespace nephele

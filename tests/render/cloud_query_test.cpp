@@ -1,26 +1,22 @@
 // The cloud field queried from the CPU (nephele/cloud_query.h) against the device's: the
 // shaders' density function compiled as C++ on the noise textures read back must give the
 // density the device computes, point for point (issue 25: within 1%).
+#include "nephele/cloud_query.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "nephele/cloud_query.h"
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
 #include "render/frame_renderer_impl.h"
 #include "render/passes.h"
+#include "render_fixture.h"
 
 namespace nephele {
 namespace {
-
-RendererOptions validated() {
-  RendererOptions options;
-  options.validation = true;
-  return options;
-}
 
 // The device's cloud profile pass (cloud_profile.comp) sums the density field along rows of
 // 64 points over the weather map's square about the camera, one row per (row, altitude bin);
@@ -43,8 +39,9 @@ void compare_with_device(const char* preset, float time_s) {
       // As the pass computes it, in floats of the planet's size (GLSL's mix: x (1 - a) + y a).
       const float a = (float(bin) + 0.5f) / float(n);
       const float r = (planet_m + shell_m.x) * (1.0f - a) + (planet_m + shell_m.y) * a;
-      const glm::vec2 start = glm::vec2(scene.camera.position_m) +
-                              glm::vec2(cell_m * 0.5f - half_m, cell_m * (float(row) + 0.5f) - half_m);
+      const glm::vec2 start =
+          glm::vec2(scene.camera.position_m) +
+          glm::vec2(cell_m * 0.5f - half_m, cell_m * (float(row) + 0.5f) - half_m);
       double sum = 0.0;
       int in_cloud = 0;
       for (int i = 0; i < n; ++i) {
@@ -56,7 +53,8 @@ void compare_with_device(const char* preset, float time_s) {
       }
       const glm::vec4 device = sums.at(row, bin);
       worst = std::max(worst, std::abs(sum - double(device.x)));
-      if (device.x > 0.05f) worst_relative = std::max(worst_relative, std::abs(sum / double(device.x) - 1.0));
+      if (device.x > 0.05f)
+        worst_relative = std::max(worst_relative, std::abs(sum / double(device.x) - 1.0));
       cloud_points += in_cloud;
       largest_sum = std::max(largest_sum, double(device.x));
       total += device.x;
@@ -67,27 +65,35 @@ void compare_with_device(const char* preset, float time_s) {
       // Each row within 2% of its sum (or 0.02 where it holds little cloud): at the clouds'
       // edges the coverage cut magnifies rounding differences (positions are floats 6.4e6 m
       // from the planet's centre, good to half a metre, on the device and here alike).
-      EXPECT_NEAR(sum, device.x, 0.02 * std::max(double(device.x), 1.0)) << preset << " row " << row << " bin " << bin;
+      EXPECT_NEAR(sum, device.x, 0.02 * std::max(double(device.x), 1.0))
+          << preset << " row " << row << " bin " << bin;
     }
-  std::printf("%s at %.0f s: %d rows of %d points, %d points in cloud; row sums up to %.2f (mean %.3f); the "
-              "largest difference %.4f, %.3f%% of a row's sum (sums over 0.05); %d of %d points in cloud on one "
-              "side only\n",
-              preset, time_s, rows, n, cloud_points, largest_sum, total / rows, worst, 100.0 * worst_relative,
-              differing_points, compared_points);
+  std::printf(
+      "%s at %.0f s: %d rows of %d points, %d points in cloud; row sums up to %.2f (mean %.3f); "
+      "the "
+      "largest difference %.4f, %.3f%% of a row's sum (sums over 0.05); %d of %d points in cloud "
+      "on one "
+      "side only\n",
+      preset, time_s, rows, n, cloud_points, largest_sum, total / rows, worst,
+      100.0 * worst_relative, differing_points, compared_points);
   EXPECT_GT(cloud_points, compared_points / 20) << "the rows should hold clouds";
   // The field as a whole within 1%.
-  std::printf("%s: the query's total %.3f, the device's %.3f (%.3f%%)\n", preset, query_total, total,
-              100.0 * (query_total / total - 1.0));
+  std::printf("%s: the query's total %.3f, the device's %.3f (%.3f%%)\n", preset, query_total,
+              total, 100.0 * (query_total / total - 1.0));
   EXPECT_NEAR(query_total, total, 0.01 * total);
   EXPECT_LE(differing_points, compared_points / 200);
   EXPECT_EQ(impl.ctx.validation_messages(), 0);
 }
 
-TEST(CloudQuery, TheDensityIsTheDevicesPointForPoint) { compare_with_device("broken", 0.0f); }
+TEST(CloudQuery, TheDensityIsTheDevicesPointForPoint) {
+  compare_with_device("broken", 0.0f);
+}
 
 // The evolving weather (two states blended), the flow and the winds at a later time, and the
 // high layer.
-TEST(CloudQuery, TheDensityFollowsTheDeviceInTimeAndInTheHighLayer) { compare_with_device("cumulonimbus-storm", 1234.5f); }
+TEST(CloudQuery, TheDensityFollowsTheDeviceInTimeAndInTheHighLayer) {
+  compare_with_device("cumulonimbus-storm", 1234.5f);
+}
 
 TEST(CloudQuery, OpticalDepthAndInsideFollowTheDensity) {
   Renderer renderer(validated());
@@ -100,7 +106,8 @@ TEST(CloudQuery, OpticalDepthAndInsideFollowTheDensity) {
   double integral = 0.0;
   for (int i = 0; i < 1000; ++i)
     integral += deck.sigma_t_per_m(glm::mix(ground, above, (i + 0.5f) / 1000.0f), 0.0f) * 5.99;
-  std::printf("overcast: optical depth through the deck %.1f (a 6 m step integral: %.1f)\n", depth, integral);
+  std::printf("overcast: optical depth through the deck %.1f (a 6 m step integral: %.1f)\n", depth,
+              integral);
   EXPECT_GT(depth, 5.0f) << "an overcast deck lets little direct light through";
   EXPECT_NEAR(depth, integral, 0.02 * integral);
   EXPECT_FALSE(deck.inside_cloud(ground, 0.0f));

@@ -15,24 +15,21 @@
 #include "render/frame_renderer_impl.h"
 #include "render/glsl.h"
 #include "render/passes.h"
+#include "render_fixture.h"
 
 namespace nephele {
 namespace {
 
-RendererOptions validated() {
-  RendererOptions options;
-  options.validation = true;
-  return options;
-}
-
 // One still frame of `scene` with the host's lighting, completed and collected.
-FrameImages lit_frame(FrameRenderer::Impl& impl, const Scene& scene, HostLightingOptions lighting = {}) {
+FrameImages lit_frame(FrameRenderer::Impl& impl, const Scene& scene,
+                      HostLightingOptions lighting = {}) {
   FrameOptions options;
   options.still = true;
   options.lighting = lighting;
   options.lighting.enabled = true;
   FrameImages images;
-  impl.ctx.submit_and_wait([&](VkCommandBuffer cmd) { images = impl.record_frame(cmd, scene, options); });
+  impl.ctx.submit_and_wait(
+      [&](VkCommandBuffer cmd) { images = impl.record_frame(cmd, scene, options); });
   impl.collect(images.slot);
   return images;
 }
@@ -41,11 +38,13 @@ FrameImages lit_frame(FrameRenderer::Impl& impl, const Scene& scene, HostLightin
 // sky_light_inc.glsl's sky_radiance reads it.
 glm::vec3 table_radiance(const Image& lut, const gpu::FrameParams& params, const glm::vec3& d) {
   const glsl::sampler2D table{lut.pixels.data(), lut.width, lut.height};
-  const glsl::SkyViewFrame f = glsl::sky_view_frame_from(params.sky_view_up, params.sky_view_forward);
+  const glsl::SkyViewFrame f =
+      glsl::sky_view_frame_from(params.sky_view_up, params.sky_view_forward);
   const glm::vec2 uv = glsl::sky_view_uv(f, d);
   const float rows = float(lut.height / 2);
   glm::vec3 l = glm::vec3(glsl::textureLod(table, glsl::sky_view_texcoord(uv, rows, 0.0f), 0.0f));
-  if (uv.y < 0.5f) l += glm::vec3(glsl::textureLod(table, glsl::sky_view_texcoord(uv, rows, 1.0f), 0.0f));
+  if (uv.y < 0.5f)
+    l += glm::vec3(glsl::textureLod(table, glsl::sky_view_texcoord(uv, rows, 1.0f), 0.0f));
   return l;
 }
 
@@ -60,25 +59,33 @@ T over_sphere(const Image& lut, const gpu::FrameParams& params, F f) {
       const float phi = (float(c) + 0.5f) / float(columns) * 2.0f * 3.14159265f;
       const float s = std::sqrt(std::max(1.0f - z * z, 0.0f));
       const glm::vec3 d(s * std::cos(phi), s * std::sin(phi), z);
-      f(sum, d, glm::dvec3(table_radiance(lut, params, d)) * (4.0 * 3.14159265358979 / double(rows * columns)));
+      f(sum, d,
+        glm::dvec3(table_radiance(lut, params, d)) *
+            (4.0 * 3.14159265358979 / double(rows * columns)));
     }
   return sum;
 }
 
 // The irradiance on a surface facing n: the table's radiance times the cosine.
 glm::dvec3 table_irradiance(const Image& lut, const gpu::FrameParams& params, const glm::vec3& n) {
-  return over_sphere<glm::dvec3>(lut, params, [&](glm::dvec3& sum, const glm::vec3& d, const glm::dvec3& l_dw) {
-    sum += l_dw * double(std::max(glm::dot(d, n), 0.0f));
-  });
+  return over_sphere<glm::dvec3>(lut, params,
+                                 [&](glm::dvec3& sum, const glm::vec3& d, const glm::dvec3& l_dw) {
+                                   sum += l_dw * double(std::max(glm::dot(d, n), 0.0f));
+                                 });
 }
 
 // The table's radiance projected on the nine real spherical harmonics (HostLighting's order).
 std::array<glm::dvec3, 9> table_sh(const Image& lut, const gpu::FrameParams& params) {
   using Sh = std::array<glm::dvec3, 9>;
   return over_sphere<Sh>(lut, params, [](Sh& sum, const glm::vec3& d, const glm::dvec3& l_dw) {
-    const double y[9] = {0.282095,           0.488603 * d.y,     0.488603 * d.z,
-                         0.488603 * d.x,     1.092548 * d.x * d.y, 1.092548 * d.y * d.z,
-                         0.315392 * (3.0 * d.z * d.z - 1.0), 1.092548 * d.x * d.z,
+    const double y[9] = {0.282095,
+                         0.488603 * d.y,
+                         0.488603 * d.z,
+                         0.488603 * d.x,
+                         1.092548 * d.x * d.y,
+                         1.092548 * d.y * d.z,
+                         0.315392 * (3.0 * d.z * d.z - 1.0),
+                         1.092548 * d.x * d.z,
                          0.546274 * (d.x * d.x - d.y * d.y)};
     for (int k = 0; k < 9; ++k) sum[k] += l_dw * y[k];
   });
@@ -116,8 +123,9 @@ TEST(HostLighting, SkyIrradianceMatchesAnIntegralOfTheSkyViewTable) {
     for (int i = 0; i < 4; ++i) {
       const glm::vec3& n = normals[i];
       const glm::vec3 got = lighting.sky_irradiance_lux(n);
-      std::printf("%s, normal (%.2f, %.2f, %.2f): SH %.1f lux, the table's integral %.1f lux (green)\n", preset, n.x,
-                  n.y, n.z, got.g, expected[i].g);
+      std::printf(
+          "%s, normal (%.2f, %.2f, %.2f): SH %.1f lux, the table's integral %.1f lux (green)\n",
+          preset, n.x, n.y, n.z, got.g, expected[i].g);
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(got[c], expected[i][c], 0.06 * brightest[c])
             << preset << " channel " << c << " normal " << n.x << "," << n.y << "," << n.z;
@@ -141,7 +149,8 @@ Image download_r32f(gpu::Context& ctx, const gpu::Texture& texture) {
   gpu::Buffer staging(ctx, VkDeviceSize(image.pixels.size() * 4), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { texture.record_download(cmd, staging); });
   const auto* texels = static_cast<const float*>(staging.data());
-  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = glm::vec4(texels[i], 0.0f, 0.0f, 1.0f);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = glm::vec4(texels[i], 0.0f, 0.0f, 1.0f);
   return image;
 }
 
@@ -188,25 +197,30 @@ TEST(HostLighting, TheShadowMapsMatrixPutsTheCloudsGroundShadowsWhereTheImageHas
   // Where the light through a ground point crosses the clouds' bottom, less the ground point:
   // undone, a point reads the map straight above itself.
   const float base_m = impl.last_params.radii_m.z - impl.last_params.radii_m.x;
-  const glm::vec3 slant = glm::vec3(scene.sun.direction.x, scene.sun.direction.y, 0.0f) / scene.sun.direction.z * base_m;
+  const glm::vec3 slant = glm::vec3(scene.sun.direction.x, scene.sun.direction.y, 0.0f) /
+                          scene.sun.direction.z * base_m;
   const CameraBasis basis = camera_basis(scene.camera);
   const float tan_half = std::tan(glm::radians(scene.camera.fov_deg) * 0.5f);
   std::vector<double> brightness, slanted, straight;
   double lo = 1.0, hi = 0.0;
   for (int y = 0; y < frame.color.height; ++y)
     for (int x = 0; x < frame.color.width; ++x) {
-      const glm::vec3 dir = glsl::camera_ray(basis.forward, basis.right, basis.up, tan_half, 1.0f, float(x), float(y),
-                                             float(frame.color.width), float(frame.color.height));
+      const glm::vec3 dir =
+          glsl::camera_ray(basis.forward, basis.right, basis.up, tan_half, 1.0f, float(x), float(y),
+                           float(frame.color.width), float(frame.color.height));
       const glm::vec3 ground = scene.camera.position_m + dir * (scene.camera.position_m.z / -dir.z);
       brightness.push_back(luminance(frame.color.at(x, y)));
       slanted.push_back(shadow_at(map, images.world_to_cloud_shadow, ground));
       straight.push_back(shadow_at(map, images.world_to_cloud_shadow, ground - slant));
       lo = std::min(lo, slanted.back()), hi = std::max(hi, slanted.back());
     }
-  const double along_light = correlation(brightness, slanted), straight_above = correlation(brightness, straight);
-  std::printf("the ground's brightness against the map: correlation %.3f along the light, %.3f straight above; "
-              "the map's shadows from %.2f to %.2f\n",
-              along_light, straight_above, lo, hi);
+  const double along_light = correlation(brightness, slanted),
+               straight_above = correlation(brightness, straight);
+  std::printf(
+      "the ground's brightness against the map: correlation %.3f along the light, %.3f straight "
+      "above; "
+      "the map's shadows from %.2f to %.2f\n",
+      along_light, straight_above, lo, hi);
   EXPECT_LT(lo, 0.3) << "the view should hold cloud shadows";
   EXPECT_GT(hi - lo, 0.5) << "and sunlit ground";
   EXPECT_GT(along_light, 0.9);
@@ -250,10 +264,12 @@ TEST(HostLighting, TheEnvironmentHoldsTheSkyAndTheClouds) {
       const glm::vec3 got(clear.at(x, y));
       for (int c = 0; c < 3; ++c) {
         worst = std::max(worst, std::abs(double(got[c]) / double(expected[c]) - 1.0));
-        EXPECT_NEAR(got[c], expected[c], 0.01f * expected[c] + 1e-3f) << "face " << face << " texel " << x << "," << y;
+        EXPECT_NEAR(got[c], expected[c], 0.01f * expected[c] + 1e-3f)
+            << "face " << face << " texel " << x << "," << y;
       }
     }
-  std::printf("clear environment against the sky-view table: largest difference %.3f%%\n", 100.0 * worst);
+  std::printf("clear environment against the sky-view table: largest difference %.3f%%\n",
+              100.0 * worst);
 
   // Looking straight up under the deck: the environment's zenith and the view's centre.
   scene = load_preset("overcast");
@@ -270,14 +286,17 @@ TEST(HostLighting, TheEnvironmentHoldsTheSkyAndTheClouds) {
   for (int y = 12; y < 20; ++y)
     for (int x = 12; x < 20; ++x) seen += glm::vec3(view.color.at(x, y)) / 64.0f;
   const glm::vec3 clear_zenith(clear.at(4 * 16 + 8, 8));
-  std::printf("zenith: clear sky %.0f cd/m^2 (blue/red %.2f); under the deck the environment %.0f, the view %.0f cd/m^2 "
-              "(blue/red %.2f and %.2f)\n",
-              luminance(glm::vec4(clear_zenith, 1.0f)), clear_zenith.b / clear_zenith.r,
-              luminance(glm::vec4(zenith, 1.0f)), luminance(glm::vec4(seen, 1.0f)), zenith.b / zenith.r,
-              seen.b / seen.r);
+  std::printf(
+      "zenith: clear sky %.0f cd/m^2 (blue/red %.2f); under the deck the environment %.0f, the "
+      "view %.0f cd/m^2 "
+      "(blue/red %.2f and %.2f)\n",
+      luminance(glm::vec4(clear_zenith, 1.0f)), clear_zenith.b / clear_zenith.r,
+      luminance(glm::vec4(zenith, 1.0f)), luminance(glm::vec4(seen, 1.0f)), zenith.b / zenith.r,
+      seen.b / seen.r);
   EXPECT_NEAR(luminance(glm::vec4(zenith, 1.0f)), luminance(glm::vec4(seen, 1.0f)),
               0.2f * luminance(glm::vec4(seen, 1.0f)));
-  EXPECT_LT(zenith.b / zenith.r, 0.8f * clear_zenith.b / clear_zenith.r) << "the deck is grey, not blue";
+  EXPECT_LT(zenith.b / zenith.r, 0.8f * clear_zenith.b / clear_zenith.r)
+      << "the deck is grey, not blue";
   EXPECT_EQ(impl.ctx.validation_messages(), 0);
 }
 
@@ -287,7 +306,8 @@ TEST(HostLighting, TheShadowMapMatrixCarriesPointsAlongTheLightOntoTheCloudsBott
   const auto uv = [&](const glm::vec3& p) { return glm::vec3(m * glm::vec4(p, 1.0f)); };
   // The plane's north-west corner and its south-east one.
   EXPECT_NEAR(glm::distance(uv({-1000.0f, 3000.0f, 1500.0f}), glm::vec3(0.0f)), 0.0f, 1e-5f);
-  EXPECT_NEAR(glm::distance(uv({3000.0f, -1000.0f, 1500.0f}), glm::vec3(1.0f, 1.0f, 0.0f)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::distance(uv({3000.0f, -1000.0f, 1500.0f}), glm::vec3(1.0f, 1.0f, 0.0f)), 0.0f,
+              1e-5f);
   // Points on one ray of light share their texel; z is the height above the plane.
   const glm::vec3 on_plane(500.0f, 1200.0f, 1500.0f);
   for (float t : {300.0f, 1500.0f / light.z}) {
@@ -311,11 +331,12 @@ TEST(HostLighting, InsideACloudTheVisibilityIsTheClouds) {
   scene.output.height = 16;
   lit_frame(impl, scene);
   const HostLighting clear = *impl.completed_lighting;
-  std::printf("visibility: %.0f m inside the cloud (sigma_t %.4f /m), %.0f m in clear air\n", inside.visibility_m,
-              inside.cloud_sigma_t_per_m, clear.visibility_m);
+  std::printf("visibility: %.0f m inside the cloud (sigma_t %.4f /m), %.0f m in clear air\n",
+              inside.visibility_m, inside.cloud_sigma_t_per_m, clear.visibility_m);
   EXPECT_TRUE(inside.inside_cloud);
   EXPECT_FALSE(clear.inside_cloud);
-  EXPECT_NEAR(inside.visibility_m, 3.912f / inside.cloud_sigma_t_per_m, 0.01f * inside.visibility_m);
+  EXPECT_NEAR(inside.visibility_m, 3.912f / inside.cloud_sigma_t_per_m,
+              0.01f * inside.visibility_m);
   EXPECT_LT(inside.visibility_m, 1000.0f);  // fog, by the meteorologists' definition
   EXPECT_GT(clear.visibility_m, 50000.0f);
   EXPECT_LT(inside.sun_cloud_transmittance, 0.9f);  // the cloud around dims the sun
@@ -327,9 +348,9 @@ TEST(HostLighting, BadOptionsAreRefusedNamingTheField) {
   Scene scene = load_preset("clear");
   scene.output.width = 16;
   scene.output.height = 16;
-  for (const auto& [extent, size, field] : {std::tuple{50.0f, 256u, "shadow_map_extent_m"},
-                                            std::tuple{20000.0f, 4u, "shadow_map_size"},
-                                            std::tuple{std::nanf(""), 256u, "shadow_map_extent_m"}}) {
+  for (const auto& [extent, size, field] :
+       {std::tuple{50.0f, 256u, "shadow_map_extent_m"}, std::tuple{20000.0f, 4u, "shadow_map_size"},
+        std::tuple{std::nanf(""), 256u, "shadow_map_extent_m"}}) {
     HostLightingOptions options;
     options.shadow_map_extent_m = extent;
     options.shadow_map_size = size;

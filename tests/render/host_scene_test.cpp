@@ -6,15 +6,14 @@
 
 #include <cmath>
 #include <functional>
-#include <string>
-
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
+#include <string>
 
 #include "nephele/error.h"
-#include "nephele/image.h"
 #include "nephele/frame.h"
+#include "nephele/image.h"
 #include "nephele/scene_io.h"
 #include "support/vulkan_host.h"
 
@@ -45,19 +44,24 @@ glm::mat4 projection_for(const nephele::Scene& scene, const DepthSetup& depth) {
 }
 
 // The depth texel a point `distance_m` along pixel (x, y)'s ray has under `projection`.
-float depth_of(const glm::mat4& projection, const nephele::Scene& scene, int x, int y, float distance_m) {
-  const glm::vec2 ndc = (glm::vec2(x, y) + 0.5f) / glm::vec2(scene.output.width, scene.output.height) * 2.0f - 1.0f;
+float depth_of(const glm::mat4& projection, const nephele::Scene& scene, int x, int y,
+               float distance_m) {
+  const glm::vec2 ndc =
+      (glm::vec2(x, y) + 0.5f) / glm::vec2(scene.output.width, scene.output.height) * 2.0f - 1.0f;
   const glm::vec4 far_point = glm::inverse(projection) * glm::vec4(ndc, 0.5f, 1.0f);
   const glm::vec3 dir = glm::normalize(glm::vec3(far_point) / far_point.w);
   const glm::vec4 clip = projection * glm::vec4(dir * distance_m, 1.0f);
   return clip.z / clip.w;
 }
 
-int depth_bytes(VkFormat format) { return format == VK_FORMAT_D16_UNORM ? 2 : 4; }
+int depth_bytes(VkFormat format) {
+  return format == VK_FORMAT_D16_UNORM ? 2 : 4;
+}
 
 // The host's images of `geometry`, uploaded and left in TRANSFER_SRC_OPTIMAL.
 struct HostTargets {
-  HostTargets(Host& host, const nephele::Scene& scene, const Geometry& geometry, const DepthSetup& setup)
+  HostTargets(Host& host, const nephele::Scene& scene, const Geometry& geometry,
+              const DepthSetup& setup)
       : width(uint32_t(scene.output.width)),
         height(uint32_t(scene.output.height)),
         depth(host.vk, width, height, setup.format,
@@ -77,9 +81,12 @@ struct HostTargets {
         const float d = geometry.distance_m(x, y);
         const float z = d > 0.0f ? glm::clamp(depth_of(projection, scene, x, y, d), 0.0f, 1.0f)
                                  : (setup.reversed ? 0.0f : 1.0f);
-        if (setup.format == VK_FORMAT_D16_UNORM) d16[i] = uint16_t(std::lround(z * 65535.0f));
-        else if (setup.format == VK_FORMAT_X8_D24_UNORM_PACK32) d24[i] = uint32_t(std::lround(z * 16777215.0));
-        else d32[i] = z;
+        if (setup.format == VK_FORMAT_D16_UNORM)
+          d16[i] = uint16_t(std::lround(z * 65535.0f));
+        else if (setup.format == VK_FORMAT_X8_D24_UNORM_PACK32)
+          d24[i] = uint32_t(std::lround(z * 16777215.0));
+        else
+          d32[i] = z;
         const glm::vec3 c = geometry.radiance(x, y);
         rgba[2 * i] = glm::packHalf2x16(glm::vec2(c.r, c.g));
         rgba[2 * i + 1] = glm::packHalf2x16(glm::vec2(c.b, 1.0f));
@@ -118,7 +125,9 @@ nephele::Frame render(Host& host, nephele::FrameRenderer& sky, const nephele::Sc
   return sky.read_back();
 }
 
-float luminance(const glm::vec4& c) { return nephele::luminance(c); }
+float luminance(const glm::vec4& c) {
+  return nephele::luminance(c);
+}
 
 nephele::Scene small(const std::string& preset, glm::vec3 view_dir) {
   nephele::Scene scene = nephele::load_preset(preset);
@@ -146,12 +155,14 @@ TEST(HostScene, HidesTheSkyBehindTheHostsGeometryAndKeepsItsLightNearby) {
     const float horizon_sky = luminance(without.color.at(scene.output.width / 2, h / 2 - 3));
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < scene.output.width; ++x) {
-        const float got = luminance(with.color.at(x, y)), sky_only = luminance(without.color.at(x, y));
+        const float got = luminance(with.color.at(x, y)),
+                    sky_only = luminance(without.color.at(x, y));
         if (y >= h / 2) {
           // 200 m of air: the wall's light through it (transmittance 0.99 to 1), the air's own
           // light added (under 1% of the horizon's), no sun, sky or ground behind it.
           const float air_light = luminance(air.color.at(x, y));
-          EXPECT_GT(got - air_light, 990.0f) << x << "," << y << " (without the wall: " << sky_only << ")";
+          EXPECT_GT(got - air_light, 990.0f)
+              << x << "," << y << " (without the wall: " << sky_only << ")";
           EXPECT_LT(got - air_light, 1000.5f) << x << "," << y;
           EXPECT_GT(air_light, 0.0f);
           EXPECT_LT(air_light, 0.01f * horizon_sky) << x << "," << y;
@@ -191,7 +202,8 @@ TEST(HostScene, CloudsInFrontCoverTheGeometryAndGeometryInFrontCoversTheClouds) 
       // The wall in front hides the deck.
       EXPECT_NEAR(luminance(in_front.color.pixels[i]), bright.x, 0.03f * bright.x) << i;
     }
-    EXPECT_GT(opaque, int(without.color.pixels.size() / 2)) << "the overcast deck should fill the view";
+    EXPECT_GT(opaque, int(without.color.pixels.size() / 2))
+        << "the overcast deck should fill the view";
   }
   EXPECT_EQ(host.messages, 0);
 }
@@ -205,7 +217,9 @@ TEST(HostScene, TheAirFogsFarGeometryAsTheAerialPerspective) {
     const nephele::Scene scene = small("clear", {0.0f, 1.0f, 1.0f});
     const int w = scene.output.width, h = scene.output.height;
     // Black walls across the image's lower half: 500 m away on the left, 30 km on the right.
-    const Geometry walls{[&](int x, int y) { return y < h / 2 ? 0.0f : x < w / 2 ? 500.0f : 30000.0f; },
+    const Geometry walls{[&](int x, int y) {
+                           return y < h / 2 ? 0.0f : x < w / 2 ? 500.0f : 30000.0f;
+                         },
                          [](int, int) { return glm::vec3(0.0f); }};
     HostTargets targets(host, scene, walls, {});
     const nephele::Frame without = render(host, sky, scene, nullptr);
@@ -213,7 +227,8 @@ TEST(HostScene, TheAirFogsFarGeometryAsTheAerialPerspective) {
     double near_share = 0.0, far_share = 0.0;
     for (int y = h / 2; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const float air = luminance(frame.color.at(x, y)), sky_only = luminance(without.color.at(x, y));
+        const float air = luminance(frame.color.at(x, y)),
+                    sky_only = luminance(without.color.at(x, y));
         (x < w / 2 ? near_share : far_share) += air / sky_only / (w / 2 * (h - h / 2));
         // 500 m of air in front of black: a few percent of the sky's light; 30 km: most of it
         // (the air's scale height is 8 km), never more than all.
@@ -225,8 +240,9 @@ TEST(HostScene, TheAirFogsFarGeometryAsTheAerialPerspective) {
           EXPECT_LT(air, sky_only) << x << "," << y;
         }
       }
-    std::printf("the air's light in front of black, share of the sky's: %.3f at 500 m, %.3f at 30 km\n",
-                near_share, far_share);
+    std::printf(
+        "the air's light in front of black, share of the sky's: %.3f at 500 m, %.3f at 30 km\n",
+        near_share, far_share);
   }
   EXPECT_EQ(host.messages, 0);
 }
@@ -263,7 +279,8 @@ TEST(HostScene, MisuseIsRefusedNamingTheFieldAndRecordsNothing) {
   {
     nephele::FrameRenderer sky(host.vk);
     const nephele::Scene scene = small("default", {0.0f, 1.0f, 0.1f});
-    const Geometry wall{[](int, int) { return 100.0f; }, [](int, int) { return glm::vec3(2000.0f); }};
+    const Geometry wall{[](int, int) { return 100.0f; },
+                        [](int, int) { return glm::vec3(2000.0f); }};
     HostTargets targets(host, scene, wall, {});
     struct Case {
       std::string field;
@@ -272,18 +289,27 @@ TEST(HostScene, MisuseIsRefusedNamingTheFieldAndRecordsNothing) {
     const Case cases[] = {
         {"host_scene.depth", [](nephele::HostScene& s) { s.depth = VK_NULL_HANDLE; }},
         {"host_scene.color", [](nephele::HostScene& s) { s.color = VK_NULL_HANDLE; }},
-        {"host_scene.depth_format", [](nephele::HostScene& s) { s.depth_format = VK_FORMAT_R32_SFLOAT; }},
-        {"host_scene.color_format", [](nephele::HostScene& s) { s.color_format = VK_FORMAT_R8G8B8A8_UNORM; }},
-        {"host_scene.layout", [](nephele::HostScene& s) { s.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL; }},
+        {"host_scene.depth_format",
+         [](nephele::HostScene& s) { s.depth_format = VK_FORMAT_R32_SFLOAT; }},
+        {"host_scene.color_format",
+         [](nephele::HostScene& s) { s.color_format = VK_FORMAT_R8G8B8A8_UNORM; }},
+        {"host_scene.layout",
+         [](nephele::HostScene& s) {
+           s.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+         }},
         {"host_scene.width x height", [](nephele::HostScene& s) { s.width += 1; }},
         {"host_scene.color_scale", [](nephele::HostScene& s) { s.color_scale = -1.0f; }},
         {"host_scene.projection's vertical field of view",
-         [&](nephele::HostScene& s) { s.projection = glm::perspectiveRH_ZO(glm::radians(60.0f), 1.5f, 1.0f, 1e5f); }},
+         [&](nephele::HostScene& s) {
+           s.projection = glm::perspectiveRH_ZO(glm::radians(60.0f), 1.5f, 1.0f, 1e5f);
+         }},
         {"host_scene.projection's aspect",
          [&](nephele::HostScene& s) {
-           s.projection = glm::perspectiveRH_ZO(glm::radians(nephele::vertical_fov_deg(scene)), 1.0f, 1.0f, 1e5f);
+           s.projection = glm::perspectiveRH_ZO(glm::radians(nephele::vertical_fov_deg(scene)),
+                                                1.0f, 1.0f, 1e5f);
          }},
-        {"host_scene.projection is not a perspective", [](nephele::HostScene& s) { s.projection = glm::mat4(1.0f); }},
+        {"host_scene.projection is not a perspective",
+         [](nephele::HostScene& s) { s.projection = glm::mat4(1.0f); }},
         {"host_scene.reversed_z is true", [](nephele::HostScene& s) { s.reversed_z = true; }},
     };
     VkCommandBuffer cmd = host.begin(0);

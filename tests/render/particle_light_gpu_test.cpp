@@ -14,6 +14,7 @@
 #include "particles/particle_lighting.h"
 #include "render/frame_renderer_impl.h"
 #include "render/particle_light_timing.h"
+#include "render_fixture.h"
 
 namespace nephele {
 namespace {
@@ -26,12 +27,6 @@ ParticleCloudParams small_field() {
   p.field_radius_m = 6000.0f;
   p.cell_m = 125.0f;
   return p;
-}
-
-RendererOptions validated() {
-  RendererOptions options;
-  options.validation = true;
-  return options;
 }
 
 // The largest |device - CPU| light and how many particles differ at all.

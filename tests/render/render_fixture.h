@@ -8,12 +8,15 @@
 
 #include "nephele/renderer.h"
 
+// The options of every device test's renderer: the validation layer on.
+inline nephele::RendererOptions validated() {
+  nephele::RendererOptions options;
+  options.validation = true;
+  return options;
+}
+
 inline nephele::Renderer& shared_renderer() {
-  static std::unique_ptr<nephele::Renderer> shared = [] {
-    nephele::RendererOptions options;
-    options.validation = true;
-    return std::make_unique<nephele::Renderer>(options);
-  }();
+  static std::unique_ptr<nephele::Renderer> shared = std::make_unique<nephele::Renderer>(validated());
   return *shared;
 }
 

@@ -134,6 +134,16 @@ class Host {
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
 };
 
+// The first of the device's memory types in `bits` with all of `wanted`.
+inline uint32_t memory_type(const nephele::HostVulkan& vk, uint32_t bits,
+                            VkMemoryPropertyFlags wanted) {
+  VkPhysicalDeviceMemoryProperties props;
+  vkGetPhysicalDeviceMemoryProperties(vk.physical_device, &props);
+  for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
+    if ((bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
+  return 0;
+}
+
 // A host-visible buffer: the display image is copied into it, texels are uploaded from it.
 struct Readback {
   Readback(const nephele::HostVulkan& vk, VkDeviceSize size,
@@ -145,17 +155,11 @@ struct Readback {
     vkCreateBuffer(device, &info, nullptr, &buffer);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, buffer, &req);
-    VkPhysicalDeviceMemoryProperties props;
-    vkGetPhysicalDeviceMemoryProperties(vk.physical_device, &props);
-    const VkMemoryPropertyFlags want =
-        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
-      if ((req.memoryTypeBits & (1u << i)) && (props.memoryTypes[i].propertyFlags & want) == want) {
-        alloc.memoryTypeIndex = i;
-        break;
-      }
+    alloc.memoryTypeIndex =
+        memory_type(vk, req.memoryTypeBits,
+                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     vkAllocateMemory(device, &alloc, nullptr, &memory);
     vkBindBufferMemory(device, buffer, memory, 0);
     vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped);
@@ -188,15 +192,10 @@ struct HostImage {
     vkCreateImage(device, &info, nullptr, &image);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device, image, &req);
-    VkPhysicalDeviceMemoryProperties props;
-    vkGetPhysicalDeviceMemoryProperties(vk.physical_device, &props);
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
-      if (req.memoryTypeBits & (1u << i)) {
-        alloc.memoryTypeIndex = i;
-        break;
-      }
+    alloc.memoryTypeIndex =
+        memory_type(vk, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     vkAllocateMemory(device, &alloc, nullptr, &memory);
     vkBindImageMemory(device, image, memory, 0);
   }
@@ -218,8 +217,8 @@ struct HostImage {
     to_dst.srcQueueFamilyIndex = to_dst.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     to_dst.image = image;
     to_dst.subresourceRange = {aspect, 0, 1, 0, 1};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
-                         nullptr, 0, nullptr, 1, &to_dst);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                         0, nullptr, 0, nullptr, 1, &to_dst);
     VkBufferImageCopy region{};
     region.imageSubresource = {aspect, 0, 0, 1};
     region.imageExtent = {width, height, 1};

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "gpu/kernel.h"
 #include "nephele/frame.h"
@@ -25,16 +26,21 @@ HostLighting host_lighting(const Scene& scene, const SkyLights& lights, const gl
 // The matrix that carries ENU points along the unit `light` (ENU, towards it) onto the plane
 // `base_m` high and maps that plane's square (west, north edges, side extent_m) to [0, 1]^2,
 // row 0 north (x, y); z the point's height above the plane.
-glm::mat4 shadow_map_matrix(const glm::vec3& light, float base_m, const glm::vec2& west_north_m, float extent_m);
+glm::mat4 shadow_map_matrix(const glm::vec3& light, float base_m, const glm::vec2& west_north_m,
+                            float extent_m);
+
+// What is wrong with `options` (one line naming the field, its value and what is allowed), or
+// empty.
+std::string host_lighting_problem(const HostLightingOptions& options);
 
 class HostLightingModule {
  public:
   HostLightingModule(gpu::Context& ctx, gpu::DescriptorSet& set);
 
-  // Validates `options` (InputError naming the field), collects nothing; when enabled sizes the
-  // shadow map, binds slot's buffer and fills params.host_shadow_*. False when not enabled.
-  bool prepare(const HostLightingOptions& options, const Scene& scene, const SkyLights& lights, int slot,
-               gpu::FrameParams& params);
+  // When `options` (valid: host_lighting_problem) are enabled: sizes the shadow map and the
+  // environment, binds the slot's buffer and fills params.host_shadow_*. False when not enabled.
+  bool prepare(const HostLightingOptions& options, const Scene& scene, const SkyLights& lights,
+               int slot, gpu::FrameParams& params);
   // The two passes; after the light volume, the sky view and the ground light.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // The lighting of the frame recorded in `slot`, once it completed; empty when that frame did
@@ -57,7 +63,8 @@ class HostLightingModule {
     SkyLights lights;
   };
   std::optional<Pending> pending_[gpu::kFramesInFlight];
-  std::unique_ptr<gpu::Kernel> lighting_kernel_, map_kernel_, environment_kernel_;  // made when first recorded
+  std::unique_ptr<gpu::Kernel> lighting_kernel_, map_kernel_,
+      environment_kernel_;  // made when first recorded
 };
 
 }  // namespace nephele

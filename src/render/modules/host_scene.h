@@ -22,9 +22,9 @@ class HostSceneModule {
  public:
   HostSceneModule(gpu::Context& ctx, gpu::DescriptorSet& set);
 
-  // Validates `host` (InputError naming the field; nothing is recorded), sizes the texel
-  // buffer and fills params.host_*; false without a host scene (params.host_scene.x stays 0).
-  bool prepare(const HostScene* host, const Scene& scene, gpu::FrameParams& params);
+  // Sizes the texel buffer for `host` (valid: host_scene_problem) and fills params.host_*;
+  // false without a host scene (params.host_scene.x stays 0).
+  bool prepare(const HostScene* host, gpu::FrameParams& params);
   // The copies of the host's images and host_scene.comp; after the terrain's pass.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
 
