@@ -73,7 +73,7 @@ struct HostScene {
 
 // What a host asks of the frame for lighting its own scene (FrameOptions::lighting).
 struct HostLightingOptions {
-  bool enabled = false;  // HostLighting and the cloud shadow map; off: neither is made
+  bool enabled = false;  // HostLighting, the cloud shadow map and the environment; off: none is made
   // The cloud shadow map's square, its side (m, [100, 1e6]) and texels a side ([8, 4096]).
   float shadow_map_extent_m = 20000.0f;
   uint32_t shadow_map_size = 256;
@@ -120,9 +120,9 @@ struct FrameOptions {
   // false: the display image is not made this frame (it keeps what it held), for a host that
   // reads only `hdr` (Renderer reads the HDR image back and tone-maps files itself).
   bool display = true;
-  // The host's geometry to composite with (above), or none. Not with a scene whose still frame
-  // is marched in bands (RendererOptions::progress): those bands are submitted before the
-  // host's commands run.
+  // The host's geometry to composite with (above), or none. With it a still frame is marched
+  // in the host's command buffer at once, never in separately submitted bands
+  // (RendererOptions::progress), which would run before the host's commands draw its scene.
   const HostScene* host_scene = nullptr;
   HostLightingOptions lighting;
 };
