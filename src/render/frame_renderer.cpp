@@ -448,6 +448,14 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
   voxel_clouds.prepare(scene, params);
   if (lab) params.voxel_light.z = 0.0f;  // the grid as the file has it: no surface erosion
+  // What reads files or may still refuse the frame (a terrain mesh that does not parse,
+  // particles on a queue without graphics) comes before the modules that advance their builds
+  // for this frame (weather, light volume, sky view), so that a refused frame leaves them as
+  // they were. The weather's map file is read before it advances.
+  const bool host = host_scene.prepare(options.host_scene, params);
+  terrain.prepare(scene, s.width, s.height, host, params);
+  particles.prepare(scene, slot, s.width, s.height, still, params);
+  weather.prepare(scene, params);
   // A classical model (seed 004) draws instead of the march; a sky without volumetric clouds
   // (clear, or particle clouds only) skips it. Only the march and Kajiya's model read the
   // light volume.
@@ -459,14 +467,10 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   sky_view.prepare(still, params);
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);
-  weather.prepare(scene, params);
-  particles.prepare(scene, slot, s.width, s.height, still, params);
   classic_clouds.prepare(scene, params);
   const bool post_processed = post.prepare(scene, s.width, s.height, params);
   const bool shafts = light_shafts.prepare(scene, s.width, s.height);
-  const bool host = host_scene.prepare(options.host_scene, params);
   const bool lighting = host_lighting.prepare(options.lighting, scene, lights, slot, params);
-  terrain.prepare(scene, s.width, s.height, host, params);
   clouds.swap_history();
 
   // Bands are submitted now, before the host's commands that draw its scene.

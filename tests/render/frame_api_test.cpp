@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -140,6 +142,31 @@ TEST(FrameApi, StillsReportProgressAndGiveTheSameImage) {
   for (const nephele::PassTiming& p : banded.stats.passes) clouds_timed |= p.name == "clouds";
   EXPECT_TRUE(clouds_timed);
   EXPECT_EQ(with.validation_messages(), 0);
+}
+
+// A scene refused late (its terrain mesh passes validation, which reads no OBJ, but does not
+// parse) leaves the renderer as it was: the next frame is the one a fresh renderer makes.
+TEST(FrameApi, AFrameRefusedLateLeavesTheRendererAsItWas) {
+  std::filesystem::create_directories(NEPHELE_TEST_OUTPUT_DIR);
+  const std::string mesh = std::string(NEPHELE_TEST_OUTPUT_DIR) + "/not_a_mesh.obj";
+  std::ofstream(mesh) << "this is not a mesh\n";
+  nephele::Scene good = small_scene();
+  nephele::Scene bad = good;
+  bad.terrain.file = mesh;
+  nephele::RendererOptions options;
+  options.validation = true;
+  nephele::Renderer refused_first(options);
+  EXPECT_THROW(refused_first.render(bad), nephele::InputError);
+  const nephele::Frame after = refused_first.render(good);
+  nephele::Renderer fresh(options);
+  const nephele::Frame expected = fresh.render(good);
+  double worst = 0.0;
+  for (size_t i = 0; i < expected.color.pixels.size(); ++i)
+    worst = std::max(worst, double(std::abs(nephele::luminance(after.color.pixels[i]) -
+                                            nephele::luminance(expected.color.pixels[i]))) /
+                                std::max(double(nephele::luminance(expected.color.pixels[i])), 1.0));
+  EXPECT_LT(worst, 1e-3) << "the frame after a refused one differs from a fresh renderer's";
+  EXPECT_EQ(refused_first.validation_messages() + fresh.validation_messages(), 0);
 }
 
 TEST(FrameApi, RefusesNullHandlesAndCommandBuffers) {
