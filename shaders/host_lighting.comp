@@ -12,6 +12,7 @@
 #include "common/atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"
 #include "common/clouds_inc.glsl"
+#include "common/sh_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
 #include "sky_light_inc.glsl"
 const int MARCH_MODE = 0;  // cloud_field_inc.glsl's lookups
@@ -23,17 +24,6 @@ layout(local_size_x = THREADS) in;
 
 shared vec3 partial[THREADS][9];
 
-void sh_basis(vec3 d, out float y[9]) {
-  y[0] = 0.282095f;
-  y[1] = 0.488603f * d.y;
-  y[2] = 0.488603f * d.z;
-  y[3] = 0.488603f * d.x;
-  y[4] = 1.092548f * d.x * d.y;
-  y[5] = 1.092548f * d.y * d.z;
-  y[6] = 0.315392f * (3.0f * d.z * d.z - 1.0f);
-  y[7] = 1.092548f * d.x * d.z;
-  y[8] = 0.546274f * (d.x * d.x - d.y * d.y);
-}
 
 void main() {
   uint id = gl_LocalInvocationID.x;
@@ -50,9 +40,8 @@ void main() {
     vec3 d = vec3(s * cos(phi), s * sin(phi), z);
     float solid_angle = 4.0f * PI / float(cells);
     vec3 radiance = sky_radiance(f, d);
-    float y[9];
-    sh_basis(d, y);
-    for (int k = 0; k < 9; ++k) sum[k] += radiance * (y[k] * solid_angle);
+    Sh9 basis = sh9_basis(d);
+    for (int k = 0; k < 9; ++k) sum[k] += radiance * (basis.y[k] * solid_angle);
   }
   for (int k = 0; k < 9; ++k) partial[id][k] = sum[k];
   barrier();

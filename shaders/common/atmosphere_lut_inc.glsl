@@ -24,6 +24,8 @@
 #ifndef NEPHELE_ATMOSPHERE_LUT_INC
 #define NEPHELE_ATMOSPHERE_LUT_INC
 
+#include "common/sh_inc.glsl"
+
 const int TRANSMITTANCE_LUT_W = 256;  // mu
 const int TRANSMITTANCE_LUT_H = 64;   // r
 const int MS_LUT_W = 64;              // sun zenith cosine (log Psi_ms bends most along it)
@@ -221,10 +223,10 @@ struct ShBasis {
 };
 
 ShBasis sh_basis(vec3 d) {
+  Sh9 y = sh9_basis(d);
   ShBasis b;
-  b.low = vec3(0.2820948f, 0.4886025f * d.z, 0.4886025f * d.x);
-  b.high = vec3(0.3153916f * (3.0f * d.z * d.z - 1.0f), 1.0925484f * d.x * d.z,
-                0.5462742f * (d.x * d.x - d.y * d.y));
+  b.low = vec3(y.y[0], y.y[2], y.y[3]);
+  b.high = vec3(y.y[6], y.y[7], y.y[8]);
   return b;
 }
 

@@ -56,6 +56,7 @@ namespace {
 #include "common/impostor_inc.glsl"
 #include "common/classic_inc.glsl"
 #include "common/tonemap_inc.glsl"
+#include "common/sh_inc.glsl"
 }  // namespace
 }  // namespace nephele::glsl
 #pragma GCC diagnostic pop

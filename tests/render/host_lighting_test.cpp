@@ -78,16 +78,8 @@ glm::dvec3 table_irradiance(const Image& lut, const gpu::FrameParams& params, co
 std::array<glm::dvec3, 9> table_sh(const Image& lut, const gpu::FrameParams& params) {
   using Sh = std::array<glm::dvec3, 9>;
   return over_sphere<Sh>(lut, params, [](Sh& sum, const glm::vec3& d, const glm::dvec3& l_dw) {
-    const double y[9] = {0.282095,
-                         0.488603 * d.y,
-                         0.488603 * d.z,
-                         0.488603 * d.x,
-                         1.092548 * d.x * d.y,
-                         1.092548 * d.y * d.z,
-                         0.315392 * (3.0 * d.z * d.z - 1.0),
-                         1.092548 * d.x * d.z,
-                         0.546274 * (d.x * d.x - d.y * d.y)};
-    for (int k = 0; k < 9; ++k) sum[k] += l_dw * y[k];
+    const glsl::Sh9 y = glsl::sh9_basis(d);
+    for (int k = 0; k < 9; ++k) sum[k] += l_dw * double(y.y[k]);
   });
 }
 

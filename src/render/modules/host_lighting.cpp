@@ -6,11 +6,11 @@
 
 #include "nephele/error.h"
 #include "nephele/sky.h"
+#include "render/glsl.h"
 
 namespace nephele {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 // Meteorological visibility: the distance where a black object's contrast against the horizon
 // falls to 2% (Koschmieder): -ln 0.02 / sigma_t.
 constexpr float kKoschmieder = 3.912f;
@@ -30,21 +30,9 @@ gpu::Texture environment_texture(gpu::Context& ctx, uint32_t face) {
 }  // namespace
 
 glm::vec3 HostLighting::sky_irradiance_lux(const glm::vec3& normal) const {
-  const glm::vec3 n = glm::normalize(normal);
-  // The clamped cosine's bands: pi, 2 pi / 3, pi / 4.
-  const float a0 = kPi, a1 = 2.0f * kPi / 3.0f, a2 = kPi / 4.0f;
-  const float y[9] = {0.282095f,
-                      0.488603f * n.y,
-                      0.488603f * n.z,
-                      0.488603f * n.x,
-                      1.092548f * n.x * n.y,
-                      1.092548f * n.y * n.z,
-                      0.315392f * (3.0f * n.z * n.z - 1.0f),
-                      1.092548f * n.x * n.z,
-                      0.546274f * (n.x * n.x - n.y * n.y)};
-  glm::vec3 e = a0 * y[0] * sky_radiance_sh[0];
-  for (int k = 1; k < 4; ++k) e += a1 * y[k] * sky_radiance_sh[k];
-  for (int k = 4; k < 9; ++k) e += a2 * y[k] * sky_radiance_sh[k];
+  const glsl::Sh9 basis = glsl::sh9_basis(glm::normalize(normal));
+  glm::vec3 e(0.0f);
+  for (int k = 0; k < 9; ++k) e += glsl::sh9_cosine_lobe(k) * basis.y[k] * sky_radiance_sh[k];
   return glm::max(e, glm::vec3(0.0f));
 }
 
