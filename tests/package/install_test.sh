@@ -23,7 +23,10 @@ step "$work/configure.log" "$cmake" -S "$here/consumer" -B "$work/cmake" -G Ninj
 step "$work/build.log" "$cmake" --build "$work/cmake"
 "$work/cmake/consumer"
 "$work/cmake/consumer_shared"
-ldd "$work/cmake/consumer_shared" | grep -q "$work/prefix/lib/libnephele.so"
+# (grep reads all of ldd's output: with -q it could stop early, ldd die of SIGPIPE and pipefail
+# fail the test.)
+ldd "$work/cmake/consumer_shared" | grep "$work/prefix/lib/libnephele.so" > /dev/null ||
+  { echo "consumer_shared does not load the prefix's libnephele.so"; exit 1; }
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 flags=$(pkg-config --cflags --libs nephele)  # the shared library, as -lnephele finds it first
 # shellcheck disable=SC2086
