@@ -6,7 +6,6 @@
 // clang-format on
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/NanoToOpenVDB.h>
-#include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
@@ -23,6 +22,7 @@
 #include "nephele/output_file.h"
 #include "voxel/common.h"
 #include "voxel/level_set.h"
+#include "voxel/vdb_scan.h"
 #include "voxel/voxel_grid.h"
 
 namespace nephele::voxel {
@@ -35,10 +35,6 @@ namespace fs = std::filesystem;
 constexpr int kMaxSourceDim = 4096;
 constexpr int64_t kMaxSourceVoxels = int64_t(1) << 30;
 const char* const kLimits = "at most 4096 voxels per axis and 2^30 in all";
-
-// Dense voxels sample a coarser grid's voxels with up to this many points per axis (a box
-// filter; beyond it, some aliasing rather than minutes of sampling).
-constexpr int kMaxSupersampling = 4;
 
 struct Source {
   openvdb::FloatGrid::Ptr density, sdf;
@@ -82,8 +78,8 @@ void check_read_grid(const std::string& path, const std::string& name,
     fail(path, "grid \"density\" has no active voxels (a non-empty fog volume is required)");
   }
   check_dims(path, name, box.dim().x(), box.dim().y(), box.dim().z());
-  if (!std::isfinite(grid.background()))
-    fail(path, "grid \"" + name + "\" has a non-finite background (finite values are required)");
+  // Inactive values and the background may be anything (NaN or inf included): only the
+  // active values are read.
   for (auto it = grid.cbeginValueOn(); it; ++it)
     if (!std::isfinite(*it))
       fail(path, "grid \"" + name + "\" has a non-finite value at index " +
@@ -91,63 +87,99 @@ void check_read_grid(const std::string& path, const std::string& name,
                      "," + std::to_string(it.getCoord().z()) + " (finite values are required)");
 }
 
-Source read_openvdb(const std::string& path) {
+// The bytes the scan passed, in order, as one stream for io::Stream: the file's header and
+// the chosen grids (without their metadata), with nephele's own counts between them.
+class SegmentBuf : public std::streambuf {
+ public:
+  SegmentBuf(const std::string& path, std::vector<VdbSegment> segments)
+      : file_(path, std::ios::binary), segments_(std::move(segments)) {}
+
+ protected:
+  int_type underflow() override {
+    for (; next_ < segments_.size(); ++next_, done_ = 0) {
+      const VdbSegment& s = segments_[next_];
+      if (!s.literal.empty() && done_ == 0) {
+        buffer_.assign(s.literal.begin(), s.literal.end());
+        done_ = s.literal.size();
+      } else if (done_ < s.bytes) {
+        buffer_.resize(std::min<uint64_t>(s.bytes - done_, 1 << 16));
+        file_.seekg(std::streamoff(s.offset + done_));
+        if (!file_.read(buffer_.data(), std::streamsize(buffer_.size()))) break;
+        done_ += buffer_.size();
+      } else {
+        continue;
+      }
+      setg(buffer_.data(), buffer_.data(), buffer_.data() + buffer_.size());
+      return traits_type::to_int_type(buffer_[0]);
+    }
+    return traits_type::eof();
+  }
+
+ private:
+  std::ifstream file_;
+  std::vector<VdbSegment> segments_;
+  size_t next_ = 0;
+  uint64_t done_ = 0;  // bytes of segments_[next_] given out
+  std::vector<char> buffer_;
+};
+
+// The file's first "density" grid, and its first "sdf", checked by the pre-scan before
+// OpenVDB reads them: it reads only those, from a stream that fails rather than runs past
+// the end (and, having no other grid of the same name, warns of none).
+Source read_openvdb(const std::string& path, uint64_t file_bytes) {
   initialize_openvdb();
-  openvdb::io::File file(path);
-  try {
-    // Not delayed: a truncated file fails here and in readGrid, not later on first access.
-    file.open(/*delayLoad=*/false);
-  } catch (const std::exception& e) {
-    // A file that starts as OpenVDB's do but fails is cut short or damaged; a file written
-    // as a stream (write_vdb's) is read whole here, so its truncation shows here too.
-    int32_t magic = 0;
-    std::ifstream(path, std::ios::binary).read(reinterpret_cast<char*>(&magic), sizeof magic);
-    if (magic == openvdb::OPENVDB_MAGIC)
-      fail(path, "is truncated or corrupt (" + shorten_for_message(e.what()) + ")");
-    fail(path, "is not a readable OpenVDB file (" + shorten_for_message(e.what()) +
-                   "; a .vdb with a float grid \"density\" is required)");
-  }
-  openvdb::GridPtrVecPtr metadata;
-  try {
-    metadata = file.readAllGridMetadata();
-  } catch (const std::exception& e) {
-    fail(path, "is truncated or corrupt (" + shorten_for_message(e.what()) + ")");
-  }
+  const VdbScan scan = scan_openvdb(path, file_bytes);
   std::vector<std::string> names;
-  openvdb::GridBase::Ptr density_meta, sdf_meta;
-  for (const openvdb::GridBase::Ptr& g : *metadata) {
-    names.push_back(g->getName());
-    if (g->getName() == "density" && !density_meta) density_meta = g;
-    if (g->getName() == "sdf" && !sdf_meta) sdf_meta = g;
+  const VdbGridInfo *density = nullptr, *sdf = nullptr;
+  for (const VdbGridInfo& g : scan.grids) {
+    names.push_back(g.name);
+    if (g.name == "density" && !density) density = &g;
+    if (g.name == "sdf" && !sdf) sdf = &g;
   }
-  if (!density_meta)
+  if (!density && scan.stopped)
+    fail(path, "has grid \"" + shorten_for_message(scan.grids.back().name) + "\" of " +
+                   scan.grids.back().value_type +
+                   " values before any grid \"density\", which a stream without grid offsets "
+                   "cannot pass (float grids only before \"density\", or a file written "
+                   "with grid offsets, are required)");
+  if (!density)
     fail(path, "has no grid named \"density\" (it has: " + quoted_list(names) +
                    "; a float fog volume named \"density\" is required)");
-  for (const auto& [name, meta] : {std::pair{"density", density_meta}, {"sdf", sdf_meta}}) {
-    if (!meta) continue;
-    if (!meta->isType<openvdb::FloatGrid>())
-      fail(path, std::string("grid \"") + name + "\" holds " +
-                     shorten_for_message(meta->valueType()) + " values (a float grid is required)");
-    // The bounding box the writer recorded: an absurd grid is refused before it is read.
-    const auto lo =
-        meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
-    const auto hi =
-        meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
-    if (lo && hi) {
-      const openvdb::Vec3i a = lo->value(), b = hi->value();
-      if (b.x() >= a.x() && b.y() >= a.y() && b.z() >= a.z())
-        check_dims(path, name, int64_t(b.x()) - a.x() + 1, int64_t(b.y()) - a.y() + 1,
-                   int64_t(b.z()) - a.z() + 1);
-    }
+  std::vector<VdbSegment> segments = scan.header;
+  const int32_t count = sdf ? 2 : 1;
+  segments.push_back({0, 0, std::string(reinterpret_cast<const char*>(&count), sizeof count)});
+  uint64_t tree_bytes = 0;
+  for (const auto& [name, grid] : {std::pair{"density", density}, {"sdf", sdf}}) {
+    if (!grid) continue;
+    if (grid->value_type != "float")
+      fail(path, std::string("grid \"") + name + "\" holds " + grid->value_type +
+                     " values (a float grid is required)");
+    if (grid->instance || !grid->walked)
+      fail(path, std::string("grid \"") + name +
+                     "\" shares another grid's tree (a grid with its own tree is required)");
+    tree_bytes += grid->tree_bytes;
+    segments.insert(segments.end(), grid->segments.begin(), grid->segments.end());
   }
+  if (tree_bytes > kMaxVdbTreeBytes)
+    fail(path, "grids \"density\" and \"sdf\" take more than " +
+                   std::to_string(kMaxVdbTreeBytes >> 20) + " MiB in memory (at most " +
+                   std::to_string(kMaxVdbTreeBytes >> 20) + " MiB of float trees is read)");
+  SegmentBuf buffer(path, std::move(segments));
+  std::istream is(&buffer);
   Source source;
   try {
-    source.density = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("density"));
-    if (sdf_meta) source.sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("sdf"));
+    is.exceptions(std::ios::failbit | std::ios::badbit);
+    openvdb::io::Stream stream(is, /*delayLoad=*/false);
+    const openvdb::GridPtrVecPtr grids = stream.getGrids();
+    if (grids && grids->size() == size_t(count)) {
+      source.density = openvdb::gridPtrCast<openvdb::FloatGrid>(grids->front());
+      if (sdf) source.sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(grids->back());
+    }
   } catch (const std::exception& e) {
     fail(path, "is truncated or corrupt (" + shorten_for_message(e.what()) + ")");
   }
-  if (!source.density) fail(path, "is truncated or corrupt (grid \"density\" unreadable)");
+  if (!source.density || (sdf && !source.sdf))
+    fail(path, "is truncated or corrupt (its grids are unreadable)");
   return source;
 }
 
@@ -253,6 +285,70 @@ Source read_nanovdb(const std::string& path, uint64_t file_bytes) {
 
 // --- to the dense grid ---------------------------------------------------------------------
 
+// Inactive values and the background become zero: between active voxels and zero, all the
+// density sampled is the file's active values (inactive NaN or inf are valid in a file).
+void keep_active_only(openvdb::FloatGrid& grid) {
+  for (auto it = grid.tree().beginValueOff(); it; ++it) it.setValue(0.0f);
+  grid.tree().root().setBackground(0.0f, /*updateChildNodes=*/false);
+}
+
+// Dense voxels no coarser than the file's: the file's density, trilinear, at their centres.
+void sample_active(const openvdb::FloatGrid& source, glm::vec3 origin_world, VoxelGrid& grid) {
+  tbb::parallel_for(0, grid.dims.z, [&](int k) {
+    // The sampler keeps a reference to the accessor: it must outlive the sampler (a
+    // temporary here was a use after scope, found by AddressSanitizer).
+    const openvdb::FloatGrid::ConstAccessor accessor = source.getConstAccessor();
+    openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>
+        sampler(accessor, source.transform());
+    for (int j = 0; j < grid.dims.y; ++j)
+      for (int i = 0; i < grid.dims.x; ++i) {
+        const glm::vec3 p = origin_world + (glm::vec3(i, j, k) + 0.5f) * grid.voxel_m;
+        const float v = sampler.wsSample(openvdb::Vec3d(p.x, p.y, p.z));
+        grid.density[grid.index(i, j, k)] = std::max(v, 0.0f);
+      }
+  });
+}
+
+// Adds `value` spread over the world box [lo, hi) to the dense voxels it overlaps, each by
+// the fraction of the voxel it covers.
+void splat_box(const glm::dvec3& lo, const glm::dvec3& hi, float value, glm::vec3 origin_world,
+               VoxelGrid& grid) {
+  glm::ivec3 first, last;
+  glm::dvec3 a, b;  // the box in dense voxels
+  for (int c = 0; c < 3; ++c) {
+    a[c] = (lo[c] - origin_world[c]) / grid.voxel_m;
+    b[c] = (hi[c] - origin_world[c]) / grid.voxel_m;
+    first[c] = std::clamp(int(std::floor(a[c])), 0, grid.dims[c] - 1);
+    last[c] = std::clamp(int(std::ceil(b[c])) - 1, first[c], grid.dims[c] - 1);
+  }
+  const auto cover = [&](int c, int cell) {
+    return std::max(0.0, std::min(b[c], cell + 1.0) - std::max(a[c], double(cell)));
+  };
+  for (int k = first.z; k <= last.z; ++k)
+    for (int j = first.y; j <= last.y; ++j)
+      for (int i = first.x; i <= last.x; ++i)
+        grid.density[grid.index(i, j, k)] += float(value * cover(0, i) * cover(1, j) * cover(2, k));
+}
+
+// Dense voxels coarser than the file's: each active voxel (and active tile, as its voxels)
+// adds its density times the part of each dense voxel it covers, so that the mass is kept
+// and no grid is too thin to be seen (a sheet one voxel thick falls between sample points).
+void splat_active(const openvdb::FloatGrid& source, glm::vec3 origin_world, VoxelGrid& grid) {
+  const openvdb::math::Transform& xform = source.transform();
+  const openvdb::Vec3d voxel = xform.voxelSize();
+  for (auto it = source.cbeginValueOn(); it; ++it) {
+    if (!(*it > 0.0f)) continue;
+    openvdb::CoordBBox box;
+    it.getBoundingBox(box);
+    const openvdb::Vec3d centre =
+        xform.indexToWorld(0.5 * (box.min().asVec3d() + box.max().asVec3d()));
+    const openvdb::Vec3d half = 0.5 * voxel * box.dim().asVec3d();
+    splat_box(glm::dvec3(centre.x() - half.x(), centre.y() - half.y(), centre.z() - half.z()),
+              glm::dvec3(centre.x() + half.x(), centre.y() + half.y(), centre.z() + half.z()), *it,
+              origin_world, grid);
+  }
+}
+
 // The dense grid of the file's density (and level set, where it has one that bounds the
 // density's distance), in the cloud's frame, resampled to at most max_dim voxels an axis.
 VoxelGrid to_dense(const std::string& path, const Source& source, int max_dim) {
@@ -278,33 +374,12 @@ VoxelGrid to_dense(const std::string& path, const Source& source, int max_dim) {
                                lo.z - kPad * grid.voxel_m);
   const size_t count = size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
   grid.density.assign(count, 0.0f);
+  keep_active_only(*source.density);
   const float ratio = grid.voxel_m / float(source_voxel.length() / std::sqrt(3.0));
-  const int sub = ratio > 1.01f ? std::min(int(std::ceil(ratio)), kMaxSupersampling) : 1;
-  tbb::parallel_for(0, grid.dims.z, [&](int k) {
-    // The sampler keeps a reference to the accessor: it must outlive the sampler (a
-    // temporary here was a use after scope, found by AddressSanitizer).
-    const openvdb::FloatGrid::ConstAccessor accessor = source.density->getConstAccessor();
-    openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>
-        sampler(accessor, xform);
-    for (int j = 0; j < grid.dims.y; ++j)
-      for (int i = 0; i < grid.dims.x; ++i) {
-        double sum = 0.0;
-        float largest = 0.0f;
-        for (int c = 0; c < sub * sub * sub; ++c) {
-          const glm::vec3 f((c % sub + 0.5f) / sub, ((c / sub) % sub + 0.5f) / sub,
-                            (c / (sub * sub) + 0.5f) / sub);
-          const glm::vec3 p = origin_world + (glm::vec3(i, j, k) + f) * grid.voxel_m;
-          const float v = std::max(sampler.wsSample(openvdb::Vec3d(p.x, p.y, p.z)), 0.0f);
-          sum += v;
-          largest = std::max(largest, v);
-        }
-        // Averaged, but never to zero where any sample had density: the surface stays where
-        // the file has it.
-        float v = float(sum / (sub * sub * sub));
-        if (largest > 0.0f && !(v > 0.0f)) v = std::numeric_limits<float>::min();
-        grid.density[grid.index(i, j, k)] = v;
-      }
-  });
+  if (ratio > 1.01f)
+    splat_active(*source.density, origin_world, grid);
+  else
+    sample_active(*source.density, origin_world, grid);
   // Densities above 1 (fog volumes are not always normalised) scale down to [0, 1]: the
   // renderer's density scale sets the extinction.
   const float peak = *std::max_element(grid.density.begin(), grid.density.end());
@@ -328,8 +403,9 @@ VoxelGrid to_dense(const std::string& path, const Source& source, int max_dim) {
           const size_t v = grid.index(i, j, k);
           grid.sdf_m[v] = d;
           // The file's level set must not put density outside its surface by more than a
-          // voxel (a sphere tracer would step over it); else it is computed afresh.
-          if (grid.density[v] > 0.0f && d > grid.voxel_m) consistent = false;
+          // voxel (a sphere tracer would step over it), nor be undefined (a non-finite
+          // background); else it is computed afresh.
+          if (!std::isfinite(d) || (grid.density[v] > 0.0f && d > grid.voxel_m)) consistent = false;
         }
     });
     sdf_bounds_density = consistent;
@@ -360,7 +436,7 @@ VoxelGrid load_voxel_cloud(const std::string& path, int max_dim) {
   if (!nano && extension != ".vdb")
     fail(path, "has extension '" + shorten_for_message(extension) +
                    "' (.vdb (OpenVDB) or .nvdb (NanoVDB) is required)");
-  const Source source = nano ? read_nanovdb(path, bytes) : read_openvdb(path);
+  const Source source = nano ? read_nanovdb(path, bytes) : read_openvdb(path, bytes);
   return to_dense(path, source, max_dim);
 }
 

@@ -3,9 +3,11 @@
 
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/OpenToNanoVDB.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "voxel/voxel_grid.h"
 
@@ -84,6 +86,49 @@ void write_constant_cube_vdb(const std::string& path, int n, float voxel_m) {
   g.density.assign(size_t(n) * size_t(n) * size_t(n), 1.0f);
   g.sdf_m.assign(g.density.size(), -voxel_m);
   voxel::write_vdb(g, path);
+}
+
+void write_fog_balls_vdb_as(const std::string& path, const std::vector<std::string>& names,
+                            uint32_t compression, bool half, bool stream) {
+  openvdb::GridPtrVec grids;
+  for (const std::string& n : names) {
+    grids.push_back(fog_ball(n));
+    grids.back()->setSaveFloatAsHalf(half);
+  }
+  if (stream) {
+    std::ofstream out(path, std::ios::binary);
+    openvdb::io::Stream writer(out);
+    writer.setCompression(compression);
+    writer.write(grids);
+  } else {
+    openvdb::io::File file(path);
+    file.setCompression(compression);
+    file.write(grids);
+  }
+}
+
+void write_vector_then_density_stream(const std::string& path) {
+  openvdb::initialize();
+  openvdb::Vec3SGrid::Ptr velocity = openvdb::Vec3SGrid::create();
+  velocity->setName("velocity");
+  velocity->tree().setValue(openvdb::Coord(0, 0, 0), openvdb::Vec3s(1, 0, 0));
+  std::ofstream out(path, std::ios::binary);
+  openvdb::io::Stream(out).write(openvdb::GridPtrVec{velocity, fog_ball("density")});
+}
+
+void write_boxes_vdb(const std::string& path, const std::vector<VoxelBox>& boxes, float value,
+                     float inactive, float background) {
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(background);
+  grid->setName("density");
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  for (const VoxelBox& b : boxes)
+    grid->tree().fill(openvdb::CoordBBox(openvdb::Coord(b.lo[0], b.lo[1], b.lo[2]),
+                                         openvdb::Coord(b.hi[0], b.hi[1], b.hi[2])),
+                      value, /*active=*/true);
+  for (auto leaf = grid->tree().beginLeaf(); leaf; ++leaf)
+    for (auto it = leaf->beginValueOff(); it; ++it) it.setValue(inactive);
+  write(path, grid);
 }
 
 }  // namespace nephele::test

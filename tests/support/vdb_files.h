@@ -1,6 +1,7 @@
 // Test files for the voxel-cloud importer, written with OpenVDB's and NanoVDB's own writers.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,5 +25,21 @@ void write_far_apart_density_vdb(const std::string& path);
 // A cube of n^3 voxels of voxel_m, density 1 throughout, its base centre at the file's
 // origin (nephele's own writer, voxel::write_vdb): a homogeneous medium for the lab.
 void write_constant_cube_vdb(const std::string& path, int n, float voxel_m);
+
+// Fog balls as write_fog_balls_vdb makes them, written with the given compression flags
+// (openvdb::io::COMPRESS_*), as half floats where `half`, and through io::Stream (no grid
+// offsets) where `stream`, else io::File.
+void write_fog_balls_vdb_as(const std::string& path, const std::vector<std::string>& names,
+                            uint32_t compression, bool half, bool stream);
+// A stream (no grid offsets) of a Vec3s grid "velocity" and then a fog ball "density".
+void write_vector_then_density_stream(const std::string& path);
+
+// Boxes of active voxels of density `value` (inclusive index bounds, 1 m voxels); the other
+// voxels of the leaves they touch inactive with `inactive`, over `background`.
+struct VoxelBox {
+  int lo[3], hi[3];
+};
+void write_boxes_vdb(const std::string& path, const std::vector<VoxelBox>& boxes, float value,
+                     float inactive = 0.0f, float background = 0.0f);
 
 }  // namespace nephele::test
