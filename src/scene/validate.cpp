@@ -12,6 +12,7 @@
 #include "nephele/scene_io.h"
 #include "nephele/sky.h"
 #include "scene/scene_fields.h"
+#include "image/input_images.h"
 #include "terrain/heightfield.h"
 
 namespace nephele {
@@ -121,26 +122,19 @@ class Checker {
                                                             : "is not a regular file");
   }
 
-  // A weather map (CloudParams::weather_map): a readable PNG with four channels, told by its
-  // header without decoding it, or an EXR (read as RGBA whatever it holds).
+  // A weather map (CloudParams::weather_map): a readable PNG with four channels or an EXR (read
+  // as RGBA whatever it holds), within kMaxWeatherMapSide, told by its header without decoding.
   void weather_map(const std::string& key, const std::string& path) const {
     readable_file(key, path);
     const std::string value = is_flag(key) ? path : scene_detail::toml_quote(path);
-    unsigned char magic[8] = {};
-    std::ifstream(path, std::ios::binary).read(reinterpret_cast<char*>(magic), sizeof magic);
-    static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    static const unsigned char kExr[4] = {0x76, 0x2f, 0x31, 0x01};
-    if (std::memcmp(magic, kExr, sizeof kExr) == 0) return;
-    if (std::memcmp(magic, kPng, sizeof kPng) != 0)
-      fail(key, value, "is neither a PNG nor an EXR file");
-    int width = 0, height = 0, channels = 0;
-    if (!stbi_info(path.c_str(), &width, &height, &channels)) {
-      const char* reason = stbi_failure_reason();
-      fail(key, value,
-           std::string("cannot read the PNG header (") + (reason ? reason : "unknown error") + ")");
-    }
-    if (channels != 4) {
+    ImageHeader header;
+    const std::string why = read_image_header(path, header, kMaxWeatherMapSide);
+    // (The one message that says what is allowed already.)
+    if (why == kNeitherPngNorExr) fail(key, value, why);
+    if (!why.empty()) fail(key, value, why + "; " + weather_map_requirement());
+    if (!header.exr && header.channels != 4) {
       static const char* const kLayouts[] = {"", "grey", "grey and alpha", "RGB"};
+      const int channels = header.channels;
       fail(key, value,
            "has " + std::to_string(channels) + (channels == 1 ? " channel" : " channels") +
                (channels >= 1 && channels <= 3 ? std::string(" (") + kLayouts[channels] + ")"
@@ -493,6 +487,10 @@ void check_terrain(const Checker& check, const TerrainParams& t) {
     if (!ends_with_ignoring_case(t.albedo_map, ".png") && !ends_with_ignoring_case(t.albedo_map, ".exr"))
       check.fail("terrain.albedo_map", text("terrain.albedo_map", t.albedo_map), "must name a .png (sRGB) or .exr (linear) image");
     check.readable_file("terrain.albedo_map", t.albedo_map);
+    if (const std::string why = albedo_map_problem(t.albedo_map); !why.empty())
+      check.fail("terrain.albedo_map", text("terrain.albedo_map", t.albedo_map),
+                 why + "; an albedo map is a PNG or an EXR of at most " + std::to_string(kMaxAlbedoMapSide) +
+                     " x " + std::to_string(kMaxAlbedoMapSide) + " pixels");
   }
   for (int i = 0; i < 2; ++i)
     if (!(t.extent_m[i] > 0.0f && t.extent_m[i] <= 1.0e6f))

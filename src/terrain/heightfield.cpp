@@ -15,6 +15,7 @@
 #include <limits>
 #include <memory>
 
+#include "image/input_images.h"
 #include "nephele/error.h"
 #include "scene/scene_fields.h"
 #include "terrain/geotiff.h"
@@ -96,7 +97,7 @@ MaxPyramid max_pyramid(const Heightfield& field) {
 namespace {
 
 [[noreturn]] void fail(const std::string& key, const std::string& path, const std::string& why) {
-  throw InputError(key + " '" + path + "': " + why);
+  throw InputError(key + " '" + shorten_path_for_message(path) + "': " + why);
 }
 
 using scene_detail::ends_with_ignoring_case;
@@ -105,42 +106,40 @@ using scene_detail::ends_with_ignoring_case;
 std::string size_problem(long long w, long long h) {
   const std::string size = std::to_string(w) + " x " + std::to_string(h) + " points: ";
   if (w < 2 || h < 2) return size + "a heightfield needs at least 2 x 2";
-  if (w > kMaxSide || h > kMaxSide) return size + "at most 16384 a side are allowed (resample it smaller)";
+  if (w > kMaxSide || h > kMaxSide)
+    return size + "at most " + std::to_string(kMaxSide) + " a side are allowed (resample it smaller)";
   return "";
 }
 
 // The EXR channel heights are read from: Y, R, Z or height, or a file's only channel; "" none.
-std::string exr_height_channel(const Imf::Header& header) {
-  const Imf::ChannelList& list = header.channels();
+std::string exr_height_channel(const std::vector<std::string>& names) {
   for (const char* name : {"Y", "R", "Z", "height"})
-    if (list.findChannel(name)) return name;
-  if (list.begin() != list.end() && ++list.begin() == list.end()) return list.begin().name();
-  return "";
+    if (std::find(names.begin(), names.end(), name) != names.end()) return name;
+  return names.size() == 1 ? names.front() : "";
 }
 
 std::string png_problem(const std::string& path) {
-  int w = 0, h = 0, channels = 0;
-  if (!stbi_info(path.c_str(), &w, &h, &channels)) {
-    const char* reason = stbi_failure_reason();
-    return std::string("cannot read the PNG (") + (reason ? reason : "unknown error") + ")";
-  }
-  if (!stbi_is_16_bit(path.c_str()))
-    return "is an 8-bit PNG; heights need a 16-bit greyscale PNG (256 levels are too coarse for a terrain)";
-  if (channels != 1)
-    return "has " + std::to_string(channels) + " channels; heights need a 16-bit greyscale PNG (1 channel)";
-  return size_problem(w, h);
+  ImageHeader header;
+  if (std::string why = read_image_header(path, header, kMaxSide, "points"); !why.empty()) return why;
+  if (header.exr) return "is an EXR file named .png";
+  if (header.bits != 16)
+    return std::string(header.bits == 8 ? "is an " : "is a ") + std::to_string(header.bits) +
+           "-bit PNG; heights need a 16-bit greyscale PNG (256 levels are too coarse for a terrain)";
+  if (header.channels != 1)
+    return "has " + std::to_string(header.channels) + " channels; heights need a 16-bit greyscale PNG (1 channel)";
+  return size_problem(header.width, header.height);
 }
 
+// The header read without OpenEXR (which sizes its tables as the file declares), then the
+// channel heights are read from.
 std::string exr_problem(const std::string& path) {
-  try {
-    Imf::InputFile file(path.c_str());
-    if (exr_height_channel(file.header()).empty())
-      return "has no Y, R, Z or height channel (heights are read from one of them)";
-    const Imath::Box2i window = file.header().dataWindow();
-    return size_problem(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
-  } catch (const std::exception& e) {
-    return std::string("cannot read the EXR: ") + e.what();
-  }
+  ImageHeader header;
+  if (std::string why = read_image_header(path, header, kMaxSide, "points"); !why.empty()) return why;
+  if (!header.exr) return "is a PNG file named .exr";
+  if (std::string why = size_problem(header.width, header.height); !why.empty()) return why;
+  if (exr_height_channel(header.channel_names).empty())
+    return "has no Y, R, Z or height channel (heights are read from one of them)";
+  return "";
 }
 
 // Values scaled so that the largest is base + height (PNG, EXR).
@@ -153,10 +152,17 @@ Heightfield scaled(const TerrainParams& t, int w, int h, std::vector<float> valu
 }
 
 Heightfield read_png(const TerrainParams& t, const std::string& key) {
+  ImageHeader header;
+  if (const std::string why = read_image_header(t.file, header, kMaxSide, "points"); !why.empty())
+    fail(key, t.file, why);
+  if (const std::string why = png_data_problem(t.file, header); !why.empty()) fail(key, t.file, why);
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<stbi_us, void (*)(void*)> pixels(stbi_load_16(t.file.c_str(), &w, &h, &channels, 1),
                                                    stbi_image_free);
-  if (!pixels) fail(key, t.file, "cannot decode the PNG");
+  if (!pixels) {
+    const char* reason = stbi_failure_reason();
+    fail(key, t.file, std::string("cannot decode the PNG (") + (reason ? reason : "unknown error") + ")");
+  }
   std::vector<float> values(size_t(w) * size_t(h));
   for (size_t i = 0; i < values.size(); ++i) values[i] = float(pixels.get()[i]);
   return scaled(t, w, h, std::move(values));
@@ -166,7 +172,10 @@ Heightfield read_exr(const TerrainParams& t, const std::string& key) {
   const std::string& path = t.file;
   try {
     Imf::InputFile file(path.c_str());
-    const std::string channel = exr_height_channel(file.header());
+    std::vector<std::string> names;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+      names.emplace_back(it.name());
+    const std::string channel = exr_height_channel(names);
     const Imath::Box2i window = file.header().dataWindow();
     const long long w = window.max.x - window.min.x + 1, h = window.max.y - window.min.y + 1;
     std::vector<float> values(size_t(w) * size_t(h));

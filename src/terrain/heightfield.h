@@ -14,9 +14,11 @@
 
 namespace nephele::terrain {
 
-// The most grid points a heightfield may hold a side (16384^2 floats: 1 GiB on the host and
-// the device; the largest 2D image many devices take).
-constexpr int kMaxSide = 16384;
+// The most grid points a heightfield file may hold a side, checked from its header before it is
+// decoded: 8192^2 floats are 256 MiB, and the terrain module holds them with their max pyramid
+// several times over while it uploads them (about 1.5 GiB at this limit on lavapipe, whose
+// device memory is the process's).
+constexpr int kMaxSide = 8192;
 
 // Heights in metres above the scene's ground (the sphere at location.altitude_m), at
 // width x height points spanning extent_m (east-west, north-south) about center_m. Row 0 is

@@ -126,6 +126,84 @@ TEST_F(TerrainFiles, GeoTiffIsPlacedByItsCoordinates) {
   EXPECT_NEAR(f.extent_m.y, 41 * 0.001 * 111195.0 * 6360.0 / 6371.0, 60.0);
 }
 
+// Item 6: a GeoTIFF on a latitude-longitude grid must lie on the globe: beyond a pole PROJ
+// wraps it onto the other side; longitudes beyond [-360, 360], or spanning more than a turn,
+// mean nothing; a geotransform without area places nothing. Refused when the scene is checked.
+TEST_F(TerrainFiles, GeoTiffsOffTheGlobeAreRefused) {
+  const std::vector<float> h(64, 100.0f);
+  const struct {
+    std::string name;
+    double north_deg, west_deg, cell_deg;
+    int w;
+    std::string expected;
+  } cases[] = {
+      {"north95.tif", 95.0, 7.0, 0.01, 8, "spans latitudes [94.92, 95], beyond a pole; latitudes must be in [-90, 90]"},
+      {"south91.tif", -90.95, 7.0, 0.01, 8, "spans latitudes [-91.03, -90.95], beyond a pole"},
+      {"north_edge.tif", 90.04, 7.0, 0.01, 8, "spans latitudes [89.96, 90.04], beyond a pole"},
+      {"east400.tif", 10.0, 400.0, 0.01, 8, "spans longitudes [400, 400.08]; longitudes must be in [-360, 360]"},
+      {"west370.tif", 10.0, -370.0, 0.01, 8, "spans longitudes [-370, -369.92]; longitudes must be in [-360, 360]"},
+      {"flat.tif", 10.0, 7.0, 0.0, 8, "its geotransform is degenerate (its pixels have no area)"},
+  };
+  for (const auto& c : cases) {
+    test::write_geotiff(path(c.name), c.w, 8, std::vector<float>(size_t(c.w) * 8, 100.0f), c.north_deg, c.west_deg,
+                        c.cell_deg);
+    const std::string message = rejection(with_file(path(c.name)));
+    EXPECT_EQ(message.rfind("terrain.file = \"", 0), 0u) << message;
+    EXPECT_NE(message.find(c.expected), std::string::npos) << c.expected << " in " << message;
+    EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 0) << message;
+  }
+  // Pole to pole, and a grid across the antimeridian, are on it.
+  test::write_geotiff(path("globe.tif"), 8, 8, h, 90.0, -180.0, 22.5);
+  EXPECT_EQ(rejection(with_file(path("globe.tif"))), "");
+  test::write_geotiff(path("dateline.tif"), 8, 8, h, 10.0, 179.98, 0.01);
+  EXPECT_EQ(rejection(with_file(path("dateline.tif"))), "");
+}
+
+// A model far from the scene's location (or larger than terrain.extent_m allows) is refused
+// when it is placed, in one line, rather than drawn wrapped about the planet.
+TEST_F(TerrainFiles, GeoTiffsFarFromTheLocationAreRefusedWhenPlaced) {
+  test::write_geotiff(path("far.tif"), 8, 8, std::vector<float>(64, 100.0f), 30.0, 7.0, 0.01);
+  Scene s = with_file(path("far.tif"));
+  s.location.lat_deg = 46.5f;
+  s.location.lon_deg = 7.95f;
+  ASSERT_EQ(rejection(s), "");
+  try {
+    terrain::load_heightfield(s);
+    ADD_FAILURE() << "a model 1800 km away was placed";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("terrain.file '", 0), 0u) << message;
+    EXPECT_NE(message.find("at most 1000 km a side, centred within 1000 km"), std::string::npos) << message;
+  }
+}
+
+// Item 5: a GeoTIFF whose strip is corrupt is refused in nephele's one line, quoting GDAL's
+// error, and GDAL prints nothing of its own.
+TEST_F(TerrainFiles, CorruptGeoTiffStripsAreOneLineAndGdalStaysQuiet) {
+  const int n = 64;
+  std::vector<float> heights(size_t(n * n));
+  for (size_t i = 0; i < heights.size(); ++i) heights[i] = 700.0f + float((i * 7919) % 1013);  // incompressible
+  test::write_geotiff(path("dem.tif"), n, n, heights, 46.55, 7.93, 0.001, true, true);
+  test::corrupt_first_strip(path("dem.tif"), 40);
+  Scene s = with_file(path("dem.tif"));
+  s.location.lat_deg = 46.5f;
+  s.location.lon_deg = 7.95f;
+  ::testing::internal::CaptureStderr();
+  const std::string validation = rejection(s);
+  std::string message;
+  try {
+    terrain::load_heightfield(s);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(validation, "");  // the header is whole
+  EXPECT_EQ(printed, "");
+  EXPECT_EQ(message.rfind("terrain.file '", 0), 0u) << message;
+  EXPECT_NE(message.find("cannot read its heights; the file is corrupt (GDAL: "), std::string::npos) << message;
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 0) << message;
+}
+
 TEST_F(TerrainFiles, BadFilesAreRefusedNamingTheParameterAndWhatIsAllowed) {
   std::vector<unsigned short> v(16, 7);
   test::write_png16(path("rgb16.png"), 4, 4, 3, v);
@@ -135,7 +213,7 @@ TEST_F(TerrainFiles, BadFilesAreRefusedNamingTheParameterAndWhatIsAllowed) {
     write_image(image, path("grey8.png"));  // an 8-bit PNG (write_image writes 8 bits)
   }
   test::write_geotiff(path("plain.tif"), 8, 8, std::vector<float>(64, 10.0f), 0, 0, 0, false);
-  test::write_png16(path("wide.png"), 16385, 2, 1, std::vector<unsigned short>(16385 * 2, 1));
+  test::write_png16(path("wide.png"), 8193, 2, 1, std::vector<unsigned short>(8193 * 2, 1));
   const struct {
     std::string file, expected;
   } cases[] = {
@@ -143,7 +221,7 @@ TEST_F(TerrainFiles, BadFilesAreRefusedNamingTheParameterAndWhatIsAllowed) {
       {path("grey8.png"), "is an 8-bit PNG; heights need a 16-bit greyscale PNG"},
       {path("rgb16.png"), "has 3 channels; heights need a 16-bit greyscale PNG (1 channel)"},
       {path("plain.tif"), "has no georeferencing"},
-      {path("wide.png"), "16385 x 2 points: at most 16384 a side"},
+      {path("wide.png"), "8193 x 2 points: at most 8192 a side"},
       {path("heights.jpg"), "must name a .png (16-bit grey), .exr, .tif/.tiff (GeoTIFF) or .obj file"},
   };
   for (const auto& c : cases) {

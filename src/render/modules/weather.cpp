@@ -1,10 +1,12 @@
 #include "render/modules/weather.h"
 
 #include <cmath>
+#include <cstring>
 
 #include <glm/common.hpp>
 
-#include "nephele/image.h"
+#include "image/input_images.h"
+#include "nephele/error.h"
 
 namespace nephele {
 
@@ -36,13 +38,15 @@ double WeatherModule::weather_time(const Scene& scene) {
   return double(scene.time_s) / double(evolution_s);
 }
 
-// A PNG of another size replaces the map texture, once the frames in flight that read the old
+// A map of another size replaces the map texture, once the frames in flight that read the old
 // one have completed. The texture's v grows northward (cloud_field_inc.glsl reads it at ground
 // y / period), so texture row 0 is the southern edge; an image's row 0 is its top, north as
 // maps are drawn (scene.h): the rows go up in reverse order. The procedural map is written in
-// texture space and needs no flip.
+// texture space and needs no flip. The file is read as 8-bit RGBA (read_weather_map), checked
+// against its stated limit and this device's before anything is allocated for it.
 void WeatherModule::upload_png(const std::string& path) {
-  const Image png = read_image(path);
+  const Rgba8Image png = read_weather_map(path);
+  check_device_limit(path, png.width, png.height);
   if (map_.width() != uint32_t(png.width) || map_.height() != uint32_t(png.height) ||
       map_key_.rfind("file:", 0) != 0) {
     ctx_.wait_queue_idle();
@@ -50,19 +54,29 @@ void WeatherModule::upload_png(const std::string& path) {
                         VK_FORMAT_R8G8B8A8_UNORM);
     set_.bind_image(gpu::kWeatherMapOut, gpu::kWeatherMap, map_);
   }
-  gpu::Buffer staging(ctx_, VkDeviceSize(png.pixels.size()) * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  const size_t row_bytes = size_t(png.width) * 4;
+  gpu::Buffer staging(ctx_, VkDeviceSize(row_bytes) * VkDeviceSize(png.height),
+                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   auto* bytes = static_cast<unsigned char*>(staging.data());
   for (int row = 0; row < png.height; ++row)
-    for (int x = 0; x < png.width; ++x) {
-      const glm::vec4& p = png.at(x, png.height - 1 - row);
-      unsigned char* texel = bytes + 4 * (size_t(row) * size_t(png.width) + size_t(x));
-      for (int c = 0; c < 4; ++c)
-        texel[c] = static_cast<unsigned char>(glm::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f);
-    }
+    std::memcpy(bytes + size_t(row) * row_bytes,
+                png.texels.data() + size_t(png.height - 1 - row) * row_bytes, row_bytes);
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
     gpu::full_barrier(cmd);  // after the frames in flight that read the map
     map_.record_upload(cmd, staging);
   });
+}
+
+// A device may take smaller images than kMaxWeatherMapSide (Vulkan promises 4096 a side).
+void WeatherModule::check_device_limit(const std::string& path, int width, int height) const {
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(ctx_.physical_device(), &properties);
+  const uint32_t largest = properties.limits.maxImageDimension2D;
+  if (uint32_t(width) > largest || uint32_t(height) > largest)
+    throw InputError("clouds.weather_map '" + shorten_path_for_message(path) + "': " +
+                     std::to_string(width) + " x " + std::to_string(height) +
+                     " pixels exceed this device's largest image (" + std::to_string(largest) +
+                     " a side); resample it smaller");
 }
 
 void WeatherModule::prepare(const Scene& scene, gpu::FrameParams& params) {

@@ -1,8 +1,9 @@
-// The weather module: the weather map the clouds read (binding kWeatherMap). A PNG file is
-// uploaded once. The procedural map evolves with time without a hitch: states of the weather
-// at steps of clouds.weather_evolution_s / kWeatherSteps are computed ahead (weather.comp, the
-// next one a band of rows a frame) and the map is blended between the two around the scene's
-// time (weather_blend.comp), so it changes smoothly and never all at once.
+// The weather module: the weather map the clouds read (binding kWeatherMap). A file (PNG or
+// EXR, read as image/input_images.h says) is uploaded once. The procedural map evolves with
+// time without a hitch: states of the weather at steps of clouds.weather_evolution_s /
+// kWeatherSteps are computed ahead (weather.comp, the next one a band of rows a frame) and the
+// map is blended between the two around the scene's time (weather_blend.comp), so it changes
+// smoothly and never all at once.
 #pragma once
 
 #include <optional>
@@ -37,6 +38,7 @@ class WeatherModule {
 
  private:
   void upload_png(const std::string& path);
+  void check_device_limit(const std::string& path, int width, int height) const;
 
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
