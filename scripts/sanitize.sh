@@ -16,7 +16,7 @@ cmake --build build-sanitize -j2 >&2
 # Parametrised tests are named Prefix/Suite.Test/N, hence (^|/).
 unit_suites=$(grep -ho 'TEST\(_F\|_P\)\?( *[A-Za-z0-9_]*' tests/unit/*.cpp | sed 's/.*( *//' |
   sort -u | paste -sd'|')
-regex="(^|/)(Fuzz[A-Za-z0-9_]*|CliTest|${unit_suites})\\."
+regex="(^|/)(Fuzz[A-Za-z0-9_]*|CliTest|CliInputs|InputLimitsCli|${unit_suites})\\."
 
 source scripts/sanitizers/env.sh
 cd build-sanitize

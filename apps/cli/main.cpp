@@ -1,4 +1,6 @@
 // nephele — command-line tool: render a scene to PNG/EXR, run the benchmark, render the preset gallery, list presets, make voxel clouds.
+#include <sys/resource.h>
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -22,10 +24,27 @@ void print_error(const std::string& kind, const std::string& message, const std:
   constexpr size_t kMaxLineChars = 1000;
   const std::string prefix = "nephele: " + kind + ": ";
   const size_t room = kMaxLineChars - prefix.size() - suffix.size();
-  std::string text = message.size() > room ? message.substr(0, room - 3) + "..." : message;
-  for (char& c : text)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  // Control characters, bidirectional overrides and bytes that are not UTF-8 as '?'.
+  std::string text = nephele::one_line_for_message(message);
+  if (text.size() > room) text = text.substr(0, room - 3) + "...";
   std::fprintf(stderr, "%s%s%s\n", prefix.c_str(), text.c_str(), suffix.c_str());
+}
+
+// `--verbose`: the process's peak resident memory, which on a CPU driver (lavapipe) holds the
+// device's memory too.
+void print_peak_memory(const CLI::App& app) {
+  for (const CLI::App* command : app.get_subcommands()) {
+    const CLI::Option* verbose = command->get_option_no_throw("--verbose");
+    if (!verbose || verbose->count() == 0) continue;
+    rusage usage = {};
+    if (getrusage(RUSAGE_SELF, &usage) == 0)
+      std::fprintf(stderr, "nephele: peak resident memory %.0f MiB\n", usage.ru_maxrss / 1024.0);
+  }
+}
+
+int run_command(const CLI::App& app, int status) {
+  print_peak_memory(app);
+  return status;
 }
 
 }  // namespace
@@ -84,12 +103,12 @@ int main(int argc, char** argv) {
   // An interrupted write leaves no temporary file behind.
   nephele::install_temporary_file_cleanup();
   try {
-    if (render_cmd->parsed()) return nephele::cli::run_render(render);
-    if (bench_cmd->parsed()) return nephele::cli::run_bench(bench);
-    if (validate_cmd->parsed()) return nephele::cli::run_validate(validate);
-    if (gallery_cmd->parsed()) return nephele::cli::run_gallery(gallery);
-    if (make_cloud_cmd->parsed()) return nephele::cli::run_make_cloud(make_cloud);
-    if (voxelize_cmd->parsed()) return nephele::cli::run_voxelize(voxelize);
+    if (render_cmd->parsed()) return run_command(app, nephele::cli::run_render(render));
+    if (bench_cmd->parsed()) return run_command(app, nephele::cli::run_bench(bench));
+    if (validate_cmd->parsed()) return run_command(app, nephele::cli::run_validate(validate));
+    if (gallery_cmd->parsed()) return run_command(app, nephele::cli::run_gallery(gallery));
+    if (make_cloud_cmd->parsed()) return run_command(app, nephele::cli::run_make_cloud(make_cloud));
+    if (voxelize_cmd->parsed()) return run_command(app, nephele::cli::run_voxelize(voxelize));
     if (presets_cmd->parsed()) {
       for (const std::string& name : nephele::preset_names()) std::cout << name << "\n";
       return 0;

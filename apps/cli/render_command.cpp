@@ -320,6 +320,14 @@ int flight_frames(const CameraPath& path, const RenderOptions& options) {
   return int(count);
 }
 
+// What a render reads, named as the user gave it: no output may replace one of them.
+NamedPaths render_inputs(const Scene& scene, const RenderOptions& options) {
+  NamedPaths inputs = scene_input_files(scene);
+  if (options.scene.scene_file) inputs.emplace_back("--scene", *options.scene.scene_file);
+  if (!options.camera_path.empty()) inputs.emplace_back("--camera-path", options.camera_path);
+  return inputs;
+}
+
 // Everything about the sequence that can be checked before the first frame: the flags, the
 // camera path, every frame's scene and every output's name.
 Sequence plan_sequence(const Scene& scene, const RenderOptions& options) {
@@ -352,6 +360,7 @@ Sequence plan_sequence(const Scene& scene, const RenderOptions& options) {
     }
   }
   const bool stats_to_stdout = options.stats_json == kStandardOutput;
+  const NamedPaths inputs = render_inputs(scene, options);
   for (int i = 0; i < seq.frames; ++i) {
     const std::string image = seq.output(options.output, options, i, "--output");
     check_output_path(image, "--output");
@@ -364,6 +373,7 @@ Sequence plan_sequence(const Scene& scene, const RenderOptions& options) {
       outputs.emplace_back("--stats-json", stats);
     }
     if (i == 0) check_distinct_outputs(outputs);
+    check_outputs_not_inputs(outputs, inputs);
   }
   return seq;
 }
@@ -391,6 +401,7 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
   if (grid == grids.end())
     throw InputError("--majorant-grid " + options.majorant_grid + ": must be auto, bricks or none");
   check_output_path(options.output, "--output");
+  check_outputs_not_inputs({{"--output", options.output}}, render_inputs(scene, options));
   Renderer renderer({options.device, options.validation, options.verbose, {}});
   std::unique_ptr<Progress> bar;
   // The scene's seed (--seed) seeds the paths: the same seed, scene and --spp, the same image.

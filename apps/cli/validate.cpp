@@ -367,6 +367,13 @@ int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suit
 }  // namespace
 
 int run_validate(const ValidateOptions& options) {
+  // Its reports and --json may not replace the suite it reads (--references, read and written
+  // by design, is the one folder that holds inputs).
+  if (!options.json.empty()) check_output_file(options.json, "--json", true);
+  NamedPaths reports = {{"--json", options.json}};
+  for (const char* report : {"results.md", "results.json", "sky.md", "sky.json"})
+    reports.emplace_back("--out", (fs::path(options.out_dir) / report).string());
+  check_outputs_not_inputs(reports, {{"--suite", options.suite}});
   ValidationSuite suite;
   if (options.suite.empty()) {
     suite = default_validation_suite();

@@ -74,6 +74,7 @@ void add_voxelize_flags(CLI::App& cmd, VoxelizeOptions& options) {
 int run_voxelize(const VoxelizeOptions& options) {
   check_resolution(options.resolution);
   check_vdb_output(options.output);
+  check_outputs_not_inputs({{"--output", options.output}}, {{"mesh", options.mesh}});
   const auto start = std::chrono::steady_clock::now();
   const voxel::VoxelGrid grid = voxel::voxelize_mesh(options.mesh, options.resolution);
   voxel::write_vdb(grid, options.output);

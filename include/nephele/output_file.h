@@ -20,10 +20,20 @@ constexpr std::string_view kStandardOutput = "-";
 void check_output_file(const std::string& path, const std::string& parameter,
                        bool allow_stdout = false);
 
-// Throws InputError when two of the (parameter, path) outputs are the same file (by their
-// absolute, normalised paths through existing links): "--stats-json 'a.exr': is the same file
-// as --output". "-" (standard output) is never compared.
-void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
+// (parameter, path) pairs: "--output", "out.png"; "clouds.weather_map", "wm.png".
+using NamedPaths = std::vector<std::pair<std::string, std::string>>;
+
+// Throws InputError when two of the outputs are the same file: the same absolute, normalised
+// path through existing links, or, for files that exist, the same device and inode (a hard
+// link): "--stats-json 'a.exr': is the same file as --output". "-" (standard output) is never
+// compared.
+void check_distinct_outputs(const NamedPaths& outputs);
+
+// Throws InputError when an output is the same file as an input, through any path, symbolic
+// or hard link (the same device and inode): "--output 'wm.png': is the same file as the input
+// clouds.weather_map ...". Writing it would replace what the work reads. Inputs that do not
+// exist (yet) and "-" are skipped.
+void check_outputs_not_inputs(const NamedPaths& outputs, const NamedPaths& inputs);
 
 // Writes `bytes` to `path`: into a new temporary file beside it, then renamed over it, so a
 // reader sees the old file or the whole new one, never a part. A link is followed: the file

@@ -48,6 +48,11 @@ using ParamNamer = std::function<std::string(const std::string& key)>;
 // "clouds.coverage = 1.5: must be in [0, 1]". Also checks that a weather map is readable.
 void validate_scene(const Scene& scene, const ParamNamer& display_name = {});
 
+// The files the scene reads, each with its key: {"clouds.weather_map", "wm.png"},
+// {"voxel_clouds[0].file", ...}, {"terrain.file", ...}, {"terrain.albedo_map", ...},
+// {"lab.grid", ...}; empty paths left out. (An output must not be one of them.)
+std::vector<std::pair<std::string, std::string>> scene_input_files(const Scene& scene);
+
 // The whole scene as TOML; parse_scene_toml(scene_to_toml(s), ...) gives back s exactly.
 std::string scene_to_toml(const Scene& scene);
 

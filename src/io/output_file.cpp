@@ -2,6 +2,7 @@
 #include "nephele/output_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -10,6 +11,7 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "nephele/error.h"
 
@@ -38,6 +40,13 @@ fs::path write_target(const std::string& path) {
     if (!ec) return target;
   }
   return path;
+}
+
+// The file at `path` (through links) as device and inode; nullopt where there is none.
+std::optional<std::pair<dev_t, ino_t>> file_identity(const std::string& path) {
+  struct stat st = {};
+  if (path.empty() || path == kStandardOutput || ::stat(path.c_str(), &st) != 0) return std::nullopt;
+  return std::pair{st.st_dev, st.st_ino};
 }
 
 // --- temporary files, known to the signal handler ---------------------------------------
@@ -163,14 +172,24 @@ void check_output_file(const std::string& path, const std::string& parameter, bo
     throw InputError(prefix + "the file name is " + std::to_string(name_length) +
                      " characters long; the file system allows " +
                      std::to_string(name_max > 0 ? name_max : NAME_MAX));
-  // Creating the temporary file and renaming it needs write and search permission.
+  // Creating the temporary file and renaming it needs write and search permission. A file
+  // created and removed at once proves it where permissions alone do not (root ignores them;
+  // /proc, /sys and read-only mounts refuse new files whatever they say).
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
     throw InputError(prefix + "directory " + quoted(dir.string()) + " is not writable");
+  try {
+    TempFile probe(dir, path);
+  } catch (const RuntimeError& e) {
+    const std::string why(e.what());
+    throw InputError(prefix + "directory " + quoted(dir.string()) + " does not accept new files (" +
+                     why.substr(why.rfind(": ") + 2) + "; a writable directory is required)");
+  }
 }
 
-void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
+void check_distinct_outputs(const NamedPaths& outputs) {
   std::vector<fs::path> seen;
-  for (const auto& [parameter, path] : outputs) {
+  for (size_t o = 0; o < outputs.size(); ++o) {
+    const auto& [parameter, path] = outputs[o];
     if (path == kStandardOutput) {
       seen.emplace_back();
       continue;
@@ -178,11 +197,27 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
     std::error_code ec;
     fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
     if (ec) resolved = fs::absolute(path, ec).lexically_normal();
+    const auto identity = file_identity(path);
     for (size_t i = 0; i < seen.size(); ++i)
-      if (!seen[i].empty() && seen[i] == resolved)
+      if (!seen[i].empty() &&
+          (seen[i] == resolved || (identity && identity == file_identity(outputs[i].second))))
         throw InputError(parameter + " " + quoted(path) + ": is the same file as " +
                          outputs[i].first + " (each output needs a file of its own)");
     seen.push_back(resolved);
+  }
+}
+
+void check_outputs_not_inputs(const NamedPaths& outputs, const NamedPaths& inputs) {
+  std::vector<std::pair<std::string, std::pair<dev_t, ino_t>>> read;
+  for (const auto& [parameter, path] : inputs)
+    if (const auto identity = file_identity(path)) read.emplace_back(parameter, *identity);
+  for (const auto& [parameter, path] : outputs) {
+    const auto identity = file_identity(path);
+    if (!identity) continue;
+    for (const auto& [input, input_identity] : read)
+      if (input_identity == *identity)
+        throw InputError(parameter + " " + quoted(path) + ": is the same file as the input " +
+                         input + " (an output may not replace a file the work reads)");
   }
 }
 

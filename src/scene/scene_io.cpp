@@ -643,6 +643,18 @@ void scene_detail::read_field_value(Scene& scene, const Field& field, const std:
   scene = std::move(changed);
 }
 
+std::vector<std::pair<std::string, std::string>> scene_input_files(const Scene& scene) {
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"clouds.weather_map", scene.clouds.weather_map},
+      {"terrain.file", scene.terrain.file},
+      {"terrain.albedo_map", scene.terrain.albedo_map},
+      {"lab.grid", scene.lab.grid}};
+  for (size_t i = 0; i < scene.voxel_clouds.size(); ++i)
+    files.emplace_back("voxel_clouds[" + std::to_string(i) + "].file", scene.voxel_clouds[i].file);
+  std::erase_if(files, [](const auto& f) { return f.second.empty(); });
+  return files;
+}
+
 Scene load_scene_file(const std::string& path) {
   const std::string text = scene_detail::read_small_text_file(
       path, "scene file", "it is larger than 1 MiB (scene files are a few KB)");

@@ -12,10 +12,12 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <sstream>
 #include <limits>
 #include <memory>
 
 #include "image/input_images.h"
+#include "io/obj_text.h"
 #include "nephele/error.h"
 #include "scene/scene_fields.h"
 #include "terrain/geotiff.h"
@@ -203,7 +205,7 @@ Heightfield read_obj(const TerrainParams& t, const std::string& key) {
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warning, error;
-  std::ifstream in(path, std::ios::binary);
+  std::istringstream in(read_obj_text(path, key + " '" + shorten_path_for_message(path) + "': "));
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &in, nullptr, true) ||
       attrib.vertices.size() < 9)
     fail(key, path, "is not a readable OBJ mesh (" + (error.empty() ? std::string("no triangles") : error) + ")");

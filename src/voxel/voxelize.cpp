@@ -9,6 +9,7 @@
 #include <map>
 #include <tuple>
 
+#include "io/obj_text.h"
 #include "nephele/error.h"
 #include "voxel/common.h"
 #include "voxel/level_set.h"
@@ -16,6 +17,10 @@
 
 namespace nephele::voxel {
 namespace {
+
+// The finest voxel a mesh is baked at: a cloud's detail needs no finer, and OpenVDB's level
+// set tools fail on micrometre voxels ("Non-zero scale values required").
+constexpr float kMinVoxelM = 1e-3f;
 
 struct Mesh {
   std::vector<glm::vec3> points_m;
@@ -109,6 +114,12 @@ VoxelGrid voxelize(const Mesh& mesh, const std::string& where, int max_dim) {
   constexpr int kPad = 2;
   VoxelGrid grid;
   fit_grid(extent, kPad, max_dim, grid);
+  if (grid.voxel_m < kMinVoxelM)
+    throw InputError(where + "extent " + number_for_message(longest) + " m at resolution " +
+                     std::to_string(max_dim) + " gives voxels of " + number_for_message(grid.voxel_m) +
+                     " m (at least " + number_for_message(kMinVoxelM) + " m: a mesh of at least " +
+                     number_for_message(kMinVoxelM * float(max_dim - 2 * kPad)) +
+                     " m, or a lower resolution)");
   // In the mesh's frame first: the grid centred on the mesh's box, its base two voxels below.
   grid.origin_m = 0.5f * (lo + hi) - 0.5f * glm::vec3(grid.dims) * grid.voxel_m;
   grid.origin_m.z = lo.z - kPad * grid.voxel_m;
@@ -150,13 +161,14 @@ VoxelGrid voxelize(const Mesh& mesh, const std::string& where, int max_dim) {
 VoxelGrid voxelize_mesh(const std::string& obj_path, int max_dim) {
   check_max_dim(max_dim);
   const std::string where = file_prefix(obj_path);
-  std::ifstream in(obj_path, std::ios::binary);
-  if (!in) throw InputError(where + "cannot be read (an OBJ mesh file is required)");
+  std::istringstream in(read_obj_text(obj_path, where));
   return voxelize(read_obj(in, where), where, max_dim);
 }
 
 VoxelGrid voxelize_mesh_text(const std::string& obj_text, const std::string& name, int max_dim) {
   check_max_dim(max_dim);
+  if (const std::string problem = obj_number_problem(obj_text); !problem.empty())
+    throw InputError(name + ": " + problem);
   std::istringstream in(obj_text);
   return voxelize(read_obj(in, name + ": "), name + ": ", max_dim);
 }

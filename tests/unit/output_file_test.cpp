@@ -104,6 +104,42 @@ TEST_F(OutputFile, TheSameFileCannotTakeTwoOutputs) {
       {{"--output", image}, {"--stats-json", path("s.json")}, {"--json", "-"}, {"--x", "-"}}));
 }
 
+// Issue 40: hard links are one file too, for two outputs and for an output and an input.
+TEST_F(OutputFile, AnOutputIsNeverAnInputThroughAnyLink) {
+  const std::string input = path("wm.png");
+  std::ofstream(input) << "x";
+  fs::create_hard_link(input, path("hard.png"));
+  fs::create_symlink(input, path("soft.png"));
+  EXPECT_THROW(check_distinct_outputs({{"--output", input}, {"--stats-json", path("hard.png")}}),
+               InputError);
+  for (const std::string& output : {input, path("hard.png"), path("soft.png")})
+    EXPECT_EQ(input_error([&] {
+                check_outputs_not_inputs({{"--output", output}},
+                                         {{"terrain.file", path("none.exr")},
+                                          {"clouds.weather_map", input}});
+              }),
+              "--output '" + output + "': is the same file as the input clouds.weather_map (an "
+              "output may not replace a file the work reads)");
+  EXPECT_NO_THROW(check_outputs_not_inputs({{"--output", path("new.png")}, {"--json", "-"}},
+                                           {{"clouds.weather_map", input}, {"--scene", ""}}));
+  EXPECT_EQ(read(input), "x");
+}
+
+// Issue 40: a folder that refuses new files whatever its permissions say (root ignores them).
+TEST_F(OutputFile, AFolderThatTakesNoNewFileIsRefused) {
+  if (!fs::is_directory("/proc/self")) GTEST_SKIP() << "no /proc";
+  // As root only the file made and removed finds it (access() says yes).
+  const std::string message = input_error([] { check_output_file("/proc/x.png", "--output"); });
+  EXPECT_NE(message.find(::geteuid() == 0 ? "--output '/proc/x.png': directory '/proc' does not "
+                                            "accept new files ("
+                                          : "--output '/proc/x.png': directory '/proc' is not"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+  EXPECT_NO_THROW(check_output_file(path("fine.png"), "--output"));
+  EXPECT_TRUE(listing().empty());  // the probe left nothing
+}
+
 TEST_F(OutputFile, WritesReplaceWholeAndFollowLinks) {
   write_file_atomically(path("a.json"), "old");
   write_file_atomically(path("a.json"), "new");

@@ -1395,4 +1395,12 @@ TEST(SceneIo, MalformedTomlMessagesStayOnOneLine) {
     EXPECT_NE(m.find("malformed TOML"), std::string::npos) << m;
   }
   EXPECT_EQ(nephele::one_line_for_message("a\nb\rc\x7f"), "a b?c?");
+  // Issue 40: invisible reordering characters, C1 controls and bytes that are not UTF-8 too;
+  // letters of any script pass.
+  EXPECT_EQ(nephele::shorten_for_message("evil\u202egnp.exe"), "evil?gnp.exe");
+  EXPECT_EQ(nephele::shorten_for_message("a\u2066b\u2069c\u200fd\u2028e"), "a?b?c?d?e");
+  EXPECT_EQ(nephele::shorten_for_message("x\xc2\x9by"), "x?y");
+  EXPECT_EQ(nephele::shorten_for_message("x\xff\xc0\xafy\xe2\x80"), "x???y??");
+  EXPECT_EQ(nephele::shorten_path_for_message("облака/云.toml"), "облака/云.toml");
+  EXPECT_EQ(nephele::one_line_for_message("\xef\xbb\xbf" "a\u202e"), "?a?");
 }
