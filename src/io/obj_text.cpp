@@ -93,4 +93,14 @@ std::string read_obj_text(const std::string& path, const std::string& where) {
   return text;
 }
 
+std::string obj_error_for_message(const std::string& error, const std::string& fallback) {
+  std::string joined;
+  std::istringstream lines(error);
+  for (std::string line; std::getline(lines, line);) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (!line.empty()) joined += (joined.empty() ? "" : "; ") + line;
+  }
+  return shorten_for_message(joined.empty() ? fallback : joined);
+}
+
 }  // namespace nephele

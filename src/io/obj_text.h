@@ -21,4 +21,8 @@ std::string obj_number_problem(std::string_view text);
 // kMaxObjBytes, or with numbers obj_number_problem refuses.
 std::string read_obj_text(const std::string& path, const std::string& where);
 
+// tinyobjloader's error text (lines each ending in a newline) as part of a one-line message: its
+// lines joined by "; ", shortened; `fallback` when it is empty.
+std::string obj_error_for_message(const std::string& error, const std::string& fallback);
+
 }  // namespace nephele

@@ -208,7 +208,8 @@ Heightfield read_obj(const TerrainParams& t, const std::string& key) {
   std::istringstream in(read_obj_text(path, key + " '" + shorten_path_for_message(path) + "': "));
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &in, nullptr, true) ||
       attrib.vertices.size() < 9)
-    fail(key, path, "is not a readable OBJ mesh (" + (error.empty() ? std::string("no triangles") : error) + ")");
+    fail(key, path,
+         "is not a readable OBJ mesh (" + obj_error_for_message(error, "no triangles") + ")");
   std::vector<glm::vec3> points;  // east, north, up
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (size_t v = 0; v + 2 < attrib.vertices.size(); v += 3) {

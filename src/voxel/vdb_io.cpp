@@ -243,6 +243,69 @@ std::vector<NanoEntry> scan_nanovdb(const std::string& path, uint64_t file_bytes
   return entries;
 }
 
+// Why a NanoVDB float grid's tree does not lie within its buffer ("" when it does): every node
+// offset, the root's table and the node counts, checked before anything follows an offset.
+// NanoVDB's own validator computes the checksum first, walking the tree through offsets it has
+// not checked (a flipped byte crashed it), and never checks the leaves' offsets.
+std::string nano_tree_problem(const nanovdb::GridHandle<>& handle,
+                              const nanovdb::NanoGrid<float>& grid) {
+  using Tree = nanovdb::NanoTree<float>;
+  using Root = Tree::RootType;
+  using Upper = Root::ChildNodeType;
+  using Lower = Upper::ChildNodeType;
+  using Leaf = Lower::ChildNodeType;
+  const uintptr_t begin = reinterpret_cast<uintptr_t>(&grid);
+  const uintptr_t buffer_end = reinterpret_cast<uintptr_t>(handle.data()) + handle.size();
+  const uint64_t grid_bytes = grid.gridSize();
+  if (begin < reinterpret_cast<uintptr_t>(handle.data()) || begin > buffer_end ||
+      grid_bytes > buffer_end - begin ||
+      grid_bytes < sizeof(nanovdb::GridData) + sizeof(Tree::DataType) + sizeof(Root))
+    return "its size does not fit the file";
+  const uintptr_t end = begin + grid_bytes;
+  // Whether `bytes` at `base + offset` lie within the grid, aligned as NanoVDB aligns nodes.
+  const auto within = [&](uintptr_t base, int64_t offset, uint64_t bytes) {
+    const uintptr_t at = base + uintptr_t(offset);
+    return (offset >= 0 ? uint64_t(offset) <= end - base
+                        : uint64_t(-(offset + 1)) < base - begin) &&
+           at >= begin && at <= end && bytes <= end - at && at % NANOVDB_DATA_ALIGNMENT == 0;
+  };
+  const uintptr_t tree = reinterpret_cast<uintptr_t>(&grid.tree());
+  const Tree::DataType& data = *grid.tree().data();
+  if (!within(tree, int64_t(data.mNodeOffset[3]), sizeof(Root))) return "its root lies outside it";
+  const uint64_t node_bytes[3] = {sizeof(Leaf), sizeof(Lower), sizeof(Upper)};
+  for (int level = 0; level < 3; ++level)
+    if (data.mNodeCount[level] > 0 && (data.mNodeCount[level] > grid_bytes / node_bytes[level] ||
+                                       !within(tree, int64_t(data.mNodeOffset[level]),
+                                               data.mNodeCount[level] * node_bytes[level])))
+      return "its nodes of level " + std::to_string(level) + " lie outside it";
+  const Root& root = grid.tree().root();
+  const uintptr_t root_at = reinterpret_cast<uintptr_t>(&root);
+  if (root.tileCount() > grid_bytes / sizeof(Root::Tile) || !within(root_at, 0, root.memUsage()))
+    return "its root's table lies outside it";
+  // Each node reached once at most: shared or looping offsets exceed the counts.
+  uint64_t seen[3] = {0, 0, 0};
+  const auto child = [&](uintptr_t parent, int64_t offset, int level) -> uintptr_t {
+    if (!within(parent, offset, node_bytes[level]) || ++seen[level] > data.mNodeCount[level])
+      return 0;
+    return parent + uintptr_t(offset);
+  };
+  for (uint32_t t = 0; t < root.tileCount(); ++t) {
+    const Root::Tile* tile = root.data()->tile(t);
+    if (!tile->isChild()) continue;
+    const uintptr_t upper = child(root_at, tile->child, 2);
+    if (!upper) return "a node lies outside it";
+    const auto* upper_data = reinterpret_cast<const Upper*>(upper)->data();
+    for (auto n = upper_data->mChildMask.beginOn(); n; ++n) {
+      const uintptr_t lower = child(upper, upper_data->mTable[*n].child, 1);
+      if (!lower) return "a node lies outside it";
+      const auto* lower_data = reinterpret_cast<const Lower*>(lower)->data();
+      for (auto m = lower_data->mChildMask.beginOn(); m; ++m)
+        if (!child(lower, lower_data->mTable[*m].child, 0)) return "a node lies outside it";
+    }
+  }
+  return "";
+}
+
 openvdb::FloatGrid::Ptr read_nano_grid(const std::string& path, const std::string& name) {
   nanovdb::GridHandle<> handle;
   try {
@@ -251,8 +314,11 @@ openvdb::FloatGrid::Ptr read_nano_grid(const std::string& path, const std::strin
     fail(path, "is truncated or corrupt (" + shorten_for_message(e.what()) + ")");
   }
   const nanovdb::NanoGrid<float>* grid = handle.grid<float>();
+  if (!grid) fail(path, "grid \"" + name + "\" is corrupt (it is not a float grid)");
+  if (const std::string why = nano_tree_problem(handle, *grid); !why.empty())
+    fail(path, "grid \"" + name + "\" is corrupt (" + why + ")");
   // The checksum and the tree's offsets: a corrupt grid is refused before it is walked.
-  if (!grid || !nanovdb::isValid(*grid, /*detailed=*/true))
+  if (!nanovdb::isValid(*grid, /*detailed=*/true))
     fail(path, "grid \"" + name + "\" is corrupt (its checksum or structure does not hold)");
   return nanovdb::nanoToOpenVDB(*grid);
 }

@@ -37,7 +37,7 @@ Mesh read_obj(std::istream& in, const std::string& where) {
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &in, nullptr,
                         /*triangulate=*/true))
     throw InputError(where + "is not a readable OBJ mesh (" +
-                     shorten_for_message(error.empty() ? "no geometry" : error) + ")");
+                     obj_error_for_message(error, "no geometry") + ")");
   // Positions that are equal are one vertex: exporters split vertices at UV and normal seams,
   // which must not count as open edges.
   Mesh mesh;

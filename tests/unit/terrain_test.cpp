@@ -17,6 +17,7 @@
 #include "support/process_run.h"
 #include "support/terrain_files.h"
 #include "terrain/heightfield.h"
+#include "voxel/voxel_grid.h"
 
 namespace nephele {
 namespace {
@@ -82,6 +83,31 @@ TEST_F(TerrainFiles, ExrHeightsAreReadFromItsFirstColourChannel) {
   ASSERT_EQ(f.width, 3);
   EXPECT_FLOAT_EQ(f.at(2, 1), 1250.0f);              // R 500, the largest
   EXPECT_FLOAT_EQ(f.at(1, 0), 50.0f + 1200.0f * 0.2f);  // R 100
+}
+
+// tinyobjloader ends its own error with a newline: the message stays one line, for a terrain
+// mesh and a mesh to voxelize alike (a face index of 0, found by FuzzFiles).
+TEST_F(TerrainFiles, ObjReadErrorsAreOneLine) {
+  const std::string text = "v -1000 0 1000\nv 1000 0 1000\nv 200 400 -300\nf 1 2 0\n";
+  std::ofstream(path("zero.obj")) << text;
+  std::string terrain_message, voxel_message;
+  try {
+    terrain::load_heightfield(with_file(path("zero.obj")));
+  } catch (const InputError& e) {
+    terrain_message = e.what();
+  }
+  try {
+    voxel::voxelize_mesh_text(text, "zero.obj", 16);
+  } catch (const InputError& e) {
+    voxel_message = e.what();
+  }
+  for (const std::string& message : {terrain_message, voxel_message}) {
+    EXPECT_NE(message.find("is not a readable OBJ mesh (Failed parse `f' line"), std::string::npos)
+        << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.back(), ')') << message;
+    EXPECT_EQ(message.find("?)"), std::string::npos) << message;  // the newline, made printable
+  }
 }
 
 TEST_F(TerrainFiles, ObjMeshIsSeenFromAbove) {

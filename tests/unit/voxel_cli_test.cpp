@@ -80,7 +80,7 @@ TEST_F(VoxelCli, RejectsBadInputWritingNothing) {
                   "--output");
   expect_rejected("make-cloud --type cumulus --seed -3 -o " + out, out, "--seed");
   expect_rejected("voxelize " + path("missing.obj") + " -o " + out, out,
-                  "missing.obj: cannot be read");
+                  "missing.obj: does not exist (an OBJ mesh file is required)");
   expect_rejected("voxelize " + write_cube("open.obj", 5) + " -o " + out, out,
                   "open.obj: is not watertight: 4 open edges");
   expect_rejected("voxelize " + write_cube("cube.obj") + " --resolution 8 -o " + out, out,

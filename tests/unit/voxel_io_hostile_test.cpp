@@ -231,6 +231,32 @@ TEST_F(VoxelIoHostile, FlippedBytesLoadOrAreOneLine) {
   EXPECT_LT(seconds, kAsan ? 120.0 : 15.0);
 }
 
+// NanoVDB files with bytes flipped: NanoVDB's validator walked the tree through corrupt node
+// offsets to compute its checksum before it checked them, and crashed (three bytes found by
+// FuzzFiles); every offset is now checked against the file first. Then 80 flips anywhere
+// (FuzzFiles flips more).
+TEST_F(VoxelIoHostile, NanoVdbOffsetsAreCheckedBeforeTheTreeIsWalked) {
+  test::write_fog_balls_nvdb(path("balls.nvdb"), {"density"});
+  const std::string bytes = read_bytes(path("balls.nvdb"));
+  ASSERT_GT(bytes.size(), 900u);
+  expect_bounded({variant("fuzz44.nvdb", bytes,
+                          [](std::string& b) {
+                            b[826] = char(b[826] ^ 0xe3);
+                            b[900] = char(b[900] ^ 0xa8);
+                            b[414] = char(b[414] ^ 0xf7);
+                          })},
+                 /*may_load=*/false);
+  std::vector<std::string> files;
+  std::mt19937 rng(44);
+  for (int n = 0; n < 80; ++n) {
+    const size_t at = rng() % bytes.size();
+    const char mask = char(1 + rng() % 255);
+    files.push_back(variant("flip" + std::to_string(n) + ".nvdb", bytes,
+                            [&](std::string& b) { b[at] = char(b[at] ^ mask); }));
+  }
+  expect_bounded(files, /*may_load=*/true);
+}
+
 TEST_F(VoxelIoHostile, OtherWritersFilesLoadWithoutOpenVdbsWarnings) {
   using namespace openvdb::io;
   openvdb::initialize();  // what it may say of its own set-up is not what is tested
