@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/packing.hpp>
 #include <limits>
 #include <memory>
 
@@ -365,14 +366,17 @@ unsigned char unorm8(float v) {
                                     0.5f);
 }
 
-// The EXR's R, G, B, A (a missing alpha 1) read 64 rows at a time into 8 bits.
-Rgba8Image decode_exr_rgba8(const std::string& path) {
+// The EXR's R, G, B, A (a missing alpha 1) as floats, 64 rows at a time: `strip(y0, rows,
+// rgba)` gets rows y0 .. y0 + rows - 1 of the data window. Only a strip is held as floats.
+template <class Strip>
+void read_exr_strips(const std::string& path, int& width, int& height, const Strip& strip_fn) {
   constexpr int kRows = 64;
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();
     const int w = window.max.x - window.min.x + 1, h = window.max.y - window.min.y + 1;
-    Rgba8Image image{w, h, std::vector<unsigned char>(size_t(w) * size_t(h) * 4)};
+    width = w;
+    height = h;
     std::vector<float> strip(size_t(w) * kRows * 4);
     static const char* const kNames[4] = {"R", "G", "B", "A"};
     for (int y0 = 0; y0 < h; y0 += kRows) {
@@ -387,14 +391,65 @@ Rgba8Image decode_exr_rgba8(const std::string& path) {
                        4 * sizeof(float), 4 * sizeof(float) * size_t(w), 1, 1, c == 3 ? 1.0 : 0.0));
       file.setFrameBuffer(frame);
       file.readPixels(window.min.y + y0, window.min.y + y0 + rows - 1);
-      unsigned char* out = image.texels.data() + size_t(y0) * size_t(w) * 4;
-      for (size_t i = 0; i < size_t(rows) * size_t(w) * 4; ++i) out[i] = unorm8(strip[i]);
+      strip_fn(y0, rows, strip.data());
     }
-    return image;
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("cannot decode the EXR (") +
                              one_line_for_message(e.what()) + ")");
   }
+}
+
+Rgba8Image decode_exr_rgba8(const std::string& path) {
+  Rgba8Image image;
+  read_exr_strips(path, image.width, image.height, [&](int y0, int rows, const float* rgba) {
+    if (image.texels.empty()) image.texels.resize(size_t(image.width) * size_t(image.height) * 4);
+    unsigned char* out = image.texels.data() + size_t(y0) * size_t(image.width) * 4;
+    for (size_t i = 0; i < size_t(rows) * size_t(image.width) * 4; ++i) out[i] = unorm8(rgba[i]);
+  });
+  return image;
+}
+
+// --- albedo map --------------------------------------------------------------------------
+
+std::string albedo_map_requirement() {
+  return "an albedo map is a PNG or an EXR of at most " + std::to_string(kMaxAlbedoMapSide) +
+         " x " + std::to_string(kMaxAlbedoMapSide) + " pixels";
+}
+
+float linear_from_srgb(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// RGB clamped to [0, 1] (NaN as 0) and alpha 1, as half floats.
+void put_albedo_halfs(uint16_t* out, float r, float g, float b) {
+  const auto clamped = [](float v) { return std::clamp(std::isnan(v) ? 0.0f : v, 0.0f, 1.0f); };
+  out[0] = glm::packHalf1x16(clamped(r));
+  out[1] = glm::packHalf1x16(clamped(g));
+  out[2] = glm::packHalf1x16(clamped(b));
+  out[3] = glm::packHalf1x16(1.0f);
+}
+
+// A PNG's sRGB codes decoded to linear through a table of the 256 codes.
+HalfRgbaImage albedo_from_png(const std::string& path) {
+  const Rgba8Image codes = decode_png_rgba8(path);
+  float linear[256];
+  for (int i = 0; i < 256; ++i) linear[i] = linear_from_srgb(float(i) / 255.0f);
+  HalfRgbaImage image{codes.width, codes.height, std::vector<uint16_t>(codes.texels.size())};
+  for (size_t i = 0; i < codes.texels.size(); i += 4)
+    put_albedo_halfs(&image.halfs[i], linear[codes.texels[i]], linear[codes.texels[i + 1]],
+                     linear[codes.texels[i + 2]]);
+  return image;
+}
+
+HalfRgbaImage albedo_from_exr(const std::string& path) {
+  HalfRgbaImage image;
+  read_exr_strips(path, image.width, image.height, [&](int y0, int rows, const float* rgba) {
+    if (image.halfs.empty()) image.halfs.resize(size_t(image.width) * size_t(image.height) * 4);
+    uint16_t* out = image.halfs.data() + size_t(y0) * size_t(image.width) * 4;
+    for (size_t i = 0; i < size_t(rows) * size_t(image.width) * 4; i += 4)
+      put_albedo_halfs(out + i, rgba[i], rgba[i + 1], rgba[i + 2]);
+  });
+  return image;
 }
 
 }  // namespace
@@ -481,6 +536,22 @@ Rgba8Image read_weather_map(const std::string& path, const std::string& key) {
 std::string albedo_map_problem(const std::string& path) {
   ImageHeader header;
   return read_image_header(path, header, kMaxAlbedoMapSide);
+}
+
+HalfRgbaImage read_albedo_map(const std::string& path, const std::string& key) {
+  const auto refuse = [&](const std::string& why) {
+    return InputError(key + " '" + shorten_path_for_message(path) + "': " + why + "; " +
+                      albedo_map_requirement());
+  };
+  ImageHeader header;
+  std::string why = read_image_header(path, header, kMaxAlbedoMapSide);
+  if (why.empty() && !header.exr) why = png_data_problem(path, header);
+  if (!why.empty()) throw refuse(why);
+  try {
+    return header.exr ? albedo_from_exr(path) : albedo_from_png(path);
+  } catch (const std::exception& e) {
+    throw refuse(e.what());
+  }
 }
 
 }  // namespace nephele

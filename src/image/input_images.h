@@ -61,4 +61,17 @@ Rgba8Image read_weather_map(const std::string& path, const std::string& key = "c
 // Why `path` cannot be the terrain's albedo map, told from its header ("" when it may be one).
 std::string albedo_map_problem(const std::string& path);
 
+// An image of half floats, 4 a pixel (R, G, B, A), row 0 at the top.
+struct HalfRgbaImage {
+  int width = 0, height = 0;
+  std::vector<uint16_t> halfs;
+};
+
+// The terrain's albedo map as linear RGB half floats in [0, 1], alpha 1: a PNG's sRGB codes
+// decoded, an EXR's values clamped (NaN as 0). Decoded without a full-resolution float copy
+// (an EXR 64 rows at a time). Throws InputError naming `key` and the path once, saying what an
+// albedo map must be, for any file it cannot read.
+HalfRgbaImage read_albedo_map(const std::string& path,
+                              const std::string& key = "terrain.albedo_map");
+
 }  // namespace nephele

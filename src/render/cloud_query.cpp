@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "image/input_images.h"
 #include "nephele/error.h"
 #include "nephele/frame.h"
 #include "nephele/image.h"
@@ -289,17 +290,17 @@ CloudQuery FrameRenderer::Impl::cloud_query(const Scene& scene) {
   read(f.noise.detail(), 4, data->detail);
   read(f.noise.curl(), 16, data->curl);
   if (!scene.clouds.weather_map.empty()) {
-    // As the device holds it (weather.cpp): 8 bits a channel, rows from the south.
-    const Image png = read_image(scene.clouds.weather_map);
-    data->weather_width = png.width;
-    data->weather_height = png.height;
-    for (int row = 0; row < png.height; ++row)
-      for (int x = 0; x < png.width; ++x) {
-        const glm::vec4& p = png.at(x, png.height - 1 - row);
-        data->weather_file.push_back(
-            glm::u8vec4(cloud_cpu::to_unorm8(p.x), cloud_cpu::to_unorm8(p.y),
-                        cloud_cpu::to_unorm8(p.z), cloud_cpu::to_unorm8(p.w)));
-      }
+    // As the device holds it (weather.cpp): read_weather_map's 8-bit RGBA (its errors one line
+    // naming clouds.weather_map), rows from the south.
+    const Rgba8Image map = read_weather_map(scene.clouds.weather_map);
+    data->weather_width = map.width;
+    data->weather_height = map.height;
+    data->weather_file.resize(size_t(map.width) * size_t(map.height));
+    const size_t row_bytes = size_t(map.width) * 4;
+    static_assert(sizeof(glm::u8vec4) == 4);
+    for (int row = 0; row < map.height; ++row)
+      std::memcpy(&data->weather_file[size_t(row) * size_t(map.width)],
+                  map.texels.data() + size_t(map.height - 1 - row) * row_bytes, row_bytes);
   }
   return CloudQuery(std::move(data));
 }

@@ -14,6 +14,7 @@
 #include "render/frame_renderer_impl.h"
 #include "render/passes.h"
 #include "render_fixture.h"
+#include "support/terrain_files.h"
 
 namespace nephele {
 namespace {
@@ -127,6 +128,39 @@ TEST(CloudQuery, OpticalDepthAndInsideFollowTheDensity) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("step_m"), std::string::npos) << e.what();
   }
+  EXPECT_EQ(renderer.validation_messages(), 0);
+}
+
+// A weather map is read as the device reads it (read_weather_map: 8-bit RGBA, no float copy),
+// and a corrupt one is one line naming clouds.weather_map and saying what a weather map must
+// be (read_image's error named neither); a good one gives clouds.
+TEST(CloudQuery, TheWeatherMapIsReadAsTheDeviceReadsIt) {
+  const std::string dir = std::string(NEPHELE_TEST_OUTPUT_DIR) + "/cloud_query_weather_";
+  std::string rows;
+  for (int y = 0; y < 8; ++y) rows += '\0' + std::string(8 * 4, char(200));
+  std::string bad = test::zlib_stored(rows);
+  bad[2] = char(0x07);  // a reserved deflate block type: found only when the data is inflated
+  test::write_bytes(dir + "bad.png", test::png_bytes(8, 8, 8, 6, bad));
+  test::write_bytes(dir + "good.png", test::png_rgba8_bytes(8, 8, 255));
+  Renderer renderer(validated());
+  Scene scene = load_preset("overcast");
+  scene.clouds.weather_map = dir + "bad.png";
+  try {
+    renderer.cloud_query(scene);
+    ADD_FAILURE() << "a corrupt weather map was read";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("clouds.weather_map '" + dir + "bad.png': cannot decode the PNG (", 0),
+              0u)
+        << message;
+    EXPECT_NE(message.find("; a weather map is an RGBA PNG"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  scene.clouds.weather_map = dir + "good.png";
+  const CloudQuery full = renderer.cloud_query(scene);
+  int inside = 0;
+  for (int i = 0; i < 100; ++i) inside += full.inside_cloud({0.0f, 0.0f, 900.0f + 36.0f * i}, 0.0f);
+  EXPECT_GT(inside, 0) << "a map of full coverage should hold clouds";
   EXPECT_EQ(renderer.validation_messages(), 0);
 }
 

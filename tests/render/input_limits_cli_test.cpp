@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -26,8 +27,9 @@ class InputLimitsCli : public ::testing::Test {
     fs::create_directories(dir_);
   }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  // One line on stderr (stdout is dropped) holding each of `expected`, exit 2, no image.
-  void expect_refused(const std::string& args, const std::vector<std::string>& expected) {
+  // One line on stderr (stdout is dropped) holding each of `expected`, exit 2, no image; the
+  // line.
+  std::string expect_refused(const std::string& args, const std::vector<std::string>& expected) {
     const std::string out = path("out.png");
     const test::ProcessRun r =
         test::run_cli("render -q --width 8 --height 8 " + args + " -o " + out, "2>&1 >/dev/null");
@@ -37,6 +39,7 @@ class InputLimitsCli : public ::testing::Test {
     for (const std::string& e : expected)
       EXPECT_NE(r.output.find(e), std::string::npos) << "'" << e << "' in " << r.output;
     EXPECT_FALSE(fs::exists(out)) << args;
+    return r.output;
   }
   fs::path dir_;
 };
@@ -94,6 +97,24 @@ TEST_F(InputLimitsCli, GeoTiffRefusalsAreOneLine) {
                     test::png_bytes(16384, 16384, 16, 0, test::zlib_stored(std::string(8, '\0'))));
   expect_refused("--terrain " + path("t.png"),
                  {"--terrain ", ": 16384 x 16384 points: at most 8192 a side"});
+}
+
+// A corrupt albedo map (found when the terrain module decodes it) is one line naming the key
+// and its path once: it read "terrain.albedo_map '...': image '...': cannot decode PNG: ...".
+TEST_F(InputLimitsCli, ACorruptAlbedoMapIsOneLineNamingItsPathOnce) {
+  std::string rows;
+  for (int y = 0; y < 8; ++y) rows += '\0' + std::string(8 * 4, char(90));
+  std::string bad = test::zlib_stored(rows);
+  bad[2] = char(0x07);  // a reserved deflate block type
+  test::write_bytes(path("albedo.png"), test::png_bytes(8, 8, 8, 6, bad));
+  std::ofstream(path("scene.toml")) << "[terrain]\npreset = \"mountains\"\nresolution = 16\n"
+                                    << "albedo_map = \"" << path("albedo.png") << "\"\n";
+  const std::string line =
+      expect_refused("--light-volume-km 0 --scene " + path("scene.toml"),
+                     {"terrain.albedo_map '" + path("albedo.png") + "': cannot decode the PNG (",
+                      "; an albedo map is a PNG or an EXR of at most 4096 x 4096 pixels"});
+  EXPECT_EQ(line.find("albedo.png"), line.rfind("albedo.png")) << line;
+  EXPECT_EQ(line.find("image '"), std::string::npos) << line;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/packing.hpp>
 #include <iterator>
 #include <string>
 
@@ -222,6 +223,50 @@ TEST_F(ImageLimits, AlbedoMapsAreRefusedFromTheHeader) {
   expect_one_line_naming(albedo(write("b.png", "GIF89a")), "terrain.albedo_map = \"",
                          "is neither a PNG nor an EXR file");
   EXPECT_EQ(albedo(write("ok.png", test::png_rgba8_bytes(4, 4, 9))), "");
+}
+
+// The albedo map is read as linear half floats: a PNG's sRGB codes decoded, an EXR clamped to
+// [0, 1] and read in strips, alpha 1. A corrupt one is one line naming the key and its path
+// once (through read_image it read "terrain.albedo_map '...': image '...': ...").
+TEST_F(ImageLimits, AlbedoMapsAreReadAsLinearHalfFloatsAndRefusedInOneLine) {
+  const HalfRgbaImage png = read_albedo_map(write("a.png", test::png_rgba8_bytes(4, 4, 128)));
+  ASSERT_EQ(png.width, 4);
+  ASSERT_EQ(png.height, 4);
+  ASSERT_EQ(png.halfs.size(), 4u * 4u * 4u);
+  EXPECT_NEAR(glm::unpackHalf1x16(png.halfs[0]), 0.2158f, 1e-3f);  // sRGB 128
+  EXPECT_EQ(glm::unpackHalf1x16(png.halfs[3]), 1.0f);
+  Image image(3, 70);  // more rows than a strip
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) image.at(x, y) = glm::vec4(0.25f, 2.0f, -1.0f, 0.1f);
+  image.at(2, 69) = glm::vec4(0.5f, 0.0f, 1.0f, 0.0f);
+  write_image(image, path("a.exr"), 1.0f, ExrPixels::kFloat);
+  const HalfRgbaImage exr = read_albedo_map(path("a.exr"));
+  ASSERT_EQ(exr.width, 3);
+  ASSERT_EQ(exr.height, 70);
+  const float first[4] = {0.25f, 1.0f, 0.0f, 1.0f}, last[4] = {0.5f, 0.0f, 1.0f, 1.0f};
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_EQ(glm::unpackHalf1x16(exr.halfs[size_t(c)]), first[c]) << c;
+    EXPECT_EQ(glm::unpackHalf1x16(exr.halfs[(69 * 3 + 2) * 4 + size_t(c)]), last[c]) << c;
+  }
+
+  std::string rows;
+  for (int y = 0; y < 8; ++y) rows += '\0' + std::string(8 * 4, char(200));
+  std::string bad_block = test::zlib_stored(rows);
+  bad_block[2] = char(0x07);  // BFINAL, reserved block type 3
+  const std::string file = write("bad.png", test::png_bytes(8, 8, 8, 6, bad_block));
+  try {
+    read_albedo_map(file);
+    ADD_FAILURE() << "a corrupt albedo map was read";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    expect_one_line_naming(message,
+                           "terrain.albedo_map '" + file + "': ", "cannot decode the PNG (");
+    EXPECT_NE(message.find("; an albedo map is a PNG or an EXR of at most 4096 x 4096 pixels"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(message.find(file), message.rfind(file)) << "the path twice: " << message;
+    EXPECT_EQ(message.find("image '"), std::string::npos) << message;
+  }
 }
 
 }  // namespace

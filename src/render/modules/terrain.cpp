@@ -1,15 +1,12 @@
 #include "render/modules/terrain.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
-#include <glm/gtc/packing.hpp>
-
+#include "image/input_images.h"
 #include "nephele/error.h"
-#include "nephele/image.h"
 #include "nephele/scene_io.h"
-#include "scene/scene_fields.h"
 #include "terrain/heightfield.h"
 
 namespace nephele {
@@ -36,29 +33,17 @@ std::string terrain_key(const Scene& scene) {
   return scene_to_toml(only);
 }
 
-float linear_from_srgb(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-// The albedo map as half floats, linear (a PNG's sRGB decoded), alpha 1.
+// The albedo map as half floats, linear, alpha 1 (read_albedo_map: a PNG's sRGB decoded; its
+// errors are one line naming terrain.albedo_map). Its texels are freed before the texture is
+// made, so that at most two copies of the map are held at once.
 gpu::Texture albedo_texture(gpu::Context& ctx, const std::string& path) {
-  Image image;
-  try {
-    image = read_image(path);
-  } catch (const InputError& e) {
-    throw InputError("terrain.albedo_map '" + path + "': " + e.what());
-  }
-  const bool srgb = scene_detail::ends_with_ignoring_case(path, ".png");
-  gpu::Texture texture(ctx, uint32_t(image.width), uint32_t(image.height), 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+  HalfRgbaImage map = read_albedo_map(path);
+  const uint32_t width = uint32_t(map.width), height = uint32_t(map.height);
+  gpu::Buffer staging(ctx, map.halfs.size() * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  std::memcpy(staging.data(), map.halfs.data(), map.halfs.size() * sizeof(uint16_t));
+  map = {};
+  gpu::Texture texture(ctx, width, height, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
                        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-  gpu::Buffer staging(ctx, image.pixels.size() * 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-  auto* out = static_cast<uint32_t*>(staging.data());
-  for (const glm::vec4& p : image.pixels) {
-    glm::vec3 c = glm::clamp(glm::vec3(p), 0.0f, 1.0f);
-    if (srgb) c = glm::vec3(linear_from_srgb(c.r), linear_from_srgb(c.g), linear_from_srgb(c.b));
-    *out++ = glm::packHalf2x16(glm::vec2(c.r, c.g));
-    *out++ = glm::packHalf2x16(glm::vec2(c.b, 1.0f));
-  }
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { texture.record_upload(cmd, staging); });
   return texture;
 }
