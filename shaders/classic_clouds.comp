@@ -424,7 +424,8 @@ void main() {
   vec3 eye = frame.camera_pos_m.xyz;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
-                        float(pixel.y), float(width), float(height));
+                        float(pixel.y), float(width), float(height),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   if (MODEL == CLASSIC_BLINN) blinn(pixel, eye, dir, frame.sun_dir.xyz);
   if (MODEL == CLASSIC_GARDNER) gardner(pixel, eye, dir, frame.sun_dir.xyz, false);
   if (MODEL == CLASSIC_GARDNER_QUADRICS) gardner(pixel, eye, dir, frame.sun_dir.xyz, true);

@@ -89,7 +89,8 @@ void main() {
                                 float(height))
                  : camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz,
                               frame.camera_up.xyz, frame.camera_pos_m.w, frame.camera_forward.w,
-                              float(pixel.x), float(pixel.y), float(width), float(height));
+                              float(pixel.x), float(pixel.y), float(width), float(height),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   vec3 sun = frame.sun_dir.xyz;
   float mu = dot(dir, sun);
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
@@ -194,7 +195,9 @@ void main() {
     float fine_base = layer_thickness_m(eye + dir * segment.x) / float(frame.steps.x);
     // A new jitter pattern per frame index (Jimenez 2014: offset the pixel by 5.588238 per frame).
     float shift = 5.588238f * float(frame.march_offset.z);
-    float jitter = interleaved_gradient_noise(float(pixel.x) + shift, float(pixel.y) + shift);
+    // In the whole image's pixels: a tile's pattern continues its neighbours' (cloud_band.zw).
+    vec2 image_pixel = vec2(pixel + frame.cloud_band.zw);
+    float jitter = interleaved_gradient_noise(image_pixel.x + shift, image_pixel.y + shift);
     float t = segment.x + COARSE_STEPS * max(fine_base, FINE_PER_M * segment.x) * jitter;
     bool fine = false;
     int misses = 0;

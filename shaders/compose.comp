@@ -88,7 +88,8 @@ void main() {
 
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
-                        float(pixel.y), float(width), float(height));
+                        float(pixel.y), float(width), float(height),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   vec3 sun = frame.sun_dir.xyz;
   SkyViewFrame sky_frame = sky_view_frame_from(frame.sky_view_up, frame.sky_view_forward);
   vec2 uv = sky_view_uv(sky_frame, dir);

@@ -23,8 +23,8 @@ vec3 sun_on_screen(vec2 size) {
   vec3 sun = frame.sun_dir.xyz;
   float f = dot(sun, frame.camera_forward.xyz);
   float tan_half = frame.camera_pos_m.w, aspect = frame.camera_forward.w;
-  float sx = dot(sun, frame.camera_right.xyz) / max(f, 1e-6f) / (tan_half * aspect);
-  float sy = dot(sun, frame.camera_up.xyz) / max(f, 1e-6f) / tan_half;
+  float sx = (dot(sun, frame.camera_right.xyz) / max(f, 1e-6f) - frame.camera_right.w) / (tan_half * aspect);
+  float sy = (dot(sun, frame.camera_up.xyz) / max(f, 1e-6f) - frame.camera_up.w) / tan_half;
   return vec3((sx + 1.0f) * 0.5f * size.x - 0.5f, (1.0f - sy) * 0.5f * size.y - 0.5f, f > 0.0f ? 1.0f : 0.0f);
 }
 
@@ -32,7 +32,8 @@ vec3 sun_on_screen(vec2 size) {
 // horizon, times a glow about the sun (half at 17 deg).
 float occlusion(vec2 q, vec2 size) {
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
-                        frame.camera_pos_m.w, frame.camera_forward.w, q.x, q.y, size.x, size.y);
+                        frame.camera_pos_m.w, frame.camera_forward.w, q.x, q.y, size.x, size.y,
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   vec3 up = normalize(frame.camera_pos_m.xyz);
   if (dot(dir, up) < 0.0f) return 0.0f;
   float transmittance = textureLod(clouds_a, (q + 0.5f) / size, 0.0f).a;

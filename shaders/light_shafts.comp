@@ -24,11 +24,14 @@ void main() {
   vec2 image = vec2(frame.size.xy);
   vec2 pixel = (vec2(q) + 0.5f) * image / vec2(size) - 0.5f;  // the block's centre
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
-                        frame.camera_pos_m.w, frame.camera_forward.w, pixel.x, pixel.y, image.x, image.y);
+                        frame.camera_pos_m.w, frame.camera_forward.w, pixel.x, pixel.y, image.x, image.y,
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   vec2 uv = (pixel + 0.5f) / image;
   float transmittance = textureLod(clouds_a, uv, 0.0f).a;
   float cloud_m = transmittance < 0.999f ? textureLod(clouds_b, uv, 0.0f).z * 1000.0f : SHAFT_FAR_M;
-  float jitter = fract(52.9829189f * fract(0.06711056f * float(q.x) + 0.00583715f * float(q.y)));
+  // Jittered by the whole image's texel (a tile's window starts at cloud_band.zw).
+  vec2 texel = vec2(q) + round(vec2(frame.cloud_band.zw) * vec2(size) / image);
+  float jitter = interleaved_gradient_noise(texel.x, texel.y);
   float terrain_m = terrain_distance_at(uv);
   ShaftLight s = light_shaft_light(frame.camera_pos_m.xyz, dir, cloud_m,
                                    terrain_m > 0.0f ? terrain_m : SHAFT_FAR_M, jitter);

@@ -345,7 +345,8 @@ void main() {
     float jx = pt_uniform(stream, 0u), jy = pt_uniform(stream, 1u);
     vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                           frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x) + jx - 0.5f,
-                          float(pixel.y) + jy - 0.5f, float(size.x), float(size.y));
+                          float(pixel.y) + jy - 0.5f, float(size.x), float(size.y),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
     vec3 value;
     if (PLANET == 1) {
       pt_channel = int(sample_index % 3u);

@@ -81,7 +81,8 @@ vec2 previous_pixel(vec3 dir, float distance_km) {
   return camera_pixel(frame.prev_camera_forward.xyz, frame.prev_camera_right.xyz,
                       frame.prev_camera_up.xyz, frame.prev_camera_pos_m.w,
                       frame.prev_camera_forward.w, normalize(p), float(frame.cloud_grid.x),
-                      float(frame.cloud_grid.y));
+                      float(frame.cloud_grid.y),
+                      vec2(frame.prev_camera_right.w, frame.prev_camera_up.w));
 }
 
 bool inside_image(vec2 q) {
@@ -105,7 +106,8 @@ void main() {
 
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(p.x), float(p.y),
-                        float(frame.cloud_grid.x), float(frame.cloud_grid.y));
+                        float(frame.cloud_grid.x), float(frame.cloud_grid.y),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   if (frame.cloud_grid.w == 1) {
     // Two fixed-point steps: distance from this frame's samples, then from the history there.
     vec2 q = previous_pixel(dir, result.b.z);

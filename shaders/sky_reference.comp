@@ -19,7 +19,8 @@ void main() {
   if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
-                        float(pixel.y), float(frame.size.x), float(frame.size.y));
+                        float(pixel.y), float(frame.size.x), float(frame.size.y),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   Atmosphere a = frame_atmosphere();
   vec3 sun = frame.sun_dir.xyz;
   float albedo = frame.sky_model.y;

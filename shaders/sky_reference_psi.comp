@@ -20,7 +20,8 @@ void main() {
   if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
-                        float(pixel.y), float(frame.size.x), float(frame.size.y));
+                        float(pixel.y), float(frame.size.x), float(frame.size.y),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   Atmosphere a = frame_atmosphere();
   SkyRay ray = sky_ray(a, frame.camera_pos_m.xyz, dir);
   vec2 t = sky_step(max(ray.length_m, 0.0f), id.z, REFERENCE_SAMPLES);

@@ -27,7 +27,8 @@ void main() {
   int height = frame.size.y;
   vec2 q = camera_pixel(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, dir, float(width),
-                        float(height));
+                        float(height),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   ivec2 pixel = ivec2(floor(q + 0.5f));
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(width, height)))) return;
   vec3 air = transmittance_to_light(frame_atmosphere(), transmittance_lut, false, eye, dir);

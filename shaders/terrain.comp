@@ -51,7 +51,8 @@ void main() {
   if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),
-                        float(pixel.y), float(frame.size.x), float(frame.size.y));
+                        float(pixel.y), float(frame.size.x), float(frame.size.y),
+                        vec2(frame.camera_right.w, frame.camera_up.w));
   vec3 eye = frame.camera_pos_m.xyz;
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   float t_max = ground.x > 0.0f ? ground.x : 1.0e9f;  // the ground sphere hides what is below it

@@ -30,6 +30,8 @@ void main() {
   from_eye_out = v;
   float depth = dot(v, frame.camera_forward.xyz);
   float tan_half = frame.camera_pos_m.w, aspect = frame.camera_forward.w;
-  gl_Position = vec4(dot(v, frame.camera_right.xyz) / (tan_half * aspect), -dot(v, frame.camera_up.xyz) / tan_half,
-                     kNearM, depth);
+  // The image plane's point less the window's shift (math_inc.glsl, camera_ray), times depth.
+  vec2 shift = vec2(frame.camera_right.w, frame.camera_up.w) * depth;
+  gl_Position = vec4((dot(v, frame.camera_right.xyz) - shift.x) / (tan_half * aspect),
+                     -(dot(v, frame.camera_up.xyz) - shift.y) / tan_half, kNearM, depth);
 }

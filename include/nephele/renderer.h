@@ -1,6 +1,7 @@
 // nephele — the renderer: Vulkan compute passes behind a plain C++ interface.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -28,7 +29,13 @@ struct RendererOptions {
   // When set, the noise textures and still images (render(), FrameOptions::still) are made in
   // several submissions, each reported when done. The images are the same.
   ProgressCallback progress;
+  // Renderer: a still with more pixels than this, or a side longer than the device's largest
+  // image, renders in tiles (render(), render_layers()): the same image, drawn a window at a
+  // time; 0 = 3840 x 2160 (kDefaultMaxTilePixels), else at least 1024.
+  int64_t max_tile_pixels = 0;
 };
+
+constexpr int64_t kDefaultMaxTilePixels = int64_t(3840) * 2160;
 
 struct PassTiming {
   std::string name;
@@ -184,6 +191,14 @@ class Renderer {
   // same clouds: a few compose passes more than render().
   FilmLayers render_layers(const Scene& scene);
 
+  // How render() draws this scene's still: one frame, or tiles (RendererOptions::
+  // max_tile_pixels) of at most tile_width x tile_height pixels.
+  struct Tiling {
+    int columns = 1, rows = 1;
+    int tile_width = 0, tile_height = 0;
+  };
+  Tiling tiling(const Scene& scene) const;
+
   // Renders the next frame of an animation (the scene's camera, time and sun may change from
   // call to call): marches one cloud pixel of every quality.march_stride^2 block and
   // reprojects the others from the previous frame, following the camera's and the wind's
@@ -218,7 +233,8 @@ class Renderer {
   int validation_messages() const;
 
  private:
-  Frame render_frame(const Scene& scene, bool still, bool read_back);
+  Frame render_frame(const Scene& scene, bool still, bool read_back, bool sky_cover = true);
+  FilmLayers render_tiles(const Scene& scene, const Tiling& tiling, bool layers);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

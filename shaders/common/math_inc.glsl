@@ -42,11 +42,18 @@ vec2 ray_sphere(vec3 origin, vec3 dir, float radius) {
 }
 
 // Direction of the camera ray through pixel (x, y) of a width x height image, row 0 at the top.
+// `shift` moves the image's centre on the image plane at distance 1 (right, up): the image is a
+// window (a tile) of a larger one, whose pixels it then shares exactly.
+vec3 camera_ray(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float aspect, float x,
+                float y, float width, float height, vec2 shift) {
+  float sx = shift.x + (2.0f * (x + 0.5f) / width - 1.0f) * tan_half_fov * aspect;
+  float sy = shift.y + (1.0f - 2.0f * (y + 0.5f) / height) * tan_half_fov;
+  return normalize(forward + sx * right + sy * up);
+}
+
 vec3 camera_ray(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float aspect, float x,
                 float y, float width, float height) {
-  float sx = (2.0f * (x + 0.5f) / width - 1.0f) * tan_half_fov * aspect;
-  float sy = (1.0f - 2.0f * (y + 0.5f) / height) * tan_half_fov;
-  return normalize(forward + sx * right + sy * up);
+  return camera_ray(forward, right, up, tan_half_fov, aspect, x, y, width, height, vec2(0.0f));
 }
 
 // The sky dome's ray through cell (x, y) of a width x height grid: the cells split the upper
@@ -66,12 +73,17 @@ vec3 sky_dome_ray(vec3 zenith, float x, float y, float width, float height) {
 // Inverse of camera_ray: the continuous pixel coordinates (pixel centres at integers) where the
 // unit direction `dir` meets the image; (-1e9, -1e9) for directions behind the camera.
 vec2 camera_pixel(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float aspect, vec3 dir,
-                  float width, float height) {
+                  float width, float height, vec2 shift) {
   float z = dot(dir, forward);
   if (z <= 1e-6f) return vec2(-1e9f, -1e9f);
-  float sx = dot(dir, right) / (z * tan_half_fov * aspect);
-  float sy = dot(dir, up) / (z * tan_half_fov);
+  float sx = (dot(dir, right) / z - shift.x) / (tan_half_fov * aspect);
+  float sy = (dot(dir, up) / z - shift.y) / tan_half_fov;
   return vec2((sx + 1.0f) * 0.5f * width - 0.5f, (1.0f - sy) * 0.5f * height - 0.5f);
+}
+
+vec2 camera_pixel(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float aspect, vec3 dir,
+                  float width, float height) {
+  return camera_pixel(forward, right, up, tan_half_fov, aspect, dir, width, height, vec2(0.0f));
 }
 
 // Interleaved gradient noise (Jimenez 2014): a per-pixel value in [0, 1) for ray jitter.

@@ -52,8 +52,8 @@ struct VoxelCloudGpu {
 struct FrameParams {
   vec4 camera_pos_m;        // xyz camera position (m, planet frame); w tan(vertical fov / 2)
   vec4 camera_forward;      // xyz unit view direction; w aspect (width / height)
-  vec4 camera_right;        // xyz unit right vector
-  vec4 camera_up;           // xyz unit up vector (image up)
+  vec4 camera_right;        // xyz unit right vector; w the image's shift along it (camera_ray)
+  vec4 camera_up;           // xyz unit up vector (image up); w the image's shift along it
   vec4 sun_dir;             // xyz unit vector towards the key light: the sun, or the moon when
                             // the moon lights the sky more (render/key_light.h); w cos(sun
                             // angular radius)
@@ -162,7 +162,8 @@ struct FrameParams {
   // The rows built this frame: x the LUT's first, y its count (of kSkyViewHeight), z the
   // volume's first, w its count (of AP_SIZE_V).
   ivec4 sky_view_rows;
-  ivec4 cloud_band;  // x the first row of blocks the clouds pass marches (a still in bands)
+  ivec4 cloud_band;  // x the first row of blocks the clouds pass marches (a still in bands);
+                     // zw the image's first pixel in the whole image (a tile's; 0 0)
   ivec4 voxel_info;  // x voxel clouds, y VOXEL_MARCH_*, z VOXEL_SHADOW_*, w unused
   // x the SDF cone's half-angle tangent (the seed's LightTangent), y the distance (m) over
   // which the noise clouds fade in away from a voxel region, z how much the detail noise

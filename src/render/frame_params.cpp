@@ -378,20 +378,31 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
 }
 
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
-                                   const AtmosphereTables& tables) {
+                                   const AtmosphereTables& tables, const ImageWindow* window) {
   const glsl::Atmosphere atmosphere = make_atmosphere(scene);
   const float planet_m = atmosphere.planet_radius_m;
   const CameraBasis basis = camera_basis(scene.camera);
   const KeyLight& key = lights.key;
   const glm::vec3 sun = key.direction;  // the key light's: the sun's, or at night the moon's
-  const float aspect = float(scene.output.width) / float(scene.output.height);
-  const float tan_half_fov = std::tan(glm::radians(vertical_fov_deg(scene)) * 0.5f);
+  const float w = float(scene.output.width), h = float(scene.output.height);
+  const float full_w = window ? float(window->full_width) : w;
+  const float full_h = window ? float(window->full_height) : h;
+  // The whole image's field of view; a window spans its share of it (the same angle a pixel),
+  // its centre shifted on the image plane to where its pixels lie in the whole image.
+  const float full_tan_half = std::tan(glm::radians(vertical_fov_deg(scene.camera, full_w / full_h)) * 0.5f);
+  const float aspect = w / h;
+  const float tan_half_fov = full_tan_half * h / full_h;
+  glm::vec2 shift(0.0f);
+  if (window)
+    shift = glm::vec2((2.0f * (float(window->x) + 0.5f * w) / full_w - 1.0f) * full_tan_half * full_w / full_h,
+                      (1.0f - 2.0f * (float(window->y) + 0.5f * h) / full_h) * full_tan_half);
 
   gpu::FrameParams f{};
   f.camera_pos_m = glm::vec4(planet_from_enu(scene, scene.camera.position_m), tan_half_fov);
   f.camera_forward = glm::vec4(basis.forward, aspect);
-  f.camera_right = glm::vec4(basis.right, 0.0f);
-  f.camera_up = glm::vec4(basis.up, 0.0f);
+  f.camera_right = glm::vec4(basis.right, shift.x);
+  f.camera_up = glm::vec4(basis.up, shift.y);
+  if (window) f.cloud_band = glm::ivec4(0, 0, window->x, window->y);
   f.sun_dir = glm::vec4(sun, std::cos(glm::radians(scene.sun.disk_angular_radius_deg)));
   const glm::vec3 illuminance(key.illuminance);
   f.sun_illuminance = glm::vec4(illuminance, key.moon ? 1.0f : 0.0f);

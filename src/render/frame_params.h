@@ -116,8 +116,17 @@ float cloud_relative_drift_m(const Scene& scene);
 // make_frame_params sets it, and the host's CPU queries (render/cloud_query.cpp) alone.
 void set_cloud_field(gpu::FrameParams& f, const Scene& scene);
 
+// A window of a larger image: the scene's output.width x output.height pixels starting at
+// pixel (x, y) of a full_width x full_height image of the same camera (a tile of a still too
+// large for the device). Its pixels see exactly what the whole image's would.
+struct ImageWindow {
+  int x = 0, y = 0;
+  int full_width = 0, full_height = 0;
+};
+
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
-                                   const AtmosphereTables& tables);
+                                   const AtmosphereTables& tables,
+                                   const ImageWindow* window = nullptr);
 inline gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   return make_frame_params(scene, frame_index, sky_lights(scene), compute_atmosphere_tables(scene));
 }

@@ -114,8 +114,8 @@ bool history_usable(const Scene& scene, const Scene& previous, const glm::vec3& 
          layer_side(scene) == layer_side(previous);
 }
 
-// Share of above-horizon pixels (view ray rising above the camera's local horizontal) whose
-// cloud transmittance is below 0.5.
+}  // namespace
+
 double cloud_cover_fraction(const Scene& scene, const Image& clouds) {
   const CameraBasis basis = camera_basis(scene.camera);
   const float tan_half_fov = std::tan(glm::radians(vertical_fov_deg(scene)) * 0.5f);
@@ -134,7 +134,6 @@ double cloud_cover_fraction(const Scene& scene, const Image& clouds) {
   return above == 0 ? 0.0 : double(covered) / double(above);
 }
 
-}  // namespace
 
 void FrameRenderer::Impl::print_timings(const std::vector<std::pair<std::string, double>>& results,
                                         const char* note) const {
@@ -180,7 +179,7 @@ void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FramePar
   for (int b = 0; b < bands; ++b) {
     gpu::FrameParams band = params;
     const int first = block_rows * b / bands, rows = block_rows * (b + 1) / bands - first;
-    band.cloud_band = glm::ivec4(first, 0, 0, 0);
+    band.cloud_band.x = first;
     keep(state.run_once(band, [&](VkCommandBuffer cmd) {
       clouds.record_march(cmd, *state.timer, scene.quality.mode, rows);
     }));
@@ -250,6 +249,7 @@ double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode
   params.cloud_shape.x = 0.0f;  // the detail noise's finest level, as an observer sees it
   params.cloud_grid = glm::ivec4(kSkyDomeSize, kSkyDomeSize, 1, 0);
   params.march_offset = glm::ivec4(0, 0, 0, 1);
+  params.cloud_band = glm::ivec4(0);  // the dome's own pixels, whatever window the view was
   clouds.bind_march(true);
   const auto results = state.run_once(
       params, [&](VkCommandBuffer cmd) { clouds.record_sky_dome(cmd, *state.timer, mode); });
@@ -440,7 +440,8 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   s.resize(scene.output.width, scene.output.height);
   clouds.resize(cloud_w, cloud_h);
   clouds.set_stride(stride);
-  gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights, atmosphere.tables());
+  gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights,
+                                              atmosphere.tables(), window ? &*window : nullptr);
   if (history) set_previous_frame(params, scene, *previous);
   const glm::ivec2 offset = march_offset(stride, frame_counter);
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);

@@ -29,6 +29,10 @@
 
 namespace nephele {
 
+// Share of above-horizon pixels (view ray rising above the camera's local horizontal) whose
+// cloud transmittance is below 0.5 (FrameStats::cloud_cover_fraction).
+double cloud_cover_fraction(const Scene& scene, const Image& clouds);
+
 struct FrameRenderer::Impl {
   Impl(const RendererOptions& options);
   Impl(const HostVulkan& host, const RendererOptions& options);
@@ -104,6 +108,8 @@ struct FrameRenderer::Impl {
   NoiseBlockBounds noise_bounds;
   uint32_t noise_bounds_seed = ~0u;
   gpu::FrameParams last_params{};  // of the last frame recorded
+  // Set while Renderer draws a still in tiles: the frames recorded are this window of it.
+  std::optional<ImageWindow> window;
 
   void update_noise(const Scene& scene, const gpu::FrameParams& params);
   void print_timings(const std::vector<std::pair<std::string, double>>& results,
