@@ -184,6 +184,9 @@ TEST_F(CliInputs, VoxelsFinerThanAMillimetreAreRefused) {
   const std::string tenth = write("tenth.obj", cube_obj("v 0 0 0", 0.0001f));
   expect_refused("voxelize " + tenth + " --resolution 16 -o " + path("out.vdb"),
                  {"a mesh of at least 0.012 m"});
+  const std::string fifth = write("fifth.obj", cube_obj("v 0 0 0", 0.2f));
+  expect_refused("voxelize " + fifth + " --resolution 256 -o " + path("out.vdb"),
+                 {"extent 0.2 m at resolution 256 gives voxels of 0.00079", "at least 0.001 m"});
   // At the limit it bakes.
   const std::string small = write("small.obj", cube_obj("v 0 0 0", 0.03f));
   const ProcessRun ok = run_cli("voxelize " + small + " --resolution 24 -o " + path("small.vdb"));
