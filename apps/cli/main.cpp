@@ -3,8 +3,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "bench.h"
 #include "gallery.h"
@@ -28,6 +31,46 @@ void print_error(const std::string& kind, const std::string& message, const std:
   std::string text = nephele::one_line_for_message(message);
   if (text.size() > room) text = text.substr(0, room - 3) + "...";
   std::fprintf(stderr, "%s%s%s\n", prefix.c_str(), text.c_str(), suffix.c_str());
+}
+
+// Edits (insertions, deletions, substitutions, swaps of neighbours) from a to b.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
+                          d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// " (did you mean --coverage?)" for the first `--flag` on the command line that the command
+// does not know and that is a few edits from one it does; "" otherwise.
+std::string flag_suggestion(const CLI::App& app, int argc, char** argv) {
+  const CLI::App* command = &app;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    for (int i = 1; i < argc; ++i)
+      if (sub->get_name() == argv[i]) command = sub;
+  }
+  std::vector<std::string> known;
+  for (const CLI::Option* option : command->get_options())
+    for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+  for (int i = 1; i < argc; ++i) {
+    std::string typed = argv[i];
+    if (!typed.starts_with("--")) continue;
+    typed = typed.substr(0, typed.find('='));
+    if (std::find(known.begin(), known.end(), typed) != known.end()) continue;
+    std::string best;
+    size_t best_distance = std::max<size_t>(2, typed.size() / 4) + 1;
+    for (const std::string& name : known)
+      if (const size_t d = edit_distance(typed, name); d < best_distance) best = name, best_distance = d;
+    if (!best.empty()) return " (did you mean " + best + "?)";
+  }
+  return "";
 }
 
 // `--verbose`: the process's peak resident memory, which on a CPU driver (lavapipe) holds the
@@ -75,7 +118,7 @@ int main(int argc, char** argv) {
                   "with its tolerance (data/validation.toml)");
   nephele::cli::add_validate_flags(*validate_cmd, validate);
 
-  CLI::App* presets_cmd = app.add_subcommand("presets", "list the built-in scene presets");
+  CLI::App* presets_cmd = app.add_subcommand("presets", "list the built-in scene presets: a name and what it shows a line");
 
   nephele::cli::MakeCloudOptions make_cloud;
   CLI::App* make_cloud_cmd = app.add_subcommand(
@@ -96,7 +139,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    print_error("error", e.what(), " (see nephele --help)");
+    print_error("error", e.what(), flag_suggestion(app, argc, argv) + " (see nephele --help)");
     return 2;
   }
 
@@ -110,7 +153,9 @@ int main(int argc, char** argv) {
     if (make_cloud_cmd->parsed()) return run_command(app, nephele::cli::run_make_cloud(make_cloud));
     if (voxelize_cmd->parsed()) return run_command(app, nephele::cli::run_voxelize(voxelize));
     if (presets_cmd->parsed()) {
-      for (const std::string& name : nephele::preset_names()) std::cout << name << "\n";
+      // A name a line, as scripts read it, then what the preset shows.
+      for (const std::string& name : nephele::preset_names())
+        std::printf("%-20s %s\n", name.c_str(), nephele::preset_description(name).c_str());
       return 0;
     }
   } catch (const nephele::InputError& e) {

@@ -49,7 +49,9 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
                  "(out/f_%04d.png)")
       ->capture_default_str();
   cmd.add_option("--stats-json", options.stats_json,
-                 "write frame statistics as JSON to this file, or to standard output with -");
+                 "write frame statistics as JSON to this file, or to standard output with -; "
+                 "a sequence writes a file a frame, numbered as "
+                 "--output's (stats_0000.json ...)");
   cmd.add_flag("--exr-float", options.exr_float,
                "write EXR as 32-bit floats (the sun's true radiance); the default half floats "
                "clamp at 65504");

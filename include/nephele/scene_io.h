@@ -37,6 +37,8 @@ Scene load_scene_file(const std::string& path);
 // Built-in presets (presets/*.toml, embedded at build time), by name without ".toml".
 Scene load_preset(const std::string& name);
 std::vector<std::string> preset_names();  // sorted
+// A preset's first sentence of description (the comment its file starts with); "" for none.
+std::string preset_description(const std::string& name);
 
 // How validate_scene names a parameter. Given a scene key ("clouds.coverage"), returns the
 // name to print instead, or "" to print the key itself. A name starting with "--" is printed

@@ -680,6 +680,20 @@ std::vector<std::string> preset_names() {
   return names;
 }
 
+std::string preset_description(const std::string& name) {
+  const EmbeddedFile* file = find_preset_file(name);
+  if (!file) return "";
+  // The comment lines the file starts with, as one text, to the end of its first sentence.
+  std::istringstream in(std::string(reinterpret_cast<const char*>(file->data), file->size));
+  std::string line, text;
+  while (std::getline(in, line) && line.starts_with("#")) {
+    const size_t start = line.find_first_not_of("# ");
+    if (start != std::string::npos) text += (text.empty() ? "" : " ") + line.substr(start);
+  }
+  const size_t end = text.find(". ");
+  return end == std::string::npos ? text : text.substr(0, end + 1);
+}
+
 glm::vec3 sun_direction_from_angles(double elevation_deg, double azimuth_deg) {
   double horizontal = cos_deg(elevation_deg);
   return glm::vec3(static_cast<float>(horizontal * sin_deg(azimuth_deg)),

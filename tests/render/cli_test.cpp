@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 #include <stb/stb_image.h>
@@ -282,9 +283,37 @@ TEST_F(CliTest, RejectsABadVoxelCloudSpec) {
 }
 
 TEST_F(CliTest, RejectsUnknownFlagsAndMalformedNumbers) {
-  expect_rejected("--coverag 0.5", {"--coverag"});
+  expect_rejected("--coverag 0.5", {"--coverag", "(did you mean --coverage?)"});
   expect_rejected("--coverage abc", {"--coverage", "abc"});
   expect_rejected("--view-dir 1,2", {"--view-dir", "1,2"});
+  // Issue 41: a mistyped flag is answered with the nearest one the command has.
+  expect_rejected("--coverge 0.5", {"(did you mean --coverage?)"});
+  expect_rejected("--sun-elevaton-deg 5", {"(did you mean --sun-elevation-deg?)"});
+  expect_rejected("--widht 8", {"(did you mean --width?)"});
+  const CliRun far = run_cli("render --zzzzzzzz 1 -o " + path("x.png"));
+  EXPECT_EQ(far.status, 2);
+  EXPECT_EQ(far.output.find("did you mean"), std::string::npos) << far.output;
+  const CliRun other = run_cli("make-cloud --typ cumulus -o " + path("x.vdb"));
+  EXPECT_NE(other.output.find("(did you mean --type?)"), std::string::npos) << other.output;
+}
+
+// Issue 41: `nephele presets` says what each preset shows, a name and a sentence a line.
+TEST_F(CliTest, PresetsListsEachWithWhatItShows) {
+  const CliRun r = run_cli("presets", "2>/dev/null");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("clear                Clear sky (0 oktas): the default scene with no "
+                          "cloud.\n"),
+            std::string::npos)
+      << r.output;
+  std::istringstream lines(r.output);
+  std::string line;
+  int count = 0;
+  while (std::getline(lines, line)) {
+    ++count;
+    EXPECT_GT(line.size(), 30u) << "no description: " << line;
+    EXPECT_EQ(line.find('#'), std::string::npos) << line;
+  }
+  EXPECT_GE(count, 19);
 }
 
 // `render --reference` path traces the scene's [lab] grid into an EXR with the mean (R, G, B,
