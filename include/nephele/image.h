@@ -4,6 +4,7 @@
 #include <glm/vec4.hpp>
 #include <array>
 #include <utility>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,12 +38,16 @@ enum class ExrPixels { kHalf, kFloat };
 
 // Writes by extension, case-insensitive: .png (tone-mapped 8-bit sRGB, alpha 255) or .exr
 // (linear RGBA, ZIP, as `exr` says; `exposure` applies to PNG only, an EXR keeps the values
-// as they are). Never writes NaN or inf: NaN is stored as 0, infinities as the largest
-// value. Writes atomically (write_file_atomically), so a failed write leaves nothing
-// behind. Throws InputError for an unsupported extension or an empty image, RuntimeError
-// naming the path on I/O failure.
-void write_image(const Image& image, const std::string& path, float exposure = 1.0f,
-                 ExrPixels exr = ExrPixels::kHalf, ToneMap op = ToneMap::Aces);
+// as they are). `exposure` multiplies the values before the tone map (exposure_from_ev100 of
+// exposure.h); without one the image is metered as a camera's auto exposure would meter it
+// (still_exposure with the default OutputParams), so a frame's cd/m^2 give a well-exposed
+// PNG: write_image(frame.color, "sky.png"). Pass 1.0f for values already exposed. Never
+// writes NaN or inf: NaN is stored as 0, infinities as the largest value. Writes atomically
+// (write_file_atomically), so a failed write leaves nothing behind. Throws InputError for an
+// unsupported extension or an empty image, RuntimeError naming the path on I/O failure.
+void write_image(const Image& image, const std::string& path,
+                 std::optional<float> exposure = std::nullopt, ExrPixels exr = ExrPixels::kHalf,
+                 ToneMap op = ToneMap::Aces);
 
 // One layer of a multi-layer EXR: `image`'s first `channels` channels (1 to 4: R, G, B, A),
 // named "R", "G", ... or, with a prefix, "prefix.R", ... (OpenEXR's layer convention); with

@@ -7,6 +7,9 @@
 // temporary file behind.
 #include "nephele/image.h"
 
+#include "nephele/exposure.h"
+#include "nephele/scene.h"
+
 #include <ImfChannelList.h>
 #include <ImfFloatAttribute.h>
 #include <ImfMatrixAttribute.h>
@@ -262,8 +265,8 @@ std::vector<unsigned char> tonemap_srgb8(const Image& image, float exposure, Ton
   return out;
 }
 
-void write_image(const Image& image, const std::string& path, float exposure, ExrPixels exr,
-                 ToneMap op) {
+void write_image(const Image& image, const std::string& path, std::optional<float> exposure,
+                 ExrPixels exr, ToneMap op) {
   const ImageFormat format = format_of(path);
   if (format == ImageFormat::kUnsupported) {
     throw InputError("image path " + quoted(path) + ": unsupported image format " +
@@ -272,7 +275,8 @@ void write_image(const Image& image, const std::string& path, float exposure, Ex
   check_writable_image(image, path);
   std::vector<unsigned char> bytes;
   try {
-    bytes = format == ImageFormat::kPng ? encode_png(image, exposure, op)
+    bytes = format == ImageFormat::kPng
+                ? encode_png(image, exposure ? *exposure : still_exposure(OutputParams{}, image), op)
                                         : encode_exr({ExrLayer{"", &image, 4}}, exr);
   } catch (const std::exception& e) {
     throw RuntimeError("cannot encode image " + quoted(path) + ": " + e.what());

@@ -55,7 +55,7 @@ TEST_P(GoldenTest, MatchesReference) {
   if (!result.pass) {
     fs::copy_file(reference_png, out_dir / (name + ".reference.png"),
                   fs::copy_options::overwrite_existing);
-    nephele::write_image(result.diff, (out_dir / (name + ".diff.png")).string());
+    nephele::write_image(result.diff, (out_dir / (name + ".diff.png")).string(), 1.0f);
   } else {
     fs::remove(actual_png);
   }

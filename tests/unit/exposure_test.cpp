@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "nephele/error.h"
+#include "nephele/image.h"
 #include "nephele/scene_io.h"
 
 namespace nephele {
@@ -200,4 +202,34 @@ TEST(FieldOfView, SceneFilesTakeOneForm) {
 }
 
 }  // namespace
+}  // namespace nephele
+
+namespace nephele {
+
+// Issue 41: the obvious call, write_image(frame.color, "x.png"), meters the image as a camera
+// would: a daylit sky's cd/m^2 give a mid-grey PNG, not the all-white one an exposure of 1 did.
+TEST(Exposure, WriteImageMetersAFramesLuminanceByDefault) {
+  Image sky(16, 8);
+  for (int y = 0; y < sky.height; ++y)
+    for (int x = 0; x < sky.width; ++x)  // 2,000 to 9,000 cd/m^2: a clear day's sky
+      sky.at(x, y) = glm::vec4(glm::vec3(2000.0f + 500.0f * float(x + y)), 1.0f);
+  const std::string dir = std::string(NEPHELE_TEST_OUTPUT_DIR);
+  std::filesystem::create_directories(dir);
+  const std::string metered = dir + "/exposure_metered.png", raw = dir + "/exposure_raw.png";
+  write_image(sky, metered);
+  write_image(sky, raw, 1.0f);
+  const auto mean_srgb8 = [](const Image& image) {  // read_image gives sRGB values / 255
+    double sum = 0.0;
+    for (const glm::vec4& p : image.pixels) sum += p.g;
+    return 255.0 * sum / double(image.pixels.size());
+  };
+  const double metered_mean = mean_srgb8(read_image(metered));
+  EXPECT_GT(metered_mean, 60.0);
+  EXPECT_LT(metered_mean, 200.0);
+  EXPECT_GT(mean_srgb8(read_image(raw)), 250.0);  // what the old default wrote
+  // As the CLI exposes a still: the same bytes as still_exposure with the default output.
+  write_image(sky, raw, still_exposure(OutputParams{}, sky));
+  EXPECT_NEAR(mean_srgb8(read_image(raw)), metered_mean, 1e-9);
+}
+
 }  // namespace nephele
