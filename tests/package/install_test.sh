@@ -30,8 +30,11 @@ ldd "$work/cmake/consumer_shared" | grep "$work/prefix/lib/libnephele.so" > /dev
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 flags=$(pkg-config --cflags --libs nephele)  # the shared library, as -lnephele finds it first
 # shellcheck disable=SC2086
+# The .pc file's rpath variable: the program finds the prefix's library with no LD_LIBRARY_PATH.
 step "$work/pkgconfig.log" g++ -std=c++20 -O1 "$here/consumer/main.cpp" -o "$work/pkgconfig-consumer" $flags \
-  -Wl,-rpath,"$work/prefix/lib"
+  "$(pkg-config --variable=rpath nephele)"
+ldd "$work/pkgconfig-consumer" | grep "libnephele.so[^ ]* => $work/prefix/" > /dev/null ||
+  { echo "pkgconfig-consumer does not load the prefix's libnephele.so"; exit 1; }
 "$work/pkgconfig-consumer"
 # The Python module, where it was built, from the prefix.
 if compgen -G "$work/prefix/lib/python3/dist-packages/nephele.*.so" > /dev/null; then
