@@ -184,7 +184,7 @@ TEST_F(VoxelVoxelize, RefusesOpenEmptyAndMissingMeshes) {
                  "open.obj: is not watertight: 4 open edges (a closed mesh is required)");
   std::ofstream((dir_ / "points.obj").string()) << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
   expect_refused((dir_ / "points.obj").string(), "points.obj: has no triangles");
-  expect_refused((dir_ / "missing.obj").string(), "missing.obj: cannot be read");
+  expect_refused((dir_ / "missing.obj").string(), "missing.obj: does not exist");
 }
 
 }  // namespace
