@@ -431,10 +431,12 @@ VoxelGrid to_dense(const std::string& path, const Source& source, int max_dim) {
   constexpr int kPad = 2;
   VoxelGrid grid;
   grid.voxel_m = float(std::min({source_voxel.x(), source_voxel.y(), source_voxel.z()}));
-  fit_grid(hi - lo, kPad, max_dim, grid);
+  // Checked before fit_grid turns them into voxel counts: a corrupt transform's NaN would be
+  // converted to an int (undefined behaviour, found by FuzzFiles under UBSan).
   if (!(grid.voxel_m > 0.0f) || !std::isfinite(grid.voxel_m) || !std::isfinite(hi.x - lo.x) ||
       !std::isfinite(hi.y - lo.y) || !std::isfinite(hi.z - lo.z))
     fail(path, "grid \"density\" has an extent that is not finite (finite sizes are required)");
+  fit_grid(hi - lo, kPad, max_dim, grid);
   const glm::vec3 origin_world(0.5f * (lo.x + hi.x) - 0.5f * grid.dims.x * grid.voxel_m,
                                0.5f * (lo.y + hi.y) - 0.5f * grid.dims.y * grid.voxel_m,
                                lo.z - kPad * grid.voxel_m);

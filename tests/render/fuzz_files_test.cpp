@@ -870,6 +870,18 @@ std::string report(const std::vector<Failure>& failures, size_t examples = 4) {
   return out.str();
 }
 
+// A child's stderr for a report: the first sanitizer report's line, then the end.
+std::string sanitizer_report(const std::string& text) {
+  std::string first;
+  for (const std::string& line : split(text, '\n'))
+    if (line.find("ERROR: ") != std::string::npos ||
+        line.find("runtime error") != std::string::npos) {
+      first = line + " ... ";
+      break;
+    }
+  return printable(first) + tail(text, 1000);
+}
+
 // A process being watched: its resident memory polled, killed above a limit or past a time.
 struct Watch {
   int status = 0;
@@ -1031,7 +1043,7 @@ class CaseRunner {
       return true;
     });
     consume();
-    const std::string child_stderr = tail(read_file(stderr_path));
+    const std::string child_stderr = sanitizer_report(read_file(stderr_path));
     const bool clean_exit = WIFEXITED(w.status) && WEXITSTATUS(w.status) == 0;
     if (current >= cases_.size() && clean_exit && !w.over_memory) return current;
     const size_t failed = std::min(current, cases_.size() - 1);

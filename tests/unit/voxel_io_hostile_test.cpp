@@ -231,6 +231,14 @@ TEST_F(VoxelIoHostile, FlippedBytesLoadOrAreOneLine) {
   EXPECT_LT(seconds, kAsan ? 120.0 : 15.0);
 }
 
+// A transform made NaN by a changed word (FuzzFiles, vdb-stream #132): the extent is refused
+// before it is turned into voxel counts (the NaN was converted to an int, which UBSan reports).
+TEST_F(VoxelIoHostile, ANonFiniteTransformIsRefusedBeforeItIsCounted) {
+  const std::string file = variant("nan_transform.vdb", cloud_stream(),
+                                   [](std::string& b) { put<uint32_t>(b, 600, 0x54); });
+  expect_bounded({file}, /*may_load=*/false);
+}
+
 // NanoVDB files with bytes flipped: NanoVDB's validator walked the tree through corrupt node
 // offsets to compute its checksum before it checked them, and crashed (three bytes found by
 // FuzzFiles); every offset is now checked against the file first. Then 80 flips anywhere
