@@ -32,8 +32,10 @@ bool is_index(const std::string& part) {
 bool is_corner(const std::string& token) {
   std::vector<std::string> parts(1);
   for (char c : token) {
-    if (c == '/') parts.emplace_back();
-    else parts.back().push_back(c);
+    if (c == '/')
+      parts.emplace_back();
+    else
+      parts.back().push_back(c);
   }
   if (parts.size() > 3 || !is_index(parts[0])) return false;
   for (size_t i = 1; i < parts.size(); ++i)
@@ -67,8 +69,8 @@ std::string obj_number_problem(std::string_view text) {
     }
     const size_t needed = kind == "vt" ? 1 : 3;
     if (count < needed)
-      return problem(std::to_string(count) + (count == 1 ? " number" : " numbers") + " (" +
-                     kind + " needs at least " + std::to_string(needed) + ")");
+      return problem(std::to_string(count) + (count == 1 ? " number" : " numbers") + " (" + kind +
+                     " needs at least " + std::to_string(needed) + ")");
   }
   return "";
 }
@@ -77,7 +79,8 @@ std::string read_obj_text(const std::string& path, const std::string& where) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw InputError(where + "does not exist (an OBJ mesh file is required)");
+  if (!fs::exists(status))
+    throw InputError(where + "does not exist (an OBJ mesh file is required)");
   if (!fs::is_regular_file(status))
     throw InputError(where + "is not a regular file (an OBJ mesh file is required)");
   const uint64_t bytes = fs::file_size(path, ec);

@@ -3,13 +3,13 @@
 // terminal raw. Each refusal: exit status 2, one line naming the parameter, nothing written,
 // every input unchanged.
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
-#include <stb/stb_image_write.h>
 #include <string>
 #include <vector>
 
@@ -91,9 +91,9 @@ TEST_F(CliInputs, AnOutputIsNeverAnInput) {
   expect_refused(kTiny + std::string("--weather-map ") + wm + " -o " + wm,
                  {"--output", "is the same file as the input clouds.weather_map"});
   fs::create_directory(path("sub"));
-  expect_refused(kTiny + std::string("--weather-map ") + wm + " -o " + dir_.string() +
-                     "/./sub/../wm.png",
-                 {"--output", "clouds.weather_map"});
+  expect_refused(
+      kTiny + std::string("--weather-map ") + wm + " -o " + dir_.string() + "/./sub/../wm.png",
+      {"--output", "clouds.weather_map"});
   fs::create_symlink(wm, path("link.png"));
   expect_refused(kTiny + std::string("--weather-map ") + wm + " -o " + path("link.png"),
                  {"--output", "clouds.weather_map"});
@@ -105,17 +105,18 @@ TEST_F(CliInputs, AnOutputIsNeverAnInput) {
   expect_refused("render -q --scene " + scene + " -o " + path("x.png") + " --stats-json " + scene,
                  {"--stats-json", "is the same file as the input --scene"});
   const std::string terrain = path("hf.exr");
-  ASSERT_EQ(run_cli(std::string(kTiny) + "-o " + terrain).status, 0);
+  ASSERT_EQ(run_cli(std::string(kTiny) + "--light-volume-km 0 -o " + terrain).status, 0);
   expect_refused(kTiny + std::string("--terrain ") + terrain + " -o " + terrain,
                  {"--output", "terrain.file"});
   ASSERT_EQ(run_cli("make-cloud --type cumulus --resolution 16 -o " + path("c.vdb")).status, 0);
   fs::create_symlink(path("c.vdb"), path("c.exr"));
-  expect_refused(kTiny + std::string("--voxel-cloud ") + path("c.vdb") + "@0,3000,1200 -o " +
-                     path("c.exr"),
-                 {"--output", "voxel_clouds[0].file"});
-  const std::string flight = write(
-      "flight.toml", "[[key]]\ntime_s = 0\nposition_m = [0, 0, 2]\nheading_deg = 0\npitch_deg = 5\n"
-                     "[[key]]\ntime_s = 1\nposition_m = [10, 0, 2]\nheading_deg = 0\npitch_deg = 5\n");
+  expect_refused(
+      kTiny + std::string("--voxel-cloud ") + path("c.vdb") + "@0,3000,1200 -o " + path("c.exr"),
+      {"--output", "voxel_clouds[0].file"});
+  const std::string flight =
+      write("flight.toml",
+            "[[key]]\ntime_s = 0\nposition_m = [0, 0, 2]\nheading_deg = 0\npitch_deg = 5\n"
+            "[[key]]\ntime_s = 1\nposition_m = [10, 0, 2]\nheading_deg = 0\npitch_deg = 5\n");
   fs::create_hard_link(flight, path("f_0001.png"));
   expect_refused(kTiny + std::string("--camera-path ") + flight + " --fps 2 -o " + path("f.png"),
                  {"--output", "f_0001.png", "is the same file as the input --camera-path"});
@@ -135,7 +136,8 @@ TEST_F(CliInputs, AnOutputIsNeverAnInput) {
 // (Root passes the permission check on /proc; the file created and removed there does not.)
 TEST_F(CliInputs, AnUnwritableOutputIsRefusedBeforeRendering) {
   if (!fs::is_directory("/proc/self")) GTEST_SKIP() << "no /proc";
-  expect_refused(kTiny + std::string("-o /proc/x.png"), {"--output '/proc/x.png': directory '/proc'"});
+  expect_refused(kTiny + std::string("-o /proc/x.png"),
+                 {"--output '/proc/x.png': directory '/proc'"});
   expect_refused(kTiny + std::string("-o ") + path("x.png") + " --stats-json /proc/x.json",
                  {"--stats-json '/proc/x.json': directory '/proc'"});
   expect_refused(kTiny + std::string("--frames 2 -o /proc/self/seq.exr"),
@@ -196,9 +198,8 @@ TEST_F(CliInputs, VoxelsFinerThanAMillimetreAreRefused) {
 // Names from a file or a command line reach the terminal with their control and invisible
 // reordering characters as '?': a right-to-left override would reverse the rest of the line.
 TEST_F(CliInputs, ErrorLinesCarryNoControlOrBidiCharacters) {
-  for (const std::string& name :
-       {std::string("evil\u202egnp.toml"), std::string("a\u2066b.toml"), std::string("c\xc2\x9b.toml"),
-        std::string("bad\xff\xfe.toml")}) {
+  for (const std::string& name : {std::string("evil\u202egnp.toml"), std::string("a\u2066b.toml"),
+                                  std::string("c\xc2\x9b.toml"), std::string("bad\xff\xfe.toml")}) {
     const ProcessRun r = run_cli(std::string(kTiny) + "--scene '" + path(name) + "'");
     EXPECT_EQ(r.status, 2) << r.output;
     for (const char* raw : {"\u202e", "\u2066", "\xc2\x9b", "\xff"})
@@ -212,7 +213,8 @@ TEST_F(CliInputs, ErrorLinesCarryNoControlOrBidiCharacters) {
 
 // `--verbose` reports the process's own peak memory.
 TEST_F(CliInputs, VerboseReportsPeakResidentMemory) {
-  const ProcessRun r = run_cli("render --width 8 --height 8 -v -o " + path("x.png"));
+  const ProcessRun r =
+      run_cli("render --width 8 --height 8 --light-volume-km 0 -v -o " + path("x.png"));
   ASSERT_EQ(r.status, 0) << r.output;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.output, m, std::regex("peak resident memory ([0-9]+) MiB")))
