@@ -89,11 +89,18 @@ def over(layers):
     return np.stack([layers["clouds." + c] + (1.0 - a) * layers["sky." + c] for c in "RGB"], -1)
 
 
+def to_8bit(values):
+    """Display values as 8 bits: clipped to [0, 1] first (NaN as 0), so that 1.5 is 255, not the
+    wrapped 127 of a bare cast."""
+    return (np.clip(np.nan_to_num(values, nan=0.0), 0.0, 1.0) * 255 + 0.5).astype(np.uint8)
+
+
 def _display(rgb, exposure):
+    """The ACES fit and sRGB of nephele's PNGs, as 8 bits (exposure multiplies first)."""
     x = np.clip(rgb * exposure, 0.0, 1e4)
     y = np.clip((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0)
     y = np.where(y <= 0.0031308, 12.92 * y, 1.055 * np.power(y, 1 / 2.4) - 0.055)
-    return (y * 255 + 0.5).astype(np.uint8)
+    return to_8bit(y)
 
 
 def figure(layers, header, path):
@@ -106,13 +113,15 @@ def figure(layers, header, path):
     h, w = a.shape[:2]
     yy, xx = np.mgrid[0:h, 0:w]
     checker = np.where(((yy // 12 + xx // 12) % 2)[..., None] == 0, 0.35, 0.65)
+    # Premultiplied: the clouds' display values plus what shows through of the checkerboard (their
+    # sum may pass 1 where the clouds are bright; to_8bit clips it).
     clouds_on_checker = _display(clouds, e) / 255.0 + (1 - a) * checker
     depth = layers["clouds.depth_m"]
     d = np.where(depth > 0, 1.0 - np.clip(np.log(np.maximum(depth, 1.0) / 1500.0) / np.log(100.0), 0, 1), 0)
     panels = [("image (R,G,B)", _display(image, e)), ("sky", _display(sky, e)),
-              ("clouds (premultiplied) over a checkerboard", (clouds_on_checker * 255).astype(np.uint8)),
-              ("clouds.A = 1 - transmittance", (np.repeat(a, 3, -1) * 255).astype(np.uint8)),
-              ("clouds.depth_m (near bright, 1.5 to 150 km)", (np.repeat(d[..., None], 3, -1) * 255).astype(np.uint8)),
+              ("clouds (premultiplied) over a checkerboard", to_8bit(clouds_on_checker)),
+              ("clouds.A = 1 - transmittance", to_8bit(np.repeat(a, 3, -1))),
+              ("clouds.depth_m (near bright, 1.5 to 150 km)", to_8bit(np.repeat(d[..., None], 3, -1))),
               ("clouds over sky (= image)", _display(over(layers), e))]
     gap, label = 6, 18
     out = Image.new("RGB", (3 * w + 2 * gap, 2 * (h + label) + gap), "white")
