@@ -187,7 +187,7 @@ struct CloudParams {
   // (common/clouds_inc.glsl, cloud_two_stream_fluxes: the light going on and the light
   // scattered back towards the sun, with absorption), closer to the path tracer on six of the
   // eight validation views but not yet consistent between the light volume and a light march
-  // (README, "Validation").
+  // (docs/validation.md).
   bool two_stream_light = false;
 };
 
@@ -411,7 +411,7 @@ struct ParticleCloudParams {
 // when clouds.model names one, between the [clouds] layer's altitudes.
 struct ClassicCloudParams {
   // The seed's printing of the formulas where it differs from the papers (Blinn's B and Tr,
-  // the Lambert phase function's factor); false: the papers' (README, "Classical cloud models").
+  // the Lambert phase function's factor); false: the papers' (docs/classical-clouds.md).
   bool seed_formulas = false;
   // Blinn 1982: n spheres of radius r per unit volume in the layer, optical depth
   // tau = n pi r^2 (top - bottom); phase function "constant", "anisotropic" (1 + x cos alpha),

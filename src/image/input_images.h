@@ -9,8 +9,9 @@
 
 namespace nephele {
 
-// The largest images the scene reads, pixels a side (README: limits). At 1920 x 1080 a render
-// with every input at its limit peaks under 3 GiB of the process's memory on lavapipe.
+// The largest images the scene reads, pixels a side (docs/reliability.md: limits on inputs).
+// At 1920 x 1080 a render with every input at its limit peaks under 3 GiB of the process's
+// memory on lavapipe.
 constexpr int kMaxWeatherMapSide = 8192;  // clouds.weather_map: 256 MiB as 8-bit RGBA
 constexpr int kMaxAlbedoMapSide = 4096;   // terrain.albedo_map: 256 MiB as float RGBA
 

@@ -2,7 +2,7 @@
 # Package.DebianPackage: cpack makes nephele's .deb from this build; it holds the tools, both
 # libraries, the headers, the CMake package and the pkg-config file under /usr, and depends on
 # the Debian packages of the libraries its binaries use and on a Vulkan driver. (Installing it
-# with apt needs root and changes the machine: done by hand, README.)
+# with apt needs root and changes the machine: done by hand, docs/embedding.md.)
 # Arguments: the build folder, the work folder (emptied).
 set -euo pipefail
 build=$1 work=$2

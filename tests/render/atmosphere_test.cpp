@@ -109,7 +109,7 @@ TEST_F(AtmosphereTest, MultipleScatteringBrightensTheSky) {
 }
 
 // Ozone absorbs orange light (the Chappuis band): it keeps the twilight zenith blue.
-// What the angular field changes (README, "Validation"): the light scattered more than once
+// What the angular field changes (docs/validation.md): the light scattered more than once
 // comes mostly from near the horizon, and Rayleigh's phase sends horizontal light on
 // horizontally, so against Hillaire's isotropic Psi_ms the horizon brightens relative to the
 // zenith (the path tracer: 1 deg up, 4-8% brighter relative to the zenith than the isotropic

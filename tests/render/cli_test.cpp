@@ -255,7 +255,7 @@ TEST_F(CliTest, ExrHoldsNoInfWhereTheSunIs) {
         ASSERT_TRUE(std::isfinite(p[c])) << file;
         *max = std::max(*max, p[c]);
       }
-  EXPECT_EQ(half_max, 65504.0f);    // clamped to the largest half, and the README says so
+  EXPECT_EQ(half_max, 65504.0f);    // clamped to the largest half, as docs/film-output.md says
   EXPECT_GT(float_max, 65504.0f);   // the sun's true radiance
 }
 

@@ -137,7 +137,7 @@ TEST_F(PlanetReferenceTest, ClearSkySingleScatteringMatchesTheIntegral) {
 // noise, and no tentative collision ever finds the extinction above the grid's bound. (Thin,
 // because on lavapipe a path's null collisions must stay few: with thicker clouds the flat
 // majorant's image comes out darker the more null collisions it makes, lavapipe's loop limit
-// cutting the tracking short; README, "Lavapipe's loop limit".)
+// cutting the tracking short; docs/path-tracer.md, "Lavapipe's loop limit".)
 TEST_F(PlanetReferenceTest, TheNoiseCloudsMajorantGridIsNeverExceededAndChangesNothing) {
   Scene s = nephele::load_preset("default");
   s.output.width = 16;

@@ -227,8 +227,8 @@ TEST_F(ReferenceTest, BadInputIsRefusedWithOneLine) {
 namespace {
 
 // The fast mode draws the lab too: the same grid where the reference has it, on black (no air,
-// no ground light, no sky). Its brightness is the fast model's to answer for (README,
-// "Validation"): printed, not held to a tolerance here.
+// no ground light, no sky). Its brightness is the fast model's to answer for
+// (docs/validation.md): printed, not held to a tolerance here.
 TEST_F(ReferenceTest, TheFastModeDrawsTheLabsGridOnBlack) {
   Scene s = lab_scene(constant_grid_file());
   s.lab.max_bounces = 16;

@@ -219,7 +219,7 @@ TEST_F(RenderTest, AboveTheLayerLookingDownSeesCloudTopsBrighterThanTheGround) {
 
 // The experimental two-stream light (clouds.two_stream_light) is selectable and does what the
 // path tracer asked for under the noon cumulus: the octave model's clouds there were 2.2x the
-// reference, its whole image +74% (README, "Validation"); the two-stream one's +12%. Measured
+// reference, its whole image +74% (docs/validation.md); the two-stream one's +12%. Measured
 // (80 x 50): the image 0.70x the octave model's.
 TEST_F(RenderTest, TwoStreamLightDarkensTheNoonCumulusTowardsThePathTracer) {
   Scene s = nephele::load_preset("default");

@@ -29,7 +29,7 @@ class ValidateCliTest : public ::testing::Test {
 };
 
 // Two clear-sky views: the fast mode's sky is within a few per cent of the path-traced one
-// (README, "Validation"), so a tolerance of 50% passes and one of 0.1% does not.
+// (docs/validation.md), so a tolerance of 50% passes and one of 0.1% does not.
 const char* kSuite = R"(width = 24
 height = 16
 block = 8

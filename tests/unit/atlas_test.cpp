@@ -765,9 +765,9 @@ TEST(TileAtlas, RejectsBadArgumentsNamingThem) {
             std::string::npos);
 }
 
-// The README's table of the two methods under churn: a 2048^2 atlas, 100 impostors of 48-400
-// texels a side (aspect 0.5-2), each changing size every four frames or so (sometimes
-// vanishing), 30 s at 60 frames/s. A measurement, not a check: run it with
+// The table of the two methods under churn in docs/particle-clouds.md: a 2048^2 atlas, 100
+// impostors of 48-400 texels a side (aspect 0.5-2), each changing size every four frames or so
+// (sometimes vanishing), 30 s at 60 frames/s. A measurement, not a check: run it with
 //   build/tests/nephele_tests --gtest_also_run_disabled_tests \
 //       --gtest_filter='AtlasChurn.DISABLED_*'
 template <typename Atlas>

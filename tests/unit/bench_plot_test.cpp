@@ -1,5 +1,5 @@
 // scripts/plot_bench.py, as `nephele bench` runs it (its copy embedded in the binary) and as
-// the README says to run it by hand, on a small bench.json (tests/data/bench_small.json).
+// docs/benchmark.md says to run it by hand, on a small bench.json (tests/data/bench_small.json).
 // Skipped where /usr/bin/python3 cannot import matplotlib.
 #include "bench_plot.h"
 
@@ -89,7 +89,7 @@ TEST_F(BenchPlotTest, LeavesOutWhatTheJsonLacks) {
   EXPECT_FALSE(fs::exists(path("b/bench.png")));
 }
 
-// The README's command: the script in the source tree, run from another directory.
+// docs/benchmark.md's command: the script in the source tree, run from another directory.
 TEST_F(BenchPlotTest, TheScriptRunsByHandFromAnyDirectory) {
   if (!have_matplotlib()) GTEST_SKIP() << "/usr/bin/python3 cannot import matplotlib";
   const std::string command = "cd / && " + std::string(nephele::cli::kPlotPython) + " '" +

@@ -5,7 +5,7 @@
 //
 // Ray casting in compute by default; terrain.method = "raster" draws the heightfield as a mesh
 // with depth instead (terrain.vert/.frag: seed 002's way) and lights the distances it leaves
-// (README, Terrain: the two measured).
+// (docs/terrain.md: the two measured).
 #pragma once
 
 #include <memory>
