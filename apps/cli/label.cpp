@@ -8,12 +8,16 @@
 
 namespace nephele::cli {
 
+int label_width(const std::string& text, int scale) {
+  return (stb_easy_font_width(const_cast<char*>(text.c_str())) + 4) * scale;
+}
+
 // stb_easy_font's quads, filled.
 void draw_label(Image& image, int x, int y, const std::string& text, int scale) {
   static char quads[64 * 1024];
   const int n = stb_easy_font_print(0.0f, 0.0f, const_cast<char*>(text.c_str()), nullptr, quads,
                                     sizeof quads);
-  const int box_w = (stb_easy_font_width(const_cast<char*>(text.c_str())) + 4) * scale;
+  const int box_w = label_width(text, scale);
   const int box_h = 12 * scale;
   for (int py = y; py < std::min(y + box_h, image.height); ++py)
     for (int px = x; px < std::min(x + box_w, image.width); ++px)

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <glm/glm.hpp>
 #include <filesystem>
@@ -60,17 +62,70 @@ void paste(Image& canvas, const Image& image, int x0, int y0, int scale, float e
           glm::vec4(glm::vec3(image.at(x / scale, y / scale)) * exposure, 1.0f);
 }
 
-// The blocks' relative errors as colours: black 0, red at the tolerance, white at 4 times it.
+// A relative error in units of the tolerance as a colour: black 0, red at the tolerance, white
+// at 4 times it and above.
+glm::vec4 error_colour(float e) {
+  const glm::vec3 c = e <= 1.0f ? glm::vec3(std::max(e, 0.0f), 0.0f, 0.0f)
+                                : glm::mix(glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(1.0f),
+                                           std::min((e - 1.0f) / 3.0f, 1.0f));
+  // Values the tone map shows as themselves, near enough: display-referred, exposure 1.
+  return glm::vec4(c * 2.0f, 1.0f);
+}
+
+// The blocks' relative errors as colours (error_colour).
 Image error_colours(const Image& map, double tolerance) {
   Image out(map.width, map.height);
-  for (size_t i = 0; i < map.pixels.size(); ++i) {
-    const float e = float(map.pixels[i].r / tolerance);
-    const glm::vec3 c = e <= 1.0f ? glm::vec3(e, 0.0f, 0.0f)
-                                  : glm::mix(glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(1.0f), std::min((e - 1.0f) / 3.0f, 1.0f));
-    // Values the tone map shows as themselves, near enough: display-referred, exposure 1.
-    out.pixels[i] = glm::vec4(c * 2.0f, 1.0f);
-  }
+  for (size_t i = 0; i < map.pixels.size(); ++i)
+    out.pixels[i] = error_colour(float(map.pixels[i].r / tolerance));
   return out;
+}
+
+// A percentage as the legend and the summary write it: 15%, 0.1%, 2.5%.
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * fraction);
+  return text;
+}
+
+// Rows of pixels under the images for the error map's scale (kLegendHeight at scale 1).
+constexpr int kLegendHeight = 26;
+
+// The error map's scale under it, from x0 to x1 at row y: the colours from 0 to 4 times the
+// tolerance with ticks at 0, the tolerance, twice and 4 times it, labelled in per cent (a label
+// that would overlap one already drawn is left out, the tolerance's last), and "block error"
+// to its left where there is room.
+void draw_error_legend(Image& canvas, int x0, int x1, int y, double tolerance) {
+  const int bar_h = 8, tick_h = 3;
+  const int length = std::max(x1 - x0, 2);
+  for (int x = x0; x < x1; ++x) {
+    const glm::vec4 c = error_colour(4.0f * float(x - x0) / float(length - 1));
+    for (int dy = 0; dy < bar_h; ++dy) canvas.at(x, y + dy) = c;
+  }
+  const glm::vec4 white(50.0f, 50.0f, 50.0f, 1.0f);  // white after tone mapping (draw_label's)
+  struct Tick {
+    double times;
+    std::string text;
+  };
+  const Tick ticks[] = {{0.0, "0"},
+                        {4.0, percent(4.0 * tolerance) + "+"},
+                        {1.0, percent(tolerance)},
+                        {2.0, percent(2.0 * tolerance)}};
+  std::vector<std::pair<int, int>> drawn;  // the labels' spans
+  for (const Tick& t : ticks) {
+    const int tx = x0 + int(std::lround(t.times / 4.0 * (length - 1)));
+    for (int dy = 0; dy < tick_h; ++dy) canvas.at(tx, y + bar_h + dy) = white;
+    const int w = label_width(t.text, 1);
+    const int lx = std::clamp(tx - w / 2, x0, std::max(x0, x1 - w));
+    const bool overlaps = std::any_of(drawn.begin(), drawn.end(), [&](const auto& span) {
+      return lx < span.second + 2 && span.first < lx + w + 2;
+    });
+    if (overlaps || lx + w > canvas.width) continue;
+    draw_label(canvas, lx, y + bar_h + tick_h, t.text, 1);
+    drawn.emplace_back(lx, lx + w);
+  }
+  const std::string title = "block error";
+  const int title_w = label_width(title, 1);
+  if (x0 - title_w - 2 >= 0) draw_label(canvas, x0 - title_w - 2, y, title, 1);
 }
 
 }  // namespace
@@ -197,20 +252,36 @@ double largest_step(const Image& image) {
   return worst;
 }
 
-// Writes NAME.md (the table) and NAME.json (and --json), prints the table; the exit status: 0
-// when every case passed, 1 when one did not or the validation layer spoke.
+// Writes NAME.md (the table, then `notes` and the summary line) and NAME.json (and --json),
+// prints the same; the exit status: 0 when every case passed, 1 when one did not or the
+// validation layer spoke. `summary` says what passed or failed ("FAILED: ..." or "passed:
+// ..."); the validation layer's messages, when there are any, fail it whatever it says.
 int finish(const ValidateOptions& options, const Renderer& renderer, const std::string& name,
-           const std::string& table, nlohmann::json& results, bool pass) {
+           const std::string& table, const std::string& notes, std::string summary,
+           nlohmann::json& results, bool pass) {
+  const int messages = options.validation ? renderer.validation_messages() : 0;
+  if (messages > 0)
+    summary =
+        "FAILED: " + std::to_string(messages) + " Vulkan validation messages (" + summary + ")";
+  summary =
+      std::string(name == "sky" ? "nephele validate --sky: " : "nephele validate: ") + summary;
   results["pass"] = pass;
-  write_file_atomically((fs::path(options.out_dir) / (name + ".md")).string(), table);
+  results["summary"] = summary;
+  const std::string text = table + "\n" + notes + (notes.empty() ? "" : "\n") + summary + "\n";
+  write_file_atomically((fs::path(options.out_dir) / (name + ".md")).string(), text);
   write_file_atomically((fs::path(options.out_dir) / (name + ".json")).string(), results.dump(2) + "\n");
   if (!options.json.empty()) write_file_atomically(options.json, results.dump(2) + "\n");
-  std::cout << table;
-  if (options.validation && renderer.validation_messages() > 0) {
-    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
+  std::cout << text << std::flush;
+  if (messages > 0) {
+    std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", messages);
     return 1;
   }
   return pass ? 0 : 1;
+}
+
+// "1 view", "6 views".
+std::string count_of(size_t n, const char* noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
 // The reference of view `name`: the --references folder's NAME.exr when it holds one of the
@@ -275,6 +346,8 @@ int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suit
   table << "| sun elevation | pattern mean | worst at 1 deg | worst colour ratio | zenith jump | "
            "zenith fast / reference | |\n|---:|---:|---:|---:|---:|---:|---|\n";
   bool all_pass = true;
+  std::string missed;  // the sun elevations that miss a target, and why
+  int misses = 0;
   const bool show = progress_wanted(options.progress, options.quiet, options.verbose);
   Progress progress("sky", int(targets.sun_elevations_deg.size() * std::size(views)), show);
   for (double sun_deg : targets.sun_elevations_deg) {
@@ -339,6 +412,25 @@ int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suit
                       worst_horizon <= targets.max_pattern_horizon &&
                       worst_colour <= targets.max_colour_ratio && jump <= targets.max_zenith_jump;
     all_pass = all_pass && pass;
+    if (!pass) {
+      char what[200];
+      std::snprintf(what, sizeof what, "%s%g deg (", missed.empty() ? "" : ", ", sun_deg);
+      std::string reasons;
+      const auto reason = [&](bool miss, const char* name, double value, double target) {
+        if (miss)
+          reasons += (reasons.empty() ? "" : ", ") + std::string(name) + " " + percent(value) +
+                     " > " + percent(target);
+      };
+      reason(!(pattern_mean <= targets.max_pattern_mean), "pattern", pattern_mean,
+             targets.max_pattern_mean);
+      reason(!(worst_horizon <= targets.max_pattern_horizon), "at 1 deg", worst_horizon,
+             targets.max_pattern_horizon);
+      reason(!(worst_colour <= targets.max_colour_ratio), "colour", worst_colour,
+             targets.max_colour_ratio);
+      reason(!(jump <= targets.max_zenith_jump), "zenith jump", jump, targets.max_zenith_jump);
+      missed += what + reasons + ")";
+      ++misses;
+    }
     char row[300];
     std::snprintf(row, sizeof row, "| %.0f deg | %.1f%% | %.1f%% | %.1f%% | %.2f%% | %.3f | %s |\n",
                   sun_deg, 100.0 * pattern_mean, 100.0 * worst_horizon, 100.0 * worst_colour,
@@ -361,7 +453,16 @@ int run_validate_sky(const ValidateOptions& options, const ValidationSuite& suit
                         {"max_pattern_horizon", targets.max_pattern_horizon},
                         {"max_colour_ratio", targets.max_colour_ratio},
                         {"max_zenith_jump", targets.max_zenith_jump}};
-  return finish(options, renderer, "sky", table.str(), results, all_pass);
+  const size_t n = targets.sun_elevations_deg.size();
+  const std::string summary =
+      all_pass ? "passed: " + std::string(n == 1 ? "" : "all ") + count_of(n, "sun elevation") +
+                     " within the targets (pattern " + percent(targets.max_pattern_mean) +
+                     ", at 1 deg " + percent(targets.max_pattern_horizon) + ", colour " +
+                     percent(targets.max_colour_ratio) + ", zenith jump " +
+                     percent(targets.max_zenith_jump) + ")"
+               : "FAILED: " + std::to_string(misses) + " of " + std::to_string(n) +
+                     " sun elevations" + " miss a target: " + missed;
+  return finish(options, renderer, "sky", table.str(), "", summary, results, all_pass);
 }
 
 }  // namespace
@@ -436,6 +537,9 @@ int run_validate(const ValidateOptions& options) {
   table << "| view | mean error | tolerance | bias | p95 block | reference noise | spp | fast ms | "
            "reference s | |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
   bool all_pass = true;
+  size_t misses = 0;
+  const ValidationView* worst = nullptr;  // the miss furthest over its tolerance
+  double worst_error = 0.0;
   for (size_t i = 0; i < views.size(); ++i) {
     const ValidationView& view = views[i];
     const Scene& scene = scenes[i];
@@ -445,12 +549,20 @@ int run_validate(const ValidateOptions& options) {
         block_luminance_error(fast.color, reference.mean, reference.variance, suite.block);
     const bool pass = e.mean_error <= view.max_mean_error;
     all_pass = all_pass && pass;
+    if (!pass) {
+      ++misses;
+      // NaN (no comparison holds) counts as the worst.
+      if (!worst || !(e.mean_error / view.max_mean_error <= worst_error / worst->max_mean_error)) {
+        worst = &view;
+        worst_error = e.mean_error;
+      }
+    }
 
     // fast | reference | block errors, each at twice the size, labelled.
     // Both exposed as the scene's camera would expose the reference.
     const float exposure = still_exposure(scene.output, reference.mean);
     const int s = 2, w = suite.width * s, h = suite.height * s, gap = 4;
-    Image side(3 * w + 2 * gap, h);
+    Image side(3 * w + 2 * gap, h + kLegendHeight);
     for (glm::vec4& p : side.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     paste(side, fast.color, 0, 0, s, exposure);
     paste(side, reference.mean, w + gap, 0, s, exposure);
@@ -465,16 +577,21 @@ int run_validate(const ValidateOptions& options) {
     draw_label(side, 0, 0, label, 1);
     std::snprintf(label, sizeof label, "reference, %d spp", reference.spp);
     draw_label(side, w + gap, 0, label, 1);
-    std::snprintf(label, sizeof label, "8x8 error %.1f%% (red: %.0f%%)", 100.0 * e.mean_error,
-                  100.0 * view.max_mean_error);
+    std::snprintf(label, sizeof label, "%dx%d error %.1f%% (red: %s)", suite.block, suite.block,
+                  100.0 * e.mean_error, percent(view.max_mean_error).c_str());
     draw_label(side, 2 * (w + gap), 0, label, 1);
+    // The map's scale under it (at least 120 pixels long, room for its labels).
+    const int legend_x1 = 3 * w + 2 * gap;
+    draw_error_legend(side, std::max(0, std::min(2 * (w + gap), legend_x1 - 120)), legend_x1, h + 2,
+                      view.max_mean_error);
     write_image(side, (fs::path(options.out_dir) / (view.name + ".png")).string(), 1.0f);
     write_image(fast.color, (fs::path(options.out_dir) / (view.name + "_fast.exr")).string(), 1.0f,
                 ExrPixels::kFloat);
 
     char row[400];
-    std::snprintf(row, sizeof row, "| %s | %.1f%% | %.0f%% | %+.1f%% | %.1f%% | %.2f%% | %d | %.0f | %.0f | %s |\n",
-                  view.name.c_str(), 100.0 * e.mean_error, 100.0 * view.max_mean_error,
+    std::snprintf(row, sizeof row,
+                  "| %s | %.1f%% | %s | %+.1f%% | %.1f%% | %.2f%% | %d | %.0f | %.0f | %s |\n",
+                  view.name.c_str(), 100.0 * e.mean_error, percent(view.max_mean_error).c_str(),
                   100.0 * e.mean_bias, 100.0 * e.p95_error, 100.0 * e.reference_noise,
                   reference.spp, fast.stats.wall_ms, reference.seconds, pass ? "pass" : "**miss**");
     table << row;
@@ -497,7 +614,28 @@ int run_validate(const ValidateOptions& options) {
                                    {"fast_ms", fast.stats.wall_ms},
                                    {"pass", pass}};
   }
-  return finish(options, renderer, "results", table.str(), results, all_pass);
+  // One tolerance for all: "over 15%"; else each view's own.
+  const bool one_tolerance = std::all_of(views.begin(), views.end(), [&](const ValidationView& v) {
+    return v.max_mean_error == views.front().max_mean_error;
+  });
+  const std::string tolerance =
+      one_tolerance ? percent(views.front().max_mean_error)
+                    : std::string(views.size() == 1 ? "its tolerance" : "their tolerances");
+  std::string summary;
+  if (all_pass)
+    summary = "passed: " + std::string(views.size() == 1 ? "" : "all ") +
+              count_of(views.size(), "view") + " within " + tolerance;
+  else
+    summary = "FAILED: " + std::to_string(misses) + " of " + std::to_string(views.size()) +
+              " views over " + (one_tolerance ? tolerance : std::string("their tolerances")) +
+              " (worst: " + worst->name + " " + percent(worst_error) + " > " +
+              percent(worst->max_mean_error) + ")";
+  const std::string block = std::to_string(suite.block) + "x" + std::to_string(suite.block);
+  const std::string notes =
+      "Error maps (right in " + (fs::path(options.out_dir) / "NAME.png").string() + "): each " +
+      block + " block's luminance error against the reference, black 0, red at the view's " +
+      "tolerance, white at 4 times it or more (the scale under the map).\n";
+  return finish(options, renderer, "results", table.str(), notes, summary, results, all_pass);
 }
 
 }  // namespace nephele::cli

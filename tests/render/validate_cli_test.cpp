@@ -1,6 +1,7 @@
 // `nephele validate` end to end on a small suite: the fast mode and the reference of each view,
-// the table, the JSON and the side-by-side images; a reference folder read back; the clear
-// sky's targets; bad input in one line.
+// the table, the JSON and the side-by-side images (with the error map's scale); a reference
+// folder read back; the clear sky's targets; the line that says what passed or failed; bad
+// input in one line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "nephele/image.h"
 #include "support/process_run.h"
 
 namespace fs = std::filesystem;
@@ -27,6 +29,13 @@ class ValidateCliTest : public ::testing::Test {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   fs::path dir_;
 };
+
+// The last line a run printed (the summary after the table).
+std::string last_line(const std::string& output) {
+  std::string text = output;
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  return text.substr(text.rfind('\n') + 1);
+}
 
 // Two clear-sky views: the fast mode's sky is within a few per cent of the path-traced one
 // (docs/validation.md), so a tolerance of 50% passes and one of 0.1% does not.
@@ -68,10 +77,33 @@ TEST_F(ValidateCliTest, WritesTheTableTheJsonAndTheImagesAndReadsReferencesBack)
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
   EXPECT_TRUE(fs::exists(refs + "/up.exr"));
   EXPECT_NE(r.output.find("| up |"), std::string::npos) << r.output;
+  // After the table, one line says what failed (issue 41): the views over, the worst of them.
+  const std::string failed = last_line(r.output);
+  EXPECT_TRUE(failed.starts_with(
+      "nephele validate: FAILED: 1 of 2 views over their tolerances (worst: strict "))
+      << r.output;
+  EXPECT_NE(failed.find("% > 0.1%)"), std::string::npos) << failed;
+  EXPECT_EQ(j["summary"].get<std::string>(), failed);
+  std::ifstream md(out + "/results.md");
+  const std::string table((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(last_line(table), failed) << table;
+  EXPECT_NE(r.output.find("Error maps"), std::string::npos) << r.output;  // what the colours mean
+  // The error map's scale under the images: black at 0, red at the tolerance (a quarter of the
+  // way), white at 4 times it (the end); 24 x 16 pixels at twice the size, three side by side.
+  const nephele::Image side = nephele::read_image(out + "/up.png");
+  ASSERT_EQ(side.width, 3 * 48 + 2 * 4);
+  ASSERT_EQ(side.height, 32 + 26);
+  const int bar_y = 32 + 5, x1 = side.width - 1, x0 = x1 - 119;
+  EXPECT_LT(side.at(x0, bar_y).r, 0.05f);
+  const glm::vec4 red = side.at(x0 + 30, bar_y), white = side.at(x1, bar_y);
+  EXPECT_GT(red.r, 0.8f);
+  EXPECT_LT(red.g, 0.1f);
+  EXPECT_GT(std::min({white.r, white.g, white.b}), 0.8f);
   // Again: the references are read back (no time spent tracing), the errors the same.
   const auto again = run_cli("validate --suite " + path("suite.toml") + " --views up --spp 30 -q --out " +
                              path("out2") + " --references " + refs);
   EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(last_line(again.output), "nephele validate: passed: 1 view within 50%") << again.output;
   const nlohmann::json k = nlohmann::json::parse(std::ifstream(path("out2") + "/results.json"));
   EXPECT_EQ(k["views"]["up"]["reference_s"].get<double>(), 0.0);
   EXPECT_NEAR(k["views"]["up"]["mean_error"].get<double>(), j["views"]["up"]["mean_error"].get<double>(), 1e-6);
@@ -82,6 +114,10 @@ TEST_F(ValidateCliTest, TheSkyModeMeasuresThePatternAgainstTheReference) {
   const auto r = run_cli("validate --sky --suite " + path("suite.toml") + " --spp 30 -q --out " +
                          path("out"));
   ASSERT_TRUE(r.status == 0 || r.status == 1) << r.output;
+  EXPECT_TRUE(last_line(r.output).starts_with(
+      r.status == 0 ? "nephele validate --sky: passed: 1 sun elevation within the targets"
+                    : "nephele validate --sky: FAILED: 1 of 1 sun elevations miss a target: 30 deg ("))
+      << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/sky.json"));
   const nlohmann::json& e = j["sun_elevations"]["30.0"];
   for (const char* v : {"zenith", "horizon-away", "horizon-side", "horizon-near", "towards-sun"})
@@ -102,6 +138,10 @@ TEST_F(ValidateCliTest, TheClearSkyMeetsItsTargetsAgainstTheShippedReferences) {
   fs::copy(shipped, path("refs"));  // a missing one would be traced and written: not into the tree
   const auto r = run_cli("validate --sky -q --references " + path("refs") + " --out " + path("out"));
   EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(last_line(r.output),
+            "nephele validate --sky: passed: all 8 sun elevations within the targets (pattern 2%, "
+            "at 1 deg 5%, colour 3%, zenith jump 1%)")
+      << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/sky.json"));
   ASSERT_EQ(j["sun_elevations"].size(), 8u) << j.dump(1);
   for (const auto& [elevation, e] : j["sun_elevations"].items()) {
