@@ -4,6 +4,8 @@
 //   import nephele
 //   image = nephele.render(preset="default", width=320, height=200)   # (200, 320, 4) float32
 //   layers = nephele.render(scene={"clouds": {"coverage": 0.8}}, layers=True)
+//   image, stats = nephele.render(preset="sunset", stats=True)         # stats["ev100"], ...
+//   png = nephele.display(image, ev100=stats["ev100"], tonemap=stats["tonemap"])  # uint8 RGBA
 //   nephele.presets(); nephele.scene_toml(preset="mountains")
 //
 // Bad input raises nephele.InputError with nephele's one-line message.
@@ -16,8 +18,10 @@
 #include <sstream>
 #include <string>
 
-#include "nephele/error.h"
 #include "nephele/cloud_query.h"
+#include "nephele/error.h"
+#include "nephele/exposure.h"
+#include "nephele/image.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
 
@@ -110,6 +114,105 @@ py::array_t<float> to_array(const nephele::Image& image, int channels = 4) {
   return out;
 }
 
+// A (height, width, 3 or 4) array of linear radiance as an Image (alpha 1 when missing).
+nephele::Image from_array(const py::object& value) {
+  const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
+  if (!a || a.ndim() != 3 || (a.shape(2) != 3 && a.shape(2) != 4) || a.shape(0) < 1 ||
+      a.shape(1) < 1) {
+    std::string shape = "not an array of numbers";
+    if (a) {
+      shape = "shape (";
+      for (py::ssize_t i = 0; i < a.ndim(); ++i)
+        shape += (i ? ", " : "") + std::to_string(a.shape(i));
+      shape += a.ndim() == 1 ? ",)" : ")";
+    }
+    throw nephele::InputError(
+        "image: " + shape +
+        "; a (height, width, 3 or 4) array of linear cd/m^2 is needed (render's image)");
+  }
+  const int height = int(a.shape(0)), width = int(a.shape(1)), channels = int(a.shape(2));
+  nephele::Image image(width, height);
+  auto view = a.unchecked<3>();
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      image.at(x, y) = glm::vec4(view(y, x, 0), view(y, x, 1), view(y, x, 2),
+                                 channels == 4 ? view(y, x, 3) : 1.0f);
+  return image;
+}
+
+// A frame's statistics as the CLI's --stats-json writes them (apps/cli/render_command.cpp,
+// stats_to_json; no "image"), with the exposure the CLI's PNG has: "ev100" (the scene's, or
+// metered as the CLI meters a still), its linear "exposure" and the scene's "tonemap".
+py::dict stats_dict(const nephele::FrameStats& stats, double ev100, nephele::ToneMap tonemap) {
+  py::dict d;
+  d["device"] = stats.device;
+  d["width"] = stats.width;
+  d["height"] = stats.height;
+  d["frame_ms"] = stats.frame_ms;
+  d["wall_ms"] = stats.wall_ms;
+  d["mean_luminance"] = stats.mean_luminance;  // cd/m^2
+  d["metered_luminance"] = stats.metered_luminance;
+  d["ev100"] = ev100;
+  d["exposure"] = nephele::exposure_from_ev100(ev100);
+  d["tonemap"] = std::string(nephele::to_string(tonemap));
+  d["cloud_cover_fraction"] = stats.cloud_cover_fraction;
+  if (stats.sky_cover_fraction) {
+    d["sky_cover_fraction"] = *stats.sky_cover_fraction;
+    d["sky_cover_oktas"] = nephele::sky_cover_oktas(*stats.sky_cover_fraction);
+  }
+  d["sun_elevation_deg"] = stats.sun.elevation_deg;
+  d["sun_azimuth_deg"] = stats.sun.azimuth_deg;
+  if (stats.ephemeris) {
+    d["moon_elevation_deg"] = stats.ephemeris->moon.elevation_deg;
+    d["moon_azimuth_deg"] = stats.ephemeris->moon.azimuth_deg;
+    d["moon_illuminated_fraction"] = stats.ephemeris->moon_illuminated_fraction;
+  }
+  py::dict passes;
+  for (const nephele::PassTiming& p : stats.passes) {  // a pass run several times: its total
+    const py::str name(p.name);
+    passes[name] = (passes.contains(name) ? passes[name].cast<double>() : 0.0) + p.ms;
+  }
+  d["passes_ms"] = passes;
+  if (!stats.voxel_clouds.empty()) {
+    py::list clouds;
+    for (const nephele::VoxelCloudMemory& m : stats.voxel_clouds) {
+      py::dict c;
+      c["source"] = m.source;
+      c["dims"] = py::make_tuple(m.dims[0], m.dims[1], m.dims[2]);
+      c["voxel_m"] = m.voxel_m;
+      c["stored_bricks"] = m.stored_bricks;
+      c["total_bricks"] = m.total_bricks;
+      c["bytes"] = m.bytes;
+      c["dense_bytes"] = m.dense_bytes;
+      clouds.append(c);
+    }
+    d["voxel_clouds"] = clouds;
+    d["voxel_bytes"] = stats.voxel_bytes;
+  }
+  if (const auto& p = stats.particle_clouds) {
+    py::dict c;
+    c["particles"] = p->particles;
+    c["drawn"] = p->drawn;
+    c["clouds"] = p->clouds;
+    c["relit_clouds"] = p->relit_clouds;
+    c["impostors"] = p->impostors;
+    c["impostor_updates"] = p->impostor_updates;
+    c["impostors_waiting"] = p->impostors_waiting;
+    c["impostor_resolution_scale"] = p->impostor_resolution_scale;
+    c["layer_width"] = p->layer_width;
+    c["layer_height"] = p->layer_height;
+    c["generate_ms"] = p->generate_ms;
+    c["lighting_ms"] = p->lighting_ms;
+    c["sort_ms"] = p->sort_ms;
+    c["atlas_occupancy"] = p->atlas_occupancy;
+    c["atlas_wasted"] = p->atlas_wasted;
+    c["atlas_fragmentation"] = p->atlas_fragmentation;
+    c["atlas_downsized"] = p->atlas_downsized;
+    d["particle_clouds"] = c;
+  }
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(nephele, m) {
@@ -133,34 +236,99 @@ PYBIND11_MODULE(nephele, m) {
       "The resolved scene as TOML: a preset or a TOML file, with a dict of keys over it.");
   m.def(
       "render",
-      [](const std::string& preset, const py::object& scene_dict, const py::object& toml, const py::object& width,
-         const py::object& height, bool layers) -> py::object {
+      [](const std::string& preset, const py::object& scene_dict, const py::object& toml,
+         const py::object& width, const py::object& height, bool layers, bool stats) -> py::object {
         const nephele::Scene scene = make_scene(preset, scene_dict, toml, width, height);
+        py::object out;
+        nephele::Frame frame;
         if (!layers) {
-          nephele::Frame frame;
           {
             py::gil_scoped_release release;
             frame = renderer().render(scene);
           }
-          return to_array(frame.color);
+          out = to_array(frame.color);
+        } else {
+          nephele::FilmLayers film;
+          {
+            py::gil_scoped_release release;
+            film = renderer().render_layers(scene);
+          }
+          py::dict dict;
+          dict["image"] = to_array(film.frame.color);
+          dict["sky"] = to_array(film.sky);
+          dict["clouds"] = to_array(film.clouds);
+          dict["clouds_depth_m"] = to_array(film.clouds_depth_m, 1);
+          out = std::move(dict);
+          frame = std::move(film.frame);
         }
-        nephele::FilmLayers film;
-        {
-          py::gil_scoped_release release;
-          film = renderer().render_layers(scene);
-        }
-        py::dict out;
-        out["image"] = to_array(film.frame.color);
-        out["sky"] = to_array(film.sky);
-        out["clouds"] = to_array(film.clouds);
-        out["clouds_depth_m"] = to_array(film.clouds_depth_m, 1);
-        return std::move(out);
+        if (!stats) return out;
+        // The EV100 of the CLI's still: the scene's, or its auto exposure's meter.
+        const double ev100 = nephele::frame_ev100(scene.output, frame.color, nullptr, 0.0);
+        return py::make_tuple(out, stats_dict(frame.stats, ev100, scene.output.tonemap));
       },
       py::arg("preset") = "default", py::arg("scene") = py::none(), py::arg("toml") = py::none(),
       py::arg("width") = py::none(), py::arg("height") = py::none(), py::arg("layers") = false,
-      "Renders a still: linear HDR radiance (cd/m^2) as a (height, width, 4) float32 array, or with "
+      py::arg("stats") = false,
+      "Renders a still: linear HDR radiance (cd/m^2) as a (height, width, 4) float32 array, or "
+      "with "
       "layers=True a dict of the image and its film layers (sky, clouds premultiplied, "
-      "clouds_depth_m).");
+      "clouds_depth_m). With stats=True, a tuple (that, stats): the frame's statistics as the "
+      "CLI's "
+      "--stats-json has them (ev100: the exposure of the CLI's PNG, the scene's or its auto "
+      "exposure's; "
+      "exposure, tonemap, sky_cover_fraction and sky_cover_oktas, cloud_cover_fraction, "
+      "mean_luminance, "
+      "sun_elevation_deg, passes_ms, ...).");
+  m.def(
+      "display",
+      [](const py::object& image_value, const py::object& ev100_value, const std::string& tonemap) {
+        const auto op = nephele::parse_tonemap(tonemap);
+        if (!op)
+          throw nephele::InputError("tonemap \"" + tonemap +
+                                    "\": unknown (allowed: aces, agx, uncharted2, reinhard, none)");
+        double ev100 = 0.0;
+        if (!ev100_value.is_none()) {
+          // A number (numpy's too), not a bool or a string, within the scene's output.ev100 range.
+          bool number =
+              !py::isinstance<py::bool_>(ev100_value) && !py::isinstance<py::str>(ev100_value);
+          if (number) {
+            try {
+              ev100 = py::float_(ev100_value).cast<double>();
+            } catch (const py::error_already_set&) {
+              number = false;
+            }
+          }
+          if (!number || !(ev100 >= -20.0 && ev100 <= 30.0))
+            throw nephele::InputError(
+                "ev100 = " + std::string(py::repr(ev100_value)) +
+                ": must be a number in [-20, 30], or None to meter the image");
+        }
+        const nephele::Image image = from_array(image_value);
+        std::vector<unsigned char> rgba;
+        {
+          py::gil_scoped_release release;
+          // As write_image writes a PNG: exposed, tone-mapped, sRGB; without an EV100 metered as
+          // write_image meters (the default auto exposure).
+          const float exposure = ev100_value.is_none()
+                                     ? nephele::still_exposure(nephele::OutputParams{}, image)
+                                     : float(nephele::exposure_from_ev100(ev100));
+          rgba = nephele::tonemap_srgb8(image, exposure, *op);
+        }
+        py::array_t<unsigned char> out({image.height, image.width, 4});
+        std::copy(rgba.begin(), rgba.end(), out.mutable_data());
+        return out;
+      },
+      py::arg("image"), py::arg("ev100") = py::none(), py::arg("tonemap") = "aces",
+      "The 8-bit sRGB image the CLI writes to PNG for linear radiance `image` ((height, width, 3 "
+      "or 4), "
+      "cd/m^2, as render returns it): exposed at `ev100` (None: metered as an auto exposure with "
+      "the "
+      "default limits meters it), tone-mapped by `tonemap` (aces, agx, uncharted2, reinhard, "
+      "none), "
+      "sRGB-encoded by nephele's own code; a (height, width, 4) uint8 RGBA array, alpha 255. "
+      "For the CLI's PNG of a scene: display(image, ev100=stats['ev100'], "
+      "tonemap=stats['tonemap']) "
+      "with render(..., stats=True).");
   m.def(
       "cloud_density",
       [](const py::object& positions, const std::string& preset, const py::object& scene_dict, const py::object& toml,
