@@ -10,7 +10,8 @@ cd "$(dirname "$0")/.."
 # -O1 -g: quick enough to build and run, frames still line up; NDEBUG stays off.
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DNEPHELE_SANITIZE=ON >/dev/null
-cmake --build build-sanitize -j2 >&2
+# Only what the run below uses: the instrumented CLI and the unit/CLI/fuzz test binary.
+cmake --build build-sanitize -j2 --target nephele_cli nephele_tests >&2
 
 # The unit tests' suites (every suite in tests/unit/), the CLI tests and the fuzz tests.
 # Parametrised tests are named Prefix/Suite.Test/N, hence (^|/).
