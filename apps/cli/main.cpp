@@ -16,6 +16,7 @@
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
 #include "render_command.h"
+#include "scene_reference.h"
 #include "validate.h"
 #include "voxel_commands.h"
 
@@ -120,6 +121,10 @@ int main(int argc, char** argv) {
 
   CLI::App* presets_cmd = app.add_subcommand("presets", "list the built-in scene presets: a name and what it shows a line");
 
+  CLI::App* keys_cmd = app.add_subcommand(
+      "keys", "print the scene reference (Markdown): every scene key with its unit, allowed "
+              "values, default, flag and meaning, as docs/scene-reference.md holds it");
+
   nephele::cli::MakeCloudOptions make_cloud;
   CLI::App* make_cloud_cmd = app.add_subcommand(
       "make-cloud", "generate a voxel cloud (cumulus, congestus, cumulonimbus) as OpenVDB");
@@ -152,6 +157,10 @@ int main(int argc, char** argv) {
     if (gallery_cmd->parsed()) return run_command(app, nephele::cli::run_gallery(gallery));
     if (make_cloud_cmd->parsed()) return run_command(app, nephele::cli::run_make_cloud(make_cloud));
     if (voxelize_cmd->parsed()) return run_command(app, nephele::cli::run_voxelize(voxelize));
+    if (keys_cmd->parsed()) {
+      std::fputs(nephele::cli::scene_reference_markdown().c_str(), stdout);
+      return 0;
+    }
     if (presets_cmd->parsed()) {
       // A name a line, as scripts read it, then what the preset shows.
       for (const std::string& name : nephele::preset_names())

@@ -56,9 +56,9 @@ const std::vector<FlagSpec>& flag_specs() {
        "scene file (TOML); relative paths inside it are relative to its folder"},
       {"--preset", &F::preset, "", {}, "NAME", "built-in scene to start from (default: default)"},
       {"--width", &F::width, "output.width", TO(output.width), "N",
-       "image width (pixels), [1, 16384]"},
+       "image width (pixels)"},
       {"--height", &F::height, "output.height", TO(output.height), "N",
-       "image height (pixels), [1, 16384]"},
+       "image height (pixels)"},
       {"--camera-pos", &F::camera_pos, "camera.position_m", TO(camera.position_m), "E,N,U",
        "camera position (m): east, north, up"},
       {"--camera-altitude-m", &F::camera_altitude_m, "camera.altitude_m", TO(camera.position_m.z),
@@ -66,16 +66,16 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--view-dir", &F::view_dir, "camera.view_dir", TO(camera.view_dir), "E,N,U",
        "looking direction: east, north, up"},
       {"--fov-deg", &F::fov_deg, "camera.fov_deg", TO(camera.fov_deg), "F",
-       "vertical field of view (deg), [0.01, 180); one of --fov-deg, --hfov, --focal-length-mm"},
+       "vertical field of view (deg); one of --fov-deg, --hfov, --focal-length-mm"},
       {"--hfov", &F::hfov_deg, "camera.horizontal_fov_deg", TO(camera.horizontal_fov_deg), "F",
-       "horizontal field of view (deg), [0.01, 180): the vertical follows the image's aspect"},
+       "horizontal field of view (deg): the vertical follows the image's aspect"},
       {"--focal-length-mm", &F::focal_length_mm, "camera.focal_length_mm",
        TO(camera.focal_length_mm), "MM",
-       "lens focal length (mm), [0.1, 1e5]: horizontal fov 2 atan(sensor width / 2f)"},
+       "lens focal length (mm): horizontal fov 2 atan(sensor width / 2f)"},
       {"--sensor-width-mm", &F::sensor_width_mm, "camera.sensor_width_mm",
        TO(camera.sensor_width_mm), "MM", "sensor (film gate) width (mm), [1, 1000], default 36"},
       {"--roll-deg", &F::roll_deg, "camera.roll_deg", TO(camera.roll_deg), "DEG",
-       "camera roll about the view direction (deg), [-180, 180]; positive turns the camera "
+       "camera roll about the view direction (deg); positive turns the camera "
        "clockwise, so the horizon rises to the right"},
       {"--sun-dir", &F::sun_dir, "sun.direction", TO(sun.direction), "E,N,U",
        "direction towards the sun: east, north, up"},
@@ -93,40 +93,40 @@ const std::vector<FlagSpec>& flag_specs() {
        "sun azimuth from north through east (deg)"},
       {"--sun-illuminance-lux", &F::sun_illuminance_lux, "sun.illuminance_lux",
        TO(sun.illuminance_lux), "LUX",
-       "sunlight at the top of the atmosphere (lux), [0, 1e10]; 128000 the solar constant"},
+       "sunlight at the top of the atmosphere (lux); 128000 the solar constant"},
       {"--sun-illuminance", &F::sun_illuminance, "", {}, "X",
        "the old radiance scale (20 the sun): X x 6400 lux; use --sun-illuminance-lux"},
       {"--coverage", &F::coverage, "clouds.coverage", TO(clouds.coverage), "C",
-       "cloud coverage, [0, 1]"},
+       "cloud coverage"},
       {"--cloud-type", &F::cloud_type, "clouds.type", TO(clouds.type), "T",
-       "cloud type, [0, 1]: 0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus, 1 "
+       "cloud type: 0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus, 1 "
        "cumulonimbus"},
       {"--precipitation", &F::precipitation, "clouds.precipitation", TO(clouds.precipitation),
-       "P", "precipitation, [0, 1]: grows cumulonimbus"},
+       "P", "precipitation: grows cumulonimbus"},
       {"--density", &F::density, "clouds.density", TO(clouds.density), "D",
-       "cloud density scale, [0, 1]"},
+       "cloud density scale"},
       {"--cloud-bottom-m", &F::cloud_bottom_m, "clouds.bottom_altitude_m",
        TO(clouds.bottom_altitude_m), "M", "cloud layer bottom above the ground (m)"},
       {"--cloud-top-m", &F::cloud_top_m, "clouds.top_altitude_m", TO(clouds.top_altitude_m), "M",
        "cloud layer top above the ground (m)"},
       {"--extinction-per-m", &F::extinction_per_m, "clouds.extinction_per_m",
-       TO(clouds.extinction_per_m), "X", "cloud extinction at density 1 (1/m), > 0"},
+       TO(clouds.extinction_per_m), "X", "cloud extinction at density 1 (1/m)"},
       {"--attenuation", &F::attenuation, "clouds.attenuation", TO(clouds.attenuation), "X",
-       "extinction multiplier along view rays, >= 0"},
+       "extinction multiplier along view rays"},
       {"--light-attenuation", &F::light_attenuation, "clouds.light_attenuation",
-       TO(clouds.light_attenuation), "X", "extinction multiplier along light rays, >= 0"},
+       TO(clouds.light_attenuation), "X", "extinction multiplier along light rays"},
       {"--albedo", &F::albedo, "clouds.albedo", TO(clouds.albedo), "X",
-       "cloud single-scattering albedo, [0, 1]"},
+       "cloud single-scattering albedo"},
       {"--g-forward", &F::g_forward, "clouds.phase_g_forward", TO(clouds.phase_g_forward), "G",
-       "forward phase lobe asymmetry, [0, 1)"},
+       "forward phase lobe asymmetry"},
       {"--g-backward", &F::g_backward, "clouds.phase_g_backward", TO(clouds.phase_g_backward), "G",
-       "backward phase lobe asymmetry, (-1, 0]"},
+       "backward phase lobe asymmetry"},
       {"--lobe-weight", &F::lobe_weight, "clouds.phase_lobe_weight", TO(clouds.phase_lobe_weight),
-       "W", "weight of the forward lobe, [0, 1]"},
+       "W", "weight of the forward lobe"},
       {"--powder", &F::powder, "clouds.powder_strength", TO(clouds.powder_strength), "X",
-       "powder effect strength, [0, 1]"},
+       "powder effect strength"},
       {"--ambient", &F::ambient, "clouds.ambient_strength", TO(clouds.ambient_strength), "X",
-       "sky ambient light on clouds, >= 0"},
+       "sky ambient light on clouds"},
       {"--two-stream-light", &F::two_stream_light, "clouds.two_stream_light",
        TO(clouds.two_stream_light), "true|false",
        "false: Wrenninge's octaves, powder and a conservative diffuse term (default); true "
@@ -138,7 +138,7 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--detail-drift-mps", &F::detail_drift_mps, "clouds.detail_drift_mps",
        TO(clouds.detail_drift_mps), "E,N,U", "the detail noise's motion over the clouds (m/s): east, north, up"},
       {"--flow-speed-mps", &F::flow_speed_mps, "clouds.flow_speed_mps", TO(clouds.flow_speed_mps),
-       "V", "flow map swirls' speed (m/s), >= 0 (0: none)"},
+       "V", "flow map swirls' speed (m/s); 0 = none"},
       {"--high-coverage", &F::high_coverage, "high_clouds.coverage", TO(high_clouds.coverage), "C",
        "second, high volumetric layer's coverage, [0, 1] (0: none)"},
       {"--high-cloud-type", &F::high_cloud_type, "high_clouds.type", TO(high_clouds.type), "T",
@@ -154,7 +154,7 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--cirrus-coverage", &F::cirrus_coverage, "cirrus.coverage", TO(cirrus.coverage), "C",
        "cirrus sheet coverage, [0, 1] (0: none)"},
       {"--cirrus-type", &F::cirrus_type, "cirrus.type", TO(cirrus.type), "T",
-       "[0, 1]: 0 cirrus, 0.5 cirrostratus, 1 cirrocumulus"},
+       "0 cirrus, 0.5 cirrostratus, 1 cirrocumulus"},
       {"--cirrus-altitude-m", &F::cirrus_altitude_m, "cirrus.altitude_m", TO(cirrus.altitude_m),
        "M", "cirrus sheet altitude above the ground (m), above the cloud layer"},
       {"--weather-evolution-s", &F::weather_evolution_s, "clouds.weather_evolution_s",
@@ -171,16 +171,16 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--time-s", &F::time_s, "time_s", TO(time_s), "T", "animation time (s) after --time"},
       {"--seed", &F::seed, "noise_seed", TO(noise_seed), "N", "noise seed, [0, 4294967295]"},
       {"--steps", &F::steps, "quality.primary_steps", TO(quality.primary_steps), "N",
-       "march steps through the cloud layer, [1, 1024]"},
+       "march steps through the cloud layer"},
       {"--light-steps", &F::light_steps, "quality.light_steps", TO(quality.light_steps), "N",
-       "light march steps towards the sun, [1, 64]"},
+       "light march steps towards the sun"},
       {"--march-stride", &F::march_stride, "quality.march_stride", TO(quality.march_stride), "N",
        "animations march one pixel of each NxN block per frame and reproject the rest: 1, 2 or 4"},
       {"--cloud-downsample", &F::cloud_downsample, "quality.cloud_downsample",
-       TO(quality.cloud_downsample), "N", "clouds at 1/N of the image resolution per axis, [1, 4]"},
+       TO(quality.cloud_downsample), "N", "clouds at 1/N of the image resolution per axis"},
       {"--light-volume-km", &F::light_volume_km, "quality.light_volume_km",
        TO(quality.light_volume_km), "KM",
-       "light volume half extent (km), [0, 1000]; 0 = march every light ray"},
+       "light volume half extent (km); 0 = march every light ray"},
       {"--light-shafts", &F::light_shafts, "quality.light_shafts", TO(quality.light_shafts),
        "volumetric|screen|off",
        "light shafts: volumetric (the air's light shadowed by the clouds), screen (seed 002's "
@@ -220,15 +220,15 @@ const std::vector<FlagSpec>& flag_specs() {
        "sky model: hillaire (default), preetham (seed 002's analytic sky), reference (brute "
        "force, slow)"},
       {"--turbidity", &F::turbidity, "atmosphere.turbidity", TO(atmosphere.turbidity), "T",
-       "Preetham sky's turbidity, [2, 10]"},
+       "Preetham sky's turbidity"},
       {"--conditions", &F::conditions, "conditions.mode", TO(conditions.mode),
        "off|artist|overlay",
        "time-of-day keyframes (seed 003): artist = instead of the physical sky, overlay = their "
        "fog and stars on top of it"},
       {"--weather", &F::weather, "conditions.weather", TO(conditions.weather), "W",
-       "keyframes' weather, [0, 1]: 1 good, 0 bad"},
+       "keyframes' weather: 1 good, 0 bad"},
       {"--hour", &F::hour, "conditions.hour", TO(conditions.hour), "H",
-       "keyframes' local solar time [0, 24); default: from --time and --lon-deg"},
+       "keyframes' local solar time; default: from --time and --lon-deg"},
       {"--auto-exposure", &F::auto_exposure, "output.auto_exposure", TO(output.auto_exposure),
        "true|false",
        "expose each frame by a meter within --ev100-min..--ev100-max (true, the default) or at "
@@ -241,16 +241,16 @@ const std::vector<FlagSpec>& flag_specs() {
        "manual exposure at ISO 100, [-20, 30] (15 sunny day, 9 sunset, 4 civil twilight, -2.5 "
        "full moon); turns auto exposure off unless --auto-exposure true"},
       {"--ev100-min", &F::ev100_min, "output.ev100_min", TO(output.ev100_min), "EV",
-       "auto exposure's lower limit, [-20, 30]"},
+       "auto exposure's lower limit"},
       {"--ev100-max", &F::ev100_max, "output.ev100_max", TO(output.ev100_max), "EV",
-       "auto exposure's upper limit, [-20, 30]"},
+       "auto exposure's upper limit"},
       {"--exposure-compensation-ev", &F::exposure_compensation_ev,
        "output.exposure_compensation_ev", TO(output.exposure_compensation_ev), "EV",
-       "auto exposure's compensation, [-10, 10]; + brightens"},
+       "auto exposure's compensation; + brightens"},
       {"--adaptation-ev-per-s", &F::adaptation_ev_per_s, "output.adaptation_ev_per_s",
        TO(output.adaptation_ev_per_s), "R",
        "auto exposure's adaptation between the frames of a sequence (EV per second of scene "
-       "time), [0, 1e6]; 0 = at once"},
+       "time); 0 = at once"},
       {"--exposure", &F::exposure, "", {}, "X",
        "the old linear exposure: --ev100 log2(5333 / X), manual; use --ev100"},
   };
@@ -542,11 +542,27 @@ VoxelCloudParams parse_voxel_cloud_spec(const std::string& spec) {
   return cloud;
 }
 
+const SceneParameter* find_scene_parameter(std::string_view key) {
+  for (const SceneParameter& p : scene_parameters())
+    if (p.key == key) return &p;
+  return nullptr;
+}
+
+std::vector<std::pair<std::string, std::string>> scene_flag_keys() {
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (const FlagSpec& spec : flag_specs())
+    if (*spec.key) pairs.emplace_back(spec.flag, spec.key);
+  return pairs;
+}
+
 void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
   for (const FlagSpec& spec : flag_specs()) {
     auto member = spec.member;
     std::string help = spec.help;
     if (spec.member == &SceneFlags::preset) help += "; one of: " + join(preset_names());
+    // What is allowed is declared once, with the scene field the flag sets.
+    if (const SceneParameter* p = find_scene_parameter(spec.key); p && !p->allowed_values.empty())
+      help += "; allowed: " + p->allowed_values;
     cmd.add_option_function<std::string>(
            spec.flag, [&flags, member](const std::string& value) { flags.*member = value; }, help)
         ->type_name(spec.type_name)

@@ -3,9 +3,12 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "nephele/scene.h"
+#include "nephele/scene_io.h"
 
 namespace CLI {
 class App;
@@ -44,6 +47,12 @@ struct SceneFlags {
 // One --voxel-cloud SPEC as a voxel cloud (the other fields at their defaults); throws an
 // InputError naming --voxel-cloud, the value and the accepted forms.
 VoxelCloudParams parse_voxel_cloud_spec(const std::string& spec);
+
+// Every flag that sets one scene key, as (flag, key): ("--coverage", "clouds.coverage").
+std::vector<std::pair<std::string, std::string>> scene_flag_keys();
+
+// The scene parameter of a key (scene_parameters()), nullptr for none.
+const SceneParameter* find_scene_parameter(std::string_view key);
 
 // Registers --scene, --preset and the scene overrides on `cmd`, writing into `flags`.
 void add_scene_flags(CLI::App& cmd, SceneFlags& flags);

@@ -41,6 +41,22 @@ void tooltip(const SceneParameter& p) {
   ImGui::EndTooltip();
 }
 
+// The drag's limits from the parameter's declared range (0, 0: none). An open end is nudged
+// inside; an "off" value outside the range widens it, so that the drag can reach it.
+void drag_limits(const SceneParameter& p, float& low, float& high) {
+  low = high = 0.0f;
+  if (std::isnan(p.min) || std::isnan(p.max)) return;
+  double min = p.min, max = p.max;
+  if (p.off) {
+    min = std::min(min, *p.off);
+    max = std::max(max, *p.off);
+  }
+  low = float(min);
+  high = float(max);
+  if (p.min_open && !(p.off && *p.off <= p.min)) low = std::nextafter(low, high);
+  if (p.max_open && !(p.off && *p.off >= p.max)) high = std::nextafter(high, low);
+}
+
 // One widget; returns the new TOML text when it was edited, "" otherwise.
 std::string draw_widget(const SceneParameter& p, const std::string& label, const std::string& value) {
   using K = SceneValueKind;
@@ -48,7 +64,9 @@ std::string draw_widget(const SceneParameter& p, const std::string& label, const
     case K::kFloat: {
       const std::vector<double> n = parse_numbers(value);
       float v = n.empty() ? 0.0f : float(n[0]);
-      if (ImGui::DragFloat(label.c_str(), &v, drag_speed(v), 0.0f, 0.0f, "%.6g"))
+      float low, high;
+      drag_limits(p, low, high);
+      if (ImGui::DragFloat(label.c_str(), &v, drag_speed(v), low, high, "%.6g"))
         return float_literal(v);
       break;
     }
@@ -62,15 +80,19 @@ std::string draw_widget(const SceneParameter& p, const std::string& label, const
         v[i] = float(n[size_t(i)]);
         largest = std::max(largest, std::fabs(n[size_t(i)]));
       }
+      float low, high;
+      drag_limits(p, low, high);
       const bool edited =
-          count == 2 ? ImGui::DragFloat2(label.c_str(), v, drag_speed(largest), 0.0f, 0.0f, "%.5g")
-                     : ImGui::DragFloat3(label.c_str(), v, drag_speed(largest), 0.0f, 0.0f, "%.5g");
+          count == 2 ? ImGui::DragFloat2(label.c_str(), v, drag_speed(largest), low, high, "%.5g")
+                     : ImGui::DragFloat3(label.c_str(), v, drag_speed(largest), low, high, "%.5g");
       if (edited) return vector_literal(v, count);
       break;
     }
     case K::kInt: {
       int v = int(std::strtol(value.c_str(), nullptr, 10));
-      if (ImGui::DragInt(label.c_str(), &v, 0.25f)) return std::to_string(v);
+      float low, high;
+      drag_limits(p, low, high);
+      if (ImGui::DragInt(label.c_str(), &v, 0.25f, int(low), int(high))) return std::to_string(v);
       break;
     }
     case K::kUint: {

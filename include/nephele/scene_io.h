@@ -15,6 +15,7 @@
 
 #include <functional>
 #include <glm/vec3.hpp>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -79,6 +80,18 @@ struct SceneParameter {
   SceneValueKind kind = SceneValueKind::kFloat;
   std::vector<std::string> allowed;  // kEnum only: the allowed values, unquoted
   std::string note;                  // units and range, as scene_to_toml's comment; may be empty
+  // Declared with the field once; validate_scene, the CLI, the viewer and the scene reference
+  // (docs/scene-reference.md) all use the same.
+  std::string meaning;         // the note without the allowed values
+  std::string allowed_values;  // "[0, 1]", "0 or [1, 1e+07]", "1, 2 or 4"; "" = any of the type
+  std::string unit;            // from the key's suffix: "m", "deg", "m/s", ...; "" = none
+  // Numbers: the range, NaN when there is none (either end open as flagged); `off`, when set,
+  // is one more value allowed outside it (0 for "0 or [1, 1e+07]").
+  double min = std::numeric_limits<double>::quiet_NaN();
+  double max = std::numeric_limits<double>::quiet_NaN();
+  bool min_open = false, max_open = false;
+  std::optional<double> off;
+  std::string default_value;  // TOML literal text of Scene{}'s value (no preset)
 };
 
 // In scene_to_toml's order: time, time_s, noise_seed, then [location], [camera], [sun], ...

@@ -1,19 +1,20 @@
 // nephele — the table of scene keys, MarchMode names, number formatting.
 #include "scene/scene_fields.h"
-#include "voxel/voxel_grid.h"
 
 #include <cctype>
 #include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <type_traits>
+#include <utility>
 
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
+#include "voxel/voxel_grid.h"
 
 namespace nephele {
 
@@ -127,7 +128,9 @@ std::string cloud_model_names(bool quoted) {
   const size_t n = std::size(kCloudModels);
   for (size_t i = 0; i < n; ++i) {
     names += i == 0 ? "" : (i + 1 == n ? " or " : ", ");
-    names += quoted ? "\"" + std::string(to_string(kCloudModels[i])) + "\"" : to_string(kCloudModels[i]);
+    if (quoted) names += '"';
+    names += to_string(kCloudModels[i]);
+    if (quoted) names += '"';
   }
   return names;
 }
@@ -166,21 +169,22 @@ std::optional<VoxelShadow> parse_voxel_shadow(std::string_view text) {
 
 namespace scene_detail {
 
-// FIELD(camera, fov_deg, note) is the key camera.fov_deg for Scene::camera.fov_deg; the unary +
-// turns the capture-less lambda into the function pointer that FieldAccess holds.
-#define FIELD(section, name, note)   \
-  Field {                            \
-#name, +[](Scene & s) -> auto& { \
-      return s.section.name;         \
-    }                                \
-    , note                           \
+// FIELD(camera, fov_deg, note[, range[, choices]]) is the key camera.fov_deg for
+// Scene::camera.fov_deg; the unary + turns the capture-less lambda into the function pointer
+// that FieldAccess holds.
+#define FIELD(section, name, note, ...) \
+  Field {                               \
+#name, +[](Scene & s) -> auto& {    \
+      return s.section.name;            \
+    }                                   \
+    , note __VA_OPT__(, ) __VA_ARGS__   \
   }
-#define TOP_FIELD(name, note)        \
-  Field {                            \
-#name, +[](Scene & s) -> auto& { \
-      return s.name;                 \
-    }                                \
-    , note                           \
+#define TOP_FIELD(name, note, ...)    \
+  Field {                             \
+#name, +[](Scene & s) -> auto& {  \
+      return s.name;                  \
+    }                                 \
+    , note __VA_OPT__(, ) __VA_ARGS__ \
   }
 
 // The keyframe tables: [conditions.good.night] ... [conditions.bad.late_evening], one section
@@ -201,29 +205,38 @@ std::string_view keyframe_section_name(int table, int key) {
   return names[size_t(table * kKeyframeCount + key)];
 }
 
-#define KEY_FIELD(member, note)                                         \
-  Field {                                                               \
-#member, +[](Scene & s) -> auto& { return keyframe_of<T, K>(s).set.member; }, note \
+#define KEY_FIELD(member, note)               \
+  Field {                                     \
+#member, +[](Scene & s) -> auto& {        \
+      return keyframe_of<T, K>(s).set.member; \
+    }                                         \
+    , note                                    \
   }
 
 template <int T, int K>
 Section keyframe_section() {
   return {keyframe_section_name(T, K),
-          {Field{"hour", +[](Scene& s) -> auto& { return keyframe_of<T, K>(s).hour; },
-                 "local solar time, [0, 24), increasing through the table"},
-           KEY_FIELD(sky_zenith_rgb, "sky colour (HDR; a clear day's zenith is about 1)"),
-           KEY_FIELD(sky_fog_rgb, "fog on the sky near the horizon"),
-           KEY_FIELD(sky_fog_start_deg, "fully fogged at and below this elevation"),
-           KEY_FIELD(sky_fog_end_deg, "no fog from this elevation up"),
-           KEY_FIELD(disk_fog_rgb, "fog on the sun and moon discs"),
-           KEY_FIELD(disk_fog_start_deg, ""), KEY_FIELD(disk_fog_end_deg, ""),
-           KEY_FIELD(star_visibility, "[0, 1]"),
-           KEY_FIELD(sun_light_rgb, "sunlight on clouds and ground"),
-           KEY_FIELD(moon_light_rgb, "moonlight on clouds and ground"),
-           KEY_FIELD(ambient_rgb, "sky light on clouds and ground"),
-           KEY_FIELD(fog_rgb, "fog on clouds and ground"), KEY_FIELD(fog_near_m, ""),
-           KEY_FIELD(fog_far_m, "")},
-          {}};
+          {Field{"hour", +[](Scene & s) -> auto& {return keyframe_of<T, K>(s).hour;
+}
+, "local solar time, [0, 24), increasing through the table"
+}  // namespace scene_detail
+, KEY_FIELD(sky_zenith_rgb, "sky colour (HDR; a clear day's zenith is about 1)"),
+    KEY_FIELD(sky_fog_rgb, "fog on the sky near the horizon"),
+    KEY_FIELD(sky_fog_start_deg, "fully fogged at and below this elevation"),
+    KEY_FIELD(sky_fog_end_deg, "no fog from this elevation up"),
+    KEY_FIELD(disk_fog_rgb, "fog on the sun and moon discs"),
+    KEY_FIELD(disk_fog_start_deg, "the discs fully fogged at and below this elevation"),
+    KEY_FIELD(disk_fog_end_deg, "no fog on the discs from this elevation up"),
+    KEY_FIELD(star_visibility, "[0, 1]"), KEY_FIELD(sun_light_rgb, "sunlight on clouds and ground"),
+    KEY_FIELD(moon_light_rgb, "moonlight on clouds and ground"),
+    KEY_FIELD(ambient_rgb, "sky light on clouds and ground"),
+    KEY_FIELD(fog_rgb, "fog on clouds and ground"),
+    KEY_FIELD(fog_near_m, "fog starts at this distance"),
+    KEY_FIELD(fog_far_m, "fully fogged from this distance")
+}  // namespace nephele
+, {}
+}
+;
 }
 #undef KEY_FIELD
 
@@ -234,277 +247,389 @@ void append_keyframe_sections(std::vector<Section>& sections, std::integer_seque
 
 const std::vector<Section>& scene_sections() {
   static const std::vector<Section> sections = [] {
-  std::vector<Section> list = {
-      {"",
-       {TOP_FIELD(time, "date and time, ISO 8601 (\"2026-06-21T18:30:00Z\"); \"\" = none"),
-        TOP_FIELD(time_s, "animation time (s) after `time`, [-1e6, 1e6]; clouds move with the wind"),
-        TOP_FIELD(noise_seed, "seeds the noise textures and the procedural weather map")},
-       {"preset"}},
-      {"location",
-       {FIELD(location, lat_deg, "latitude, [-90, 90], north positive"),
-        FIELD(location, lon_deg, "longitude, [-180, 360], east positive"),
-        FIELD(location, altitude_m, "the ground's height above sea level")},
-       {}},
-      {"camera",
-       {FIELD(camera, position_m, "east, north, up (m); east and north in [-1e9, 1e9], up in [0, 1e9]"),
-        FIELD(camera, view_dir, "looking direction, ENU, length in [1e-6, 1e6]"),
-        FIELD(camera, fov_deg,
-              "vertical field of view, [0.01, 180); unless horizontal_fov_deg or "
-              "focal_length_mm is given"),
-        FIELD(camera, horizontal_fov_deg,
-              "0 or [0.01, 180): horizontal field of view, the vertical from the aspect"),
-        FIELD(camera, focal_length_mm,
-              "0 or [0.1, 1e5]: lens, horizontal fov 2 atan(sensor_width_mm / 2f)"),
-        FIELD(camera, sensor_width_mm, "[1, 1000]; 36 = full frame"),
-        FIELD(camera, roll_deg,
-              "about view_dir, [-180, 180]; positive turns the camera clockwise (the horizon "
-              "rises to the right)")},
-       {"altitude_m"}},
-      {"sun",
-       {FIELD(sun, from_time, "true: placed by the ephemeris for time and location"),
-        FIELD(sun, direction, "towards the sun, ENU (when from_time is false)"),
-        FIELD(sun, illuminance_lux,
-              "sunlight at the top of the atmosphere (lux), [0, 1e10]; 128000 the solar constant; "
-              "radiances are then in cd/m^2"),
-        FIELD(sun, disk_angular_radius_deg, "apparent radius of the sun disk, [0, 20]")},
-       {"elevation_deg", "azimuth_deg", "illuminance"}},
-      {"atmosphere",
-       {FIELD(atmosphere, model,
-              "hillaire (LUTs, multiple scattering), preetham (analytic, seed 002) or reference "
-              "(brute force, slow)"),
-        FIELD(atmosphere, planet_radius_km, "[1000, 10000]"),
-        FIELD(atmosphere, atmosphere_height_km, "top of the atmosphere above ground, [1, 1000]"),
-        FIELD(atmosphere, rayleigh_scattering_per_m, "sigma_s at sea level, rgb, [0, 0.01]"),
-        FIELD(atmosphere, rayleigh_scale_height_m, "[100, 1e5]"),
-        FIELD(atmosphere, mie_scattering_per_m, "sigma_s at sea level, [0, 0.01]"),
-        FIELD(atmosphere, mie_extinction_per_m, "sigma_t at sea level, >= mie_scattering_per_m, <= 0.01"),
-        FIELD(atmosphere, mie_scale_height_m, "[100, 1e5]"),
-        FIELD(atmosphere, mie_g, "Cornette-Shanks asymmetry, [0, 0.999]"),
-        FIELD(atmosphere, ozone_absorption_per_m, "sigma_a at the ozone layer's peak, rgb, [0, 0.01]"),
-        FIELD(atmosphere, ozone_peak_altitude_m, "[0, 1e6]"),
-        FIELD(atmosphere, ozone_half_width_m, "density falls linearly to 0 this far from the peak, [0, 1e6]"),
-        FIELD(atmosphere, ground_albedo, "Lambertian ground, [0, 1]"),
-        FIELD(atmosphere, turbidity, "Preetham model's haze, [2, 10]"),
-        FIELD(atmosphere, view_samples, "samples along each sky-view LUT ray, [1, 256]"),
-        FIELD(atmosphere, angular_multiple_scattering,
-              "true: multiple scattering with its angular dependence; false: Hillaire 2020's "
-              "isotropic approximation")},
-       {}},
-      {"cirrus",
-       {FIELD(cirrus, altitude_m, "above ground, [0, 1e6], above the volumetric layers when coverage > 0"),
-        FIELD(cirrus, coverage, "[0, 1]; 0 = none"),
-        FIELD(cirrus, type, "0 cirrus, 0.5 cirrostratus, 1 cirrocumulus"),
-        FIELD(cirrus, optical_depth, "vertical, where densest, [0, 4]"),
-        FIELD(cirrus, wind_mps, "east, north (m/s), [-200, 200] each")},
-       {}},
-      {"clouds",
-       {FIELD(clouds, model,
-              "\"nephele\" (its noise clouds) or a classical model of seed 004 drawing the same "
-              "layer: \"blinn\", \"gardner\" or \"kajiya\" (see [classic])"),
-        FIELD(clouds, bottom_altitude_m, "above ground, [0, 1e6]"),
-        FIELD(clouds, top_altitude_m, "above ground, > bottom_altitude_m"),
-        FIELD(clouds, coverage, "[0, 1]"),
-        FIELD(clouds, type, "0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus, 1 cumulonimbus"),
-        FIELD(clouds, precipitation, "[0, 1]: grows cumulonimbus"),
-        FIELD(clouds, density, "[0, 1]"),
-        FIELD(clouds, extinction_per_m, "sigma_t at density 1, (0, 100]"),
-        FIELD(clouds, attenuation, "sigma_t multiplier along view rays, [0, 100]"),
-        FIELD(clouds, light_attenuation, "sigma_t multiplier along light rays, [0, 100]"),
-        FIELD(clouds, albedo, "[0, 1]"), FIELD(clouds, phase_g_forward, "[0, 1)"),
-        FIELD(clouds, phase_g_backward, "(-1, 0]"),
-        FIELD(clouds, phase_lobe_weight, "weight of the forward lobe, [0, 1]"),
-        FIELD(clouds, powder_strength, "[0, 1]"), FIELD(clouds, ambient_strength, "[0, 100]"),
-        FIELD(clouds, two_stream_light,
-              "false: Wrenninge's octaves, the powder term and a conservative diffuse term; true "
-              "(experimental): single scattering and the two-stream field along the sun's chord"),
-        FIELD(clouds, wind_mps, "east, north (m/s), at the layer's bottom, [-200, 200] each"),
-        FIELD(clouds, wind_shear_mps, "east, north (m/s): the wind's growth up to the top"),
-        FIELD(clouds, wind_skew_s, "[0, 3600]: tops lean downwind as if carried h x this longer (seed: 200)"),
-        FIELD(clouds, detail_drift_mps, "east, north, up (m/s): the detail noise's motion over the clouds"),
-        FIELD(clouds, curl_distortion_m, "[0, 1e4]: curl noise displacement of the detail noise"),
-        FIELD(clouds, flow_speed_mps, "[0, 200]: flow map swirls; 0 = none"),
-        FIELD(clouds, flow_cycle_s, "[1, 86400]: the flow's two phases restart every this"),
-        FIELD(clouds, base_noise_period_m, "[10, 1e6]"),
-        FIELD(clouds, detail_noise_period_m, "[1, 1e5]"), FIELD(clouds, detail_erosion, "[0, 1]"),
-        FIELD(clouds, weather_period_m, "[1e3, 1e7]: the weather map's square tile on the ground (m), repeated"),
-        FIELD(clouds, weather_evolution_s, "0 (static) or [1, 1e7]; the weather map's clusters form and dissipate over this time"),
-        FIELD(clouds, weather_map, "RGBA PNG path (R coverage, G storm cells, B type around clouds.type, A density x 2); row 0 north, columns west to east, centre at east 0, north 0 and moving with the wind; empty = procedural")},
-       {}},
-      {"high_clouds",
-       {FIELD(high_clouds, bottom_altitude_m, "above ground, >= clouds.top_altitude_m when coverage > 0"),
-        FIELD(high_clouds, top_altitude_m, "above ground, > bottom_altitude_m"),
-        FIELD(high_clouds, coverage, "[0, 1]; 0 = no high layer"),
-        FIELD(high_clouds, type, "as clouds.type; 0.5 altocumulus"),
-        FIELD(high_clouds, density, "[0, 1]"),
-        FIELD(high_clouds, wind_mps, "east, north (m/s), [-200, 200] each")},
-       {}},
-      {"quality",
-       {FIELD(quality, mode, "\"default\" or \"baseline\""),
-        FIELD(quality, primary_steps, "[1, 1024]"), FIELD(quality, light_steps, "[1, 64]"),
-        FIELD(quality, march_stride, "1, 2 or 4: one pixel per stride^2 block marched per frame"),
-        FIELD(quality, cloud_downsample, "cloud buffer = image / this per axis, [1, 4]"),
-        FIELD(quality, light_volume_km,
-              "light volume half extent (km), [0, 1000]; 0 = march every light ray"),
-        FIELD(quality, voxel_march,
-              "\"three-phase\" (SDF sphere tracing across the voxel clouds' empty space) or "
-              "\"plain\" (the noise clouds' march everywhere)"),
-        FIELD(quality, voxel_shadow,
-              "\"march\" (light march through the voxel clouds) or \"sdf-cone\" (cone traced "
-              "through their distance field)"),
-        FIELD(quality, sdf_light_tangent, "the SDF cone's half-angle tangent, [0.001, 10]"),
-        FIELD(quality, light_shafts,
-              "volumetric (the air's light shadowed by the clouds: beams below broken clouds), "
-              "screen (seed 002's screen-space god rays and radial blur) or off"),
-        FIELD(quality, screen_shaft_samples, "screen: samples towards the sun (and of the radial blur), [1, 128]"),
-        FIELD(quality, screen_shaft_strength, "screen: the rays' strength, [0, 10]"),
-        FIELD(quality, screen_shaft_decay, "screen: each sample's weight over the one before, [0, 1]")},
-       {}},
-      {"output",
-       {FIELD(output, width, "pixels, [1, 16384]"), FIELD(output, height, "pixels, [1, 16384]"),
-        FIELD(output, auto_exposure,
-              "true: expose by a meter (log-average luminance) within ev100_min..ev100_max; "
-              "false: at ev100"),
-        FIELD(output, ev100, "manual exposure value at ISO 100, [-20, 30]: 15 sunny day, 12 "
-                             "overcast, 9 sunset, 4 civil twilight, -2.5 full moon"),
-        FIELD(output, ev100_min, "auto exposure's lower limit, [-20, 30]: darker nights stay dark"),
-        FIELD(output, ev100_max, "auto exposure's upper limit, [-20, 30], >= ev100_min"),
-        FIELD(output, exposure_compensation_ev, "auto exposure: + brightens, [-10, 10]"),
-        FIELD(output, tonemap,
+    std::vector<Section> list = {
+        {"",
+         {TOP_FIELD(time, "date and time, ISO 8601 (\"2026-06-21T18:30:00Z\"); \"\" = none"),
+          TOP_FIELD(time_s, "animation time (s) after `time`; clouds move with the wind",
+                    closed(-1e6, 1e6)),
+          TOP_FIELD(noise_seed, "seeds the noise textures and the procedural weather map")},
+         {"preset"}},
+        {"location",
+         {FIELD(location, lat_deg, "latitude, north positive", closed(-90, 90)),
+          FIELD(location, lon_deg, "longitude, east positive", closed(-180, 360)),
+          FIELD(location, altitude_m, "the ground's height above sea level", closed(-500, 9000))},
+         {}},
+        {"camera",
+         {FIELD(camera, position_m,
+                "east, north, up (m); east and north in [-1e9, 1e9], up in [0, 1e9]"),
+          FIELD(camera, view_dir, "looking direction, ENU, length in [1e-6, 1e6]"),
+          FIELD(camera, fov_deg,
+                "vertical field of view; unless horizontal_fov_deg or focal_length_mm is given",
+                right_open(0.01, 180)),
+          FIELD(camera, horizontal_fov_deg,
+                "horizontal field of view, the vertical from the aspect",
+                or_off(0, right_open(0.01, 180))),
+          FIELD(camera, focal_length_mm, "lens, horizontal fov 2 atan(sensor_width_mm / 2f)",
+                or_off(0, closed(0.1, 1e5))),
+          FIELD(camera, sensor_width_mm, "36 = full frame", closed(1, 1000)),
+          FIELD(camera, roll_deg,
+                "about view_dir; positive turns the camera clockwise (the horizon rises to the "
+                "right)",
+                closed(-180, 180))},
+         {"altitude_m"}},
+        {"sun",
+         {FIELD(sun, from_time, "true: placed by the ephemeris for time and location"),
+          FIELD(sun, direction, "towards the sun, ENU (when from_time is false)"),
+          FIELD(sun, illuminance_lux,
+                "sunlight at the top of the atmosphere (lux); 128000 the solar constant; radiances "
+                "are then in cd/m^2",
+                closed(0, 1e10)),
+          FIELD(sun, disk_angular_radius_deg, "apparent radius of the sun disk", closed(0, 20))},
+         {"elevation_deg", "azimuth_deg", "illuminance"}},
+        {"atmosphere",
+         {FIELD(atmosphere, model,
+                "hillaire (LUTs, multiple scattering), preetham (analytic, seed 002) or reference "
+                "(brute force, slow)"),
+          FIELD(atmosphere, planet_radius_km, "the planet's radius (Earth 6360)",
+                closed(1000, 10000)),
+          FIELD(atmosphere, atmosphere_height_km, "top of the atmosphere above ground",
+                closed(1, 1000)),
+          FIELD(atmosphere, rayleigh_scattering_per_m, "sigma_s at sea level, rgb",
+                closed(0, 0.01)),
+          FIELD(atmosphere, rayleigh_scale_height_m,
+                "the air molecules' density falls by e over this height", closed(100, 100000)),
+          FIELD(atmosphere, mie_scattering_per_m, "sigma_s at sea level", closed(0, 0.01)),
+          FIELD(atmosphere, mie_extinction_per_m, "sigma_t at sea level, >= mie_scattering_per_m",
+                closed(0, 0.01)),
+          FIELD(atmosphere, mie_scale_height_m, "the aerosols' density falls by e over this height",
+                closed(100, 100000)),
+          FIELD(atmosphere, mie_g, "Cornette-Shanks asymmetry", closed(0, 0.999)),
+          FIELD(atmosphere, ozone_absorption_per_m, "sigma_a at the ozone layer's peak, rgb",
+                closed(0, 0.01)),
+          FIELD(atmosphere, ozone_peak_altitude_m, "the ozone layer's densest altitude",
+                closed(0, 1e6)),
+          FIELD(atmosphere, ozone_half_width_m,
+                "density falls linearly to 0 this far from the peak", closed(0, 1e6)),
+          FIELD(atmosphere, ground_albedo, "Lambertian ground", closed(0, 1)),
+          FIELD(atmosphere, turbidity, "Preetham model's haze", closed(2, 10)),
+          FIELD(atmosphere, view_samples, "samples along each sky-view LUT ray", closed(1, 256)),
+          FIELD(atmosphere, angular_multiple_scattering,
+                "true: multiple scattering with its angular dependence; false: Hillaire 2020's "
+                "isotropic approximation")},
+         {}},
+        {"cirrus",
+         {FIELD(cirrus, altitude_m, "above ground, above the volumetric layers when coverage > 0",
+                closed(0, 1e6)),
+          FIELD(cirrus, coverage, "share of the sky the sheet covers; 0 = none", closed(0, 1)),
+          FIELD(cirrus, type, "0 cirrus, 0.5 cirrostratus, 1 cirrocumulus", closed(0, 1)),
+          FIELD(cirrus, optical_depth, "vertical, where densest", closed(0, 4)),
+          FIELD(cirrus, wind_mps, "east, north (m/s)", closed(-200, 200))},
+         {}},
+        {"clouds",
+         {FIELD(clouds, model,
+                "nephele (its noise clouds) or a classical model of seed 004 drawing the same "
+                "layer (see [classic])"),
+          FIELD(clouds, bottom_altitude_m, "above ground", closed(0, 1e6)),
+          FIELD(clouds, top_altitude_m, "above ground, > bottom_altitude_m", closed(0, 1e6)),
+          FIELD(clouds, coverage, "share of the sky the layer covers", closed(0, 1)),
+          FIELD(clouds, type,
+                "0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus, 1 cumulonimbus",
+                closed(0, 1)),
+          FIELD(clouds, precipitation, "grows cumulonimbus", closed(0, 1)),
+          FIELD(clouds, density,
+                "scales the clouds' density (sigma_t = density x extinction_per_m)", closed(0, 1)),
+          FIELD(clouds, extinction_per_m, "sigma_t at density 1", left_open(0, 100)),
+          FIELD(clouds, attenuation, "sigma_t multiplier along view rays", closed(0, 100)),
+          FIELD(clouds, light_attenuation, "sigma_t multiplier along light rays", closed(0, 100)),
+          FIELD(clouds, albedo, "single-scattering albedo (water droplets: 0.99 and more)",
+                closed(0, 1)),
+          FIELD(clouds, phase_g_forward, "Henyey-Greenstein asymmetry of the forward lobe",
+                right_open(0, 1)),
+          FIELD(clouds, phase_g_backward, "Henyey-Greenstein asymmetry of the backward lobe",
+                left_open(-1, 0)),
+          FIELD(clouds, phase_lobe_weight, "weight of the forward lobe", closed(0, 1)),
+          FIELD(clouds, powder_strength, "the powder term: dark edges facing the sun",
+                closed(0, 1)),
+          FIELD(clouds, ambient_strength, "sky light on the clouds, times the sky's",
+                closed(0, 100)),
+          FIELD(clouds, two_stream_light,
+                "false: Wrenninge's octaves, the powder term and a conservative diffuse term; true "
+                "(experimental): single scattering and the two-stream field along the sun's chord"),
+          FIELD(clouds, wind_mps, "east, north (m/s), at the layer's bottom", closed(-200, 200)),
+          FIELD(clouds, wind_shear_mps, "east, north (m/s): the wind's growth up to the top",
+                closed(-200, 200)),
+          FIELD(clouds, wind_skew_s, "tops lean downwind as if carried h x this longer (seed: 200)",
+                closed(0, 3600)),
+          FIELD(clouds, detail_drift_mps,
+                "east, north, up (m/s): the detail noise's motion over the clouds",
+                closed(-200, 200)),
+          FIELD(clouds, curl_distortion_m, "curl noise displacement of the detail noise",
+                closed(0, 10000)),
+          FIELD(clouds, flow_speed_mps, "flow map swirls; 0 = none", closed(0, 200)),
+          FIELD(clouds, flow_cycle_s, "the flow's two phases restart every this", closed(1, 86400)),
+          FIELD(clouds, base_noise_period_m, "the base (Perlin-Worley) noise's tile on the ground",
+                closed(10, 1e6)),
+          FIELD(clouds, detail_noise_period_m, "the detail (Worley) noise's tile", closed(1, 1e5)),
+          FIELD(clouds, detail_erosion, "how much the detail noise erodes the base shape's edges",
+                closed(0, 1)),
+          FIELD(clouds, weather_period_m,
+                "the weather map's square tile on the ground (m), repeated", closed(1000, 1e7)),
+          FIELD(clouds, weather_evolution_s,
+                "the weather map's clusters form and dissipate over this time",
+                or_off(0, closed(1, 1e7))),
+          FIELD(clouds, weather_map,
+                "RGBA PNG path (R coverage, G storm cells, B type around clouds.type, A density x "
+                "2); row 0 north, columns west to east, centre at east 0, north 0 and moving with "
+                "the wind; empty = procedural")},
+         {}},
+        {"high_clouds",
+         {FIELD(high_clouds, bottom_altitude_m,
+                "above ground, >= clouds.top_altitude_m when coverage > 0", closed(0, 1e6)),
+          FIELD(high_clouds, top_altitude_m, "above ground, > bottom_altitude_m", closed(0, 1e6)),
+          FIELD(high_clouds, coverage, "0 = no high layer", closed(0, 1)),
+          FIELD(high_clouds, type, "as clouds.type; 0.5 altocumulus", closed(0, 1)),
+          FIELD(high_clouds, density, "as clouds.density", closed(0, 1)),
+          FIELD(high_clouds, wind_mps, "east, north (m/s)", closed(-200, 200))},
+         {}},
+        {"quality",
+         {FIELD(quality, mode, "\"default\" or \"baseline\""),
+          FIELD(quality, primary_steps, "march steps along a view ray through a layer",
+                closed(1, 1024)),
+          FIELD(quality, light_steps, "march steps along a ray towards the sun", closed(1, 64)),
+          FIELD(quality, march_stride, "1, 2 or 4: one pixel per stride^2 block marched per frame",
+                {}, {"1", "2", "4"}),
+          FIELD(quality, cloud_downsample, "cloud buffer = image / this per axis", closed(1, 4)),
+          FIELD(quality, light_volume_km,
+                "light volume half extent (km); 0 = march every light ray", closed(0, 1000)),
+          FIELD(quality, voxel_march,
+                "\"three-phase\" (SDF sphere tracing across the voxel clouds' empty space) or "
+                "\"plain\" (the noise clouds' march everywhere)"),
+          FIELD(quality, voxel_shadow,
+                "\"march\" (light march through the voxel clouds) or \"sdf-cone\" (cone traced "
+                "through their distance field)"),
+          FIELD(quality, sdf_light_tangent, "the SDF cone's half-angle tangent", closed(0.001, 10)),
+          FIELD(quality, light_shafts,
+                "volumetric (the air's light shadowed by the clouds: beams below broken clouds), "
+                "screen (seed 002's screen-space god rays and radial blur) or off",
+                {}, {"volumetric", "screen", "off"}),
+          FIELD(quality, screen_shaft_samples,
+                "screen: samples towards the sun (and of the radial blur)", closed(1, 128)),
+          FIELD(quality, screen_shaft_strength, "screen: the rays' strength", closed(0, 10)),
+          FIELD(quality, screen_shaft_decay, "screen: each sample's weight over the one before",
+                closed(0, 1))},
+         {}},
+        {"output",
+         {FIELD(output, width, "pixels", closed(1, 16384)),
+          FIELD(output, height, "pixels", closed(1, 16384)),
+          FIELD(output, auto_exposure,
+                "true: expose by a meter (log-average luminance) within ev100_min..ev100_max; "
+                "false: at ev100"),
+          FIELD(output, ev100,
+                "manual exposure value at ISO 100: 15 sunny day, 12 overcast, 9 sunset, 4 civil "
+                "twilight, -2.5 full moon",
+                closed(-20, 30)),
+          FIELD(output, ev100_min, "auto exposure's lower limit: darker nights stay dark",
+                closed(-20, 30)),
+          FIELD(output, ev100_max, "auto exposure's upper limit, >= ev100_min", closed(-20, 30)),
+          FIELD(output, exposure_compensation_ev, "auto exposure: + brightens", closed(-10, 10)),
+          FIELD(
+              output, tonemap,
               "the display's tone map: aces (default), agx, uncharted2 (the seed's filmic curve), "
               "reinhard or none"),
-        FIELD(output, bloom_strength,
-              "the share of the light the lens spreads (bloom and glare), [0, 1]; 0 = off; the "
-              "image's total light is kept"),
-        FIELD(output, bloom_threshold_cd_m2,
-              "only light above this luminance is spread (cd/m^2), [0, 1e12]; 0 = all of it"),
-        FIELD(output, bloom_radius_deg, "the spread's Gaussian sigma (deg of view), [0.01, 30]"),
-        FIELD(output, adaptation_ev_per_s,
-              "auto exposure's adaptation in sequences and the viewer (EV/s), [0, 1e6]; 0 = at "
-              "once")},
-       {"exposure"}},
-      {"conditions",
-       {FIELD(conditions, mode,
-              "off, artist (keyframes instead of the physical sky and lights) or overlay "
-              "(keyframes' fog and star visibility on the physical sky)"),
-        FIELD(conditions, weather, "[0, 1]: 1 good weather, 0 bad"),
-        FIELD(conditions, hour, "local solar time [0, 24); -1 = from time and location")},
-       {"good", "bad"}},
-      {"particle_clouds",
-       {FIELD(particle_clouds, coverage,
-              "[0, 1]: share of the grid's cells holding a particle (seed 003); 0 = no particle clouds"),
-        FIELD(particle_clouds, bottom_altitude_m, "the clouds' base above ground, [0, 1e5]"),
-        FIELD(particle_clouds, top_altitude_m, "their highest tops, > bottom_altitude_m"),
-        FIELD(particle_clouds, field_radius_m, "clouds within this distance of east 0, north 0, [100, 1e6]"),
-        FIELD(particle_clouds, cloud_spacing_m, "one cloud per square of this side, [100, 1e5]"),
-        FIELD(particle_clouds, cell_m, "the particles' grid (one particle per cell at most), [1, 1e4]"),
-        FIELD(particle_clouds, particle_radius_m, "a particle's radius where the noise is largest, [1, 1e4]"),
-        FIELD(particle_clouds, noise_period_m, "the Perlin noise's lattice spacing, [1, 1e6]"),
-        FIELD(particle_clouds, evolution_s,
-              "0 (static, 3D noise) or [1, 1e7]: time's scale in 4D noise; coverage stays as set"),
-        FIELD(particle_clouds, wind_mps, "east, north (m/s), [-200, 200] each"),
-        FIELD(particle_clouds, opacity, "a particle's opacity at its centre, [0, 1]"),
-        FIELD(particle_clouds, albedo, "single-scattering albedo, [0, 1]"),
-        FIELD(particle_clouds, phase_g, "Henyey-Greenstein asymmetry, (-1, 1)"),
-        FIELD(particle_clouds, rayleigh_phase,
-              "true: Harris and Lastra's Rayleigh phase (the seed's reference); false: "
-              "Henyey-Greenstein with phase_g"),
-        FIELD(particle_clouds, forward_solid_angle_sr,
-              "Harris and Lastra's gamma: the solid angle about the light's direction whose "
-              "scattered light goes on with it, [0, 4 pi]"),
-        FIELD(particle_clouds, diffuse_strength,
-              "[0, 10]: the multiply scattered light, an isotropic radiance albedo x I_k x "
-              "sunlight / pi times this; 0 = Harris and Lastra's model alone"),
-        FIELD(particle_clouds, light_buffer, "the CPU lighting's splat buffer, 32 or 64 texels a side"),
-        FIELD(particle_clouds, layer_resolution,
-              "the particle layer's pixels per output pixel along each axis, [0.25, 1]; drawn "
-              "at this resolution and filtered up when composed"),
-        FIELD(particle_clouds, seed, "seeds the noise and the particles' offsets"),
-        FIELD(particle_clouds, impostors,
-              "\"off\" (every particle every frame), \"direct\" (far clouds as impostors "
-              "stored as rectangles) or \"tiles\" (stored as tiles)"),
-        FIELD(particle_clouds, impostor_distance_m, "clouds farther than this are impostors, [0, 1e7]"),
-        FIELD(particle_clouds, impostor_max_angle_deg,
-              "an impostor is drawn again when the direction to it turns by more, (0, 90]"),
-        FIELD(particle_clouds, impostor_distance_factor,
-              "... or its distance changes by more than this factor, (1, 10]"),
-        FIELD(particle_clouds, impostor_resolution, "impostor texels per particle-layer pixel, [0.1, 4]"),
-        FIELD(particle_clouds, impostor_updates_per_frame, "[1, 1024]"),
-        FIELD(particle_clouds, impostor_fade_frames, "an update's cross-fade, [1, 1000] frames"),
-        FIELD(particle_clouds, atlas_size, "the impostor atlas's side (texels), [256, 8192]"),
-        FIELD(particle_clouds, atlas_granule, "direct: sizes rounded up to this many texels, [1, 256]"),
-        FIELD(particle_clouds, atlas_defragment, "repack the atlas when an impostor does not fit"),
-        FIELD(particle_clouds, atlas_defragmentations_per_s, "the defragmentations' rate limit, [0, 1000]"),
-        FIELD(particle_clouds, atlas_tile, "tiles: the tile side, 16 or 32 texels")},
-       {}},
-      {"classic",
-       {FIELD(classic, seed_formulas,
+          FIELD(output, bloom_strength,
+                "the share of the light the lens spreads (bloom and glare); 0 = off; the image's "
+                "total light is kept",
+                closed(0, 1)),
+          FIELD(output, bloom_threshold_cd_m2,
+                "only light above this luminance is spread (cd/m^2); 0 = all of it",
+                closed(0, 1e12)),
+          FIELD(output, bloom_radius_deg, "the spread's Gaussian sigma (deg of view)",
+                closed(0.01, 30)),
+          FIELD(output, adaptation_ev_per_s,
+                "auto exposure's adaptation in sequences and the viewer (EV/s); 0 = at once",
+                closed(0, 1e6))},
+         {"exposure"}},
+        {"conditions",
+         {FIELD(conditions, mode,
+                "off, artist (keyframes instead of the physical sky and lights) or overlay "
+                "(keyframes' fog and star visibility on the physical sky)"),
+          FIELD(conditions, weather, "1 good weather, 0 bad", closed(0, 1)),
+          FIELD(conditions, hour, "local solar time; -1 = from time and location",
+                or_off(-1, right_open(0, 24)))},
+         {"good", "bad"}},
+        {"particle_clouds",
+         {FIELD(particle_clouds, coverage,
+                "share of the grid's cells holding a particle (seed 003); 0 = no particle clouds",
+                closed(0, 1)),
+          FIELD(particle_clouds, bottom_altitude_m, "the clouds' base above ground",
+                closed(0, 1e5)),
+          FIELD(particle_clouds, top_altitude_m, "their highest tops, > bottom_altitude_m",
+                closed(0, 1e5)),
+          FIELD(particle_clouds, field_radius_m, "clouds within this distance of east 0, north 0",
+                closed(100, 1e6)),
+          FIELD(particle_clouds, cloud_spacing_m, "one cloud per square of this side",
+                closed(100, 1e5)),
+          FIELD(particle_clouds, cell_m, "the particles' grid (one particle per cell at most)",
+                closed(1, 1e4)),
+          FIELD(particle_clouds, particle_radius_m,
+                "a particle's radius where the noise is largest", closed(1, 1e4)),
+          FIELD(particle_clouds, noise_period_m, "the Perlin noise's lattice spacing",
+                closed(1, 1e6)),
+          FIELD(particle_clouds, evolution_s, "time's scale in 4D noise; coverage stays as set",
+                or_off(0, closed(1, 1e7))),
+          FIELD(particle_clouds, wind_mps, "east, north (m/s)", closed(-200, 200)),
+          FIELD(particle_clouds, opacity, "a particle's opacity at its centre", closed(0, 1)),
+          FIELD(particle_clouds, albedo, "single-scattering albedo", closed(0, 1)),
+          FIELD(particle_clouds, phase_g, "Henyey-Greenstein asymmetry", open_range(-1, 1)),
+          FIELD(particle_clouds, rayleigh_phase,
+                "true: Harris and Lastra's Rayleigh phase (the seed's reference); false: "
+                "Henyey-Greenstein with phase_g"),
+          FIELD(particle_clouds, forward_solid_angle_sr,
+                "Harris and Lastra's gamma: the solid angle about the light's direction whose "
+                "scattered light goes on with it",
+                closed(0, 4 * kPi)),
+          FIELD(particle_clouds, diffuse_strength,
+                "the multiply scattered light, an isotropic radiance albedo x I_k x sunlight / pi "
+                "times this; 0 = Harris and Lastra's model alone",
+                closed(0, 10)),
+          FIELD(particle_clouds, light_buffer,
+                "the CPU lighting's splat buffer, 32 or 64 texels a side", {}, {"32", "64"}),
+          FIELD(particle_clouds, layer_resolution,
+                "the particle layer's pixels per output pixel along each axis; drawn at this "
+                "resolution and filtered up when composed",
+                closed(0.25, 1)),
+          FIELD(particle_clouds, seed, "seeds the noise and the particles' offsets"),
+          FIELD(particle_clouds, impostors,
+                "\"off\" (every particle every frame), \"direct\" (far clouds as impostors stored "
+                "as rectangles) or \"tiles\" (stored as tiles)",
+                {}, {"off", "direct", "tiles"}),
+          FIELD(particle_clouds, impostor_distance_m, "clouds farther than this are impostors",
+                closed(0, 1e7)),
+          FIELD(particle_clouds, impostor_max_angle_deg,
+                "an impostor is drawn again when the direction to it turns by more",
+                left_open(0, 90)),
+          FIELD(particle_clouds, impostor_distance_factor,
+                "... or its distance changes by more than this factor", left_open(1, 10)),
+          FIELD(particle_clouds, impostor_resolution, "impostor texels per particle-layer pixel",
+                closed(0.1, 4)),
+          FIELD(particle_clouds, impostor_updates_per_frame,
+                "impostors drawn again at most each frame", closed(1, 1024)),
+          FIELD(particle_clouds, impostor_fade_frames, "an update's cross-fade, in frames",
+                closed(1, 1000)),
+          FIELD(particle_clouds, atlas_size, "the impostor atlas's side (texels)",
+                closed(256, 8192)),
+          FIELD(particle_clouds, atlas_granule, "direct: sizes rounded up to this many texels",
+                closed(1, 256)),
+          FIELD(particle_clouds, atlas_defragment,
+                "repack the atlas when an impostor does not fit"),
+          FIELD(particle_clouds, atlas_defragmentations_per_s, "the defragmentations' rate limit",
+                closed(0, 1000)),
+          FIELD(particle_clouds, atlas_tile, "tiles: the tile side, 16 or 32 texels", {},
+                {"16", "32"})},
+         {}},
+        {"classic",
+         {FIELD(
+              classic, seed_formulas,
               "true: the seed's printing of the formulas where it differs from the papers (Blinn's "
               "B and Tr, the Lambert phase's factor)"),
-        FIELD(classic, blinn_phase, "Blinn's phase function: constant, anisotropic, lambert, rayleigh or hg"),
-        FIELD(classic, blinn_phase_x,
-              "x of 1 + x cos alpha or g of hg, alpha = 0 back towards the light (forward "
-              "scattering: < 0), [-1, 1] ((-1, 1) for hg)"),
-        FIELD(classic, blinn_particle_radius_m, "r, (0, 1]"),
-        FIELD(classic, blinn_particles_per_m3, "n, [0, 1e12]; tau = n pi r^2 (top - bottom)"),
-        FIELD(classic, blinn_albedo, "omega, [0, 1]"),
-        FIELD(classic, gardner_clouds, "Gardner's clouds: cumulus (textured ellipsoids), stratus (a textured sky plane) or cirrus (a thin streaked plane at cirrus.altitude_m)"),
-        FIELD(classic, gardner_spacing_m, "the cumulus cells' side (m), [100, 1e5]; one ellipsoid in a share clouds.coverage of them"),
-        FIELD(classic, gardner_period_m, "his texture's longest wavelength (m), [10, 1e6]"),
-        FIELD(classic, gardner_terms, "the texture's sines per axis, frequencies doubling, [1, 8]"),
-        FIELD(classic, gardner_t1, "T1, the texture's threshold at an ellipsoid's centre, [0, 1]"),
-        FIELD(classic, gardner_t2, "T2, the threshold at its edge, [0, 1]"),
-        FIELD(classic, gardner_range, "D, the texture's range from clear to opaque, (0, 1]"),
-        FIELD(classic, gardner_ambient, "f, the ambient term, [0, 1]"),
-        FIELD(classic, gardner_texture, "t, the texture's share of the shading, [0, 1]"),
-        FIELD(classic, gardner_specular, "s, the specular share, [0, 1]"),
-        FIELD(classic, kajiya_levels, "Kajiya and Von Herzen's Romberg levels: 2^levels + 1 samples an eye ray, [1, 10]"),
-        FIELD(classic, kajiya_reference,
-              "true: a brute-force march of the same single scattering instead (1024 samples, "
-              "the light marched at each), to check their method against"),
-        FIELD(classic, nishita_metaballs, "Nishita and Nakamae's metaballs in all, [1, 4096]"),
-        FIELD(classic, nishita_clouds, "the cumulus they make, [1, 64], at most nishita_metaballs"),
-        FIELD(classic, nishita_extent_m, "the side of the square the clouds stand in (m), [500, 1e5]"),
-        FIELD(classic, nishita_center_m, "its centre (east, north; m), [-1e6, 1e6] each"),
-        FIELD(classic, nishita_sigma_t_per_m, "sigma_t at a ball's centre of density 1 (1/m), (0, 10]"),
-        FIELD(classic, nishita_albedo, "single-scattering albedo, [0, 1]"),
-        FIELD(classic, nishita_voxels, "the voxel grid's cells along its longest side, [16, 192]"),
-        FIELD(classic, nishita_order, "scattering orders summed: 1 or 2 (the paper's second order)"),
-        FIELD(classic, nishita_sky_light, "light the clouds by the sky and the ground as well as the sun")},
-       {}},
-      {"terrain",
-       {FIELD(terrain, file,
-              "a heightfield: .png (16-bit grey), .exr, .tif (GeoTIFF, placed by its "
-              "coordinates) or .obj (metres, y up, -z north); empty = none"),
-        FIELD(terrain, preset, "mountains: a procedural range; at most one of file and preset"),
-        FIELD(terrain, extent_m, "east-west, north-south size (m; PNG, EXR, mountains), (0, 1e6] each"),
-        FIELD(terrain, center_m, "its centre (east, north; m), [-1e6, 1e6] each; a GeoTIFF places itself"),
-        FIELD(terrain, height_m, "PNG, EXR: the height of the largest value; mountains: the highest peak (m), [0, 1e4]"),
-        FIELD(terrain, base_m, "PNG, EXR, mountains: the height of the value 0 (m), [-1e4, 1e4]"),
-        FIELD(terrain, albedo, "Lambertian albedo of the bare ground, [0, 1] each"),
-        FIELD(terrain, albedo_map, "an image of the albedo over the terrain (row 0 north): .png (sRGB) or .exr (linear); empty = albedo"),
-        FIELD(terrain, snow_altitude_m, "snow above this height on slopes under 40 deg (m), [0, 1e4]; 0 = none"),
-        FIELD(terrain, resolution, "mountains: grid points along each axis, [16, 4096]"),
-        FIELD(terrain, seed, "mountains: the range's seed"),
-        FIELD(terrain, method, "raycast (rays walk a pyramid of maxima in compute) or raster (seed 002's mesh, two triangles a cell, drawn with depth)")},
-       {}},
-      {"lab",
-       {FIELD(lab, grid, "a density grid (.vdb, .nvdb) in vacuum for render --reference; empty = none"),
-        FIELD(lab, sigma_t_per_m, "extinction at density 1 (1/m), (0, 1000]"),
-        FIELD(lab, albedo, "single-scattering albedo, [0, 1]"),
-        FIELD(lab, g, "Henyey-Greenstein asymmetry, (-1, 1)"),
-        FIELD(lab, max_bounces, "scatterings after the first, [0, 100000]; 0 = single scattering"),
-        FIELD(lab, sun_elevation_deg, "[-90, 90]"),
-        FIELD(lab, sun_azimuth_deg, "from north through east, [-360, 360]"),
-        FIELD(lab, sun_irradiance, "W/m^2 perpendicular to the light, [0, 1e6]")},
-       {}},
-  };
-  std::vector<std::string_view> names;
-  for (int k = 0; k < kKeyframeCount; ++k) names.push_back(keyframe_name(k));
-  list.push_back({"conditions.good", {}, names});
-  append_keyframe_sections<0>(list, std::make_integer_sequence<int, kKeyframeCount>());
-  list.push_back({"conditions.bad", {}, names});
-  append_keyframe_sections<1>(list, std::make_integer_sequence<int, kKeyframeCount>());
-  return list;
+          FIELD(classic, blinn_phase,
+                "Blinn's phase function: constant, anisotropic, lambert, rayleigh or hg", {},
+                {"constant", "anisotropic", "lambert", "rayleigh", "hg"}),
+          FIELD(classic, blinn_phase_x,
+                "x of 1 + x cos alpha or g of hg, alpha = 0 back towards the light (forward "
+                "scattering: < 0), [-1, 1] ((-1, 1) for hg)"),
+          FIELD(classic, blinn_particle_radius_m, "r", left_open(0, 1)),
+          FIELD(classic, blinn_particles_per_m3, "n; tau = n pi r^2 (top - bottom)",
+                closed(0, 1e12)),
+          FIELD(classic, blinn_albedo, "omega", closed(0, 1)),
+          FIELD(classic, gardner_clouds,
+                "Gardner's clouds: cumulus (textured ellipsoids), stratus (a textured sky plane) "
+                "or cirrus (a thin streaked plane at cirrus.altitude_m)",
+                {}, {"cumulus", "stratus", "cirrus"}),
+          FIELD(classic, gardner_spacing_m,
+                "the cumulus cells' side (m); one ellipsoid in a share clouds.coverage of them",
+                closed(100, 1e5)),
+          FIELD(classic, gardner_period_m, "his texture's longest wavelength (m)", closed(10, 1e6)),
+          FIELD(classic, gardner_terms, "the texture's sines per axis, frequencies doubling",
+                closed(1, 8)),
+          FIELD(classic, gardner_t1, "T1, the texture's threshold at an ellipsoid's centre",
+                closed(0, 1)),
+          FIELD(classic, gardner_t2, "T2, the threshold at its edge", closed(0, 1)),
+          FIELD(classic, gardner_range, "D, the texture's range from clear to opaque",
+                left_open(0, 1)),
+          FIELD(classic, gardner_ambient, "f, the ambient term", closed(0, 1)),
+          FIELD(classic, gardner_texture, "t, the texture's share of the shading", closed(0, 1)),
+          FIELD(classic, gardner_specular, "s, the specular share", closed(0, 1)),
+          FIELD(classic, kajiya_levels,
+                "Kajiya and Von Herzen's Romberg levels: 2^levels + 1 samples an eye ray",
+                closed(1, 10)),
+          FIELD(classic, kajiya_reference,
+                "true: a brute-force march of the same single scattering instead (1024 samples, "
+                "the light marched at each), to check their method against"),
+          FIELD(classic, nishita_metaballs, "Nishita and Nakamae's metaballs in all",
+                closed(1, 4096)),
+          FIELD(classic, nishita_clouds, "the cumulus they make, at most nishita_metaballs",
+                closed(1, 64)),
+          FIELD(classic, nishita_extent_m, "the side of the square the clouds stand in (m)",
+                closed(500, 1e5)),
+          FIELD(classic, nishita_center_m, "its centre (east, north; m)", closed(-1e6, 1e6)),
+          FIELD(classic, nishita_sigma_t_per_m, "sigma_t at a ball's centre of density 1 (1/m)",
+                left_open(0, 10)),
+          FIELD(classic, nishita_albedo, "single-scattering albedo", closed(0, 1)),
+          FIELD(classic, nishita_voxels, "the voxel grid's cells along its longest side",
+                closed(16, 192)),
+          FIELD(classic, nishita_order,
+                "scattering orders summed: 1 or 2 (the paper's second order)", closed(1, 2)),
+          FIELD(classic, nishita_sky_light,
+                "light the clouds by the sky and the ground as well as the sun")},
+         {}},
+        {"terrain",
+         {FIELD(terrain, file,
+                "a heightfield: .png (16-bit grey), .exr, .tif (GeoTIFF, placed by its "
+                "coordinates) or .obj (metres, y up, -z north); empty = none"),
+          FIELD(terrain, preset, "mountains: a procedural range; at most one of file and preset"),
+          FIELD(terrain, extent_m,
+                "east-west, north-south size (m; PNG, EXR, mountains), (0, 1e6] each"),
+          FIELD(terrain, center_m, "its centre (east, north; m); a GeoTIFF places itself",
+                closed(-1e6, 1e6)),
+          FIELD(terrain, height_m,
+                "PNG, EXR: the height of the largest value; mountains: the highest peak (m)",
+                closed(0, 1e4)),
+          FIELD(terrain, base_m, "PNG, EXR, mountains: the height of the value 0 (m)",
+                closed(-1e4, 1e4)),
+          FIELD(terrain, albedo, "Lambertian albedo of the bare ground", closed(0, 1)),
+          FIELD(terrain, albedo_map,
+                "an image of the albedo over the terrain (row 0 north): .png (sRGB) or .exr "
+                "(linear); empty = albedo"),
+          FIELD(terrain, snow_altitude_m,
+                "snow above this height on slopes under 40 deg (m); 0 = none", closed(0, 1e4)),
+          FIELD(terrain, resolution, "mountains: grid points along each axis", closed(16, 4096)),
+          FIELD(terrain, seed, "mountains: the range's seed"),
+          FIELD(terrain, method,
+                "raycast (rays walk a pyramid of maxima in compute) or raster (seed 002's mesh, "
+                "two triangles a cell, drawn with depth)",
+                {}, {"raycast", "raster"})},
+         {}},
+        {"lab",
+         {FIELD(lab, grid,
+                "a density grid (.vdb, .nvdb) in vacuum for render --reference; empty = none"),
+          FIELD(lab, sigma_t_per_m, "extinction at density 1 (1/m)", left_open(0, 1000)),
+          FIELD(lab, albedo, "single-scattering albedo", closed(0, 1)),
+          FIELD(lab, g, "Henyey-Greenstein asymmetry", open_range(-1, 1)),
+          FIELD(lab, max_bounces, "scatterings after the first; 0 = single scattering",
+                closed(0, 100000)),
+          FIELD(lab, sun_elevation_deg, "the light's elevation", closed(-90, 90)),
+          FIELD(lab, sun_azimuth_deg, "from north through east", closed(-360, 360)),
+          FIELD(lab, sun_irradiance, "W/m^2 perpendicular to the light", closed(0, 1e6))},
+         {}},
+    };
+    std::vector<std::string_view> names;
+    for (int k = 0; k < kKeyframeCount; ++k) names.push_back(keyframe_name(k));
+    list.push_back({"conditions.good", {}, names});
+    append_keyframe_sections<0>(list, std::make_integer_sequence<int, kKeyframeCount>());
+    list.push_back({"conditions.bad", {}, names});
+    append_keyframe_sections<1>(list, std::make_integer_sequence<int, kKeyframeCount>());
+    return list;
   }();
   return sections;
 }
@@ -512,26 +637,32 @@ const std::vector<Section>& scene_sections() {
 #undef TOP_FIELD
 #undef FIELD
 
-// VOXEL_FIELD(density, note) is the key density of a [[voxel_clouds]] table.
-#define VOXEL_FIELD(name, note)                             \
-  VoxelField {                                              \
-#name, +[](VoxelCloudParams & c) -> auto& { return c.name; }, note \
+// VOXEL_FIELD(density, note[, range]) is the key density of a [[voxel_clouds]] table.
+#define VOXEL_FIELD(name, note, ...)            \
+  VoxelField {                                  \
+#name, +[](VoxelCloudParams & c) -> auto& { \
+      return c.name;                            \
+    }                                           \
+    , note __VA_OPT__(, ) __VA_ARGS__           \
   }
 
 const std::vector<VoxelField>& voxel_cloud_fields() {
   static const std::vector<VoxelField> fields = {
       VOXEL_FIELD(file, ".vdb (OpenVDB) or .nvdb (NanoVDB) path; exactly one of file and preset"),
-      VOXEL_FIELD(preset, "generated: cumulus, cumulus-congestus, cumulonimbus; or cumulus-mesh, baked from data/meshes/cumulus.obj"),
-      VOXEL_FIELD(seed, "the generated cloud's seed, [0, 4294967295]"),
+      VOXEL_FIELD(preset,
+                  "generated: cumulus, cumulus-congestus, cumulonimbus; or cumulus-mesh, baked "
+                  "from data/meshes/cumulus.obj"),
+      VOXEL_FIELD(seed, "the generated cloud's seed"),
       VOXEL_FIELD(position_m,
                   "east, north, up (m) of the base's centre; east and north in [-1e7, 1e7], up "
                   "in [-1000, 1e5] (or lat_deg, lon_deg, altitude_m)"),
-      VOXEL_FIELD(scale, "multiplies the grid's size, (0, 100]"),
-      VOXEL_FIELD(rotation_deg, "about the up axis, from north through east, [-360, 360]"),
-      VOXEL_FIELD(density, "sigma_t = grid density x this x clouds.extinction_per_m, [0, 100]"),
+      VOXEL_FIELD(scale, "multiplies the grid's size", left_open(0, 100)),
+      VOXEL_FIELD(rotation_deg, "about the up axis, from north through east", closed(-360, 360)),
+      VOXEL_FIELD(density, "sigma_t = grid density x this x clouds.extinction_per_m",
+                  closed(0, 100)),
       VOXEL_FIELD(follow_wind, "true: moves with clouds.wind_mps; false: with wind_mps"),
-      VOXEL_FIELD(wind_mps, "east, north (m/s), [-200, 200] each, when follow_wind is false"),
-      VOXEL_FIELD(resolution, "voxels along the longest axis, [16, 256]"),
+      VOXEL_FIELD(wind_mps, "east, north, when follow_wind is false", closed(-200, 200)),
+      VOXEL_FIELD(resolution, "voxels along the longest axis", closed(16, 256)),
   };
   return fields;
 }
@@ -545,7 +676,8 @@ std::string voxel_cloud_key(size_t index) {
 bool ends_with_ignoring_case(std::string_view text, std::string_view suffix) {
   if (text.size() < suffix.size()) return false;
   for (size_t i = 0; i < suffix.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(text[text.size() - suffix.size() + i])) != suffix[i])
+    if (std::tolower(static_cast<unsigned char>(text[text.size() - suffix.size() + i])) !=
+        suffix[i])
       return false;
   return true;
 }
@@ -639,6 +771,90 @@ std::string read_small_text_file(const std::string& path, const std::string& wha
   text.resize(size_t(in.gcount()));
   if (text.size() > kMaxBytes) throw InputError(cannot + too_large);
   return text;
+}
+
+// The shape of the value a field of `Owner` (Scene, VoxelCloudParams) refers to.
+template <typename Owner, typename Access>
+static ValueShape shape_of(const Access& access) {
+  return std::visit(
+      [](auto get) {
+        using T = std::remove_reference_t<decltype(get(std::declval<Owner&>()))>;
+        if constexpr (std::is_same_v<T, float>) return ValueShape::kNumber;
+        if constexpr (std::is_same_v<T, int> || std::is_same_v<T, uint32_t>)
+          return ValueShape::kInteger;
+        if constexpr (std::is_same_v<T, glm::vec2>) return ValueShape::kVec2;
+        if constexpr (std::is_same_v<T, glm::vec3>) return ValueShape::kVec3;
+        if constexpr (std::is_same_v<T, std::string>) return ValueShape::kString;
+        return ValueShape::kOther;
+      },
+      access);
+}
+
+ValueShape value_shape(const FieldAccess& access) {
+  return shape_of<Scene>(access);
+}
+
+ValueShape value_shape(const VoxelFieldAccess& access) {
+  return shape_of<VoxelCloudParams>(access);
+}
+
+bool is_integer_field(const Field& field) {
+  return value_shape(field.access) == ValueShape::kInteger;
+}
+
+// A bound as validation messages print it: the float the value is compared in, or the integer.
+static std::string bound_text(double bound, ValueShape shape) {
+  if (shape == ValueShape::kInteger) return std::to_string(static_cast<long long>(bound));
+  return format_float(static_cast<float>(bound));
+}
+
+std::string allowed_text(const Range& range, const std::vector<std::string_view>& choices,
+                         ValueShape shape) {
+  if (!choices.empty()) {
+    std::string text;
+    for (size_t i = 0; i < choices.size(); ++i) {
+      text += i == 0 ? "" : (i + 1 == choices.size() ? " or " : ", ");
+      text += shape == ValueShape::kString ? toml_quote(choices[i]) : std::string(choices[i]);
+    }
+    return text;
+  }
+  if (!range.given) return "";
+  std::string text;
+  if (range.has_off) text.append(bound_text(range.off, shape)).append(" or ");
+  text.append(range.min_open ? "(" : "[").append(bound_text(range.min, shape)).append(", ");
+  text.append(bound_text(range.max, shape)).append(range.max_open ? ")" : "]");
+  if (shape == ValueShape::kVec2 || shape == ValueShape::kVec3) text += " each";
+  return text;
+}
+
+std::string allowed_text(const Field& field) {
+  return allowed_text(field.range, field.choices, value_shape(field.access));
+}
+
+std::string_view unit_of(std::string_view name) {
+  // Longest suffixes first: "_ev_per_s" before "_s", "_per_m3" before "_m3".
+  static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
+      {"_ev_per_s", "EV/s"}, {"_per_m3", "1/m^3"}, {"_per_m", "1/m"}, {"_cd_m2", "cd/m^2"},
+      {"_mps", "m/s"},       {"_lux", "lux"},      {"_deg", "deg"},   {"_rad", "rad"},
+      {"_km", "km"},         {"_mm", "mm"},        {"_sr", "sr"},     {"_ev", "EV"},
+      {"_m", "m"},           {"_s", "s"}};
+  for (const auto& [suffix, unit] : kSuffixes)
+    if (name.size() > suffix.size() && name.ends_with(suffix)) return unit;
+  return "";
+}
+
+static std::string comment(const std::string& allowed, std::string_view note) {
+  if (allowed.empty()) return std::string(note);
+  if (note.empty()) return allowed;
+  return allowed + ": " + std::string(note);
+}
+
+std::string field_comment(const Field& field) {
+  return comment(allowed_text(field), field.note);
+}
+
+std::string field_comment(const VoxelField& field) {
+  return comment(allowed_text(field.range, {}, value_shape(field.access)), field.note);
 }
 
 }  // namespace scene_detail

@@ -22,11 +22,61 @@ using FieldAccess =
                  ConditionsMode& (*)(Scene&), VoxelMarch& (*)(Scene&), VoxelShadow& (*)(Scene&),
                  CloudModel& (*)(Scene&), ToneMap& (*)(Scene&)>;
 
+// The values a number (or each component of a vector) may take, declared with its field:
+// [min, max] with either end open, and `off`, a value outside it that turns the feature off
+// ("0 or [1, 1e+07]"). Validation, the CLI's help, the viewer's panel and the scene reference
+// all read it from here.
+struct Range {
+  double min = 0.0, max = 0.0;
+  bool min_open = false, max_open = false;
+  bool given = false;  // false: any value of the type
+  bool has_off = false;
+  double off = 0.0;
+};
+constexpr Range closed(double min, double max) {
+  return {min, max, false, false, true};
+}
+constexpr Range left_open(double min, double max) {
+  return {min, max, true, false, true};
+}
+constexpr Range right_open(double min, double max) {
+  return {min, max, false, true, true};
+}
+constexpr Range open_range(double min, double max) {
+  return {min, max, true, true, true};
+}
+constexpr Range or_off(double off, Range range) {
+  range.has_off = true;
+  range.off = off;
+  return range;
+}
+constexpr double kPi = 3.14159265358979323846;
+
 struct Field {
   std::string_view name;  // key inside its table, e.g. "coverage"
   FieldAccess access;
-  std::string_view note;  // comment written by scene_to_toml; may be empty
+  std::string_view note;  // what it means; the range and choices are added to it (field_comment)
+  Range range{};          // numbers: the values allowed
+  std::vector<std::string_view> choices{};  // strings and integers: the only values allowed
 };
+
+// What a field holds, for the range's wording and checks.
+enum class ValueShape { kNumber, kInteger, kVec2, kVec3, kString, kOther };
+ValueShape value_shape(const FieldAccess& access);
+// The allowed values as text (below) for a range and choices of a value of this shape.
+std::string allowed_text(const Range& range, const std::vector<std::string_view>& choices,
+                         ValueShape shape);
+
+// "[0, 1]", "(0, 100]", "0 or [1, 1e+07]", "[-200, 200] each" (a vector), "1, 2 or 4",
+// "\"off\", \"direct\" or \"tiles\"" (quoted for strings); "" when anything goes.
+std::string allowed_text(const Field& field);
+// The unit the key's name ends with (its suffix, by the project's naming): "m", "km", "deg",
+// "m/s", "s", "1/m", "lux", "mm", "cd/m^2", "sr", "EV", "EV/s", "1/m^3"; "" for none.
+std::string_view unit_of(std::string_view name);
+// scene_to_toml's comment and SceneParameter::note: the allowed values, then the note.
+std::string field_comment(const Field& field);
+// Whether the field's type is an integer (int or uint32_t).
+bool is_integer_field(const Field& field);
 
 struct Section {
   std::string_view name;  // TOML table name; "" for the top level
@@ -45,8 +95,11 @@ using VoxelFieldAccess =
 struct VoxelField {
   std::string_view name;  // key inside the table, e.g. "density"
   VoxelFieldAccess access;
-  std::string_view note;  // comment written by scene_to_toml
+  std::string_view note;  // what it means (field_comment adds the range)
+  Range range{};
 };
+std::string field_comment(const VoxelField& field);
+ValueShape value_shape(const VoxelFieldAccess& access);
 
 // The array's top-level key.
 constexpr std::string_view kVoxelCloudsKey = "voxel_clouds";
@@ -80,6 +133,9 @@ const Field* find_field(std::string_view key);
 
 // The field's value as TOML literal text (scene_writer.cpp).
 std::string field_value_text(const Scene& scene, const Field& field);
+
+// A [[voxel_clouds]] field's value as TOML literal text.
+std::string voxel_field_value_text(const VoxelCloudParams& cloud, const VoxelField& field);
 
 // Reads TOML literal text into the field with the scene file's type rules (scene_io.cpp);
 // throws InputError "key = value: what is allowed" and leaves the scene unchanged.

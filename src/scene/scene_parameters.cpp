@@ -115,11 +115,23 @@ const Field* scene_detail::find_field(std::string_view key) {
 const std::vector<SceneParameter>& scene_parameters() {
   static const std::vector<SceneParameter> parameters = [] {
     std::vector<SceneParameter> list;
+    const Scene defaults{};
     for (const Section& section : scene_detail::scene_sections()) {
       for (const Field& field : section.fields) {
         SceneParameter parameter;
         parameter.key = key_of(section, field);
-        parameter.note = std::string(field.note);
+        parameter.note = scene_detail::field_comment(field);
+        parameter.meaning = std::string(field.note);
+        parameter.allowed_values = scene_detail::allowed_text(field);
+        parameter.unit = std::string(scene_detail::unit_of(field.name));
+        if (field.range.given) {
+          parameter.min = field.range.min;
+          parameter.max = field.range.max;
+          parameter.min_open = field.range.min_open;
+          parameter.max_open = field.range.max_open;
+          if (field.range.has_off) parameter.off = field.range.off;
+        }
+        parameter.default_value = scene_detail::field_value_text(defaults, field);
         std::visit(
             [&](auto access) {
               using T = std::remove_reference_t<decltype(access(std::declval<Scene&>()))>;

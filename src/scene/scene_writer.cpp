@@ -71,6 +71,14 @@ std::string scene_detail::field_value_text(const Scene& scene, const scene_detai
   return text;
 }
 
+std::string scene_detail::voxel_field_value_text(const VoxelCloudParams& cloud,
+                                                const scene_detail::VoxelField& field) {
+  VoxelCloudParams copy = cloud;
+  std::string text;
+  std::visit([&](auto access) { text = toml_value(access(copy)); }, field.access);
+  return text;
+}
+
 // fov_deg is written when it is the form the camera gives its field of view in (the reader
 // refuses fov_deg with a non-zero horizontal_fov_deg or focal_length_mm); the others always, 0
 // when not given.
@@ -94,7 +102,7 @@ std::string scene_to_toml(const Scene& scene) {
       }
       std::string line = std::string(field.name) + " = ";
       std::visit([&](auto access) { line += toml_value(access(copy)); }, field.access);
-      std::string note(field.note);
+      std::string note = scene_detail::field_comment(field);
       if (section.name == "sun" && field.name == "direction")
         note += "; " + sun_angles_note(scene.sun.direction);
       if (!note.empty()) line += "  # " + note;
@@ -111,7 +119,7 @@ std::string scene_to_toml(const Scene& scene) {
         continue;
       std::string line = std::string(field.name) + " = ";
       std::visit([&](auto access) { line += toml_value(access(cloud)); }, field.access);
-      out += line + "  # " + std::string(field.note) + "\n";
+      out += line + "  # " + scene_detail::field_comment(field) + "\n";
     }
   }
   return out;

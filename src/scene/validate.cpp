@@ -7,6 +7,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
+#include <variant>
 
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
@@ -23,22 +25,13 @@ using scene_detail::format_float;
 
 // The ranges in which a scene renders finite, meaningful pixels (scene.h documents each).
 constexpr float kMaxCameraDistanceM = 1.0e9f;   // 2.6 times the Moon's distance
-constexpr float kMaxAltitudeM = 1.0e6f;         // cloud layers and cirrus (and below the top)
 constexpr float kMinDirectionLength = 1.0e-6f;  // directions are normalised in float
 constexpr float kMaxDirectionLength = 1.0e6f;
-constexpr float kMaxIlluminanceLux = 1.0e10f;    // sun.illuminance_lux (the old scale's 1e6 and more)
-constexpr float kMinEv100 = -20.0f;              // output.ev100 and its auto limits
-constexpr float kMaxEv100 = 30.0f;
 constexpr double kMaxParticleCells = 5.0e6;   // particle_clouds: the grid (a second to spawn)
-constexpr float kMaxFactor = 100.0f;             // extinction and light multipliers on clouds
-constexpr float kMaxAirCoefficientPerM = 0.01f;  // 100 m of air has optical depth 1
-constexpr float kMaxWindMps = 200.0f;
 // Voxel clouds' anchors (scene.h, VoxelCloudParams::position_m).
 constexpr float kMaxVoxelCloudDistanceM = 1.0e7f;
 constexpr float kMinVoxelCloudUpM = -1.0e3f;
 constexpr float kMaxVoxelCloudUpM = 1.0e5f;
-// Animation time: winds of kMaxWindMps carry the clouds 2e8 m, where float keeps ~16 m steps.
-constexpr float kMaxTimeS = 1.0e6f;
 // What a weather map's channels mean (scene.h, CloudParams::weather_map), for messages.
 constexpr const char* kWeatherMapNeeds =
     "a weather map needs 4 channels (RGBA: R coverage, G storm cells, B cloud type around "
@@ -78,12 +71,6 @@ class Checker {
   void finite(const std::string& key, const Vector& v) const {
     for (int i = 0; i < Vector::length(); ++i)
       if (!std::isfinite(v[i])) fail(key, vector_text(key, v), "must be finite");
-  }
-
-  // A wind velocity (m/s): every component in [-kMaxWindMps, kMaxWindMps].
-  template <typename Vector>
-  void wind(const std::string& key, const Vector& v) const {
-    in_range(key, v, -kMaxWindMps, kMaxWindMps);
   }
 
   // A direction is normalised in float on the CPU and the GPU: its length must be such that
@@ -184,6 +171,50 @@ class Checker {
   const ParamNamer& namer_;
 };
 
+// One field's own rule as its table declares it (scene_fields.cpp): its range, with its "off"
+// value, or its choices. The rules between fields follow below, by hand.
+template <typename T>
+void check_declared(const Checker& check, const std::string& key, const T& value,
+                    const scene_detail::Range& range, const std::vector<std::string_view>& choices,
+                    const std::string& allowed) {
+  if constexpr (std::is_same_v<T, float>) {
+    if (range.given && !(range.has_off && value == float(range.off)))
+      check.in_range(key, value, float(range.min), float(range.max), range.min_open,
+                     range.max_open);
+  } else if constexpr (std::is_same_v<T, int> || std::is_same_v<T, uint32_t>) {
+    const std::string text = std::to_string(value);
+    if (!choices.empty() && std::find(choices.begin(), choices.end(), text) == choices.end())
+      check.fail(key, text, "must be " + allowed);
+    if (range.given && !(range.has_off && double(value) == range.off))
+      check.in_range(key, int(value), int(range.min), int(range.max));
+  } else if constexpr (std::is_same_v<T, glm::vec2> || std::is_same_v<T, glm::vec3>) {
+    if (range.given) check.in_range(key, value, float(range.min), float(range.max));
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    if (!choices.empty() && std::find(choices.begin(), choices.end(), value) == choices.end())
+      check.fail(key, check.is_flag(key) ? value : scene_detail::toml_quote(value),
+                 "must be " + allowed);
+  }
+}
+
+// Every field of the scene's table against its declared rule.
+void check_declared_fields(const Checker& check, const Scene& scene) {
+  // The accessors hand out references into a Scene; this only reads through them.
+  Scene& fields = const_cast<Scene&>(scene);
+  for (const scene_detail::Section& section : scene_detail::scene_sections())
+    for (const scene_detail::Field& field : section.fields) {
+      if (!field.range.given && field.choices.empty()) continue;
+      const std::string key = section.name.empty()
+                                  ? std::string(field.name)
+                                  : std::string(section.name) + "." + std::string(field.name);
+      std::visit(
+          [&](auto access) {
+            check_declared(check, key, access(fields), field.range, field.choices,
+                           scene_detail::allowed_text(field));
+          },
+          field.access);
+    }
+}
+
 void check_camera(const Checker& check, const CameraParams& camera) {
   check.finite("camera.position_m", camera.position_m);
   const glm::vec3 p = camera.position_m;
@@ -196,58 +227,26 @@ void check_camera(const Checker& check, const CameraParams& camera) {
                "must be >= 0 (the camera is below the ground)");
   check.in_range("camera.altitude_m", camera.position_m.z, 0.0f, kMaxCameraDistanceM);
   check.direction("camera.view_dir", camera.view_dir);
-  check.in_range("camera.fov_deg", camera.fov_deg, 0.01f, 180.0f, false, true);
-  if (camera.horizontal_fov_deg != 0.0f)
-    check.in_range("camera.horizontal_fov_deg", camera.horizontal_fov_deg, 0.01f, 180.0f, false,
-                   true);
-  if (camera.focal_length_mm != 0.0f)
-    check.in_range("camera.focal_length_mm", camera.focal_length_mm, 0.1f, 1.0e5f);
-  check.in_range("camera.sensor_width_mm", camera.sensor_width_mm, 1.0f, 1000.0f);
   if (camera.horizontal_fov_deg != 0.0f && camera.focal_length_mm != 0.0f)
     check.fail("camera.focal_length_mm", format_float(camera.focal_length_mm),
                "camera.horizontal_fov_deg (" + format_float(camera.horizontal_fov_deg) +
                    ") is given too; give one of fov_deg, horizontal_fov_deg, focal_length_mm");
-  check.in_range("camera.roll_deg", camera.roll_deg, -180.0f, 180.0f);
 }
 
 void check_sun(const Checker& check, const SunParams& sun) {
   check.direction("sun.direction", sun.direction);
-  check.in_range("sun.illuminance_lux", sun.illuminance_lux, 0.0f, kMaxIlluminanceLux);
-  check.in_range("sun.disk_angular_radius_deg", sun.disk_angular_radius_deg, 0.0f, 20.0f);
 }
 
 void check_atmosphere(const Checker& check, const AtmosphereParams& atmosphere) {
-  check.in_range("atmosphere.planet_radius_km", atmosphere.planet_radius_km, 1000.0f, 10000.0f);
-  check.in_range("atmosphere.atmosphere_height_km", atmosphere.atmosphere_height_km, 1.0f,
-                 1000.0f);
-  check.in_range("atmosphere.rayleigh_scattering_per_m", atmosphere.rayleigh_scattering_per_m,
-                 0.0f, kMaxAirCoefficientPerM);
-  check.in_range("atmosphere.rayleigh_scale_height_m", atmosphere.rayleigh_scale_height_m, 100.0f,
-                 100000.0f);
-  check.in_range("atmosphere.mie_scattering_per_m", atmosphere.mie_scattering_per_m, 0.0f,
-                 kMaxAirCoefficientPerM);
-  check.in_range("atmosphere.mie_extinction_per_m", atmosphere.mie_extinction_per_m, 0.0f,
-                 kMaxAirCoefficientPerM);
   // Extinction is scattering plus absorption, so it cannot be smaller.
   if (!(atmosphere.mie_extinction_per_m >= atmosphere.mie_scattering_per_m))
     check.fail("atmosphere.mie_extinction_per_m", format_float(atmosphere.mie_extinction_per_m),
                "must be >= atmosphere.mie_scattering_per_m (" +
                    format_float(atmosphere.mie_scattering_per_m) + ")");
-  check.in_range("atmosphere.mie_scale_height_m", atmosphere.mie_scale_height_m, 100.0f,
-                 100000.0f);
-  check.in_range("atmosphere.mie_g", atmosphere.mie_g, 0.0f, 0.999f);
-  check.in_range("atmosphere.view_samples", atmosphere.view_samples, 1, 256);
   if (atmosphere.model != SkyModel::Hillaire && atmosphere.model != SkyModel::Preetham &&
       atmosphere.model != SkyModel::Reference)
     check.fail("atmosphere.model", std::to_string(static_cast<int>(atmosphere.model)),
                "must be hillaire, preetham or reference");
-  check.in_range("atmosphere.ozone_absorption_per_m", atmosphere.ozone_absorption_per_m, 0.0f,
-                 kMaxAirCoefficientPerM);
-  check.in_range("atmosphere.ozone_peak_altitude_m", atmosphere.ozone_peak_altitude_m, 0.0f,
-                 1.0e6f);
-  check.in_range("atmosphere.ozone_half_width_m", atmosphere.ozone_half_width_m, 0.0f, 1.0e6f);
-  check.in_range("atmosphere.ground_albedo", atmosphere.ground_albedo, 0.0f, 1.0f);
-  check.in_range("atmosphere.turbidity", atmosphere.turbidity, 2.0f, 10.0f);
 }
 
 // The top of the highest volumetric layer that is there, and its key.
@@ -262,24 +261,13 @@ LayerTop highest_layer_top(const Scene& scene) {
 }
 
 void check_cirrus(const Checker& check, const CirrusParams& cirrus, const Scene& scene) {
-  check.in_range("cirrus.altitude_m", cirrus.altitude_m, 0.0f, kMaxAltitudeM);
   const LayerTop top = highest_layer_top(scene);
   if (cirrus.coverage > 0.0f)  // a sheet that is there sits above the volumetric layers
     check.below(top.key, top.altitude_m, "cirrus.altitude_m", cirrus.altitude_m);
-  check.in_range("cirrus.coverage", cirrus.coverage, 0.0f, 1.0f);
-  check.in_range("cirrus.type", cirrus.type, 0.0f, 1.0f);
-  check.in_range("cirrus.optical_depth", cirrus.optical_depth, 0.0f, 4.0f);
-  check.wind("cirrus.wind_mps", cirrus.wind_mps);
 }
 
 void check_high_clouds(const Checker& check, const HighCloudParams& high,
                        const CloudParams& clouds) {
-  check.in_range("high_clouds.coverage", high.coverage, 0.0f, 1.0f);
-  check.in_range("high_clouds.type", high.type, 0.0f, 1.0f);
-  check.in_range("high_clouds.density", high.density, 0.0f, 1.0f);
-  check.wind("high_clouds.wind_mps", high.wind_mps);
-  check.in_range("high_clouds.bottom_altitude_m", high.bottom_altitude_m, 0.0f, kMaxAltitudeM);
-  check.in_range("high_clouds.top_altitude_m", high.top_altitude_m, 0.0f, kMaxAltitudeM);
   check.below("high_clouds.bottom_altitude_m", high.bottom_altitude_m,
               "high_clouds.top_altitude_m", high.top_altitude_m);
   if (high.coverage > 0.0f)  // a layer that is there lies wholly above the low one
@@ -288,37 +276,8 @@ void check_high_clouds(const Checker& check, const HighCloudParams& high,
 }
 
 void check_clouds(const Checker& check, const CloudParams& clouds) {
-  check.in_range("clouds.bottom_altitude_m", clouds.bottom_altitude_m, 0.0f, kMaxAltitudeM);
-  check.in_range("clouds.top_altitude_m", clouds.top_altitude_m, 0.0f, kMaxAltitudeM);
   check.below("clouds.bottom_altitude_m", clouds.bottom_altitude_m, "clouds.top_altitude_m",
               clouds.top_altitude_m);
-  check.in_range("clouds.coverage", clouds.coverage, 0.0f, 1.0f);
-  check.in_range("clouds.type", clouds.type, 0.0f, 1.0f);
-  check.in_range("clouds.precipitation", clouds.precipitation, 0.0f, 1.0f);
-  // 0 (a static map) or long enough that time / evolution stays finite.
-  if (clouds.weather_evolution_s != 0.0f)
-    check.in_range("clouds.weather_evolution_s", clouds.weather_evolution_s, 1.0f, 1.0e7f);
-  check.in_range("clouds.density", clouds.density, 0.0f, 1.0f);
-  check.in_range("clouds.extinction_per_m", clouds.extinction_per_m, 0.0f, kMaxFactor, true);
-  check.in_range("clouds.attenuation", clouds.attenuation, 0.0f, kMaxFactor);
-  check.in_range("clouds.light_attenuation", clouds.light_attenuation, 0.0f, kMaxFactor);
-  check.in_range("clouds.albedo", clouds.albedo, 0.0f, 1.0f);
-  check.in_range("clouds.phase_g_forward", clouds.phase_g_forward, 0.0f, 1.0f, false, true);
-  check.in_range("clouds.phase_g_backward", clouds.phase_g_backward, -1.0f, 0.0f, true, false);
-  check.in_range("clouds.phase_lobe_weight", clouds.phase_lobe_weight, 0.0f, 1.0f);
-  check.in_range("clouds.powder_strength", clouds.powder_strength, 0.0f, 1.0f);
-  check.in_range("clouds.ambient_strength", clouds.ambient_strength, 0.0f, kMaxFactor);
-  check.wind("clouds.wind_mps", clouds.wind_mps);
-  check.wind("clouds.wind_shear_mps", clouds.wind_shear_mps);
-  check.in_range("clouds.wind_skew_s", clouds.wind_skew_s, 0.0f, 3600.0f);
-  check.wind("clouds.detail_drift_mps", clouds.detail_drift_mps);
-  check.in_range("clouds.curl_distortion_m", clouds.curl_distortion_m, 0.0f, 10000.0f);
-  check.in_range("clouds.flow_speed_mps", clouds.flow_speed_mps, 0.0f, kMaxWindMps);
-  check.in_range("clouds.flow_cycle_s", clouds.flow_cycle_s, 1.0f, 86400.0f);
-  check.in_range("clouds.base_noise_period_m", clouds.base_noise_period_m, 10.0f, 1.0e6f);
-  check.in_range("clouds.detail_noise_period_m", clouds.detail_noise_period_m, 1.0f, 1.0e5f);
-  check.in_range("clouds.detail_erosion", clouds.detail_erosion, 0.0f, 1.0f);
-  check.in_range("clouds.weather_period_m", clouds.weather_period_m, 1000.0f, 1.0e7f);
   if (!clouds.weather_map.empty()) check.weather_map("clouds.weather_map", clouds.weather_map);
 }
 
@@ -337,12 +296,6 @@ void check_quality(const Checker& check, const QualityParams& quality) {
   if (quality.mode != MarchMode::Default && quality.mode != MarchMode::Baseline)
     check.fail("quality.mode", std::to_string(static_cast<int>(quality.mode)),
                "must be default or baseline");
-  check.in_range("quality.primary_steps", quality.primary_steps, 1, 1024);
-  check.in_range("quality.light_steps", quality.light_steps, 1, 64);
-  if (quality.march_stride != 1 && quality.march_stride != 2 && quality.march_stride != 4)
-    check.fail("quality.march_stride", std::to_string(quality.march_stride), "must be 1, 2 or 4");
-  check.in_range("quality.cloud_downsample", quality.cloud_downsample, 1, 4);
-  check.in_range("quality.light_volume_km", quality.light_volume_km, 0, 1000);
   if (quality.voxel_march != VoxelMarch::Plain && quality.voxel_march != VoxelMarch::ThreePhase)
     check.fail("quality.voxel_march", std::to_string(static_cast<int>(quality.voxel_march)),
                "must be plain or three-phase");
@@ -350,13 +303,6 @@ void check_quality(const Checker& check, const QualityParams& quality) {
       quality.voxel_shadow != VoxelShadow::SdfCone)
     check.fail("quality.voxel_shadow", std::to_string(static_cast<int>(quality.voxel_shadow)),
                "must be march or sdf-cone");
-  check.in_range("quality.sdf_light_tangent", quality.sdf_light_tangent, 0.001f, 10.0f);
-  if (light_shafts_method(quality.light_shafts) < 0)
-    check.fail("quality.light_shafts", scene_detail::toml_quote(quality.light_shafts),
-               "must be \"volumetric\", \"screen\" or \"off\"");
-  check.in_range("quality.screen_shaft_samples", quality.screen_shaft_samples, 1, 128);
-  check.in_range("quality.screen_shaft_strength", quality.screen_shaft_strength, 0.0f, 10.0f);
-  check.in_range("quality.screen_shaft_decay", quality.screen_shaft_decay, 0.0f, 1.0f);
 }
 
 // The classical models (seed 004): checked whichever model draws, so a scene file stays valid
@@ -366,78 +312,17 @@ void check_classic(const Checker& check, const CloudParams& clouds, const Classi
     check.fail("clouds.model", std::to_string(static_cast<int>(clouds.model)),
                "must be " + cloud_model_names(false));
   const std::string& phase = c.blinn_phase;
-  if (phase != "constant" && phase != "anisotropic" && phase != "lambert" && phase != "rayleigh" &&
-      phase != "hg")
-    check.fail("classic.blinn_phase", scene_detail::toml_quote(phase),
-               "must be \"constant\", \"anisotropic\", \"lambert\", \"rayleigh\" or \"hg\"");
   if (phase == "hg")
     check.in_range("classic.blinn_phase_x", c.blinn_phase_x, -1.0f, 1.0f, true, true);
   else
     check.in_range("classic.blinn_phase_x", c.blinn_phase_x, -1.0f, 1.0f);
-  check.in_range("classic.blinn_particle_radius_m", c.blinn_particle_radius_m, 0.0f, 1.0f, true);
-  check.in_range("classic.blinn_particles_per_m3", c.blinn_particles_per_m3, 0.0f, 1.0e12f);
-  check.in_range("classic.blinn_albedo", c.blinn_albedo, 0.0f, 1.0f);
-  if (c.gardner_clouds != "cumulus" && c.gardner_clouds != "stratus" && c.gardner_clouds != "cirrus")
-    check.fail("classic.gardner_clouds", scene_detail::toml_quote(c.gardner_clouds),
-               "must be \"cumulus\", \"stratus\" or \"cirrus\"");
-  check.in_range("classic.gardner_spacing_m", c.gardner_spacing_m, 100.0f, 1.0e5f);
-  check.in_range("classic.gardner_period_m", c.gardner_period_m, 10.0f, 1.0e6f);
-  check.in_range("classic.gardner_terms", c.gardner_terms, 1, 8);
-  check.in_range("classic.gardner_t1", c.gardner_t1, 0.0f, 1.0f);
-  check.in_range("classic.gardner_t2", c.gardner_t2, 0.0f, 1.0f);
-  check.in_range("classic.gardner_range", c.gardner_range, 0.0f, 1.0f, true);
-  check.in_range("classic.gardner_ambient", c.gardner_ambient, 0.0f, 1.0f);
-  check.in_range("classic.gardner_texture", c.gardner_texture, 0.0f, 1.0f);
-  check.in_range("classic.gardner_specular", c.gardner_specular, 0.0f, 1.0f);
-  check.in_range("classic.kajiya_levels", c.kajiya_levels, 1, 10);
-  check.in_range("classic.nishita_metaballs", c.nishita_metaballs, 1, 4096);
   check.in_range("classic.nishita_clouds", c.nishita_clouds, 1, std::min(64, std::max(c.nishita_metaballs, 1)));
-  check.in_range("classic.nishita_extent_m", c.nishita_extent_m, 500.0f, 1.0e5f);
-  check.in_range("classic.nishita_center_m", c.nishita_center_m, -1.0e6f, 1.0e6f);
-  check.in_range("classic.nishita_sigma_t_per_m", c.nishita_sigma_t_per_m, 0.0f, 10.0f, true);
-  check.in_range("classic.nishita_albedo", c.nishita_albedo, 0.0f, 1.0f);
-  check.in_range("classic.nishita_voxels", c.nishita_voxels, 16, 192);
-  check.in_range("classic.nishita_order", c.nishita_order, 1, 2);
 }
 
 // The particle clouds' grid: bounded so that spawning a field takes seconds, not hours.
 void check_particle_clouds(const Checker& check, const ParticleCloudParams& p) {
-  check.in_range("particle_clouds.coverage", p.coverage, 0.0f, 1.0f);
-  check.in_range("particle_clouds.bottom_altitude_m", p.bottom_altitude_m, 0.0f, 1.0e5f);
-  check.in_range("particle_clouds.top_altitude_m", p.top_altitude_m, 0.0f, 1.0e5f);
   check.below("particle_clouds.bottom_altitude_m", p.bottom_altitude_m,
               "particle_clouds.top_altitude_m", p.top_altitude_m);
-  check.in_range("particle_clouds.field_radius_m", p.field_radius_m, 100.0f, 1.0e6f);
-  check.in_range("particle_clouds.cloud_spacing_m", p.cloud_spacing_m, 100.0f, 1.0e5f);
-  check.in_range("particle_clouds.cell_m", p.cell_m, 1.0f, 1.0e4f);
-  check.in_range("particle_clouds.particle_radius_m", p.particle_radius_m, 1.0f, 1.0e4f);
-  check.in_range("particle_clouds.noise_period_m", p.noise_period_m, 1.0f, 1.0e6f);
-  if (p.evolution_s != 0.0f)
-    check.in_range("particle_clouds.evolution_s", p.evolution_s, 1.0f, 1.0e7f);
-  check.wind("particle_clouds.wind_mps", p.wind_mps);
-  check.in_range("particle_clouds.opacity", p.opacity, 0.0f, 1.0f);
-  check.in_range("particle_clouds.albedo", p.albedo, 0.0f, 1.0f);
-  check.in_range("particle_clouds.phase_g", p.phase_g, -1.0f, 1.0f, true, true);
-  check.in_range("particle_clouds.forward_solid_angle_sr", p.forward_solid_angle_sr, 0.0f,
-                 4.0f * 3.14159265f);
-  check.in_range("particle_clouds.diffuse_strength", p.diffuse_strength, 0.0f, 10.0f);
-  if (p.light_buffer != 32 && p.light_buffer != 64)
-    check.fail("particle_clouds.light_buffer", std::to_string(p.light_buffer), "must be 32 or 64");
-  check.in_range("particle_clouds.layer_resolution", p.layer_resolution, 0.25f, 1.0f);
-  if (p.impostors != "off" && p.impostors != "direct" && p.impostors != "tiles")
-    check.fail("particle_clouds.impostors", scene_detail::toml_quote(p.impostors),
-               "must be \"off\", \"direct\" or \"tiles\"");
-  check.in_range("particle_clouds.impostor_distance_m", p.impostor_distance_m, 0.0f, 1.0e7f);
-  check.in_range("particle_clouds.impostor_max_angle_deg", p.impostor_max_angle_deg, 0.0f, 90.0f, true);
-  check.in_range("particle_clouds.impostor_distance_factor", p.impostor_distance_factor, 1.0f, 10.0f, true);
-  check.in_range("particle_clouds.impostor_resolution", p.impostor_resolution, 0.1f, 4.0f);
-  check.in_range("particle_clouds.impostor_updates_per_frame", p.impostor_updates_per_frame, 1, 1024);
-  check.in_range("particle_clouds.impostor_fade_frames", p.impostor_fade_frames, 1, 1000);
-  check.in_range("particle_clouds.atlas_size", p.atlas_size, 256, 8192);
-  check.in_range("particle_clouds.atlas_granule", p.atlas_granule, 1, 256);
-  check.in_range("particle_clouds.atlas_defragmentations_per_s", p.atlas_defragmentations_per_s, 0.0f, 1000.0f);
-  if (p.atlas_tile != 16 && p.atlas_tile != 32)
-    check.fail("particle_clouds.atlas_tile", std::to_string(p.atlas_tile), "must be 16 or 32");
   if (p.coverage <= 0.0f) return;
   // The grid's cells over the field: pi R^2 x height / cell^3.
   const double cells = 3.14159265 * double(p.field_radius_m) * p.field_radius_m *
@@ -451,13 +336,6 @@ void check_particle_clouds(const Checker& check, const ParticleCloudParams& p) {
 }
 
 void check_lab(const Checker& check, const LabParams& lab) {
-  check.in_range("lab.sigma_t_per_m", lab.sigma_t_per_m, 0.0f, 1000.0f, true);
-  check.in_range("lab.albedo", lab.albedo, 0.0f, 1.0f);
-  check.in_range("lab.g", lab.g, -1.0f, 1.0f, true, true);
-  check.in_range("lab.max_bounces", lab.max_bounces, 0, 100000);
-  check.in_range("lab.sun_elevation_deg", lab.sun_elevation_deg, -90.0f, 90.0f);
-  check.in_range("lab.sun_azimuth_deg", lab.sun_azimuth_deg, -360.0f, 360.0f);
-  check.in_range("lab.sun_irradiance", lab.sun_irradiance, 0.0f, 1e6f);
   if (!lab.grid.empty()) check.readable_file("lab.grid", lab.grid);
 }
 
@@ -496,14 +374,6 @@ void check_terrain(const Checker& check, const TerrainParams& t) {
     if (!(t.extent_m[i] > 0.0f && t.extent_m[i] <= 1.0e6f))
       check.fail("terrain.extent_m", check.vector_text("terrain.extent_m", t.extent_m),
                  "each component must be in (0, 1e6] (east-west, north-south, m)");
-  check.in_range("terrain.center_m", t.center_m, -1.0e6f, 1.0e6f);
-  check.in_range("terrain.height_m", t.height_m, 0.0f, 1.0e4f);
-  check.in_range("terrain.base_m", t.base_m, -1.0e4f, 1.0e4f);
-  check.in_range("terrain.albedo", t.albedo, 0.0f, 1.0f);
-  check.in_range("terrain.snow_altitude_m", t.snow_altitude_m, 0.0f, 1.0e4f);
-  check.in_range("terrain.resolution", t.resolution, 16, 4096);
-  if (t.method != "raycast" && t.method != "raster")
-    check.fail("terrain.method", text("terrain.method", t.method), "must be raycast or raster");
 }
 
 void check_voxel_cloud(const Checker& check, const VoxelCloudParams& cloud, size_t index) {
@@ -540,11 +410,15 @@ void check_voxel_cloud(const Checker& check, const VoxelCloudParams& cloud, size
     check.fail(position_key, check.vector_text(position_key, p),
                "up must be in [" + format_float(kMinVoxelCloudUpM) + ", " +
                    format_float(kMaxVoxelCloudUpM) + "] m");
-  check.in_range(prefix + ".scale", cloud.scale, 0.0f, kMaxFactor, true);
-  check.in_range(prefix + ".rotation_deg", cloud.rotation_deg, -360.0f, 360.0f);
-  check.in_range(prefix + ".density", cloud.density, 0.0f, kMaxFactor);
-  check.wind(prefix + ".wind_mps", cloud.wind_mps);
-  check.in_range(prefix + ".resolution", cloud.resolution, 16, 256);
+  VoxelCloudParams& fields = const_cast<VoxelCloudParams&>(cloud);  // read only
+  for (const scene_detail::VoxelField& field : scene_detail::voxel_cloud_fields())
+    if (field.range.given)
+      std::visit(
+          [&](auto access) {
+            check_declared(check, prefix + "." + std::string(field.name), access(fields),
+                           field.range, {}, "");
+          },
+          field.access);
 }
 
 void check_voxel_clouds(const Checker& check, const std::vector<VoxelCloudParams>& clouds) {
@@ -555,19 +429,9 @@ void check_voxel_clouds(const Checker& check, const std::vector<VoxelCloudParams
 }
 
 void check_output(const Checker& check, const OutputParams& output) {
-  check.in_range("output.width", output.width, 1, 16384);
-  check.in_range("output.height", output.height, 1, 16384);
-  check.in_range("output.ev100", output.ev100, kMinEv100, kMaxEv100);
-  check.in_range("output.ev100_min", output.ev100_min, kMinEv100, kMaxEv100);
-  check.in_range("output.ev100_max", output.ev100_max, kMinEv100, kMaxEv100);
   if (!(output.ev100_min <= output.ev100_max))
     check.fail("output.ev100_min", format_float(output.ev100_min),
                "must be <= output.ev100_max (" + format_float(output.ev100_max) + ")");
-  check.in_range("output.exposure_compensation_ev", output.exposure_compensation_ev, -10.0f, 10.0f);
-  check.in_range("output.adaptation_ev_per_s", output.adaptation_ev_per_s, 0.0f, 1.0e6f);
-  check.in_range("output.bloom_strength", output.bloom_strength, 0.0f, 1.0f);
-  check.in_range("output.bloom_threshold_cd_m2", output.bloom_threshold_cd_m2, 0.0f, 1.0e12f);
-  check.in_range("output.bloom_radius_deg", output.bloom_radius_deg, 0.01f, 30.0f);
   if (parse_tonemap(to_string(output.tonemap)) != output.tonemap)
     check.fail("output.tonemap", std::to_string(static_cast<int>(output.tonemap)),
                "must be aces, agx, uncharted2, reinhard or none");
@@ -579,8 +443,6 @@ void check_conditions(const Checker& check, const Scene& scene) {
       c.mode != ConditionsMode::Overlay)
     check.fail("conditions.mode", std::to_string(static_cast<int>(c.mode)),
                "must be off, artist or overlay");
-  check.in_range("conditions.weather", c.weather, 0.0f, 1.0f);
-  if (c.hour != -1.0f) check.in_range("conditions.hour", c.hour, 0.0f, 24.0f, false, true);
   if (c.mode != ConditionsMode::Off && c.hour == -1.0f && scene.time.empty())
     check.fail("conditions.hour", "-1",
                "the keyframes need a time of day: give an hour in [0, 24) or a time");
@@ -599,15 +461,13 @@ void check_time(const Checker& check, const Scene& scene) {
     check.fail("time", time_text,
                "the sun is placed by the date (sun.from_time = true): give a date and time "
                "like 2026-06-21T18:30:00Z, or a sun direction");
-  check.in_range("location.lat_deg", scene.location.lat_deg, -90.0f, 90.0f);
-  check.in_range("location.lon_deg", scene.location.lon_deg, -180.0f, 360.0f);
-  check.in_range("location.altitude_m", scene.location.altitude_m, -500.0f, 9000.0f);
 }
 
 }  // namespace
 
 void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   Checker check(display_name);
+  check_declared_fields(check, scene);
   check_camera(check, scene.camera);
   check_sun(check, scene.sun);
   check_atmosphere(check, scene.atmosphere);
@@ -623,7 +483,6 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_particle_clouds(check, scene.particle_clouds);
   check_classic(check, scene.clouds, scene.classic);
   check_conditions(check, scene);
-  check.in_range("time_s", scene.time_s, -kMaxTimeS, kMaxTimeS);
   check_time(check, scene);
 }
 

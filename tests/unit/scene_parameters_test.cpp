@@ -77,7 +77,14 @@ TEST(SceneParameters, AreTheKeysOfTheSceneFileInItsOrder) {
 
 TEST(SceneParameters, KindsAllowedValuesAndNotes) {
   EXPECT_EQ(parameter("clouds.coverage").kind, SceneValueKind::kFloat);
-  EXPECT_EQ(parameter("clouds.coverage").note, "[0, 1]");
+  EXPECT_EQ(parameter("clouds.coverage").note, "[0, 1]: share of the sky the layer covers");
+  EXPECT_EQ(parameter("clouds.coverage").allowed_values, "[0, 1]");
+  EXPECT_EQ(parameter("clouds.coverage").meaning, "share of the sky the layer covers");
+  EXPECT_EQ(parameter("clouds.coverage").min, 0.0);
+  EXPECT_EQ(parameter("clouds.coverage").max, 1.0);
+  EXPECT_EQ(parameter("clouds.weather_evolution_s").allowed_values, "0 or [1, 1e+07]");
+  EXPECT_EQ(parameter("clouds.weather_evolution_s").off, 0.0);
+  EXPECT_EQ(parameter("quality.march_stride").allowed_values, "1, 2 or 4");
   EXPECT_EQ(parameter("quality.primary_steps").kind, SceneValueKind::kInt);
   EXPECT_EQ(parameter("noise_seed").kind, SceneValueKind::kUint);
   EXPECT_EQ(parameter("clouds.wind_mps").kind, SceneValueKind::kVec2);
@@ -97,7 +104,7 @@ TEST(SceneParameters, KindsAllowedValuesAndNotes) {
             (std::vector<std::string>{"march", "sdf-cone"}));
   EXPECT_EQ(parameter("quality.sdf_light_tangent").kind, SceneValueKind::kFloat);
   EXPECT_EQ(parameter("quality.sdf_light_tangent").note,
-            "the SDF cone's half-angle tangent, [0.001, 10]");
+            "[0.001, 10]: the SDF cone's half-angle tangent");
   EXPECT_TRUE(parameter("clouds.coverage").allowed.empty());
   EXPECT_NE(parameter("conditions.good.night.hour").note.find("[0, 24)"), std::string::npos);
 }
