@@ -74,8 +74,8 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
                  "number of a sequence's first frame, [0, 10000000]; frame K is K steps (or K / "
                  "--fps seconds) into the sequence, so a flight can be rendered in parts");
   cmd.add_option("--camera-path", options.camera_path,
-                 "fly the camera along this path (TOML [[key]] tables, see the README): frame i "
-                 "at path time (--start-frame + i) / --fps, the scene's clock advancing alike; "
+                 "fly the camera along this path (TOML [[key]] tables, see docs/camera.md): frame "
+                 "i at path time (--start-frame + i) / --fps, the scene's clock advancing alike; "
                  "rendered as an animation (temporal reprojection)")
       ->type_name("FILE");
   cmd.add_option("--fps", options.fps, "frames per second of a --camera-path flight, (0, 1000]")

@@ -1,9 +1,10 @@
 // The weather module: the weather map the clouds read (binding kWeatherMap). A file (PNG or
 // EXR, read as image/input_images.h says) is uploaded once. The procedural map evolves with
 // time without a hitch: states of the weather at steps of clouds.weather_evolution_s /
-// kWeatherSteps are computed ahead (weather.comp, the next one a band of rows a frame) and the
-// map is blended between the two around the scene's time (weather_blend.comp), so it changes
-// smoothly and never all at once.
+// gpu::WEATHER_STEPS (360, shaders/common/params_inc.glsl) are computed ahead into one of
+// three layers (weather.comp, the next one a band of rows a frame over kWeatherBuildFrames),
+// and the map is blended between the two around the scene's time (weather_blend.comp), so it
+// changes smoothly and never all at once.
 #pragma once
 
 #include <optional>
