@@ -192,6 +192,15 @@ struct NanoEntry {
   int64_t dim[3];
 };
 
+// "32.4.0". Not nanovdb::Version::c_str(): that returns a malloc'd buffer its callers must
+// free, and a std::string made from it leaked it (FuzzFiles' .nvdb cases, LeakSanitizer).
+// NanoVDB's own io::Segment::read leaks it the same way for a segment of an older major
+// version, which scan_nanovdb refuses before nanovdb::io::readGrid reads the file.
+std::string version_text(const nanovdb::Version& version) {
+  return std::to_string(version.getMajor()) + "." + std::to_string(version.getMinor()) + "." +
+         std::to_string(version.getPatch());
+}
+
 // The grids of an .nvdb, from its segment headers, every size checked against the file's:
 // NanoVDB's reader trusts them (and allocates what they say).
 std::vector<NanoEntry> scan_nanovdb(const std::string& path, uint64_t file_bytes) {
@@ -211,7 +220,7 @@ std::vector<NanoEntry> scan_nanovdb(const std::string& path, uint64_t file_bytes
                                    "\"density\" is required)"
                                  : "is corrupt (a segment without the NanoVDB magic number)");
     if (header.version.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER)
-      fail(path, "is NanoVDB version " + std::string(header.version.c_str()) + " (version " +
+      fail(path, "is NanoVDB version " + version_text(header.version) + " (version " +
                      std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + ".x is required)");
     if (header.codec != nanovdb::io::Codec::NONE)
       fail(path, "is compressed (an uncompressed NanoVDB file is required)");
@@ -317,6 +326,12 @@ openvdb::FloatGrid::Ptr read_nano_grid(const std::string& path, const std::strin
   if (!grid) fail(path, "grid \"" + name + "\" is corrupt (it is not a float grid)");
   if (const std::string why = nano_tree_problem(handle, *grid); !why.empty())
     fail(path, "grid \"" + name + "\" is corrupt (" + why + ")");
+  // The grid's own version, which may differ from its segment's: NanoVDB's validator formats a
+  // wrong one with Version::c_str() and never frees it (a grid without a checksum reaches it).
+  if (const nanovdb::Version version = grid->version();
+      version.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER)
+    fail(path, "grid \"" + name + "\" is NanoVDB version " + version_text(version) + " (version " +
+                   std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + ".x is required)");
   // The checksum and the tree's offsets: a corrupt grid is refused before it is walked.
   if (!nanovdb::isValid(*grid, /*detailed=*/true))
     fail(path, "grid \"" + name + "\" is corrupt (its checksum or structure does not hold)");
