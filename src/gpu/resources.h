@@ -87,5 +87,8 @@ void full_barrier(VkCommandBuffer cmd);
 // compute shaders (nephele/frame.h, FrameImages); fragment shaders only where the queue has
 // graphics.
 void frame_end_barrier(VkCommandBuffer cmd, bool graphics);
+// Between two passes of the frame graph: every write before is visible to every read and
+// write after, in every stage (compute, transfer, the raster passes).
+void pass_barrier(VkCommandBuffer cmd);
 
 }  // namespace nephele::gpu

@@ -1,19 +1,17 @@
 // The frame: orders the passes of a frame, caches what does not change, records into the
 // host's command buffer (nephele/frame.h).
-#include "nephele/frame.h"
-#include "nephele/sky.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <glm/gtc/packing.hpp>
 #include <optional>
 
-#include <glm/gtc/packing.hpp>
-
 #include "nephele/error.h"
+#include "nephele/frame.h"
 #include "nephele/scene_io.h"
+#include "nephele/sky.h"
 #include "render/frame_params.h"
 #include "render/frame_renderer_impl.h"
 #include "render/lab_scene.h"
@@ -33,7 +31,8 @@ Image download(gpu::Context& ctx, const gpu::Texture& texture, bool half) {
   }
   const auto* src = static_cast<const uint32_t*>(staging.data());
   for (size_t i = 0; i < n; ++i)
-    image.pixels[i] = glm::vec4(glm::unpackHalf2x16(src[2 * i]), glm::unpackHalf2x16(src[2 * i + 1]));
+    image.pixels[i] =
+        glm::vec4(glm::unpackHalf2x16(src[2 * i]), glm::unpackHalf2x16(src[2 * i + 1]));
   return image;
 }
 
@@ -47,8 +46,7 @@ Image resample(const Image& src, int width, int height) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const float gx = glm::clamp((x + 0.5f) * src.width / width - 0.5f, 0.0f, src.width - 1.0f);
-      const float gy =
-          glm::clamp((y + 0.5f) * src.height / height - 0.5f, 0.0f, src.height - 1.0f);
+      const float gy = glm::clamp((y + 0.5f) * src.height / height - 0.5f, 0.0f, src.height - 1.0f);
       const int x0 = int(gx), y0 = int(gy);
       const int x1 = std::min(x0 + 1, src.width - 1), y1 = std::min(y0 + 1, src.height - 1);
       const float fx = gx - x0, fy = gy - y0;
@@ -109,7 +107,8 @@ int layer_side(const Scene& scene) {
 bool history_usable(const Scene& scene, const Scene& previous, const glm::vec3& light_dir,
                     const glm::vec3& previous_light_dir) {
   const float cos_sun = glm::dot(light_dir, previous_light_dir);
-  return cos_sun > std::cos(glm::radians(0.5f)) && scene.sun.illuminance_lux == previous.sun.illuminance_lux &&
+  return cos_sun > std::cos(glm::radians(0.5f)) &&
+         scene.sun.illuminance_lux == previous.sun.illuminance_lux &&
          glm::distance(scene.camera.position_m, previous.camera.position_m) < 1000.0f &&
          layer_side(scene) == layer_side(previous);
 }
@@ -124,16 +123,15 @@ double cloud_cover_fraction(const Scene& scene, const Image& clouds) {
   size_t above = 0, covered = 0;
   for (int y = 0; y < clouds.height; ++y)
     for (int x = 0; x < clouds.width; ++x) {
-      glm::vec3 dir = glsl::camera_ray(basis.forward, basis.right, basis.up, tan_half_fov, aspect,
-                                       float(x), float(y), float(clouds.width),
-                                       float(clouds.height));
+      glm::vec3 dir =
+          glsl::camera_ray(basis.forward, basis.right, basis.up, tan_half_fov, aspect, float(x),
+                           float(y), float(clouds.width), float(clouds.height));
       if (glm::dot(dir, up) <= 0.0f) continue;
       ++above;
       if (clouds.at(x, y).a < 0.5f) ++covered;
     }
   return above == 0 ? 0.0 : double(covered) / double(above);
 }
-
 
 void FrameRenderer::Impl::print_timings(const std::vector<std::pair<std::string, double>>& results,
                                         const char* note) const {
@@ -152,16 +150,23 @@ void FrameRenderer::Impl::update_noise(const Scene& scene, const gpu::FrameParam
   } else {  // one submission a texture, each reported
     progress("noise", 0, NoiseModule::kTextures);
     for (int i = 0; i < NoiseModule::kTextures; ++i) {
-      print_timings(state.run_once(params,
-                                   [&](VkCommandBuffer cmd) { noise.record(cmd, *state.timer, i); }),
-                    " (made once for its seed)");
+      print_timings(
+          state.run_once(params, [&](VkCommandBuffer cmd) { noise.record(cmd, *state.timer, i); }),
+          " (made once for its seed)");
       progress("noise", i + 1, NoiseModule::kTextures);
     }
   }
   noise.made(scene.noise_seed);
 }
 
-void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FrameParams& params) {
+// The frame graph's barrier between passes.
+static void graph_barrier(VkCommandBuffer cmd) {
+  gpu::pass_barrier(cmd);
+}
+
+std::vector<std::string> FrameRenderer::Impl::march_in_bands(const FrameGraph& graph,
+                                                             const Scene& scene,
+                                                             const gpu::FrameParams& params) {
   const int block_rows = (clouds.height() + clouds.stride() - 1) / clouds.stride();
   const int bands = std::clamp(block_rows / 16, 1, 40);
   band_timings.clear();
@@ -169,12 +174,16 @@ void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FramePar
     for (const auto& [name, ms] : results) {
       auto it = std::find_if(band_timings.begin(), band_timings.end(),
                              [&](const PassTiming& p) { return p.name == name; });
-      if (it == band_timings.end()) band_timings.push_back({name, ms});
-      else it->ms += ms;
+      if (it == band_timings.end())
+        band_timings.push_back({name, ms});
+      else
+        it->ms += ms;
     }
   };
+  const std::vector<std::string> before = graph.dependencies_of("march");
   progress("clouds", 0, bands + 1);
-  keep(state.run_once(params, [&](VkCommandBuffer cmd) { record_before_march(cmd, scene, params, true); }));
+  keep(state.run_once(params,
+                      [&](VkCommandBuffer cmd) { graph.execute(cmd, graph_barrier, before); }));
   progress("clouds", 1, bands + 1);
   for (int b = 0; b < bands; ++b) {
     gpu::FrameParams band = params;
@@ -185,32 +194,113 @@ void FrameRenderer::Impl::march_in_bands(const Scene& scene, const gpu::FramePar
     }));
     progress("clouds", b + 2, bands + 1);
   }
+  std::vector<std::string> rest;
+  for (const FrameGraph::Step& step : graph.steps())
+    if (step.pass != "march" && std::find(before.begin(), before.end(), step.pass) == before.end())
+      rest.push_back(step.pass);
+  return rest;
 }
 
-void FrameRenderer::Impl::record_before_march(VkCommandBuffer cmd, const Scene& scene,
-                                              const gpu::FrameParams& params, bool volumetric) {
-  weather.record(cmd, *state.timer);
-  sky_view.record(cmd, *state.timer);
-  light_volume.record(cmd, *state.timer);
+FrameGraph FrameRenderer::Impl::frame_graph(const Scene& scene, const gpu::FrameParams& params,
+                                            const FramePlan& plan) {
+  FrameGraph g;
+  // Made before the frame: the atmosphere's tables, the noise, the voxel clouds' atlas, the
+  // reference sky. Kept across frames: what builds over several frames (the weather, the sky
+  // view, the light volume) and what a later frame reads back (the ground's light, the clouds'
+  // history). Read whether or not a pass writes them this frame: the terrain, the particle
+  // layer, the shafts.
+  for (const char* r : {"atmosphere", "noise", "voxel_clouds", "reference_sky", "terrain",
+                        "particle_layer", "shafts"})
+    g.import(r);
+  for (const char* r : {"weather_map", "sky_view", "light_volume", "ground_light", "cloud_layer"})
+    g.import(r, true);
+  for (const char* r : {"color", "meter", "display", "host_lighting"}) g.output(r);
+  const auto timer = [this]() -> gpu::PassTimer& { return *state.timer; };
+  const MarchMode mode = scene.quality.mode;
+
+  g.add_pass("weather", {}, {"weather_map"},
+             [=, this](VkCommandBuffer cmd) { weather.record(cmd, timer()); });
+  g.add_pass("sky_view", {"atmosphere"}, {"sky_view"},
+             [=, this](VkCommandBuffer cmd) { sky_view.record(cmd, timer()); });
+  g.add_pass("light_volume", {"weather_map", "noise", "voxel_clouds", "atmosphere"},
+             {"light_volume"},
+             [=, this](VkCommandBuffer cmd) { light_volume.record(cmd, timer()); });
   // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe). Without
   // nephele's clouds the gaps pass all the sky's light (a classical model's shadow is its
   // own, in the cloud buffer).
-  if (!volumetric)
-    clouds.record_clear_ground_light(cmd);
+  const std::vector<std::string> cloud_inputs = {"weather_map", "noise", "voxel_clouds",
+                                                 "light_volume"};
+  if (!plan.volumetric)
+    g.add_pass("ground_light", {}, {"ground_light"},
+               [this](VkCommandBuffer cmd) { clouds.record_clear_ground_light(cmd); });
   else if (light_volume.completed() || params.light_volume.w == 0.0f)
-    clouds.record_ground_light(cmd, *state.timer, scene.quality.mode);
-  if (params.terrain_shape.z > 0.0f) terrain.record(cmd, *state.timer);
-  if (params.host_scene.x > 0.0f) host_scene.record(cmd, *state.timer);
-  if (params.host_shadow_grid.y > 0) host_lighting.record(cmd, *state.timer);
+    g.add_pass("ground_light", cloud_inputs, {"ground_light"},
+               [=, this](VkCommandBuffer cmd) { clouds.record_ground_light(cmd, timer(), mode); });
+  if (params.terrain_shape.z > 0.0f)
+    g.add_pass("terrain",
+               {"ground_light", "light_volume", "weather_map", "noise", "sky_view", "atmosphere"},
+               {"terrain"}, [=, this](VkCommandBuffer cmd) { terrain.record(cmd, timer()); });
+  if (params.host_scene.x > 0.0f)
+    g.add_pass("host_scene", {"terrain"}, {"terrain"},
+               [=, this](VkCommandBuffer cmd) { host_scene.record(cmd, timer()); });
+  if (params.host_shadow_grid.y > 0)
+    g.add_pass("host_lighting",
+               {"weather_map", "noise", "voxel_clouds", "light_volume", "ground_light", "sky_view"},
+               {"host_lighting"},
+               [=, this](VkCommandBuffer cmd) { host_lighting.record(cmd, timer()); });
+  // The cloud layer: nephele's march and its reconstruction, a classical model, or none.
+  if (plan.volumetric) {
+    std::vector<std::string> march_reads = cloud_inputs;
+    march_reads.push_back("terrain");
+    g.add_pass("march", march_reads, {"cloud_march"},
+               [=, this](VkCommandBuffer cmd) { clouds.record_march(cmd, timer(), mode); });
+  }
+  if (plan.classic) {
+    const CloudModel model = scene.clouds.model;
+    g.add_pass("clouds", cloud_inputs, {"cloud_layer"}, [=, this](VkCommandBuffer cmd) {
+      classic_clouds.record(cmd, timer(), model, clouds.width(), clouds.height());
+    });
+  } else if (plan.volumetric) {
+    g.add_pass("clouds", {"cloud_march", "cloud_layer"}, {"cloud_layer"},
+               [=, this](VkCommandBuffer cmd) { clouds.record_reconstruction(cmd, timer()); });
+  } else {
+    g.add_pass("clouds", {}, {"cloud_layer"},
+               [this](VkCommandBuffer cmd) { clouds.record_clear_sky(cmd); });
+  }
+  g.add_pass("particles", {"sky_view", "terrain", "atmosphere"}, {"particle_layer"},
+             [=, this](VkCommandBuffer cmd) { particles.record(cmd, timer()); });
+  if (plan.shafts)
+    g.add_pass("light_shafts",
+               {"cloud_layer", "ground_light", "light_volume", "weather_map", "noise",
+                "voxel_clouds", "terrain", "atmosphere"},
+               {"shafts"}, [=, this](VkCommandBuffer cmd) { light_shafts.record(cmd, timer()); });
+  const SkyModel sky = scene.atmosphere.model;
+  g.add_pass("compose",
+             {"atmosphere", "sky_view", "cloud_layer", "ground_light", "shafts", "particle_layer",
+              "terrain", "reference_sky"},
+             {"color"}, [this, sky](VkCommandBuffer cmd) { pass_compose(cmd, state, sky); });
+  g.add_pass("stars", {"color", "cloud_layer", "particle_layer", "terrain", "atmosphere"},
+             {"color"}, [this](VkCommandBuffer cmd) { pass_stars(cmd, state); });
+  if (plan.post)
+    g.add_pass(
+        "post", {"color", "cloud_layer", "terrain", "shafts"}, {"color"},
+        [=, this](VkCommandBuffer cmd) { post.record(cmd, timer(), state.width, state.height); });
+  g.add_pass("meter", {"color"}, {"meter"},
+             [this](VkCommandBuffer cmd) { pass_meter(cmd, state); });
+  if (plan.display)
+    g.add_pass("tonemap", {"color"}, {"display"},
+               [this](VkCommandBuffer cmd) { pass_tonemap(cmd, state); });
+  g.compile();
+  return g;
 }
 
 void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
   if (!atmosphere.stale(scene.atmosphere)) return;
   gpu::FrameParams params{};
   set_atmosphere(params, scene);
-  print_timings(state.run_once(params,
-                               [&](VkCommandBuffer cmd) { atmosphere.record(cmd, *state.timer); }),
-                " (cached until the atmosphere changes)");
+  print_timings(
+      state.run_once(params, [&](VkCommandBuffer cmd) { atmosphere.record(cmd, *state.timer); }),
+      " (cached until the atmosphere changes)");
   atmosphere.made(scene.atmosphere);
   sky_view.invalidate();
 }
@@ -243,8 +333,7 @@ Image FrameRenderer::Impl::compose_layer(const Scene& scene, int layer) {
   return download(ctx, state.color[last_slot], false);
 }
 
-double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode mode,
-                                              double& ms) {
+double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms) {
   params.steps.w = gpu::PROJECTION_SKY_DOME;
   params.cloud_shape.x = 0.0f;  // the detail noise's finest level, as an observer sees it
   params.cloud_grid = glm::ivec4(kSkyDomeSize, kSkyDomeSize, 1, 0);
@@ -297,8 +386,8 @@ FrameRenderer::Impl::Impl(const RendererOptions& options)
 
 FrameRenderer::Impl::Impl(const HostVulkan& host, const RendererOptions& options)
     : Impl(std::make_unique<gpu::Context>(
-               gpu::HostDevice{host.instance, host.physical_device, host.device,
-                               host.queue_family, host.queue},
+               gpu::HostDevice{host.instance, host.physical_device, host.device, host.queue_family,
+                               host.queue},
                options.verbose),
            options) {}
 
@@ -333,11 +422,17 @@ FrameRenderer::FrameRenderer(const HostVulkan& host, const RendererOptions& opti
 
 FrameRenderer::~FrameRenderer() = default;
 
-int FrameRenderer::frames_in_flight() const { return gpu::kFramesInFlight; }
+int FrameRenderer::frames_in_flight() const {
+  return gpu::kFramesInFlight;
+}
 
-const std::string& FrameRenderer::device_name() const { return impl_->ctx.device_name(); }
+const std::string& FrameRenderer::device_name() const {
+  return impl_->ctx.device_name();
+}
 
-int FrameRenderer::validation_messages() const { return impl_->ctx.validation_messages(); }
+int FrameRenderer::validation_messages() const {
+  return impl_->ctx.validation_messages();
+}
 
 const std::optional<FrameStats>& FrameRenderer::completed_stats() const {
   return impl_->completed;
@@ -350,8 +445,9 @@ const std::optional<HostLighting>& FrameRenderer::completed_lighting() const {
 FrameImages FrameRenderer::record_frame(VkCommandBuffer cmd, const Scene& scene,
                                         const FrameOptions& options) {
   if (cmd == VK_NULL_HANDLE)
-    throw InputError("FrameRenderer::record_frame: cmd is VK_NULL_HANDLE; a command buffer in "
-                     "the recording state is needed");
+    throw InputError(
+        "FrameRenderer::record_frame: cmd is VK_NULL_HANDLE; a command buffer in "
+        "the recording state is needed");
   return impl_->record_frame(cmd, scene, options);
 }
 
@@ -406,7 +502,8 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   // Every argument is checked before any module changes its state: a refused call leaves the
   // renderer as it was.
   if (options.host_scene)
-    if (const std::string problem = host_scene_problem(*options.host_scene, requested); !problem.empty())
+    if (const std::string problem = host_scene_problem(*options.host_scene, requested);
+        !problem.empty())
       throw InputError("FrameRenderer::record_frame: " + problem);
   if (const std::string problem = host_lighting_problem(options.lighting); !problem.empty())
     throw InputError("FrameRenderer::record_frame: " + problem);
@@ -461,8 +558,9 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   // (clear, or particle clouds only) skips it. Only the march and Kajiya's model read the
   // light volume.
   const bool classic = scene.clouds.model != CloudModel::Nephele;
-  const bool volumetric = !classic && (scene.clouds.coverage > 0.0f ||
-                                       scene.high_clouds.coverage > 0.0f || !scene.voxel_clouds.empty());
+  const bool volumetric =
+      !classic && (scene.clouds.coverage > 0.0f || scene.high_clouds.coverage > 0.0f ||
+                   !scene.voxel_clouds.empty());
   light_volume.prepare(scene, density_key(scene), WeatherModule::weather_time(scene), still,
                        volumetric || scene.clouds.model == CloudModel::Kajiya, params);
   sky_view.prepare(still, params);
@@ -474,28 +572,20 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   const bool lighting = host_lighting.prepare(options.lighting, scene, lights, slot, params);
   clouds.swap_history();
 
+  const FramePlan plan{volumetric, classic, shafts, post_processed, options.display};
+  const FrameGraph graph = frame_graph(scene, params, plan);
+  if (verbose && frames_recorded == 0)
+    std::fprintf(stderr, "nephele: frame graph\n%s", graph.describe().c_str());
   // Bands are submitted now, before the host's commands that draw its scene.
   const bool in_bands = still && progress && volumetric && !host;
   band_timings.clear();
-  if (in_bands) march_in_bands(scene, params);
+  std::vector<std::string> passes;
+  if (in_bands) passes = march_in_bands(graph, scene, params);
   s.begin(cmd, slot, params);
-  if (!in_bands) {
-    record_before_march(cmd, scene, params, volumetric);
-    if (volumetric) clouds.record_march(cmd, *s.timer, scene.quality.mode);
-  }
-  if (classic)
-    classic_clouds.record(cmd, *s.timer, scene.clouds.model, clouds.width(), clouds.height());
-  else if (volumetric)
-    clouds.record_reconstruction(cmd, *s.timer);
+  if (in_bands)
+    graph.execute(cmd, graph_barrier, passes);
   else
-    clouds.record_clear_sky(cmd);
-  particles.record(cmd, *s.timer);
-  if (shafts) light_shafts.record(cmd, *s.timer);
-  pass_compose(cmd, s, scene.atmosphere.model);
-  pass_stars(cmd, s);
-  if (post_processed) post.record(cmd, *s.timer, s.width, s.height);
-  pass_meter(cmd, s);
-  if (options.display) pass_tonemap(cmd, s);
+    graph.execute(cmd, graph_barrier);
   gpu::frame_end_barrier(cmd, ctx.has_graphics());
 
   previous = scene;

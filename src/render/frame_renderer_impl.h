@@ -24,6 +24,7 @@
 #include "render/modules/terrain.h"
 #include "render/modules/voxel_clouds.h"
 #include "render/modules/weather.h"
+#include "render/frame_graph.h"
 #include "render/passes.h"
 #include "render/path_majorant.h"
 
@@ -77,14 +78,19 @@ struct FrameRenderer::Impl {
   void render_reference_sky(gpu::FrameParams params);
 
   FrameImages record_frame(VkCommandBuffer cmd, const Scene& scene, const FrameOptions& options);
-  // A still image with progress: the modules' work, then the clouds pass in bands of rows,
-  // each submitted and waited for and reported; what remains is recorded into the frame.
-  void march_in_bands(const Scene& scene, const gpu::FrameParams& params);
-  // What the clouds' march reads, recorded before it: the weather, the sky-view table, the
-  // light volume, the ground's light under the clouds (`volumetric`: nephele's clouds are
-  // drawn), the terrain.
-  void record_before_march(VkCommandBuffer cmd, const Scene& scene, const gpu::FrameParams& params,
-                           bool volumetric);
+  // What a frame draws, decided by record_frame from the scene and the modules' prepare.
+  struct FramePlan {
+    bool volumetric = false;  // nephele's clouds are marched
+    bool classic = false;     // a classical model (seed 004) draws the cloud layer instead
+    bool shafts = false, post = false, display = false;
+  };
+  // The frame's passes, each with the resources it reads and writes, compiled: the order, the
+  // barriers and the part the march needs come from the graph (frame_graph.h).
+  FrameGraph frame_graph(const Scene& scene, const gpu::FrameParams& params, const FramePlan& plan);
+  // A still image with progress: the passes the march needs, then the march in bands of rows,
+  // each submitted and waited for and reported. Returns the passes left for the frame.
+  std::vector<std::string> march_in_bands(const FrameGraph& graph, const Scene& scene,
+                                          const gpu::FrameParams& params);
   std::vector<PassTiming> band_timings;  // of march_in_bands, for the frame's stats
   // After the frame of `slot` completed: its stats with the passes' timings (moved into
   // `completed`); nothing when none is pending there.
