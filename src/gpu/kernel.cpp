@@ -28,12 +28,12 @@ bool raster_reads(Binding b) {
 
 }  // namespace
 
-DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
-  // Indexed by Binding.
+VkDescriptorType binding_type(Binding binding) {
+  // Indexed by Binding; tests/unit/bindings_test.cpp checks it against bindings_inc.glsl.
   constexpr VkDescriptorType kUbo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  const VkDescriptorType types[] = {
+  static constexpr VkDescriptorType types[] = {
       kUbo,     kStorage, kStorage, kStorage, kSampled, kSampled, kSampled, kStorage,
       kSampled, kStorage, kSampled, kStorage, kStorage, kSampled, kSampled, kStorage,
       kStorage, kSampled, kSampled, kSampled, kSampled, kStorage, kStorage, kStorage,
@@ -46,21 +46,25 @@ DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kSampled, kStorage, kStorage, kSampled,
       kSampled, kStorage, kSampled, kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kStorage};
-  constexpr uint32_t kCount = sizeof(types) / sizeof(types[0]);
+  static_assert(sizeof(types) / sizeof(types[0]) == kBindingCount);
+  return binding < kBindingCount ? types[binding] : VK_DESCRIPTOR_TYPE_MAX_ENUM;
+}
+
+DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
+  constexpr uint32_t kCount = kBindingCount;
   // lavapipe takes at most 32 combined image samplers (and 32 storage images) a stage, and
   // every binding is visible to the compute stage: a new texture shares an image with another
   // (the terrain's heights hold its pyramid of maxima) or reads with imageLoad where it can.
-  static_assert(kCount == kBindingCount);
   VkDescriptorSetLayoutBinding bindings[kCount];
   uint32_t count_of[VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT + 1] = {};
   for (uint32_t i = 0; i < kCount; ++i) {
     // Compute passes; the raster passes (gpu/raster.h) read only a few bindings, and only
     // those are visible to their stages (every stage a binding is visible to costs the
     // validation layer time at every dispatch).
-    bindings[i] = {i, types[i], 1,
+    bindings[i] = {i, binding_type(Binding(i)), 1,
                    VK_SHADER_STAGE_COMPUTE_BIT | (raster_reads(Binding(i)) ? kRasterStages : 0u),
                    nullptr};
-    ++count_of[types[i]];
+    ++count_of[bindings[i].descriptorType];
   }
   VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layout_info.bindingCount = kCount;

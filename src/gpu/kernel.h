@@ -93,6 +93,10 @@ enum Binding : uint32_t {
   kBindingCount
 };
 
+// The descriptor type of a binding as bindings_inc.glsl declares it (VK_DESCRIPTOR_TYPE_MAX_ENUM
+// past the end).
+VkDescriptorType binding_type(Binding binding);
+
 // The stages that read the per-draw push constants (DrawConstants, params_inc.glsl): the raster
 // passes' shaders and impostor_tiles.comp.
 constexpr VkShaderStageFlags kDrawConstantStages =
