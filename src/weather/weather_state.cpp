@@ -1,0 +1,208 @@
+// nephele — the weather state and its application to the scene (weather_state.h).
+#include "weather/weather_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "nephele/error.h"
+#include "scene/scene_fields.h"
+
+namespace nephele::weather {
+namespace {
+
+using scene_detail::format_float;
+
+constexpr float kKoschmieder = 3.912f;  // -ln(0.02): the 2% contrast threshold
+
+// The volumetric genera in the order of clouds.type's scale (0, 0.25, ... 1), and the sheet's
+// in cirrus.type's (0, 0.5, 1).
+constexpr Genus kVolumetric[] = {Genus::Stratus, Genus::Stratocumulus, Genus::Altocumulus,
+                                 Genus::Cumulus, Genus::Cumulonimbus};
+constexpr Genus kSheet[] = {Genus::Cirrus, Genus::Cirrostratus, Genus::Cirrocumulus};
+
+template <size_t N>
+int index_of(const Genus (&list)[N], Genus genus) {
+  const auto it = std::find(std::begin(list), std::end(list), genus);
+  return it == std::end(list) ? -1 : int(it - std::begin(list));
+}
+
+// The genus of list nearest to `type` on a scale from 0 to 1.
+template <size_t N>
+Genus nearest(const Genus (&list)[N], float type) {
+  const int i = int(std::lround(std::clamp(type, 0.0f, 1.0f) * float(N - 1)));
+  return list[i];
+}
+
+[[noreturn]] void fail(const std::string& field, const std::string& value, const std::string& why) {
+  throw InputError("weather." + field + " = " + value + ": " + why);
+}
+
+// Checks a layer and returns its position on the type scale of `list`.
+template <size_t N>
+float checked_type(const std::string& name, const CloudLayer& layer, const Genus (&list)[N],
+                   const char* allowed, bool sheet) {
+  const int i = index_of(list, layer.genus);
+  if (i < 0)
+    fail(name + ".genus", to_string(layer.genus), std::string("this layer draws ") + allowed);
+  if (!(layer.coverage_oktas >= 0.0f && layer.coverage_oktas <= 8.0f))
+    fail(name + ".coverage_oktas", format_float(layer.coverage_oktas), "must be in [0, 8]");
+  if (!sheet && !(layer.base_m < layer.top_m))
+    fail(name + ".base_m", format_float(layer.base_m),
+         "must be below " + name + ".top_m (" + format_float(layer.top_m) + ")");
+  if (layer.type >= 0.0f) {
+    if (!(layer.type <= 1.0f))
+      fail(name + ".type", format_float(layer.type),
+           "must be in [0, 1], or < 0 for the genus's own");
+    return layer.type;
+  }
+  return float(i) / float(N - 1);
+}
+
+}  // namespace
+
+const char* to_string(Genus genus) {
+  switch (genus) {
+    case Genus::Stratus:
+      return "stratus";
+    case Genus::Stratocumulus:
+      return "stratocumulus";
+    case Genus::Altocumulus:
+      return "altocumulus";
+    case Genus::Cumulus:
+      return "cumulus";
+    case Genus::Cumulonimbus:
+      return "cumulonimbus";
+    case Genus::Cirrus:
+      return "cirrus";
+    case Genus::Cirrostratus:
+      return "cirrostratus";
+    case Genus::Cirrocumulus:
+      return "cirrocumulus";
+  }
+  return "unknown";
+}
+
+glm::vec2 wind_at(const std::vector<WindLevel>& levels, float altitude_m) {
+  if (levels.empty()) return glm::vec2(0.0f);
+  if (altitude_m <= levels.front().altitude_m) return levels.front().wind_mps;
+  for (size_t i = 1; i < levels.size(); ++i)
+    if (altitude_m == levels[i].altitude_m) {
+      return levels[i].wind_mps;
+    } else if (altitude_m < levels[i].altitude_m) {
+      const WindLevel& a = levels[i - 1];
+      const WindLevel& b = levels[i];
+      const float t = (altitude_m - a.altitude_m) / (b.altitude_m - a.altitude_m);
+      return a.wind_mps + t * (b.wind_mps - a.wind_mps);
+    }
+  return levels.back().wind_mps;
+}
+
+float clear_air_visibility_m(const AtmosphereParams& atmosphere) {
+  // The air's own extinction at 550 nm: the Rayleigh coefficients' green channel.
+  return kKoschmieder / atmosphere.rayleigh_scattering_per_m.y;
+}
+
+float visibility_m(const AtmosphereParams& atmosphere) {
+  return kKoschmieder / (atmosphere.rayleigh_scattering_per_m.y + atmosphere.mie_extinction_per_m);
+}
+
+WeatherState weather_state(const Scene& scene) {
+  WeatherState state;
+  const CloudParams& c = scene.clouds;
+  state.low = {nearest(kVolumetric, c.type),
+               c.type,
+               c.bottom_altitude_m,
+               c.top_altitude_m,
+               8.0f * c.coverage,
+               c.density,
+               0.0f};
+  const HighCloudParams& h = scene.high_clouds;
+  state.high = {nearest(kVolumetric, h.type),
+                h.type,
+                h.bottom_altitude_m,
+                h.top_altitude_m,
+                8.0f * h.coverage,
+                h.density,
+                0.0f};
+  const CirrusParams& s = scene.cirrus;
+  state.sheet = {nearest(kSheet, s.type), s.type, s.altitude_m,   s.altitude_m,
+                 8.0f * s.coverage,       0.0f,   s.optical_depth};
+  std::vector<WindLevel> levels = {{c.bottom_altitude_m, c.wind_mps},
+                                   {c.top_altitude_m, c.wind_mps + c.wind_shear_mps},
+                                   {h.bottom_altitude_m, h.wind_mps},
+                                   {s.altitude_m, s.wind_mps}};
+  std::stable_sort(levels.begin(), levels.end(), [](const WindLevel& a, const WindLevel& b) {
+    return a.altitude_m < b.altitude_m;
+  });
+  for (const WindLevel& level : levels)  // one wind an altitude: the first given
+    if (state.wind.empty() || level.altitude_m > state.wind.back().altitude_m)
+      state.wind.push_back(level);
+  // The layers' winds as one profile, when they are one.
+  const bool one_profile = wind_at(state.wind, c.bottom_altitude_m) == c.wind_mps &&
+                           wind_at(state.wind, c.top_altitude_m) - c.wind_mps == c.wind_shear_mps &&
+                           wind_at(state.wind, h.bottom_altitude_m) == h.wind_mps &&
+                           wind_at(state.wind, s.altitude_m) == s.wind_mps;
+  if (!one_profile) state.wind.clear();
+  state.visibility_m = visibility_m(scene.atmosphere);
+  state.storm_growth = c.precipitation;
+  return state;
+}
+
+void apply_weather(const WeatherState& state, Scene& scene) {
+  // Everything is checked before the scene changes.
+  const char* volumetric = "stratus, stratocumulus, altocumulus, cumulus or cumulonimbus";
+  const float low_type = checked_type("low", state.low, kVolumetric, volumetric, false);
+  const float high_type = checked_type("high", state.high, kVolumetric, volumetric, false);
+  const float sheet_type =
+      checked_type("sheet", state.sheet, kSheet, "cirrus, cirrostratus or cirrocumulus", true);
+  for (size_t i = 1; i < state.wind.size(); ++i)
+    if (!(state.wind[i].altitude_m > state.wind[i - 1].altitude_m))
+      fail("wind[" + std::to_string(i) + "].altitude_m", format_float(state.wind[i].altitude_m),
+           "must be above wind[" + std::to_string(i - 1) + "].altitude_m (" +
+               format_float(state.wind[i - 1].altitude_m) + "): levels go up");
+  const float clear_m = clear_air_visibility_m(scene.atmosphere);
+  if (!(state.visibility_m >= kMinVisibilityM && state.visibility_m <= clear_m))
+    fail("visibility_m", format_float(state.visibility_m),
+         "must be in [" + format_float(kMinVisibilityM) + ", " + format_float(clear_m) +
+             "] (the clear air's own, at sea level; fog is thicker than the haze can be)");
+  if (!(state.precipitation_mm_per_h >= 0.0f && state.precipitation_mm_per_h <= 500.0f))
+    fail("precipitation_mm_per_h", format_float(state.precipitation_mm_per_h),
+         "must be in [0, 500]");
+
+  CloudParams& c = scene.clouds;
+  c.type = low_type;
+  c.bottom_altitude_m = state.low.base_m;
+  c.top_altitude_m = state.low.top_m;
+  c.coverage = state.low.coverage_oktas / 8.0f;
+  c.density = state.low.density;
+  c.precipitation = state.storm_growth;
+  HighCloudParams& h = scene.high_clouds;
+  h.type = high_type;
+  h.bottom_altitude_m = state.high.base_m;
+  h.top_altitude_m = state.high.top_m;
+  h.coverage = state.high.coverage_oktas / 8.0f;
+  h.density = state.high.density;
+  CirrusParams& s = scene.cirrus;
+  s.type = sheet_type;
+  s.altitude_m = state.sheet.base_m;
+  s.coverage = state.sheet.coverage_oktas / 8.0f;
+  s.optical_depth = state.sheet.optical_depth;
+  if (!state.wind.empty()) {
+    c.wind_mps = wind_at(state.wind, c.bottom_altitude_m);
+    c.wind_shear_mps = wind_at(state.wind, c.top_altitude_m) - c.wind_mps;
+    h.wind_mps = wind_at(state.wind, h.bottom_altitude_m);
+    s.wind_mps = wind_at(state.wind, s.altitude_m);
+  }
+  // The haze: Mie extinction for the visibility, its single-scattering albedo kept (and left
+  // exactly as it is when the visibility is the one it gives).
+  AtmosphereParams& a = scene.atmosphere;
+  if (state.visibility_m == visibility_m(a)) return;
+  const float albedo =
+      a.mie_extinction_per_m > 0.0f ? a.mie_scattering_per_m / a.mie_extinction_per_m : 0.9f;
+  a.mie_extinction_per_m =
+      std::max(0.0f, kKoschmieder / state.visibility_m - a.rayleigh_scattering_per_m.y);
+  a.mie_scattering_per_m = albedo * a.mie_extinction_per_m;
+}
+
+}  // namespace nephele::weather

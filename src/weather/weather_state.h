@@ -1,0 +1,85 @@
+// nephele — the weather as a simulator's weather model states it: cloud layers (genus, base,
+// top, coverage in oktas), the wind by altitude, the visibility, the precipitation. One
+// function applies it to the scene's clouds, high clouds, cirrus and atmosphere; another reads
+// it back. Weather reports (METAR, GRIB) will fill it.
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <string>
+#include <vector>
+
+#include "nephele/scene.h"
+
+namespace nephele::weather {
+
+// The genera the renderer draws, each by the layer that can draw it: the low volumetric layer
+// (Scene::clouds), the high volumetric layer (Scene::high_clouds) or the cirrus sheet.
+enum class Genus {
+  Stratus,
+  Stratocumulus,
+  Altocumulus,
+  Cumulus,
+  Cumulonimbus,  // volumetric, by clouds.type
+  Cirrus,
+  Cirrostratus,
+  Cirrocumulus,  // the sheet, by cirrus.type
+};
+const char* to_string(Genus genus);
+
+struct CloudLayer {
+  Genus genus = Genus::Cumulus;
+  // The renderer's continuous type scale ([0, 1], clouds.type or cirrus.type) when it lies
+  // between genera; < 0: the genus's own value.
+  float type = -1.0f;
+  float base_m = 1500.0f;       // above the ground
+  float top_m = 4000.0f;        // above the ground; the sheet's altitude is its base
+  float coverage_oktas = 0.0f;  // [0, 8]; 0 = no layer
+  float density = 0.5f;         // the volumetric layers' clouds.density, [0, 1]
+  float optical_depth = 0.3f;   // the sheet's vertical optical depth, [0, 4]
+};
+
+// The wind at one altitude above the ground; between levels it is linear, beyond them constant.
+struct WindLevel {
+  float altitude_m = 0.0f;
+  glm::vec2 wind_mps{0.0f};  // east, north
+};
+
+enum class PrecipitationKind { None, Rain, Snow };
+
+struct WeatherState {
+  CloudLayer low;                                                                  // Scene::clouds
+  CloudLayer high{Genus::Altocumulus, -1.0f, 6000.0f, 7000.0f, 0.0f, 0.4f, 0.0f};  // high_clouds
+  CloudLayer sheet{Genus::Cirrus, -1.0f, 9000.0f, 9000.0f, 0.0f, 0.0f, 0.3f};      // cirrus
+  // By altitude, increasing. Empty: the scene's winds are left as they are (weather_state
+  // gives none when the scene's layers' winds are no single profile).
+  std::vector<WindLevel> wind;
+  // Meteorological visibility at sea level (m): the distance at which a black object's
+  // contrast falls to 2%, sets the haze (Koschmieder: extinction at 550 nm = 3.912 / V).
+  float visibility_m = 200000.0f;
+  // Carried for what draws it (rain and snow); the renderer's cumulonimbus growth
+  // (clouds.precipitation) is `storm_growth`.
+  PrecipitationKind precipitation = PrecipitationKind::None;
+  float precipitation_mm_per_h = 0.0f;
+  float storm_growth = 0.0f;  // clouds.precipitation, [0, 1]
+};
+
+// The wind of `levels` at `altitude_m` (zero when there are none).
+glm::vec2 wind_at(const std::vector<WindLevel>& levels, float altitude_m);
+
+// The visibility the scene's haze gives, and the Mie extinction a visibility needs (1/m, at
+// sea level, after the air's own Rayleigh extinction at 550 nm); the visibilities the
+// atmosphere can hold are [kMinVisibilityM, clear_air_visibility_m(atmosphere)].
+float visibility_m(const AtmosphereParams& atmosphere);
+float clear_air_visibility_m(const AtmosphereParams& atmosphere);
+constexpr float kMinVisibilityM = 400.0f;  // Mie extinction 0.0098/m: validation's 0.01 limit
+
+// The state today's scene describes.
+WeatherState weather_state(const Scene& scene);
+// Writes the state into the scene's clouds, high clouds, cirrus and atmosphere (the Mie term
+// keeps its albedo). Throws InputError naming the field ("weather.low.genus = cirrus: ...")
+// for a genus the layer cannot draw, oktas outside [0, 8], a base at or above a top, winds
+// not increasing in altitude, a visibility outside what the atmosphere holds; the scene is
+// unchanged then. validate_scene checks the result as for any scene.
+void apply_weather(const WeatherState& state, Scene& scene);
+
+}  // namespace nephele::weather

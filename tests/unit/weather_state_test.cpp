@@ -1,0 +1,99 @@
+// The weather state: read from a scene, applied to one, with oktas, winds by altitude and
+// visibility in metres.
+#include "weather/weather_state.h"
+
+#include <gtest/gtest.h>
+
+#include "nephele/error.h"
+#include "nephele/scene_io.h"
+
+namespace nephele::weather {
+namespace {
+
+std::string error_of(const WeatherState& state, Scene& scene) {
+  try {
+    apply_weather(state, scene);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(WeatherState, ReadingAndApplyingAPresetChangesNothingTheStateHolds) {
+  for (const char* preset :
+       {"default", "overcast", "cumulonimbus-storm", "stratus", "few", "cirrus", "sunset"}) {
+    const Scene original = load_preset(preset);
+    Scene scene = original;
+    apply_weather(weather_state(original), scene);
+    EXPECT_EQ(scene_to_toml(scene), scene_to_toml(original)) << preset;
+  }
+}
+
+TEST(WeatherState, OktasGenusAndWindsByAltitude) {
+  Scene scene{};
+  WeatherState state = weather_state(scene);
+  state.low = {Genus::Stratocumulus, -1.0f, 800.0f, 1800.0f, 6.0f, 0.6f, 0.0f};  // 6 oktas: broken
+  state.sheet = {Genus::Cirrostratus, -1.0f, 9500.0f, 9500.0f, 2.0f, 0.0f, 0.5f};
+  state.wind = {{0.0f, {2.0f, 0.0f}}, {1000.0f, {10.0f, 0.0f}}, {10000.0f, {40.0f, 10.0f}}};
+  apply_weather(state, scene);
+  EXPECT_FLOAT_EQ(scene.clouds.coverage, 0.75f);
+  EXPECT_FLOAT_EQ(scene.clouds.type, 0.25f);  // stratocumulus on clouds.type's scale
+  EXPECT_FLOAT_EQ(scene.cirrus.type, 0.5f);
+  EXPECT_FLOAT_EQ(scene.cirrus.coverage, 0.25f);
+  EXPECT_FLOAT_EQ(scene.clouds.wind_mps.x, 8.4f);  // 800 m: 80% of the way from 2 to 10
+  EXPECT_NEAR(scene.clouds.wind_shear_mps.x, 10.0f + 800.0f / 9000.0f * 30.0f - 8.4f, 1e-4f);
+  EXPECT_NEAR(scene.cirrus.wind_mps.y, 9.5f / 10.0f * 10.0f - 1.0f / 9.0f * 0.5f, 0.1f);
+  validate_scene(scene);
+  EXPECT_EQ(weather_state(scene).low.coverage_oktas, 6.0f);
+  EXPECT_EQ(weather_state(scene).low.genus, Genus::Stratocumulus);
+  EXPECT_EQ(weather_state(scene).wind.size(), 4u);  // the layers' winds are one profile
+  // A type between genera is kept, and named by the nearest genus.
+  scene.clouds.type = 0.7f;
+  EXPECT_EQ(weather_state(scene).low.genus, Genus::Cumulus);
+  EXPECT_EQ(weather_state(scene).low.type, 0.7f);
+}
+
+// Koschmieder: the visibility sets the haze's extinction, and reads back as itself.
+TEST(WeatherState, VisibilityInMetresSetsTheHaze) {
+  Scene scene{};
+  WeatherState state = weather_state(scene);
+  const float albedo =
+      scene.atmosphere.mie_scattering_per_m / scene.atmosphere.mie_extinction_per_m;
+  state.visibility_m = 10000.0f;  // 10 km: a hazy day
+  apply_weather(state, scene);
+  EXPECT_NEAR(scene.atmosphere.mie_extinction_per_m + scene.atmosphere.rayleigh_scattering_per_m.y,
+              3.912e-4f, 1e-8f);
+  EXPECT_NEAR(visibility_m(scene.atmosphere), 10000.0f, 1.0f);
+  EXPECT_NEAR(scene.atmosphere.mie_scattering_per_m / scene.atmosphere.mie_extinction_per_m, albedo,
+              1e-5f);
+  validate_scene(scene);
+  // The default haze: about 217 km; the clear air alone about 289 km.
+  EXPECT_NEAR(visibility_m(Scene{}.atmosphere), 217000.0f, 2000.0f);
+  EXPECT_NEAR(clear_air_visibility_m(Scene{}.atmosphere), 288540.0f, 100.0f);
+}
+
+TEST(WeatherState, WhatALayerCannotDrawIsOneLineAndChangesNothing) {
+  const Scene original{};
+  Scene scene = original;
+  WeatherState state = weather_state(scene);
+  state.low.genus = Genus::Cirrus;
+  EXPECT_EQ(error_of(state, scene),
+            "weather.low.genus = cirrus: this layer draws stratus, stratocumulus, altocumulus, "
+            "cumulus or cumulonimbus");
+  state = weather_state(scene);
+  state.low.coverage_oktas = 9.0f;
+  EXPECT_EQ(error_of(state, scene), "weather.low.coverage_oktas = 9: must be in [0, 8]");
+  state = weather_state(scene);
+  state.visibility_m = 100.0f;
+  EXPECT_NE(error_of(state, scene).find("weather.visibility_m = 100: must be in [400, "),
+            std::string::npos);
+  state = weather_state(scene);
+  state.wind = {{1000.0f, {1.0f, 0.0f}}, {500.0f, {2.0f, 0.0f}}};
+  EXPECT_EQ(
+      error_of(state, scene),
+      "weather.wind[1].altitude_m = 500: must be above wind[0].altitude_m (1000): levels go up");
+  EXPECT_EQ(scene_to_toml(scene), scene_to_toml(original));
+}
+
+}  // namespace
+}  // namespace nephele::weather
