@@ -228,6 +228,31 @@ PYBIND11_MODULE(nephele, m) {
 
   m.def("presets", &nephele::preset_names, "The built-in scenes' names.");
   m.def(
+      "scene_parameters",
+      [] {
+        py::list list;
+        for (const nephele::SceneParameter& p : nephele::scene_parameters()) {
+          py::dict d;
+          d["key"] = p.key;
+          d["unit"] = p.unit;
+          d["allowed"] = p.allowed.empty() ? py::object(py::str(p.allowed_values))
+                                           : py::object(py::cast(p.allowed));
+          d["min"] = std::isnan(p.min) ? py::object(py::none()) : py::object(py::float_(p.min));
+          d["max"] = std::isnan(p.max) ? py::object(py::none()) : py::object(py::float_(p.max));
+          d["min_open"] = p.min_open;
+          d["max_open"] = p.max_open;
+          d["off"] = p.off ? py::object(py::float_(*p.off)) : py::object(py::none());
+          d["default"] = p.default_value;
+          d["meaning"] = p.meaning;
+          list.append(d);
+        }
+        return list;
+      },
+      "Every scene key as a dict: key, unit, allowed (the range as text, or the list of names), "
+      "min, max (None when any value goes), min_open, max_open, off (a value outside the range "
+      "that is allowed too), default (TOML text, without a preset) and meaning; the same table "
+      "validation and docs/scene-reference.md use.");
+  m.def(
       "scene_toml",
       [](const std::string& preset, const py::object& scene, const py::object& toml) {
         return nephele::scene_to_toml(make_scene(preset, scene, toml, py::none(), py::none()));

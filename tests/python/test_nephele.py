@@ -61,3 +61,13 @@ def test_cloud_queries_from_the_cpu():
     assert nephele.optical_depth(column[:1], column[3:], preset="clear")[0] == 0.0
     with pytest.raises(nephele.InputError, match="positions"):
         nephele.cloud_density(np.zeros((2, 2)))
+
+
+def test_scene_parameters_give_each_key_its_range_unit_and_default():
+    params = {p["key"]: p for p in nephele.scene_parameters()}
+    coverage = params["clouds.coverage"]
+    assert (coverage["min"], coverage["max"], coverage["allowed"]) == (0.0, 1.0, "[0, 1]")
+    assert params["clouds.bottom_altitude_m"]["unit"] == "m"
+    assert params["clouds.weather_evolution_s"]["off"] == 0.0
+    assert params["atmosphere.model"]["allowed"] == ["hillaire", "preetham", "reference"]
+    assert params["time"]["min"] is None
