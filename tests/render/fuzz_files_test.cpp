@@ -19,7 +19,6 @@
 // each case regenerates alone: NEPHELE_FUZZ_FILES_CASE=FORMAT:INDEX runs that one case only
 // (failures print the command). The files mutated are written under
 // NEPHELE_TEST_OUTPUT_DIR/fuzz_files/ (the valid ones in base/); a failing case's file is kept.
-#include <cxxabi.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -51,6 +50,7 @@
 #include "nephele/error.h"
 #include "nephele/image.h"
 #include "nephele/scene_io.h"
+#include "support/fuzz_support.h"
 #include "support/terrain_files.h"
 #include "support/vdb_files.h"
 #include "terrain/heightfield.h"
@@ -61,17 +61,12 @@ namespace fs = std::filesystem;
 namespace nephele {
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAsan = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAsan = true;
-#else
-constexpr bool kAsan = false;
-#endif
-#else
-constexpr bool kAsan = false;
-#endif
+using test::demangled_type;
+using test::describe_death;
+using test::Failure;
+using test::kAsan;
+using test::printable;
+using test::reset_peak_memory;
 
 // --- budget and contract ----------------------------------------------------------------------
 
@@ -164,30 +159,6 @@ std::string hex(uint64_t value) {
   return text;
 }
 
-std::string demangled_type(const std::exception& e) {
-  int status = 0;
-  char* name = abi::__cxa_demangle(typeid(e).name(), nullptr, nullptr, &status);
-  std::string text = status == 0 && name ? name : typeid(e).name();
-  std::free(name);
-  return text;
-}
-
-// Control characters and bytes beyond ASCII as \xNN, so that a report prints cleanly.
-std::string printable(std::string_view text, size_t max_chars = 1500) {
-  std::string out;
-  for (unsigned char c : text.substr(0, max_chars)) {
-    if (c == '\n' || (c >= 0x20 && c < 0x7f)) {
-      out += char(c);
-    } else {
-      char code[8];
-      std::snprintf(code, sizeof code, "\\x%02x", c);
-      out += code;
-    }
-  }
-  if (text.size() > max_chars) out += "... (" + std::to_string(text.size()) + " bytes in all)";
-  return out;
-}
-
 std::string tail(const std::string& text, size_t chars = 1500) {
   return printable(text.size() > chars ? "..." + text.substr(text.size() - chars) : text);
 }
@@ -199,13 +170,6 @@ size_t status_bytes(const std::string& pid, const char* field) {
     if (line.rfind(field, 0) == 0)
       return size_t(std::stoull(line.substr(std::strlen(field)))) * 1024;
   return 0;
-}
-
-std::string describe_death(int status) {
-  if (WIFSIGNALED(status))
-    return "crashed: signal " + std::to_string(WTERMSIG(status)) + " (" +
-           strsignal(WTERMSIG(status)) + ")";
-  return "exit status " + std::to_string(WEXITSTATUS(status));
 }
 
 std::string mib(size_t bytes) {
@@ -784,18 +748,7 @@ Mutant make_case(const Format& f, int index) {
 void write_line(int fd, std::string line) {
   for (char& c : line)
     if (c == '\n' || c == '\r') c = '|';
-  line += '\n';
-  for (size_t done = 0; done < line.size();) {
-    const ssize_t n = write(fd, line.data() + done, line.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return;
-    done += size_t(n);
-  }
-}
-
-// Restarts the peak (VmHWM) from the current resident memory (Linux 4.0 and later).
-void reset_peak_memory() {
-  std::ofstream("/proc/self/clear_refs") << "5";
+  test::write_all(fd, line + '\n');
 }
 
 // Grows by 64 MiB, touched, every few milliseconds, up to 6 GiB (a watchdog that failed would
@@ -849,25 +802,8 @@ void run_cases_as_child(size_t first, int fd) {
 }
 
 // Failures, grouped by symptom in the report.
-struct Failure {
-  std::string symptom, label, detail, input;
-};
-
-std::string report(const std::vector<Failure>& failures, size_t examples = 4) {
-  std::map<std::string, std::vector<const Failure*>> by_symptom;
-  for (const Failure& f : failures) by_symptom[f.symptom].push_back(&f);
-  std::ostringstream out;
-  out << failures.size() << " failing case(s), " << by_symptom.size() << " symptom(s):\n";
-  for (const auto& [symptom, list] : by_symptom) {
-    out << "\n=== " << symptom << ": " << list.size() << " case(s)\n";
-    for (size_t i = 0; i < list.size() && i < examples; ++i)
-      out << "--- " << list[i]->label << ": " << printable(list[i]->detail, 600) << "\n"
-          << printable(list[i]->input) << "\n";
-    for (size_t i = examples; i < list.size() && i < examples + 30; ++i)
-      out << (i == examples ? "... and " : ", ") << list[i]->label;
-    out << (list.size() > examples ? "\n" : "");
-  }
-  return out.str();
+std::string report(const std::vector<Failure>& failures) {
+  return test::failure_report(failures, "case", 4);
 }
 
 // A child's stderr for a report: the first sanitizer report's line, then the end.

@@ -14,7 +14,6 @@
 //
 // What could crash or hang the test binary runs in a child process: renders (a Renderer per
 // child, validation layer on), whole files read from disk, the 50,000-level dotted key.
-#include <cxxabi.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -49,9 +48,15 @@
 #include "render_command.h"
 #include "scene/scene_fields.h"
 #include "scene_flags.h"
+#include "support/fuzz_support.h"
 
 namespace fs = std::filesystem;
 using nephele::Scene;
+using nephele::test::demangled_type;
+using nephele::test::describe_death;
+using nephele::test::printable;
+using nephele::test::reset_peak_memory;
+using nephele::test::write_all;
 
 namespace {
 
@@ -121,30 +126,6 @@ void do_one_of(Rng& rng, const std::vector<Weighted>& actions) {
   }
 }
 
-std::string demangled_type(const std::exception& e) {
-  int status = 0;
-  char* name = abi::__cxa_demangle(typeid(e).name(), nullptr, nullptr, &status);
-  std::string text = status == 0 && name ? name : typeid(e).name();
-  std::free(name);
-  return text;
-}
-
-// Control characters and bytes beyond ASCII as \xNN, so that a report prints cleanly.
-std::string printable(std::string_view text, size_t max_chars = 3000) {
-  std::string out;
-  for (unsigned char c : text.substr(0, max_chars)) {
-    if (c == '\n' || (c >= 0x20 && c < 0x7f)) {
-      out += char(c);
-    } else {
-      char hex[8];
-      std::snprintf(hex, sizeof hex, "\\x%02x", c);
-      out += hex;
-    }
-  }
-  if (text.size() > max_chars) out += "... (" + std::to_string(text.size()) + " bytes in all)";
-  return out;
-}
-
 // Shell words that paste back into a shell as the same arguments.
 std::string shell_quote(const std::vector<std::string>& words) {
   std::string out;
@@ -211,13 +192,6 @@ size_t count_non_finite(const nephele::Image& image, std::string& first) {
 
 // --- failures, grouped by symptom -------------------------------------------------------------
 
-struct Failure {
-  std::string symptom;  // groups failures of one cause: "crashed: signal 11 (Segmentation fault)"
-  std::string label;    // which case: "scene file case #1234"
-  std::string detail;   // this case's particulars
-  std::string input;    // what reproduces it
-};
-
 class FailureLog {
  public:
   void add(const std::string& symptom, const std::string& label, const std::string& detail,
@@ -226,29 +200,11 @@ class FailureLog {
   }
   size_t size() const { return failures_.size(); }
 
-  // Each symptom with its number of cases, the first few in full, the rest by label.
-  std::string report(size_t examples = 5) const {
-    std::map<std::string, std::vector<const Failure*>> by_symptom;
-    for (const Failure& f : failures_) by_symptom[f.symptom].push_back(&f);
-    std::ostringstream out;
-    out << failures_.size() << " failing input(s), " << by_symptom.size() << " symptom(s):\n";
-    for (const auto& [symptom, list] : by_symptom) {
-      out << "\n=== " << symptom << ": " << list.size() << " input(s)\n";
-      for (size_t i = 0; i < list.size() && i < examples; ++i)
-        out << "--- " << list[i]->label << ": " << printable(list[i]->detail, 600) << "\n"
-            << printable(list[i]->input) << "\n";
-      if (list.size() > examples) {
-        out << "... and " << list.size() - examples << " more:";
-        for (size_t i = examples; i < list.size() && i < examples + 40; ++i)
-          out << (i == examples ? " " : ", ") << list[i]->label;
-        out << (list.size() > examples + 40 ? ", ..." : "") << "\n";
-      }
-    }
-    return out.str();
-  }
+  // Each symptom with its number of inputs, the first few in full, the rest by label.
+  std::string report() const { return nephele::test::failure_report(failures_, "input", 5); }
 
  private:
-  std::vector<Failure> failures_;
+  std::vector<nephele::test::Failure> failures_;
 };
 
 // A folder of this test's own under NEPHELE_TEST_OUTPUT_DIR/fuzz, emptied first.
@@ -1079,28 +1035,11 @@ class LineReader {
   std::string buffer_;
 };
 
-void write_all(int fd, const std::string& text) {
-  for (size_t done = 0; done < text.size();) {
-    const ssize_t n = write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return;
-    done += size_t(n);
-  }
-}
-
 // A line for the pipe: newlines made visible.
 std::string one_line(std::string text) {
   for (char& c : text)
     if (c == '\n') c = '|';
   return text;
-}
-
-// "crashed: signal 11 (Segmentation fault)", "exit status 3", for a waitpid status.
-std::string describe_death(int status) {
-  if (WIFSIGNALED(status))
-    return "crashed: signal " + std::to_string(WTERMSIG(status)) + " (" +
-           strsignal(WTERMSIG(status)) + ")";
-  return "exit status " + std::to_string(WEXITSTATUS(status));
 }
 
 size_t address_space_in_use() {
@@ -1116,11 +1055,6 @@ size_t resident_memory(const char* field = "VmRSS:") {
   for (std::string line; std::getline(status, line);)
     if (line.starts_with(field)) return size_t(std::stoull(line.substr(std::strlen(field)))) * 1024;
   return 0;
-}
-
-// Restarts the peak (VmHWM) from the current resident memory (Linux 4.0 and later).
-void reset_peak_memory() {
-  std::ofstream("/proc/self/clear_refs") << "5";
 }
 
 // What a child process reports: "" when its input kept the contract, else the symptom.

@@ -15,40 +15,16 @@
 #include <random>
 
 #include "nephele/error.h"
+#include "support/fuzz_support.h"
 #include "support/vdb_files.h"
 #include "voxel/voxel_grid.h"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define NEPHELE_TEST_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define NEPHELE_TEST_ASAN 1
-#endif
-#endif
-#ifdef NEPHELE_TEST_ASAN
-#include <sanitizer/lsan_interface.h>
-#endif
 
 namespace nephele::voxel {
 namespace {
 
 namespace fs = std::filesystem;
-
-#ifdef NEPHELE_TEST_ASAN
-constexpr bool kAsan = true;
-#else
-constexpr bool kAsan = false;
-#endif
-
-// Under AddressSanitizer: whether LeakSanitizer finds memory leaked so far in this process (it
-// prints what it finds). Always false without it.
-bool leaks_found() {
-#ifdef NEPHELE_TEST_ASAN
-  return __lsan_do_recoverable_leak_check() != 0;
-#else
-  return false;
-#endif
-}
+using test::kAsan;
+using test::leaks_found;
 
 // How much a batch of loads may raise the process's peak resident memory. AddressSanitizer
 // keeps up to 256 MB of freed memory in quarantine.
@@ -108,6 +84,16 @@ std::string load_all(const std::vector<std::string>& files, bool may_load) {
   if (growth_mb > kMaxGrowthMb)
     problems += "peak memory grew by " + std::to_string(growth_mb) + " MB\n";
   return problems;
+}
+
+// The InputError's message loading `file` gives, or "loaded".
+std::string load_message(const std::string& file) {
+  try {
+    load_voxel_cloud(file, 16);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "loaded";
 }
 
 class VoxelIoHostile : public ::testing::Test {
@@ -205,21 +191,14 @@ TEST_F(VoxelIoHostile, InflatedCountsAndSizesAreOneLineInBoundedMemory) {
   expect_bounded(files, /*may_load=*/false);
 
   // The same, read here: each message says what is wrong.
-  const auto message = [](const std::string& file) {
-    try {
-      load_voxel_cloud(file, 16);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("loaded");
-  };
-  EXPECT_NE(message(path("chunk40.vdb"))
+  EXPECT_NE(load_message(path("chunk40.vdb"))
                 .find("is truncated or corrupt (grid \"density\": a "
                       "compressed chunk of 1099511627776 bytes"),
             std::string::npos)
-      << message(path("chunk40.vdb"));
-  EXPECT_NE(message(path("version.vdb")).find("is OpenVDB file format 65535"), std::string::npos);
-  EXPECT_NE(message(path("cut64.vdb")).find("is truncated or corrupt ("), std::string::npos);
+      << load_message(path("chunk40.vdb"));
+  EXPECT_NE(load_message(path("version.vdb")).find("is OpenVDB file format 65535"),
+            std::string::npos);
+  EXPECT_NE(load_message(path("cut64.vdb")).find("is truncated or corrupt ("), std::string::npos);
 }
 
 // Each of 200 bytes of a stream and of a file with grid offsets flipped in turn: every
@@ -305,14 +284,6 @@ TEST_F(VoxelIoHostile, NanoVdbOfAnotherVersionIsOneLineAndLeaksNothing) {
     put<uint64_t>(b, grid + 8, ~uint64_t(0));  // no checksum
     put<uint32_t>(b, grid + 16, version(31, 4, 0));
   });
-  const auto message = [](const std::string& file) {
-    try {
-      load_voxel_cloud(file, 16);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("loaded");
-  };
   const std::vector<std::pair<std::string, std::string>> expected = {
       {older, "older.nvdb: is NanoVDB version 31.4.0 (version 32.x is required)"},
       {newer, "newer.nvdb: is NanoVDB version 33.1.2 (version 32.x is required)"},
@@ -320,7 +291,7 @@ TEST_F(VoxelIoHostile, NanoVdbOfAnotherVersionIsOneLineAndLeaksNothing) {
        "grid_older.nvdb: grid \"density\" is NanoVDB version 31.4.0 (version 32.x is required)"},
   };
   for (const auto& [file, text] : expected) {
-    const std::string got = message(file);
+    const std::string got = load_message(file);
     EXPECT_NE(got.find(text), std::string::npos) << got;
     EXPECT_EQ(got.find('\n'), std::string::npos) << got;
   }
