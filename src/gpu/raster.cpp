@@ -8,6 +8,8 @@ namespace nephele::gpu {
 
 DepthTarget::DepthTarget(Context& ctx, uint32_t width, uint32_t height)
     : device_(ctx.device()), width_(width), height_(height) {
+  // A failure part way (out of memory) frees what was made: no destructor runs for it.
+  const UndoOnThrow undo([this] { reset(); });
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = VK_FORMAT_D32_SFLOAT;

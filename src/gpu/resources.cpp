@@ -10,26 +10,22 @@ namespace nephele::gpu {
 Buffer::Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage)
     : device_(ctx.device()), size_(size) {
   // A failure part way (out of memory) frees what was made: no destructor runs for it.
-  try {
-    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    info.size = size;
-    info.usage = usage;
-    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    NEPHELE_VK(vkCreateBuffer(device_, &info, nullptr, &buffer_));
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(device_, buffer_, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex =
-        ctx.memory_type(req.memoryTypeBits,
-                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
-    NEPHELE_VK(vkBindBufferMemory(device_, buffer_, memory_, 0));
-    NEPHELE_VK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
-  } catch (...) {
-    reset();
-    throw;
-  }
+  const UndoOnThrow undo([this] { reset(); });
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  NEPHELE_VK(vkCreateBuffer(device_, &info, nullptr, &buffer_));
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(device_, buffer_, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex =
+      ctx.memory_type(req.memoryTypeBits,
+                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+  NEPHELE_VK(vkBindBufferMemory(device_, buffer_, memory_, 0));
+  NEPHELE_VK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
@@ -56,82 +52,77 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
                  VkSamplerAddressMode address, uint32_t mip_levels, bool render_target)
     : device_(ctx.device()), width_(width), height_(height), depth_(depth), levels_(mip_levels) {
   // A failure part way (out of memory) frees what was made: no destructor runs for it.
-  try {
-    // Every texture is written by a compute pass and then sampled with linear filtering.
-    VkFormatProperties props;
-    vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &props);
-    const VkFormatFeatureFlags needed =
-        VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
-        VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
-        (mip_levels > 1 ? VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT : 0);
-    if ((props.optimalTilingFeatures & needed) != needed)
+  const UndoOnThrow undo([this] { reset(); });
+  // Every texture is written by a compute pass and then sampled with linear filtering.
+  VkFormatProperties props;
+  vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &props);
+  const VkFormatFeatureFlags needed =
+      VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+      VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
+      (mip_levels > 1 ? VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT : 0);
+  if ((props.optimalTilingFeatures & needed) != needed)
+    throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
+                       " cannot be a filtered storage image on " + ctx.device_name());
+  const bool is_3d = depth > 1;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = is_3d ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width, height, depth};
+  info.mipLevels = mip_levels;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+               VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  if (render_target) {
+    if (is_3d || !(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT))
       throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
-                         " cannot be a filtered storage image on " + ctx.device_name());
-    const bool is_3d = depth > 1;
-    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    info.imageType = is_3d ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
-    info.format = format;
-    info.extent = {width, height, depth};
-    info.mipLevels = mip_levels;
-    info.arrayLayers = 1;
-    info.samples = VK_SAMPLE_COUNT_1_BIT;
-    info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                 VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    if (render_target) {
-      if (is_3d || !(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT))
-        throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
-                           " cannot be a 2D render target on " + ctx.device_name());
-      info.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-    }
-    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    NEPHELE_VK(vkCreateImage(device_, &info, nullptr, &image_));
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(device_, image_, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex =
-        ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
-    NEPHELE_VK(vkBindImageMemory(device_, image_, memory_, 0));
-
-    VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    view.image = image_;
-    view.viewType = is_3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
-    view.format = format;
-    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, 1};
-    NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &view_));
-    view.subresourceRange.levelCount = 1;
-    NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &storage_view_));
-
-    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    sampler.magFilter = VK_FILTER_LINEAR;
-    sampler.minFilter = VK_FILTER_LINEAR;
-    sampler.mipmapMode =
-        mip_levels > 1 ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = address;
-    sampler.maxLod = float(mip_levels - 1);
-    NEPHELE_VK(vkCreateSampler(device_, &sampler, nullptr, &sampler_));
-
-    // Move to GENERAL once; it stays there.
-    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-      VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-      barrier.srcAccessMask = 0;
-      barrier.dstAccessMask =
-          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-      barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-      barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-      barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      barrier.image = image_;
-      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, 1};
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                           0, nullptr, 0, nullptr, 1, &barrier);
-    });
-  } catch (...) {
-    reset();
-    throw;
+                         " cannot be a 2D render target on " + ctx.device_name());
+    info.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   }
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  NEPHELE_VK(vkCreateImage(device_, &info, nullptr, &image_));
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(device_, image_, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+  NEPHELE_VK(vkBindImageMemory(device_, image_, memory_, 0));
+
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = image_;
+  view.viewType = is_3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
+  view.format = format;
+  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, 1};
+  NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &view_));
+  view.subresourceRange.levelCount = 1;
+  NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &storage_view_));
+
+  VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sampler.magFilter = VK_FILTER_LINEAR;
+  sampler.minFilter = VK_FILTER_LINEAR;
+  sampler.mipmapMode =
+      mip_levels > 1 ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = address;
+  sampler.maxLod = float(mip_levels - 1);
+  NEPHELE_VK(vkCreateSampler(device_, &sampler, nullptr, &sampler_));
+
+  // Move to GENERAL once; it stays there.
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    barrier.srcAccessMask = 0;
+    barrier.dstAccessMask =
+        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image_;
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, 1};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                         0, nullptr, 0, nullptr, 1, &barrier);
+  });
 }
 
 Texture& Texture::operator=(Texture&& other) noexcept {

@@ -4,10 +4,30 @@
 #include <vulkan/vulkan.h>
 
 #include <cstddef>
+#include <exception>
+#include <utility>
 
 #include "gpu/context.h"
 
 namespace nephele::gpu {
+
+// For a constructor that creates Vulkan objects one after another: where it throws part way
+// (out of memory, a format the device lacks), `undo` (the class's reset()) frees what was made,
+// since no destructor runs for an object whose constructor threw. Declared first in its body.
+template <class Undo>
+class UndoOnThrow {
+ public:
+  explicit UndoOnThrow(Undo undo) : undo_(std::move(undo)) {}
+  ~UndoOnThrow() {
+    if (std::uncaught_exceptions() > exceptions_) undo_();
+  }
+  UndoOnThrow(const UndoOnThrow&) = delete;
+  UndoOnThrow& operator=(const UndoOnThrow&) = delete;
+
+ private:
+  Undo undo_;
+  int exceptions_ = std::uncaught_exceptions();
+};
 
 // A host-visible, coherent buffer (storage, uniform or transfer), persistently mapped.
 class Buffer {
