@@ -2,7 +2,6 @@
 #include "scene_reference.h"
 
 #include <map>
-#include <set>
 #include <string_view>
 
 #include "nephele/scene_io.h"
