@@ -59,6 +59,27 @@ float checked_type(const std::string& name, const CloudLayer& layer, const Genus
   return float(i) / float(N - 1);
 }
 
+// The two volumetric layers (CloudParams, HighCloudParams) as a state's layer, and back.
+template <typename Params>
+CloudLayer volumetric_layer(const Params& p) {
+  return {nearest(kVolumetric, p.type),
+          p.type,
+          p.bottom_altitude_m,
+          p.top_altitude_m,
+          8.0f * p.coverage,
+          p.density,
+          0.0f};
+}
+
+template <typename Params>
+void set_volumetric_layer(Params& p, const CloudLayer& layer, float type) {
+  p.type = type;
+  p.bottom_altitude_m = layer.base_m;
+  p.top_altitude_m = layer.top_m;
+  p.coverage = layer.coverage_oktas / 8.0f;
+  p.density = layer.density;
+}
+
 }  // namespace
 
 const char* to_string(Genus genus) {
@@ -110,21 +131,9 @@ float visibility_m(const AtmosphereParams& atmosphere) {
 WeatherState weather_state(const Scene& scene) {
   WeatherState state;
   const CloudParams& c = scene.clouds;
-  state.low = {nearest(kVolumetric, c.type),
-               c.type,
-               c.bottom_altitude_m,
-               c.top_altitude_m,
-               8.0f * c.coverage,
-               c.density,
-               0.0f};
+  state.low = volumetric_layer(c);
   const HighCloudParams& h = scene.high_clouds;
-  state.high = {nearest(kVolumetric, h.type),
-                h.type,
-                h.bottom_altitude_m,
-                h.top_altitude_m,
-                8.0f * h.coverage,
-                h.density,
-                0.0f};
+  state.high = volumetric_layer(h);
   const CirrusParams& s = scene.cirrus;
   state.sheet = {nearest(kSheet, s.type), s.type, s.altitude_m,   s.altitude_m,
                  8.0f * s.coverage,       0.0f,   s.optical_depth};
@@ -171,18 +180,10 @@ void apply_weather(const WeatherState& state, Scene& scene) {
          "must be in [0, 500]");
 
   CloudParams& c = scene.clouds;
-  c.type = low_type;
-  c.bottom_altitude_m = state.low.base_m;
-  c.top_altitude_m = state.low.top_m;
-  c.coverage = state.low.coverage_oktas / 8.0f;
-  c.density = state.low.density;
+  set_volumetric_layer(c, state.low, low_type);
   c.precipitation = state.storm_growth;
   HighCloudParams& h = scene.high_clouds;
-  h.type = high_type;
-  h.bottom_altitude_m = state.high.base_m;
-  h.top_altitude_m = state.high.top_m;
-  h.coverage = state.high.coverage_oktas / 8.0f;
-  h.density = state.high.density;
+  set_volumetric_layer(h, state.high, high_type);
   CirrusParams& s = scene.cirrus;
   s.type = sheet_type;
   s.altitude_m = state.sheet.base_m;
