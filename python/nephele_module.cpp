@@ -140,76 +140,17 @@ nephele::Image from_array(const py::object& value) {
   return image;
 }
 
-// A frame's statistics as the CLI's --stats-json writes them (apps/cli/render_command.cpp,
-// stats_to_json; no "image"), with the exposure the CLI's PNG has: "ev100" (the scene's, or
-// metered as the CLI meters a still), its linear "exposure" and the scene's "tonemap".
+// A frame's statistics as the CLI's --stats-json writes them (nephele::frame_stats_json, no
+// "image"; "dims" of a voxel cloud a tuple), with the exposure the CLI's PNG has: "ev100" (the
+// scene's, or metered as the CLI meters a still), its linear "exposure", the scene's "tonemap"
+// and the frame's "metered_luminance".
 py::dict stats_dict(const nephele::FrameStats& stats, double ev100, nephele::ToneMap tonemap) {
-  py::dict d;
-  d["device"] = stats.device;
-  d["width"] = stats.width;
-  d["height"] = stats.height;
-  d["frame_ms"] = stats.frame_ms;
-  d["wall_ms"] = stats.wall_ms;
-  d["mean_luminance"] = stats.mean_luminance;  // cd/m^2
+  py::dict d = py::module_::import("json").attr("loads")(nephele::frame_stats_json(stats, ev100));
   d["metered_luminance"] = stats.metered_luminance;
-  d["ev100"] = ev100;
   d["exposure"] = nephele::exposure_from_ev100(ev100);
   d["tonemap"] = std::string(nephele::to_string(tonemap));
-  d["cloud_cover_fraction"] = stats.cloud_cover_fraction;
-  if (stats.sky_cover_fraction) {
-    d["sky_cover_fraction"] = *stats.sky_cover_fraction;
-    d["sky_cover_oktas"] = nephele::sky_cover_oktas(*stats.sky_cover_fraction);
-  }
-  d["sun_elevation_deg"] = stats.sun.elevation_deg;
-  d["sun_azimuth_deg"] = stats.sun.azimuth_deg;
-  if (stats.ephemeris) {
-    d["moon_elevation_deg"] = stats.ephemeris->moon.elevation_deg;
-    d["moon_azimuth_deg"] = stats.ephemeris->moon.azimuth_deg;
-    d["moon_illuminated_fraction"] = stats.ephemeris->moon_illuminated_fraction;
-  }
-  py::dict passes;
-  for (const nephele::PassTiming& p : stats.passes) {  // a pass run several times: its total
-    const py::str name(p.name);
-    passes[name] = (passes.contains(name) ? passes[name].cast<double>() : 0.0) + p.ms;
-  }
-  d["passes_ms"] = passes;
-  if (!stats.voxel_clouds.empty()) {
-    py::list clouds;
-    for (const nephele::VoxelCloudMemory& m : stats.voxel_clouds) {
-      py::dict c;
-      c["source"] = m.source;
-      c["dims"] = py::make_tuple(m.dims[0], m.dims[1], m.dims[2]);
-      c["voxel_m"] = m.voxel_m;
-      c["stored_bricks"] = m.stored_bricks;
-      c["total_bricks"] = m.total_bricks;
-      c["bytes"] = m.bytes;
-      c["dense_bytes"] = m.dense_bytes;
-      clouds.append(c);
-    }
-    d["voxel_clouds"] = clouds;
-    d["voxel_bytes"] = stats.voxel_bytes;
-  }
-  if (const auto& p = stats.particle_clouds) {
-    py::dict c;
-    c["particles"] = p->particles;
-    c["drawn"] = p->drawn;
-    c["clouds"] = p->clouds;
-    c["relit_clouds"] = p->relit_clouds;
-    c["impostors"] = p->impostors;
-    c["impostor_updates"] = p->impostor_updates;
-    c["impostors_waiting"] = p->impostors_waiting;
-    c["impostor_resolution_scale"] = p->impostor_resolution_scale;
-    c["layer_width"] = p->layer_width;
-    c["layer_height"] = p->layer_height;
-    c["generate_ms"] = p->generate_ms;
-    c["lighting_ms"] = p->lighting_ms;
-    c["sort_ms"] = p->sort_ms;
-    c["atlas_occupancy"] = p->atlas_occupancy;
-    c["atlas_wasted"] = p->atlas_wasted;
-    c["atlas_fragmentation"] = p->atlas_fragmentation;
-    c["atlas_downsized"] = p->atlas_downsized;
-    d["particle_clouds"] = c;
-  }
+  if (d.contains("voxel_clouds"))
+    for (py::handle cloud : d["voxel_clouds"]) cloud["dims"] = py::tuple(cloud["dims"]);
   return d;
 }
 

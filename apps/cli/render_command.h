@@ -68,10 +68,4 @@ void add_progress_flags(CLI::App& cmd, bool& progress, bool& quiet);
 // Writes `text` to standard output when `path` is "-", else atomically to the file.
 void write_text_output(const std::string& path, const std::string& text);
 
-// The stats of a frame as JSON (image: the image written, device, width, height, frame_ms,
-// mean_luminance, cloud_cover_fraction, sky_cover_fraction and oktas for still images,
-// wall_ms, passes).
-// `ev100`: the exposure the image was written with (auto exposure's, or output.ev100).
-std::string stats_to_json(const FrameStats& stats, const std::string& image_path, double ev100);
-
 }  // namespace nephele::cli

@@ -106,6 +106,17 @@ struct FrameStats {
 // nearest eighth, at least 1 and at most 7.
 int sky_cover_oktas(double fraction);
 
+// A frame's statistics as JSON text, an object (keys sorted, indented by 2, a newline at the
+// end): `nephele render --stats-json` writes it, nephele.render(stats=True) in Python reads it.
+// Keys: image (`image`, the file the frame was written to, when not empty), device, width,
+// height, frame_ms, wall_ms, mean_luminance (cd/m^2), ev100 (`ev100`: the exposure the image
+// was written or shown with), cloud_cover_fraction, sky_cover_fraction and sky_cover_oktas
+// (still images), sun_elevation_deg and sun_azimuth_deg, the moon's elevation, azimuth and
+// illuminated fraction (with a date), passes_ms (each pass's total), voxel_clouds and
+// voxel_bytes (with voxel clouds), particle_clouds (with particle clouds). Non-finite numbers
+// are null.
+std::string frame_stats_json(const FrameStats& stats, double ev100, const std::string& image = {});
+
 struct Frame {
   Image color;          // linear HDR radiance (rgb), a = 1
   Image clouds;         // per pixel: rgb in-scattered cloud radiance, a = cloud transmittance
