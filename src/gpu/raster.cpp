@@ -20,20 +20,7 @@ DepthTarget::DepthTarget(Context& ctx, uint32_t width, uint32_t height)
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  NEPHELE_VK(vkCreateImage(device_, &info, nullptr, &image_));
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(device_, image_, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
-  NEPHELE_VK(vkBindImageMemory(device_, image_, memory_, 0));
-  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  view.image = image_;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  view.format = VK_FORMAT_D32_SFLOAT;
-  view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-  NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &view_));
+  create_device_local_image(ctx, info, VK_IMAGE_ASPECT_DEPTH_BIT, image_, memory_, view_);
 }
 
 DepthTarget& DepthTarget::operator=(DepthTarget&& other) noexcept {

@@ -7,6 +7,35 @@
 
 namespace nephele::gpu {
 
+void create_device_local_image(Context& ctx, const VkImageCreateInfo& info,
+                               VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory,
+                               VkImageView& view) {
+  const VkDevice device = ctx.device();
+  NEPHELE_VK(vkCreateImage(device, &info, nullptr, &image));
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(device, image, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  NEPHELE_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
+  NEPHELE_VK(vkBindImageMemory(device, image, memory, 0));
+  view = create_image_view(device, image, info, aspect, info.mipLevels);
+}
+
+VkImageView create_image_view(VkDevice device, VkImage image, const VkImageCreateInfo& info,
+                              VkImageAspectFlags aspect, uint32_t levels) {
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = image;
+  view.viewType = info.imageType == VK_IMAGE_TYPE_3D   ? VK_IMAGE_VIEW_TYPE_3D
+                  : info.imageType == VK_IMAGE_TYPE_1D ? VK_IMAGE_VIEW_TYPE_1D
+                                                       : VK_IMAGE_VIEW_TYPE_2D;
+  view.format = info.format;
+  view.subresourceRange = {aspect, 0, levels, 0, 1};
+  VkImageView handle = VK_NULL_HANDLE;
+  NEPHELE_VK(vkCreateImageView(device, &view, nullptr, &handle));
+  return handle;
+}
+
 Buffer::Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage)
     : device_(ctx.device()), size_(size) {
   // A failure part way (out of memory) frees what was made: no destructor runs for it.
@@ -81,23 +110,8 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
     info.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   }
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  NEPHELE_VK(vkCreateImage(device_, &info, nullptr, &image_));
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(device_, image_, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  NEPHELE_VK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
-  NEPHELE_VK(vkBindImageMemory(device_, image_, memory_, 0));
-
-  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  view.image = image_;
-  view.viewType = is_3d ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
-  view.format = format;
-  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, 1};
-  NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &view_));
-  view.subresourceRange.levelCount = 1;
-  NEPHELE_VK(vkCreateImageView(device_, &view, nullptr, &storage_view_));
+  create_device_local_image(ctx, info, VK_IMAGE_ASPECT_COLOR_BIT, image_, memory_, view_);
+  storage_view_ = create_image_view(device_, image_, info, VK_IMAGE_ASPECT_COLOR_BIT, 1);
 
   VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sampler.magFilter = VK_FILTER_LINEAR;

@@ -29,6 +29,18 @@ class UndoOnThrow {
   int exceptions_ = std::uncaught_exceptions();
 };
 
+// The steps of a device-local image after its VkImageCreateInfo: vkCreateImage into `image`,
+// device-local memory for it (vkAllocateMemory into `memory`, vkBindImageMemory) and a view of
+// every mip level (create_image_view into `view`). Each handle is stored as soon as it is made,
+// so where a step throws, the owner's reset() (UndoOnThrow) frees those made before it.
+void create_device_local_image(Context& ctx, const VkImageCreateInfo& info,
+                               VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory,
+                               VkImageView& view);
+// A view of `image`, made from `info`: its type and format, `aspect`, mip levels 0 to
+// `levels` - 1 of its first layer.
+VkImageView create_image_view(VkDevice device, VkImage image, const VkImageCreateInfo& info,
+                              VkImageAspectFlags aspect, uint32_t levels);
+
 // A host-visible, coherent buffer (storage, uniform or transfer), persistently mapped.
 class Buffer {
  public:
