@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(
   cmake ninja-build g++ pkg-config dpkg-dev
   libvulkan-dev mesa-vulkan-drivers glslc vulkan-validationlayers
-  libglm-dev libstb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libopenexr-dev
+  libspirv-cross-c-shared-dev libglm-dev libstb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libopenexr-dev
   libgtest-dev libnova-dev libgdal-dev
   libopenvdb-dev libnanovdb-dev libtinyobjloader-dev libboost-iostreams-dev
   libglfw3-dev libimgui-dev xvfb xauth python3-matplotlib

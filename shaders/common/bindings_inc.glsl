@@ -1,11 +1,14 @@
-// The one descriptor set every pass uses (src/render/passes.cpp creates its layout).
+// The bindings of set 0, declared once: gpu::Binding is generated from these declarations
+// (cmake/bindings_header.cmake; an image `sky_view_lut` is gpu::kSkyViewLut, a block
+// `StarsBlock` gpu::kStars), and each pipeline's layout holds only those its shaders use
+// (reflected from their SPIR-V: src/gpu/shader_interface.h). The numbers run 0, 1, 2, ...
 #ifndef NEPHELE_BINDINGS_INC
 #define NEPHELE_BINDINGS_INC
 
 #extension GL_GOOGLE_include_directive : require
 #include "common/params_inc.glsl"
 
-layout(std140, set = 0, binding = 0) uniform FrameBlock { FrameParams frame; };
+layout(std140, set = 0, binding = 0) uniform FrameParamsBlock { FrameParams frame; };
 layout(set = 0, binding = 1, rgba8) uniform writeonly image3D base_noise_out;
 layout(set = 0, binding = 2, rgba8) uniform writeonly image3D detail_noise_out;
 // The evolving weather's states (render/modules/weather.h), one a layer, written by
@@ -47,7 +50,7 @@ layout(set = 0, binding = 21, rgba32f) uniform writeonly image2D color_out;
 layout(set = 0, binding = 22, rgba32f) uniform image2D range_lo;
 layout(set = 0, binding = 23, rgba32f) uniform image2D range_hi;
 // The star catalogue (StarGpu), and the final image again, read and written by stars.comp.
-layout(std430, set = 0, binding = 24) readonly buffer StarBlock { StarGpu star_list[]; };
+layout(std430, set = 0, binding = 24) readonly buffer StarsBlock { StarGpu star_list[]; };
 layout(set = 0, binding = 25, rgba32f) uniform image2D color_rw;
 // Hillaire's atmosphere tables (common/atmosphere_lut_inc.glsl): transmittance (r, mu),
 // multiple scattering Psi_ms (sun zenith, altitude), and the aerial-perspective volume
@@ -97,7 +100,7 @@ layout(std430, set = 0, binding = 49) writeonly buffer MeterBlock { float meter_
 // PARTICLE_TEXTURE_SIZE texels), and the layer they are drawn into, read by compose.comp:
 // rgb premultiplied radiance, a opacity; and x their opacity-weighted distance (km) times
 // the opacity, a the opacity.
-layout(std430, set = 0, binding = 50) readonly buffer ParticleBlock { ParticleGpu particle_list[]; };
+layout(std430, set = 0, binding = 50) readonly buffer ParticlesBlock { ParticleGpu particle_list[]; };
 layout(set = 0, binding = 51) uniform sampler2D particle_textures;
 layout(set = 0, binding = 52) uniform sampler2D particle_layer;
 layout(set = 0, binding = 53) uniform sampler2D particle_depth;
@@ -105,18 +108,18 @@ layout(set = 0, binding = 53) uniform sampler2D particle_depth;
 // front (impostor.vert), the atlas their images live in, each impostor's tile slots (the tiles
 // method), the scratch image an impostor is drawn into before impostor_tiles.comp splits it
 // into tiles, the atlas as that pass writes it, and its jobs (one per tile).
-layout(std430, set = 0, binding = 54) readonly buffer ImpostorBlock { ImpostorGpu impostor_list[]; };
+layout(std430, set = 0, binding = 54) readonly buffer ImpostorsBlock { ImpostorGpu impostor_list[]; };
 layout(set = 0, binding = 55) uniform sampler2D impostor_atlas;
-layout(std430, set = 0, binding = 56) readonly buffer TileSlotBlock { int impostor_tile_slots[]; };
+layout(std430, set = 0, binding = 56) readonly buffer ImpostorTileSlotsBlock { int impostor_tile_slots[]; };
 layout(set = 0, binding = 57) uniform sampler2D impostor_scratch;
 layout(set = 0, binding = 58, rgba16f) uniform writeonly image2D impostor_atlas_out;
-layout(std430, set = 0, binding = 59) readonly buffer TileJobBlock { ImpostorTileJob impostor_tile_jobs[]; };
+layout(std430, set = 0, binding = 59) readonly buffer ImpostorTileJobsBlock { ImpostorTileJob impostor_tile_jobs[]; };
 // The particle clouds' lighting on the device (particle_light.comp, render/modules/
 // particle_light_gpu.h): every cloud's particles seen from the light, nearest first, the clouds
 // (one workgroup each), and the light reaching each particle, I_k in [0, 1], in the field's order.
-layout(std430, set = 0, binding = 60) readonly buffer ParticleSplatBlock { ParticleSplatGpu particle_splats[]; };
-layout(std430, set = 0, binding = 61) readonly buffer ParticleLightCloudBlock { ParticleLightCloudGpu particle_light_clouds[]; };
-layout(std430, set = 0, binding = 62) writeonly buffer ParticleLightBlock { float particle_lights[]; };
+layout(std430, set = 0, binding = 60) readonly buffer ParticleSplatsBlock { ParticleSplatGpu particle_splats[]; };
+layout(std430, set = 0, binding = 61) readonly buffer ParticleLightCloudsBlock { ParticleLightCloudGpu particle_light_clouds[]; };
+layout(std430, set = 0, binding = 62) writeonly buffer ParticleLightsBlock { float particle_lights[]; };
 // Nishita and Nakamae's metaball clouds (render/modules/metaball_clouds.h): three volumes of
 // the grid stacked in depth (NISHITA_SLABS): the density field (r), the sun's transmittance and
 // the sky's light (r, gba), the second order's light (x its total, yzw its flux vector).
@@ -134,8 +137,7 @@ layout(set = 0, binding = 67) uniform sampler2D light_shafts;
 // clouds and the shafts): rgb its radiance per unit key-light illuminance before the air in
 // front, a its distance (m; 0 where the ray misses it) - with terrain.method "raster" the mesh
 // pass leaves its distances in a first, which terrain.comp reads back; and its albedo map
-// (terrain.albedo_map; linear rgb) over its rectangle, row 0 north. (At most 32 samplers a
-// stage on lavapipe: src/gpu/kernel.cpp.)
+// (terrain.albedo_map; linear rgb) over its rectangle, row 0 north.
 layout(set = 0, binding = 68) uniform sampler2D terrain_heights;
 layout(set = 0, binding = 69, rgba32f) uniform image2D terrain_out;
 layout(set = 0, binding = 70) uniform sampler2D terrain_image;
@@ -152,7 +154,7 @@ layout(std430, set = 0, binding = 72) readonly buffer HostSceneBlock { uint host
 layout(std430, set = 0, binding = 73) writeonly buffer HostLightingBlock { vec4 host_lighting_out[]; };
 layout(set = 0, binding = 74, r32f) uniform writeonly image2D cloud_shadow_map_out;
 // The host's environment cube map (environment.comp): its six faces side by side, +X -X +Y -Y
-// +Z -Z of ENU, radiance (cd/m^2). (The 32nd storage image: lavapipe's limit a stage.)
+// +Z -Z of ENU, radiance (cd/m^2).
 layout(set = 0, binding = 75, rgba16f) uniform writeonly image2D environment_out;
 
 #endif

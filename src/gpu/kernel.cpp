@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <map>
 #include <vector>
 
 #include "gpu/vk_check.h"
@@ -15,94 +16,11 @@ extern const size_t kFileCount;
 
 namespace nephele::gpu {
 
-namespace {
-
-constexpr VkShaderStageFlags kRasterStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-
-// The bindings the raster passes' shaders read (particles.vert/.frag, impostor.vert/.frag,
-// terrain.vert).
-bool raster_reads(Binding b) {
-  return b == kFrameParams || b == kParticles || b == kParticleTextures || b == kImpostors ||
-         b == kImpostorAtlas || b == kImpostorTileSlots || b == kTerrainHeights;
-}
-
-}  // namespace
-
-VkDescriptorType binding_type(Binding binding) {
-  // Indexed by Binding; tests/unit/bindings_test.cpp checks it against bindings_inc.glsl.
-  constexpr VkDescriptorType kUbo = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  static constexpr VkDescriptorType types[] = {
-      kUbo,     kStorage, kStorage, kStorage, kSampled, kSampled, kSampled, kStorage,
-      kSampled, kStorage, kSampled, kStorage, kStorage, kSampled, kSampled, kStorage,
-      kStorage, kSampled, kSampled, kSampled, kSampled, kStorage, kStorage, kStorage,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kStorage, kSampled, kStorage, kSampled, kStorage,
-      kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled, kStorage, kSampled,
-      kStorage, kStorage, kSampled, kSampled, kStorage, kStorage, kSampled, kStorage, kSampled,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, kSampled,
-      kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-      kSampled, kStorage, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kSampled, kStorage, kStorage, kSampled,
-      kSampled, kStorage, kSampled, kSampled, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kStorage, kStorage};
-  static_assert(sizeof(types) / sizeof(types[0]) == kBindingCount);
-  return binding < kBindingCount ? types[binding] : VK_DESCRIPTOR_TYPE_MAX_ENUM;
-}
-
-DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {
-  constexpr uint32_t kCount = kBindingCount;
-  // lavapipe takes at most 32 combined image samplers (and 32 storage images) a stage, and
-  // every binding is visible to the compute stage: a new texture shares an image with another
-  // (the terrain's heights hold its pyramid of maxima) or reads with imageLoad where it can.
-  VkDescriptorSetLayoutBinding bindings[kCount];
-  uint32_t count_of[VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT + 1] = {};
-  for (uint32_t i = 0; i < kCount; ++i) {
-    // Compute passes; the raster passes (gpu/raster.h) read only a few bindings, and only
-    // those are visible to their stages (every stage a binding is visible to costs the
-    // validation layer time at every dispatch).
-    bindings[i] = {i, binding_type(Binding(i)), 1,
-                   VK_SHADER_STAGE_COMPUTE_BIT | (raster_reads(Binding(i)) ? kRasterStages : 0u),
-                   nullptr};
-    ++count_of[bindings[i].descriptorType];
-  }
-  VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layout_info.bindingCount = kCount;
-  layout_info.pBindings = bindings;
-  NEPHELE_VK(vkCreateDescriptorSetLayout(device_, &layout_info, nullptr, &layout_));
-
-  VkPipelineLayoutCreateInfo pipeline_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pipeline_info.setLayoutCount = 1;
-  pipeline_info.pSetLayouts = &layout_;
-  // The per-draw constants (params_inc.glsl, DrawConstants).
-  const VkPushConstantRange push{kDrawConstantStages, 0, sizeof(DrawConstants)};
-  pipeline_info.pushConstantRangeCount = 1;
-  pipeline_info.pPushConstantRanges = &push;
-  NEPHELE_VK(vkCreatePipelineLayout(device_, &pipeline_info, nullptr, &pipeline_layout_));
-
-  // Room for every set (one per frame in flight) and all their descriptors: lavapipe allocates
-  // beyond a pool's sizes, a GPU's driver does not.
-  const uint32_t set_count = uint32_t(std::size(sets_));
-  std::vector<VkDescriptorPoolSize> sizes;
-  for (uint32_t t = 0; t <= VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT; ++t)
-    if (count_of[t] > 0) sizes.push_back({VkDescriptorType(t), count_of[t] * set_count});
-  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pool_info.maxSets = set_count;
-  pool_info.poolSizeCount = uint32_t(sizes.size());
-  pool_info.pPoolSizes = sizes.data();
-  NEPHELE_VK(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool_));
-  std::vector<VkDescriptorSetLayout> layouts(std::size(sets_), layout_);
-  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  alloc.descriptorPool = pool_;
-  alloc.descriptorSetCount = uint32_t(std::size(sets_));
-  alloc.pSetLayouts = layouts.data();
-  NEPHELE_VK(vkAllocateDescriptorSets(device_, &alloc, sets_));
-}
+DescriptorSet::DescriptorSet(Context& ctx) : device_(ctx.device()) {}
 
 DescriptorSet::~DescriptorSet() {
-  vkDestroyDescriptorPool(device_, pool_, nullptr);
-  vkDestroyPipelineLayout(device_, pipeline_layout_, nullptr);
-  vkDestroyDescriptorSetLayout(device_, layout_, nullptr);
+  // Interfaces outliving the table would write into it: the modules own them and are destroyed
+  // first (FrameRenderer::Impl).
 }
 
 void DescriptorSet::set_entry(Binding binding, VkDescriptorType type,
@@ -117,23 +35,8 @@ void DescriptorSet::set_entry(Binding binding, VkDescriptorType type,
 
 void DescriptorSet::use(int index) {
   current_ = index;
-  VkWriteDescriptorSet writes[kBindingCount];
-  uint32_t n = 0;
-  for (uint32_t b = 0; b < kBindingCount; ++b) {
-    const Entry& e = table_[b];
-    if (!e.bound) continue;
-    VkWriteDescriptorSet& w = writes[n++];
-    w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = sets_[index];
-    w.dstBinding = b;
-    w.descriptorCount = 1;
-    w.descriptorType = e.type;
-    const bool is_buffer = e.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ||
-                           e.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = is_buffer ? &e.buffer : nullptr;
-    w.pImageInfo = is_buffer ? nullptr : &e.image;
-  }
-  vkUpdateDescriptorSets(device_, n, writes, 0, nullptr);
+  std::copy(std::begin(table_), std::end(table_), std::begin(used_));
+  for (PassInterface* i : interfaces_) i->write(index);
 }
 
 void DescriptorSet::bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type) {
@@ -156,6 +59,106 @@ void DescriptorSet::bind_sampled_image(Binding binding, const Texture& texture) 
   set_entry(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &info);
 }
 
+PassInterface::PassInterface(DescriptorSet& table, std::string name,
+                             std::vector<ShaderBinding> bindings)
+    : table_(table), name_(std::move(name)), bindings_(std::move(bindings)) {
+  const VkDevice device = table_.device_;
+  UndoOnThrow undo([this] { destroy(); });
+  std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
+  std::map<VkDescriptorType, uint32_t> count_of;
+  for (const ShaderBinding& b : bindings_) {
+    if (b.binding >= kBindingCount)
+      throw RuntimeError("pipeline " + name_ + ": binding " + std::to_string(b.binding) +
+                         " is not one of bindings_inc.glsl's (0 to " +
+                         std::to_string(kBindingCount - 1) + ")");
+    layout_bindings.push_back({b.binding, b.type, 1, b.stages, nullptr});
+    ++count_of[b.type];
+  }
+  VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layout_info.bindingCount = uint32_t(layout_bindings.size());
+  layout_info.pBindings = layout_bindings.data();
+  NEPHELE_VK(vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &layout_));
+
+  VkPipelineLayoutCreateInfo pipeline_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipeline_info.setLayoutCount = 1;
+  pipeline_info.pSetLayouts = &layout_;
+  // The per-draw constants (params_inc.glsl, DrawConstants).
+  const VkPushConstantRange push{kDrawConstantStages, 0, sizeof(DrawConstants)};
+  pipeline_info.pushConstantRangeCount = 1;
+  pipeline_info.pPushConstantRanges = &push;
+  NEPHELE_VK(vkCreatePipelineLayout(device, &pipeline_info, nullptr, &pipeline_layout_));
+
+  if (!bindings_.empty()) {
+    // Room for one set a slot and all their descriptors: lavapipe allocates beyond a pool's
+    // sizes, a GPU's driver does not.
+    const uint32_t set_count = uint32_t(std::size(sets_));
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (const auto& [type, count] : count_of) sizes.push_back({type, count * set_count});
+    VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool_info.maxSets = set_count;
+    pool_info.poolSizeCount = uint32_t(sizes.size());
+    pool_info.pPoolSizes = sizes.data();
+    NEPHELE_VK(vkCreateDescriptorPool(device, &pool_info, nullptr, &pool_));
+    std::vector<VkDescriptorSetLayout> layouts(std::size(sets_), layout_);
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = pool_;
+    alloc.descriptorSetCount = set_count;
+    alloc.pSetLayouts = layouts.data();
+    NEPHELE_VK(vkAllocateDescriptorSets(device, &alloc, sets_));
+  }
+  table_.interfaces_.push_back(this);
+  // Made while a command buffer records (a pass's kernel made when first recorded): its set
+  // of the current slot holds what the others' hold; the other slots are written at their use().
+  write(table_.current_);
+}
+
+PassInterface::~PassInterface() {
+  std::erase(table_.interfaces_, this);
+  destroy();
+}
+
+void PassInterface::destroy() {
+  const VkDevice device = table_.device_;
+  vkDestroyDescriptorPool(device, pool_, nullptr);
+  vkDestroyPipelineLayout(device, pipeline_layout_, nullptr);
+  vkDestroyDescriptorSetLayout(device, layout_, nullptr);
+  pool_ = VK_NULL_HANDLE;
+  pipeline_layout_ = VK_NULL_HANDLE;
+  layout_ = VK_NULL_HANDLE;
+}
+
+void PassInterface::write(int index) {
+  if (bindings_.empty()) return;
+  std::vector<VkWriteDescriptorSet> writes;
+  writes.reserve(bindings_.size());
+  for (const ShaderBinding& b : bindings_) {
+    const DescriptorSet::Entry& e = table_.used_[b.binding];
+    if (!e.bound) continue;  // a pass that runs binds it first
+    if (e.type != b.type)
+      throw RuntimeError("pipeline " + name_ + " reads binding " + std::to_string(b.binding) +
+                         " (" + binding_name(Binding(b.binding)) + ") as descriptor type " +
+                         std::to_string(int(b.type)) + ", but type " + std::to_string(int(e.type)) +
+                         " is bound there");
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = sets_[index];
+    w.dstBinding = b.binding;
+    w.descriptorCount = 1;
+    w.descriptorType = e.type;
+    const bool is_buffer = e.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ||
+                           e.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = is_buffer ? &e.buffer : nullptr;
+    w.pImageInfo = is_buffer ? nullptr : &e.image;
+    writes.push_back(w);
+  }
+  vkUpdateDescriptorSets(table_.device_, uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+void PassInterface::bind(VkCommandBuffer cmd, VkPipelineBindPoint bind_point) const {
+  if (bindings_.empty()) return;
+  const VkDescriptorSet handle = set();
+  vkCmdBindDescriptorSets(cmd, bind_point, pipeline_layout_, 0, 1, &handle, 0, nullptr);
+}
+
 VkShaderModule create_shader_module(VkDevice device, const std::string& spv_name) {
   const EmbeddedFile* spv =
       find_embedded(nephele_shaders::kFiles, nephele_shaders::kFileCount, spv_name);
@@ -174,9 +177,10 @@ Specialization::Specialization(const std::vector<int32_t>& values) {
   info_ = {uint32_t(entries_.size()), entries_.data(), values.size() * sizeof(int32_t), values.data()};
 }
 
-Kernel::Kernel(Context& ctx, const DescriptorSet& set, const std::string& spv_name,
+Kernel::Kernel(Context& ctx, DescriptorSet& set, const std::string& spv_name,
                const std::vector<int32_t>& specialization)
-    : device_(ctx.device()) {
+    : device_(ctx.device()),
+      interface_(set, spv_name, reflect_embedded(spv_name, VK_SHADER_STAGE_COMPUTE_BIT)) {
   VkShaderModule module = create_shader_module(device_, spv_name);
   const Specialization spec(specialization);
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -185,7 +189,7 @@ Kernel::Kernel(Context& ctx, const DescriptorSet& set, const std::string& spv_na
   info.stage.module = module;
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = spec.info();
-  info.layout = set.pipeline_layout();
+  info.layout = interface_.pipeline_layout();
   VkResult result = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
   vkDestroyShaderModule(device_, module, nullptr);
   check(result, ("vkCreateComputePipelines(" + spv_name + ")").c_str());
@@ -240,14 +244,12 @@ std::vector<std::pair<std::string, double>> PassTimer::results() const {
   return out;
 }
 
-void dispatch(VkCommandBuffer cmd, const Kernel& kernel, const DescriptorSet& set,
+void dispatch(VkCommandBuffer cmd, const Kernel& kernel, const DescriptorSet& /*set*/,
               PassTimer& timer, const std::string& name, uint32_t size_x, uint32_t size_y,
               uint32_t size_z, uint32_t local_x, uint32_t local_y, uint32_t local_z) {
   timer.begin(cmd, name);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
-  VkDescriptorSet handle = set.set();
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, set.pipeline_layout(), 0, 1,
-                          &handle, 0, nullptr);
+  kernel.interface().bind(cmd, VK_PIPELINE_BIND_POINT_COMPUTE);
   vkCmdDispatch(cmd, (size_x + local_x - 1) / local_x, (size_y + local_y - 1) / local_y,
                 (size_z + local_z - 1) / local_z);
   compute_barrier(cmd);

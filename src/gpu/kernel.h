@@ -1,5 +1,6 @@
-// Compute kernels: one descriptor-set layout shared by every pass (shaders/common/
-// bindings_inc.glsl), compute pipelines from embedded SPIR-V, and per-pass timestamps.
+// Compute kernels: the bindings of shaders/common/bindings_inc.glsl kept in one table, each
+// pipeline with a layout of only the bindings its shaders use, compute pipelines from embedded
+// SPIR-V, and per-pass timestamps.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -9,93 +10,10 @@
 
 #include "gpu/context.h"
 #include "gpu/resources.h"
+#include "gpu/shader_interface.h"
+#include "gpu_bindings.h"  // gpu::Binding, generated from bindings_inc.glsl
 
 namespace nephele::gpu {
-
-// Bindings of bindings_inc.glsl.
-enum Binding : uint32_t {
-  kFrameParams = 0,
-  kBaseNoiseOut = 1,
-  kDetailNoiseOut = 2,
-  kWeatherStates = 3,
-  kBaseNoise = 4,
-  kDetailNoise = 5,
-  kWeatherMap = 6,
-  kSkyViewOut = 7,
-  kSkyView = 8,
-  kLightVolumeOut = 9,
-  kLightVolume = 10,
-  kMarchAOut = 11,
-  kMarchBOut = 12,
-  kMarchA = 13,
-  kMarchB = 14,
-  kCloudsAOut = 15,
-  kCloudsBOut = 16,
-  kCloudsA = 17,
-  kCloudsB = 18,
-  kHistoryA = 19,
-  kHistoryB = 20,
-  kColorOut = 21,
-  kRangeLo = 22,
-  kRangeHi = 23,
-  kStars = 24,
-  kColor = 25,
-  kTransmittanceLutOut = 26,
-  kTransmittanceLut = 27,
-  kMsLutOut = 28,
-  kMsLut = 29,
-  kAerialPerspectiveOut = 30,
-  kAerialPerspective = 31,
-  kReferencePsiOut = 32,
-  kReferencePsi = 33,
-  kReferenceSkyOut = 34,
-  kReferenceSky = 35,
-  kCurlNoiseOut = 36,
-  kCurlNoise = 37,
-  kGroundLightOut = 38,
-  kGroundLight = 39,
-  kDisplayOut = 40,
-  kWeatherMapOut = 41,
-  kVoxelAtlas = 42,
-  kVoxelPages = 43,
-  kPathSum = 44,
-  kPathSquares = 45,
-  kPathMajorant = 46,
-  kMsFieldOut = 47,
-  kMsField = 48,
-  kMeter = 49,
-  kParticles = 50,
-  kParticleTextures = 51,
-  kParticleLayer = 52,
-  kParticleDepth = 53,
-  kImpostors = 54,
-  kImpostorAtlas = 55,
-  kImpostorTileSlots = 56,
-  kImpostorScratch = 57,
-  kImpostorAtlasOut = 58,
-  kImpostorTileJobs = 59,
-  kParticleSplats = 60,
-  kParticleLightClouds = 61,
-  kParticleLights = 62,
-  kNishitaVolumeOut = 63,
-  kNishitaVolume = 64,
-  kPostTemp = 65,
-  kLightShaftsOut = 66,
-  kLightShafts = 67,
-  kTerrainHeights = 68,
-  kTerrainOut = 69,
-  kTerrain = 70,
-  kTerrainAlbedo = 71,
-  kHostScene = 72,
-  kHostLighting = 73,
-  kCloudShadowMapOut = 74,
-  kEnvironmentOut = 75,
-  kBindingCount
-};
-
-// The descriptor type of a binding as bindings_inc.glsl declares it (VK_DESCRIPTOR_TYPE_MAX_ENUM
-// past the end).
-VkDescriptorType binding_type(Binding binding);
 
 // The stages that read the per-draw push constants (DrawConstants, params_inc.glsl): the raster
 // passes' shaders and impostor_tiles.comp.
@@ -106,10 +24,13 @@ constexpr VkShaderStageFlags kDrawConstantStages =
 // descriptor set, frame parameters, timestamps and output images.
 constexpr int kFramesInFlight = 2;
 
-// The bindings of every pass, kept as a table on the host and written into one of
-// kFramesInFlight + 1 Vulkan descriptor sets when a command buffer starts (use()): a set is
-// never updated while a command buffer that uses it may be pending. The last set is for
-// one-off work that is submitted and waited for.
+class PassInterface;
+
+// The bindings of every pass, kept as a table on the host (bind_*), and the pipelines'
+// interfaces (PassInterface) that read it. When a command buffer starts, use() writes each
+// interface's bindings from the table into that interface's Vulkan descriptor set for the slot:
+// one of kFramesInFlight + 1, so a set is never updated while a command buffer that uses it may
+// be pending. The last slot is for one-off work that is submitted and waited for.
 class DescriptorSet {
  public:
   static constexpr int kOneOff = kFramesInFlight;
@@ -118,11 +39,12 @@ class DescriptorSet {
   DescriptorSet(const DescriptorSet&) = delete;
   DescriptorSet& operator=(const DescriptorSet&) = delete;
 
-  VkPipelineLayout pipeline_layout() const { return pipeline_layout_; }
-  // The set that dispatches bind: the one of the last use().
-  VkDescriptorSet set() const { return sets_[current_]; }
-  // Writes the table into set `index` (a frame's slot, or kOneOff) and makes it current.
-  // The command buffers that used it before must have completed.
+  // The slot of the last use().
+  int current() const { return current_; }
+  // Writes the table into every interface's set for slot `index` (a frame's slot, or kOneOff)
+  // and makes it current. The command buffers that used that slot before must have completed.
+  // Throws RuntimeError when a pipeline uses a binding as another kind of descriptor than the
+  // one bound there.
   void use(int index);
   void bind_buffer(Binding binding, const Buffer& buffer, VkDescriptorType type);
   void bind_storage_image(Binding binding, const Texture& texture);
@@ -131,21 +53,51 @@ class DescriptorSet {
   void bind_image(Binding written, Binding read, const Texture& texture);
 
  private:
-  VkDevice device_;
-  VkDescriptorSetLayout layout_ = VK_NULL_HANDLE;
-  VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet sets_[kFramesInFlight + 1] = {};
-  int current_ = kOneOff;
+  friend class PassInterface;
   struct Entry {
     VkDescriptorType type{};
     VkDescriptorBufferInfo buffer{};
     VkDescriptorImageInfo image{};
     bool bound = false;
   };
+  VkDevice device_;
+  int current_ = kOneOff;
   Entry table_[kBindingCount];
+  Entry used_[kBindingCount];  // the table as the last use() wrote it
+  std::vector<PassInterface*> interfaces_;  // registered by their constructors
   void set_entry(Binding binding, VkDescriptorType type, const VkDescriptorBufferInfo* buffer,
                  const VkDescriptorImageInfo* image);
+};
+
+// One pipeline's view of the table: a descriptor-set layout of the bindings its shaders use
+// (shader_interface.h) and the per-draw push constants (DrawConstants), and a descriptor set of
+// that layout for each slot of the DescriptorSet, which writes them.
+class PassInterface {
+ public:
+  // `name` names the pipeline in errors.
+  PassInterface(DescriptorSet& table, std::string name, std::vector<ShaderBinding> bindings);
+  ~PassInterface();
+  PassInterface(const PassInterface&) = delete;
+  PassInterface& operator=(const PassInterface&) = delete;
+
+  VkPipelineLayout pipeline_layout() const { return pipeline_layout_; }
+  // The set of the table's current slot.
+  VkDescriptorSet set() const { return sets_[table_.current()]; }
+  const std::vector<ShaderBinding>& bindings() const { return bindings_; }
+  // Binds set() to `bind_point` with this layout.
+  void bind(VkCommandBuffer cmd, VkPipelineBindPoint bind_point) const;
+
+ private:
+  friend class DescriptorSet;
+  void write(int index);
+  void destroy();
+  DescriptorSet& table_;
+  std::string name_;
+  std::vector<ShaderBinding> bindings_;
+  VkDescriptorSetLayout layout_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet sets_[kFramesInFlight + 1] = {};
 };
 
 // The embedded SPIR-V file `spv_name` as a shader module, for the caller to destroy once its
@@ -170,15 +122,17 @@ class Specialization {
 // with integer specialization constants 0..n-1 set to `specialization`.
 class Kernel {
  public:
-  Kernel(Context& ctx, const DescriptorSet& set, const std::string& spv_name,
+  Kernel(Context& ctx, DescriptorSet& set, const std::string& spv_name,
          const std::vector<int32_t>& specialization = {});
   ~Kernel();
   Kernel(const Kernel&) = delete;
   Kernel& operator=(const Kernel&) = delete;
   VkPipeline pipeline() const { return pipeline_; }
+  const PassInterface& interface() const { return interface_; }
 
  private:
   VkDevice device_;
+  PassInterface interface_;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
 };
 
@@ -203,7 +157,7 @@ class PassTimer {
   std::vector<std::string> names_;
 };
 
-// Binds `kernel` with the shared set, dispatches ceil(size / local) groups, adds a barrier,
+// Binds `kernel` with its set of the current slot, dispatches ceil(size / local) groups, adds a barrier,
 // and times it: the body of every pass.
 void dispatch(VkCommandBuffer cmd, const Kernel& kernel, const DescriptorSet& set,
               PassTimer& timer, const std::string& name, uint32_t size_x, uint32_t size_y,

@@ -44,7 +44,7 @@ void DepthTarget::reset() {
   device_ = VK_NULL_HANDLE;
 }
 
-RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector<VkFormat>& formats,
+RasterPass::RasterPass(Context& ctx, DescriptorSet& set, const std::vector<VkFormat>& formats,
                        bool clear, const std::vector<RasterShaders>& pipelines, bool with_depth)
     : device_(ctx.device()), attachments_(formats.size()), with_depth_(with_depth) {
   if (!ctx.has_graphics())
@@ -183,9 +183,13 @@ RasterPass::RasterPass(Context& ctx, const DescriptorSet& set, const std::vector
   depth_state.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed: 1 near, 0 infinitely far
   info.pDepthStencilState = with_depth ? &depth_state : nullptr;
   info.pDynamicState = &dynamic;
-  info.layout = set.pipeline_layout();
   info.renderPass = render_pass_;
   for (const RasterShaders& shaders : pipelines) {
+    interfaces_.push_back(std::make_unique<PassInterface>(
+        set, shaders.vert + " + " + shaders.frag,
+        merge_bindings({reflect_embedded(shaders.vert, VK_SHADER_STAGE_VERTEX_BIT),
+                        reflect_embedded(shaders.frag, VK_SHADER_STAGE_FRAGMENT_BIT)})));
+    info.layout = interfaces_.back()->pipeline_layout();
     stages[0].module = create_shader_module(device_, shaders.vert);
     stages[1].module = create_shader_module(device_, shaders.frag);
     const Specialization spec(shaders.frag_specialization);
@@ -227,7 +231,7 @@ VkFramebuffer RasterPass::framebuffer_for(const std::vector<const Texture*>& tar
   return framebuffer;
 }
 
-void RasterPass::record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer& timer,
+void RasterPass::record(VkCommandBuffer cmd, PassTimer& timer,
                         const std::string& name, const std::vector<const Texture*>& targets,
                         const std::vector<RasterDraw>& draws, const DepthTarget* depth) {
   if (targets.size() != attachments_) throw RuntimeError("RasterPass: wrong number of targets");
@@ -244,7 +248,6 @@ void RasterPass::record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer
   begin.clearValueCount = uint32_t(clears.size());
   begin.pClearValues = clears.data();
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-  VkDescriptorSet handle = set.set();
   int bound = -1;
   for (const RasterDraw& draw : draws) {
     const VkRect2D area = draw.area.extent.width > 0 ? draw.area : VkRect2D{{0, 0}, {w, h}};
@@ -258,15 +261,15 @@ void RasterPass::record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer
     if (draw.vertex_count == 0) continue;
     if (draw.pipeline != bound) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.at(size_t(draw.pipeline)));
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, set.pipeline_layout(), 0, 1,
-                              &handle, 0, nullptr);
+      interfaces_[size_t(draw.pipeline)]->bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS);
       bound = draw.pipeline;
     }
     const VkViewport viewport{float(area.offset.x), float(area.offset.y), float(area.extent.width),
                               float(area.extent.height), 0.0f, 1.0f};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &area);
-    vkCmdPushConstants(cmd, set.pipeline_layout(), kDrawConstantStages, 0, sizeof(DrawConstants),
+    vkCmdPushConstants(cmd, interfaces_[size_t(draw.pipeline)]->pipeline_layout(),
+                       kDrawConstantStages, 0, sizeof(DrawConstants),
                        &draw.constants);
     vkCmdDraw(cmd, draw.vertex_count, 1, draw.first_vertex, 0);
   }

@@ -1,13 +1,14 @@
 // Raster passes: a render pass over colour attachments kept in VK_IMAGE_LAYOUT_GENERAL (the
 // layout every nephele image lives in, so compute passes sample them after), cleared to zero
 // (or kept, with the areas drawn cleared), drawn with premultiplied-alpha "over" blending (or
-// none, with a depth buffer) by graphics pipelines of embedded vertex and fragment shaders with
-// the shared descriptor set and per-draw push constants (DrawConstants). The vertex shaders make
-// their geometry from gl_VertexIndex: there are no vertex buffers.
+// none, with a depth buffer) by graphics pipelines of embedded vertex and fragment shaders, each
+// with the bindings its shaders use (PassInterface) and per-draw push constants (DrawConstants).
+// The vertex shaders make their geometry from gl_VertexIndex: there are no vertex buffers.
 #pragma once
 
 #include <vulkan/vulkan.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -64,7 +65,7 @@ class RasterPass {
   // pass draws opaque geometry (no blending) tested against a DepthTarget, reversed: cleared to
   // 0, the nearer (larger) depth kept. Throws RuntimeError when the queue cannot draw or a
   // format cannot be a (blended) attachment.
-  RasterPass(Context& ctx, const DescriptorSet& set, const std::vector<VkFormat>& formats,
+  RasterPass(Context& ctx, DescriptorSet& set, const std::vector<VkFormat>& formats,
              bool clear, const std::vector<RasterShaders>& pipelines, bool with_depth = false);
   ~RasterPass();
   RasterPass(const RasterPass&) = delete;
@@ -73,7 +74,7 @@ class RasterPass {
   // Records the draws into `targets` (one per format, all the same size) and makes the
   // result visible to compute shaders and transfers; timed as `name`.
   // With depth, `depth` is the pass's depth buffer, of the targets' size.
-  void record(VkCommandBuffer cmd, const DescriptorSet& set, PassTimer& timer,
+  void record(VkCommandBuffer cmd, PassTimer& timer,
               const std::string& name, const std::vector<const Texture*>& targets,
               const std::vector<RasterDraw>& draws, const DepthTarget* depth = nullptr);
 
@@ -81,6 +82,7 @@ class RasterPass {
   VkFramebuffer framebuffer_for(const std::vector<const Texture*>& targets, const DepthTarget* depth);
   VkDevice device_;
   VkRenderPass render_pass_ = VK_NULL_HANDLE;
+  std::vector<std::unique_ptr<PassInterface>> interfaces_;  // one a pipeline, its layout
   std::vector<VkPipeline> pipelines_;
   size_t attachments_ = 0;
   bool with_depth_ = false;

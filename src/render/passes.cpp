@@ -64,7 +64,7 @@ void GpuState::begin(VkCommandBuffer cmd, int index, const gpu::FrameParams& par
   set.bind_buffer(gpu::kMeter, meter[slot], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   const int image = slot == kOneOff ? 0 : slot;  // one-off work writes no final image
   set.bind_storage_image(gpu::kColorOut, color[image]);
-  set.bind_storage_image(gpu::kColor, color[image]);
+  set.bind_storage_image(gpu::kColorRw, color[image]);
   set.bind_storage_image(gpu::kDisplayOut, display[image]);
   set.use(slot);
   timer = timers[slot].get();

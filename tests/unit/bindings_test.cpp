@@ -1,23 +1,38 @@
-// The one descriptor set's layout is declared twice, in GLSL (shaders/common/bindings_inc.glsl)
-// and in C++ (gpu::Binding, gpu::binding_type): this static check proves they agree.
+// The bindings are declared once, in GLSL (shaders/common/bindings_inc.glsl): gpu::Binding is
+// generated from it (cmake/bindings_header.cmake), and each pipeline's layout is reflected from
+// its SPIR-V (gpu/shader_interface.h). These tests hold the three together.
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <map>
 #include <regex>
-#include <sstream>
+#include <set>
+#include <string>
 
 #include "gpu/kernel.h"
+#include "gpu/shader_interface.h"
+#include "nephele/error.h"
+#include "nephele_embedded.h"
+
+namespace nephele_shaders {
+extern const EmbeddedFile kFiles[];
+extern const size_t kFileCount;
+}  // namespace nephele_shaders
 
 namespace nephele::gpu {
 namespace {
 
-// Binding number -> descriptor type, from the GLSL declarations.
-std::map<uint32_t, VkDescriptorType> glsl_bindings(std::string& problems) {
+struct Declared {
+  std::string name;
+  VkDescriptorType type = VK_DESCRIPTOR_TYPE_MAX_ENUM;
+};
+
+// Binding number -> its name and descriptor type, from the GLSL declarations.
+std::map<uint32_t, Declared> glsl_bindings() {
   std::ifstream in(std::string(NEPHELE_SOURCE_DIR) + "/shaders/common/bindings_inc.glsl");
-  std::map<uint32_t, VkDescriptorType> found;
+  std::map<uint32_t, Declared> found;
   const std::regex declaration(
-      R"(layout\(([^)]*)\)\s*(?:(?:readonly|writeonly|restrict|coherent)\s+)*(uniform|buffer)\s+(?:(?:readonly|writeonly|restrict|coherent)\s+)*(\w+))");
+      R"(layout\(([^)]*)\)\s*(?:(?:readonly|writeonly|restrict|coherent)\s+)*(uniform|buffer)\s+(?:(?:readonly|writeonly|restrict|coherent)\s+)*(\w+)\s*(\w*))");
   const std::regex binding(R"(binding\s*=\s*(\d+))");
   std::string line;
   while (std::getline(in, line)) {
@@ -26,35 +41,110 @@ std::map<uint32_t, VkDescriptorType> glsl_bindings(std::string& problems) {
     const std::string qualifiers = m[1];
     if (!std::regex_search(qualifiers, b, binding)) continue;
     const uint32_t n = uint32_t(std::stoul(b[1]));
-    const std::string storage = m[2], type = m[3];
-    VkDescriptorType t = VK_DESCRIPTOR_TYPE_MAX_ENUM;
+    const std::string storage = m[2], type = m[3], variable = m[4];
+    Declared d;
+    const bool block = type.ends_with("Block");
+    d.name = block ? type : variable;
     if (storage == "buffer")
-      t = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    else if (type.starts_with("image") || type.starts_with("uimage") || type.starts_with("iimage"))
-      t = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    else if (type.starts_with("sampler") || type.starts_with("usampler") ||
-             type.starts_with("isampler"))
-      t = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+      d.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    else if (block)
+      d.type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    else if (type.find("image") != std::string::npos)
+      d.type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     else
-      t = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;  // a uniform block
-    if (found.count(n)) problems += "binding " + std::to_string(n) + " declared twice; ";
-    found[n] = t;
+      d.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    EXPECT_EQ(found.count(n), 0u) << "binding " << n << " declared twice";
+    found[n] = d;
   }
   return found;
 }
 
-TEST(Bindings, TheGlslDeclarationsAndTheCppLayoutAgree) {
-  std::string problems;
-  const std::map<uint32_t, VkDescriptorType> glsl = glsl_bindings(problems);
-  EXPECT_EQ(problems, "");
-  EXPECT_EQ(glsl.size(), size_t(kBindingCount))
-      << "bindings_inc.glsl declares " << glsl.size() << ", gpu::Binding counts " << kBindingCount;
+TEST(Bindings, TheEnumIsGeneratedFromTheGlslDeclarations) {
+  const std::map<uint32_t, Declared> glsl = glsl_bindings();
+  ASSERT_EQ(glsl.size(), size_t(kBindingCount));
   for (uint32_t i = 0; i < kBindingCount; ++i) {
-    const auto it = glsl.find(i);
-    ASSERT_NE(it, glsl.end()) << "binding " << i << " is not declared in bindings_inc.glsl";
-    EXPECT_EQ(it->second, binding_type(Binding(i))) << "binding " << i;
+    ASSERT_TRUE(glsl.count(i)) << "binding " << i << " is not declared in bindings_inc.glsl";
+    EXPECT_EQ(glsl.at(i).name, binding_name(Binding(i))) << "binding " << i;
   }
-  EXPECT_EQ(binding_type(kBindingCount), VK_DESCRIPTOR_TYPE_MAX_ENUM);
+  EXPECT_STREQ(binding_name(kBindingCount), "(no such binding)");
+  // Spot checks of the names the C++ uses: an image, a sampler, a block.
+  EXPECT_STREQ(binding_name(kSkyViewLut), "sky_view_lut");
+  EXPECT_STREQ(binding_name(kWeatherMapOut), "weather_map_out");
+  EXPECT_STREQ(binding_name(kFrameParams), "FrameParamsBlock");
+  EXPECT_EQ(kFrameParams, 0u);
+}
+
+// Every embedded shader: the bindings its entry point uses, each of the type bindings_inc.glsl
+// declares, and no more storage images or samplers than lavapipe takes a stage (32 each).
+TEST(Bindings, EveryShaderUsesDeclaredBindingsWithinTheStageLimits) {
+  const std::map<uint32_t, Declared> glsl = glsl_bindings();
+  size_t shaders = 0, most_images = 0, most_samplers = 0, fewest = 1000, most = 0;
+  for (size_t f = 0; f < nephele_shaders::kFileCount; ++f) {
+    const std::string name = nephele_shaders::kFiles[f].name;
+    if (!name.ends_with(".spv")) continue;
+    const VkShaderStageFlagBits stage =
+        name.find(".vert.") != std::string::npos   ? VK_SHADER_STAGE_VERTEX_BIT
+        : name.find(".frag.") != std::string::npos ? VK_SHADER_STAGE_FRAGMENT_BIT
+                                                    : VK_SHADER_STAGE_COMPUTE_BIT;
+    const std::vector<ShaderBinding> bindings = reflect_embedded(name, stage);
+    ++shaders;
+    size_t images = 0, samplers = 0;
+    for (const ShaderBinding& b : bindings) {
+      ASSERT_TRUE(glsl.count(b.binding)) << name << " uses undeclared binding " << b.binding;
+      EXPECT_EQ(b.type, glsl.at(b.binding).type) << name << ", binding " << b.binding;
+      EXPECT_EQ(b.stages, VkShaderStageFlags(stage)) << name;
+      images += b.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+      samplers += b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    }
+    EXPECT_LE(images, 32u) << name;
+    EXPECT_LE(samplers, 32u) << name;
+    most_images = std::max(most_images, images);
+    most_samplers = std::max(most_samplers, samplers);
+    fewest = std::min(fewest, bindings.size());
+    most = std::max(most, bindings.size());
+  }
+  EXPECT_GE(shaders, 40u);
+  // No pass sees the whole table any more.
+  EXPECT_LT(most, size_t(kBindingCount) / 2);
+  std::printf("%zu shaders: %zu to %zu bindings each of %u; at most %zu storage images and %zu "
+              "samplers in one\n",
+              shaders, fewest, most, unsigned(kBindingCount), most_images, most_samplers);
+}
+
+TEST(Bindings, APassSeesExactlyTheBindingsItsShaderUses) {
+  // meter.comp reads the frame's parameters and the final image and writes the meter's block.
+  const std::vector<ShaderBinding> meter = reflect_embedded("meter.comp.spv", VK_SHADER_STAGE_COMPUTE_BIT);
+  std::set<uint32_t> numbers;
+  for (const ShaderBinding& b : meter) numbers.insert(b.binding);
+  EXPECT_EQ(numbers, (std::set<uint32_t>{kFrameParams, kColorRw, kMeter}));
+  // The particles' raster pipeline: what its vertex and fragment shaders use, each binding
+  // visible to the stages that use it.
+  const std::vector<ShaderBinding> particles =
+      merge_bindings({reflect_embedded("particles.vert.spv", VK_SHADER_STAGE_VERTEX_BIT),
+                      reflect_embedded("particles.frag.spv", VK_SHADER_STAGE_FRAGMENT_BIT)});
+  std::map<uint32_t, VkShaderStageFlags> stages;
+  for (const ShaderBinding& b : particles) stages[b.binding] = b.stages;
+  ASSERT_TRUE(stages.count(kParticles));
+  EXPECT_TRUE(stages.at(kParticles) & VK_SHADER_STAGE_VERTEX_BIT);
+  ASSERT_TRUE(stages.count(kParticleTextures));
+  EXPECT_EQ(stages.at(kParticleTextures), VkShaderStageFlags(VK_SHADER_STAGE_FRAGMENT_BIT));
+  EXPECT_FALSE(stages.count(kBaseNoise));
+}
+
+TEST(Bindings, ReflectionRefusesWhatIsNotSpirv) {
+  const uint32_t words[] = {0xdeadbeef, 1, 2, 3, 4, 5, 6, 7};
+  try {
+    reflect_spirv(words, 8, VK_SHADER_STAGE_COMPUTE_BIT, "junk.comp.spv");
+    FAIL() << "no error";
+  } catch (const RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("junk.comp.spv"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(reflect_embedded("no_such.comp.spv", VK_SHADER_STAGE_COMPUTE_BIT), RuntimeError);
+  // Two stages using one binding as different kinds of descriptor cannot share a layout.
+  EXPECT_THROW(merge_bindings({{{3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_VERTEX_BIT}},
+                               {{3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                 VK_SHADER_STAGE_FRAGMENT_BIT}}}),
+               RuntimeError);
 }
 
 }  // namespace

@@ -530,13 +530,13 @@ void ImpostorCache::record_updates(VkCommandBuffer cmd, gpu::PassTimer& timer) {
       draws.push_back(d);
     }
     if (direct_) {
-      pass_->record(cmd, set_, timer, "impostor_draw", {&atlas_, &atlas_aux_}, draws);
+      pass_->record(cmd, timer, "impostor_draw", {&atlas_, &atlas_aux_}, draws);
       continue;
     }
-    pass_->record(cmd, set_, timer, "impostor_draw", {&scratch_, &scratch_aux_}, draws);
+    pass_->record(cmd, timer, "impostor_draw", {&scratch_, &scratch_aux_}, draws);
     gpu::DrawConstants first{};
     first.info.x = int(job);  // impostor_tiles.comp's first job
-    vkCmdPushConstants(cmd, set_.pipeline_layout(), gpu::kDrawConstantStages, 0,
+    vkCmdPushConstants(cmd, tiles_kernel_.interface().pipeline_layout(), gpu::kDrawConstantStages, 0,
                        sizeof(gpu::DrawConstants), &first);
     const int tile = params_.atlas_tile;
     gpu::dispatch(cmd, tiles_kernel_, set_, timer, "impostor_tiles", uint32_t(tile), uint32_t(tile),

@@ -241,7 +241,7 @@ void ParticleCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
     near.vertex_count = 6 * near_count_;
     near.constants = camera_;
     draws.push_back(near);
-    pass_->record(cmd, set_, timer, "particles", {&layer_, &depth_}, draws);
+    pass_->record(cmd, timer, "particles", {&layer_, &depth_}, draws);
     drawn_ = true;
   } else if (drawn_) {  // a scene without particle clouds after one with them
     layer_.record_clear(cmd);

@@ -16,7 +16,7 @@ SkyViewModule::SkyViewModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     volumes_[i] = gpu::Texture(ctx, glsl::AP_SIZE_U, glsl::AP_SIZE_V, glsl::AP_SLICES,
                                VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_REPEAT);
   }
-  set_.bind_image(gpu::kSkyViewOut, gpu::kSkyView, luts_[0]);
+  set_.bind_image(gpu::kSkyViewOut, gpu::kSkyViewLut, luts_[0]);
   set_.bind_image(gpu::kAerialPerspectiveOut, gpu::kAerialPerspective, volumes_[0]);
 }
 
@@ -65,7 +65,7 @@ void SkyViewModule::prepare(bool still, gpu::FrameParams& params) {
   }
   set_.bind_storage_image(gpu::kSkyViewOut, luts_[build]);
   set_.bind_storage_image(gpu::kAerialPerspectiveOut, volumes_[build]);
-  set_.bind_sampled_image(gpu::kSkyView, luts_[read_index_]);
+  set_.bind_sampled_image(gpu::kSkyViewLut, luts_[read_index_]);
   set_.bind_sampled_image(gpu::kAerialPerspective, volumes_[read_index_]);
   params.sky_view_build_up = target.up;
   params.sky_view_build_forward = target.forward;

@@ -61,8 +61,8 @@ TerrainModule::TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set)
       albedo_(ctx, 1, 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       out_(output_texture(ctx, 1, 1)) {
   set_.bind_sampled_image(gpu::kTerrainHeights, heights_);
-  set_.bind_image(gpu::kTerrainOut, gpu::kTerrain, out_);
-  set_.bind_sampled_image(gpu::kTerrainAlbedo, albedo_);
+  set_.bind_image(gpu::kTerrainOut, gpu::kTerrainImage, out_);
+  set_.bind_sampled_image(gpu::kTerrainAlbedoMap, albedo_);
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
     for (const gpu::Texture* t : {&heights_, &out_, &albedo_}) t->record_clear(cmd);
   });
@@ -74,7 +74,7 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, bool host
   if ((present || host_scene) && (out_.width() != uint32_t(width) || out_.height() != uint32_t(height))) {
     ctx_.wait_queue_idle();  // a frame in flight may still read the old one
     out_ = output_texture(ctx_, uint32_t(width), uint32_t(height));
-    set_.bind_image(gpu::kTerrainOut, gpu::kTerrain, out_);
+    set_.bind_image(gpu::kTerrainOut, gpu::kTerrainImage, out_);
   }
   if (!present) return false;
   raster_frame_ = scene.terrain.method == "raster";
@@ -115,7 +115,7 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, bool host
     gpu::Texture map = albedo_texture(ctx_, scene.terrain.albedo_map);
     ctx_.wait_queue_idle();
     albedo_ = std::move(map);
-    set_.bind_sampled_image(gpu::kTerrainAlbedo, albedo_);
+    set_.bind_sampled_image(gpu::kTerrainAlbedoMap, albedo_);
   }
   albedo_path_ = scene.terrain.albedo_map;
   params.terrain_rect = rect_;
@@ -141,7 +141,7 @@ void TerrainModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   const glm::ivec2 cells = glm::ivec2(grid_) - 1;
   mesh.vertex_count = uint32_t(cells.x) * uint32_t(cells.y) * 6u;
   mesh.constants.info = glm::ivec4(cells.x, 0, 0, 0);
-  raster_->record(cmd, set_, timer, "terrain_mesh", {&out_}, {mesh}, &depth_);
+  raster_->record(cmd, timer, "terrain_mesh", {&out_}, {mesh}, &depth_);
   gpu::dispatch(cmd, *raster_kernel_, set_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
 }
 
