@@ -244,9 +244,9 @@ std::vector<std::pair<std::string, double>> PassTimer::results() const {
   return out;
 }
 
-void dispatch(VkCommandBuffer cmd, const Kernel& kernel, const DescriptorSet& /*set*/,
-              PassTimer& timer, const std::string& name, uint32_t size_x, uint32_t size_y,
-              uint32_t size_z, uint32_t local_x, uint32_t local_y, uint32_t local_z) {
+void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const std::string& name,
+              uint32_t size_x, uint32_t size_y, uint32_t size_z, uint32_t local_x, uint32_t local_y,
+              uint32_t local_z) {
   timer.begin(cmd, name);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
   kernel.interface().bind(cmd, VK_PIPELINE_BIND_POINT_COMPUTE);

@@ -157,10 +157,10 @@ class PassTimer {
   std::vector<std::string> names_;
 };
 
-// Binds `kernel` with its set of the current slot, dispatches ceil(size / local) groups, adds a barrier,
-// and times it: the body of every pass.
-void dispatch(VkCommandBuffer cmd, const Kernel& kernel, const DescriptorSet& set,
-              PassTimer& timer, const std::string& name, uint32_t size_x, uint32_t size_y,
-              uint32_t size_z, uint32_t local_x, uint32_t local_y, uint32_t local_z);
+// Binds `kernel` with its set of the current slot, dispatches ceil(size / local) groups, adds a
+// barrier, and times it: the body of every compute pass.
+void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const std::string& name,
+              uint32_t size_x, uint32_t size_y, uint32_t size_z, uint32_t local_x, uint32_t local_y,
+              uint32_t local_z);
 
 }  // namespace nephele::gpu

@@ -203,95 +203,11 @@ std::vector<std::string> FrameRenderer::Impl::march_in_bands(const FrameGraph& g
 
 FrameGraph FrameRenderer::Impl::frame_graph(const Scene& scene, const gpu::FrameParams& params,
                                             const FramePlan& plan) {
-  FrameGraph g;
-  // Made before the frame: the atmosphere's tables, the noise, the voxel clouds' atlas, the
-  // reference sky. Kept across frames: what builds over several frames (the weather, the sky
-  // view, the light volume) and what a later frame reads back (the ground's light, the clouds'
-  // history). Read whether or not a pass writes them this frame: the terrain, the particle
-  // layer, the shafts.
-  for (const char* r : {"atmosphere", "noise", "voxel_clouds", "reference_sky", "terrain",
-                        "particle_layer", "shafts"})
-    g.import(r);
-  for (const char* r : {"weather_map", "sky_view", "light_volume", "ground_light", "cloud_layer"})
-    g.import(r, true);
-  for (const char* r : {"color", "meter", "display", "host_lighting"}) g.output(r);
-  const auto timer = [this]() -> gpu::PassTimer& { return *state.timer; };
-  const MarchMode mode = scene.quality.mode;
-
-  g.add_pass("weather", {}, {"weather_map"},
-             [=, this](VkCommandBuffer cmd) { weather.record(cmd, timer()); });
-  g.add_pass("sky_view", {"atmosphere"}, {"sky_view"},
-             [=, this](VkCommandBuffer cmd) { sky_view.record(cmd, timer()); });
-  g.add_pass("light_volume", {"weather_map", "noise", "voxel_clouds", "atmosphere"},
-             {"light_volume"},
-             [=, this](VkCommandBuffer cmd) { light_volume.record(cmd, timer()); });
-  // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe). Without
-  // nephele's clouds the gaps pass all the sky's light (a classical model's shadow is its
-  // own, in the cloud buffer).
-  const std::vector<std::string> cloud_inputs = {"weather_map", "noise", "voxel_clouds",
-                                                 "light_volume"};
-  if (!plan.volumetric)
-    g.add_pass("ground_light", {}, {"ground_light"},
-               [this](VkCommandBuffer cmd) { clouds.record_clear_ground_light(cmd); });
-  else if (light_volume.completed() || params.light_volume.w == 0.0f)
-    g.add_pass("ground_light", cloud_inputs, {"ground_light"},
-               [=, this](VkCommandBuffer cmd) { clouds.record_ground_light(cmd, timer(), mode); });
-  if (params.terrain_shape.z > 0.0f)
-    g.add_pass("terrain",
-               {"ground_light", "light_volume", "weather_map", "noise", "sky_view", "atmosphere"},
-               {"terrain"}, [=, this](VkCommandBuffer cmd) { terrain.record(cmd, timer()); });
-  if (params.host_scene.x > 0.0f)
-    g.add_pass("host_scene", {"terrain"}, {"terrain"},
-               [=, this](VkCommandBuffer cmd) { host_scene.record(cmd, timer()); });
-  if (params.host_shadow_grid.y > 0)
-    g.add_pass("host_lighting",
-               {"weather_map", "noise", "voxel_clouds", "light_volume", "ground_light", "sky_view"},
-               {"host_lighting"},
-               [=, this](VkCommandBuffer cmd) { host_lighting.record(cmd, timer()); });
-  // The cloud layer: nephele's march and its reconstruction, a classical model, or none.
-  if (plan.volumetric) {
-    std::vector<std::string> march_reads = cloud_inputs;
-    march_reads.push_back("terrain");
-    g.add_pass("march", march_reads, {"cloud_march"},
-               [=, this](VkCommandBuffer cmd) { clouds.record_march(cmd, timer(), mode); });
-  }
-  if (plan.classic) {
-    const CloudModel model = scene.clouds.model;
-    g.add_pass("clouds", cloud_inputs, {"cloud_layer"}, [=, this](VkCommandBuffer cmd) {
-      classic_clouds.record(cmd, timer(), model, clouds.width(), clouds.height());
-    });
-  } else if (plan.volumetric) {
-    g.add_pass("clouds", {"cloud_march", "cloud_layer"}, {"cloud_layer"},
-               [=, this](VkCommandBuffer cmd) { clouds.record_reconstruction(cmd, timer()); });
-  } else {
-    g.add_pass("clouds", {}, {"cloud_layer"},
-               [this](VkCommandBuffer cmd) { clouds.record_clear_sky(cmd); });
-  }
-  g.add_pass("particles", {"sky_view", "terrain", "atmosphere"}, {"particle_layer"},
-             [=, this](VkCommandBuffer cmd) { particles.record(cmd, timer()); });
-  if (plan.shafts)
-    g.add_pass("light_shafts",
-               {"cloud_layer", "ground_light", "light_volume", "weather_map", "noise",
-                "voxel_clouds", "terrain", "atmosphere"},
-               {"shafts"}, [=, this](VkCommandBuffer cmd) { light_shafts.record(cmd, timer()); });
-  const SkyModel sky = scene.atmosphere.model;
-  g.add_pass("compose",
-             {"atmosphere", "sky_view", "cloud_layer", "ground_light", "shafts", "particle_layer",
-              "terrain", "reference_sky"},
-             {"color"}, [this, sky](VkCommandBuffer cmd) { pass_compose(cmd, state, sky); });
-  g.add_pass("stars", {"color", "cloud_layer", "particle_layer", "terrain", "atmosphere"},
-             {"color"}, [this](VkCommandBuffer cmd) { pass_stars(cmd, state); });
-  if (plan.post)
-    g.add_pass(
-        "post", {"color", "cloud_layer", "terrain", "shafts"}, {"color"},
-        [=, this](VkCommandBuffer cmd) { post.record(cmd, timer(), state.width, state.height); });
-  g.add_pass("meter", {"color"}, {"meter"},
-             [this](VkCommandBuffer cmd) { pass_meter(cmd, state); });
-  if (plan.display)
-    g.add_pass("tonemap", {"color"}, {"display"},
-               [this](VkCommandBuffer cmd) { pass_tonemap(cmd, state); });
-  g.compile();
-  return g;
+  FrameGraph graph;
+  const FrameSetup setup{scene, params, plan, [this]() -> gpu::PassTimer& { return *state.timer; }};
+  for (RenderModule* module : frame_modules()) module->add_passes(graph, setup);
+  graph.compile();
+  return graph;
 }
 
 void FrameRenderer::Impl::update_atmosphere_luts(const Scene& scene) {
@@ -572,7 +488,13 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   const bool lighting = host_lighting.prepare(options.lighting, scene, lights, slot, params);
   clouds.swap_history();
 
-  const FramePlan plan{volumetric, classic, shafts, post_processed, options.display};
+  FramePlan plan;
+  plan.volumetric = volumetric;
+  plan.classic = classic;
+  plan.shafts = shafts;
+  plan.post = post_processed;
+  plan.display = options.display;
+  plan.ground_light = light_volume.completed() || params.light_volume.w == 0.0f;
   const FrameGraph graph = frame_graph(scene, params, plan);
   if (verbose && frames_recorded == 0)
     std::fprintf(stderr, "nephele: frame graph\n%s", graph.describe().c_str());

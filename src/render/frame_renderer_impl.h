@@ -17,6 +17,7 @@
 #include "render/modules/light_shafts.h"
 #include "render/modules/post.h"
 #include "render/modules/classic_clouds.h"
+#include "render/modules/compose.h"
 #include "render/modules/particle_clouds.h"
 #include "render/modules/particle_light_gpu.h"
 #include "render/modules/path_tracer.h"
@@ -72,19 +73,22 @@ struct FrameRenderer::Impl {
   HostLightingModule host_lighting;     // the host's light (FrameOptions::lighting)
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
+  ComposeModule compose{state};  // the final image: compose.comp, then the stars
+  DisplayModule display{state};  // its meter and display image
+  // The modules of a frame in the order their passes are added: the graph keeps it wherever
+  // their reads and writes allow.
+  std::vector<RenderModule*> frame_modules() {
+    return {&noise,   &atmosphere,     &voxel_clouds, &weather,   &sky_view,     &light_volume,
+            &clouds,  &terrain,        &host_scene,   &host_lighting, &classic_clouds,
+            &particles, &light_shafts, &compose,      &post,      &display};
+  }
 
   void update_atmosphere_luts(const Scene& scene);
   // The brute-force reference sky, tile by tile (one submission each), into state.reference_sky.
   void render_reference_sky(gpu::FrameParams params);
 
   FrameImages record_frame(VkCommandBuffer cmd, const Scene& scene, const FrameOptions& options);
-  // What a frame draws, decided by record_frame from the scene and the modules' prepare.
-  struct FramePlan {
-    bool volumetric = false;  // nephele's clouds are marched
-    bool classic = false;     // a classical model (seed 004) draws the cloud layer instead
-    bool shafts = false, post = false, display = false;
-  };
-  // The frame's passes, each with the resources it reads and writes, compiled: the order, the
+  // The frame's passes as its modules declare them (render_module.h), compiled: the order, the
   // barriers and the part the march needs come from the graph (frame_graph.h).
   FrameGraph frame_graph(const Scene& scene, const gpu::FrameParams& params, const FramePlan& plan);
   // A still image with progress: the passes the march needs, then the march in bands of rows,

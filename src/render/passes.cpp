@@ -80,25 +80,25 @@ void GpuState::resize_reference_sky(int w, int h) {
 }
 
 void pass_reference_sky(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.reference_psi_kernel, s.set, *s.timer, "reference_psi", gpu::REFERENCE_TILE,
+  gpu::dispatch(cmd, s.reference_psi_kernel, *s.timer, "reference_psi", gpu::REFERENCE_TILE,
                 gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES, 4, 4, 4);
-  gpu::dispatch(cmd, s.reference_sky_kernel, s.set, *s.timer, "reference_sky", gpu::REFERENCE_TILE,
+  gpu::dispatch(cmd, s.reference_sky_kernel, *s.timer, "reference_sky", gpu::REFERENCE_TILE,
                 gpu::REFERENCE_TILE, 1, 8, 8, 1);
 }
 
 void pass_stars(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.stars_kernel, s.set, *s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1,
+  gpu::dispatch(cmd, s.stars_kernel, *s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1,
                 1);
 }
 
 
 void pass_tonemap(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.tonemap_kernel, s.set, *s.timer, "tonemap", uint32_t(s.width),
+  gpu::dispatch(cmd, s.tonemap_kernel, *s.timer, "tonemap", uint32_t(s.width),
                 uint32_t(s.height), 1, 8, 8, 1);
 }
 
 void pass_meter(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.meter_kernel, s.set, *s.timer, "meter", 16, 16, 1, 16, 16, 1);
+  gpu::dispatch(cmd, s.meter_kernel, *s.timer, "meter", 16, 16, 1, 16, 16, 1);
 }
 
 double metered_luminance(const GpuState& s, int slot) {
@@ -107,8 +107,7 @@ double metered_luminance(const GpuState& s, int slot) {
 }
 
 void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model) {
-  gpu::dispatch(cmd, model == SkyModel::Reference ? s.compose_reference_kernel : s.compose_kernel,
-                s.set, *s.timer, "compose", uint32_t(s.width), uint32_t(s.height), 1, 8, 8, 1);
+  gpu::dispatch(cmd, model == SkyModel::Reference ? s.compose_reference_kernel : s.compose_kernel, *s.timer, "compose", uint32_t(s.width), uint32_t(s.height), 1, 8, 8, 1);
 }
 
 }  // namespace nephele

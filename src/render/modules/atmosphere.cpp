@@ -40,12 +40,12 @@ AtmosphereModule::AtmosphereModule(gpu::Context& ctx, gpu::DescriptorSet& set)
 }
 
 void AtmosphereModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
-  gpu::dispatch(cmd, transmittance_kernel_, set_, timer, "transmittance",
+  gpu::dispatch(cmd, transmittance_kernel_, timer, "transmittance",
                 glsl::TRANSMITTANCE_LUT_W, glsl::TRANSMITTANCE_LUT_H, 1, 8, 8, 1);
-  gpu::dispatch(cmd, ms_kernel_, set_, timer, "multiscatter", glsl::MS_LUT_W, glsl::MS_LUT_H, 1,
+  gpu::dispatch(cmd, ms_kernel_, timer, "multiscatter", glsl::MS_LUT_W, glsl::MS_LUT_H, 1,
                 8, 8, 1);
   for (const auto& kernel : field_kernels_)
-    gpu::dispatch(cmd, *kernel, set_, timer, "ms field", glsl::MS_FIELD_W, glsl::MS_FIELD_H, 1,
+    gpu::dispatch(cmd, *kernel, timer, "ms field", glsl::MS_FIELD_W, glsl::MS_FIELD_H, 1,
                   8, 8, 1);
 }
 
@@ -54,6 +54,10 @@ void AtmosphereModule::made(const AtmosphereParams& atmosphere) {
   tables_.multiple_scattering = read_texels(ctx_, ms_);
   tables_.ms_field = read_texels(ctx_, field_);
   built_ = atmosphere;
+}
+
+void AtmosphereModule::add_passes(FrameGraph& graph, const FrameSetup& /*frame*/) {
+  graph.import("atmosphere");  // the tables, made before the frame when stale
 }
 
 }  // namespace nephele

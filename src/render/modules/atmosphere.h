@@ -9,14 +9,16 @@
 #include <vector>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/scene.h"
 #include "render/frame_params.h"
 
 namespace nephele {
 
-class AtmosphereModule {
+class AtmosphereModule : public RenderModule {
  public:
   AtmosphereModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
   // Whether the tables are not (yet) those of `atmosphere`.
   bool stale(const AtmosphereParams& atmosphere) const { return built_ != atmosphere; }
   // Records both tables for the atmosphere in the frame parameters.

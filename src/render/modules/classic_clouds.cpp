@@ -62,8 +62,18 @@ void ClassicCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, Clo
     if (!kernel)
       kernel = std::make_unique<gpu::Kernel>(ctx_, set_, "classic_clouds.comp.spv",
                                              std::vector<int32_t>{pass.constant});
-    gpu::dispatch(cmd, *kernel, set_, timer, pass.name, uint32_t(width), uint32_t(height), 1, 8, 8, 1);
+    gpu::dispatch(cmd, *kernel, timer, pass.name, uint32_t(width), uint32_t(height), 1, 8, 8, 1);
   }
+}
+
+void ClassicCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  if (!frame.plan.classic) return;
+  const CloudModel model = frame.scene.clouds.model;
+  const int width = frame.params.cloud_grid.x, height = frame.params.cloud_grid.y;
+  graph.add_pass("clouds", cloud_field_resources(), {"cloud_layer"},
+                 [timer = frame.timer, this, model, width, height](VkCommandBuffer cmd) {
+                   record(cmd, timer(), model, width, height);
+                 });
 }
 
 }  // namespace nephele

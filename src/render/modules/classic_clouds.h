@@ -9,15 +9,17 @@
 #include <memory>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
 #include "render/modules/metaball_clouds.h"
 
 namespace nephele {
 
-class ClassicCloudsModule {
+class ClassicCloudsModule : public RenderModule {
  public:
   ClassicCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
   ~ClassicCloudsModule();
 
   // Fills params.classic_*: the scene's [classic] values in the shader's terms (and, when the

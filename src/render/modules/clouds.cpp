@@ -71,15 +71,15 @@ const gpu::Kernel& CloudsModule::march_kernel(MarchMode mode) const {
 void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
                                 int rows) {
   const auto blocks = [&](int n) { return uint32_t((n + stride_ - 1) / stride_); };
-  gpu::dispatch(cmd, march_kernel(mode), set_, timer, "clouds", blocks(width_),
+  gpu::dispatch(cmd, march_kernel(mode), timer, "clouds", blocks(width_),
                 rows < 0 ? blocks(height_) : uint32_t(rows), 1, 8, 8, 1);
 }
 
 void CloudsModule::record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   const auto blocks = [&](int n) { return uint32_t((n + stride_ - 1) / stride_); };
-  gpu::dispatch(cmd, range_, set_, timer, "march_range", blocks(width_), blocks(height_), 1, 8, 8,
+  gpu::dispatch(cmd, range_, timer, "march_range", blocks(width_), blocks(height_), 1, 8, 8,
                 1);
-  gpu::dispatch(cmd, resolve_, set_, timer, "resolve", uint32_t(width_), uint32_t(height_), 1, 8,
+  gpu::dispatch(cmd, resolve_, timer, "resolve", uint32_t(width_), uint32_t(height_), 1, 8,
                 8, 1);
 }
 
@@ -94,18 +94,51 @@ void CloudsModule::record_clear_ground_light(VkCommandBuffer cmd) {
 
 void CloudsModule::record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer,
                                        MarchMode mode) {
-  gpu::dispatch(cmd, mode == MarchMode::Baseline ? ground_baseline_ : ground_default_, set_,
+  gpu::dispatch(cmd, mode == MarchMode::Baseline ? ground_baseline_ : ground_default_,
                 timer, "ground_light", 16, 16, 1, 16, 16, 1);
 }
 
 void CloudsModule::record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode) {
-  gpu::dispatch(cmd, march_kernel(mode), set_, timer, "sky_dome", kSkyDomeSize, kSkyDomeSize, 1,
+  gpu::dispatch(cmd, march_kernel(mode), timer, "sky_dome", kSkyDomeSize, kSkyDomeSize, 1,
                 8, 8, 1);
 }
 
 void CloudsModule::record_profile(VkCommandBuffer cmd, gpu::PassTimer& timer) {
-  gpu::dispatch(cmd, profile_, set_, timer, "cloud_profile", kCloudProfileSize, kCloudProfileSize,
+  gpu::dispatch(cmd, profile_, timer, "cloud_profile", kCloudProfileSize, kCloudProfileSize,
                 1, 8, 8, 1);
+}
+
+void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  // Kept: the ground's light, read back by a later frame, and the cloud buffer, the next
+  // frame's history.
+  graph.import("ground_light", true);
+  graph.import("cloud_layer", true);
+  // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe). Without
+  // nephele's clouds the gaps pass all the sky's light (a classical model's shadow is its
+  // own, in the cloud buffer).
+  const MarchMode mode = frame.scene.quality.mode;
+  if (!frame.plan.volumetric)
+    graph.add_pass("ground_light", {}, {"ground_light"},
+                   [this](VkCommandBuffer cmd) { record_clear_ground_light(cmd); });
+  else if (frame.plan.ground_light)
+    graph.add_pass("ground_light", cloud_field_resources(), {"ground_light"},
+                   [timer = frame.timer, this, mode](VkCommandBuffer cmd) {
+                     record_ground_light(cmd, timer(), mode);
+                   });
+  if (frame.plan.classic) return;  // a classical model draws the cloud layer
+  if (frame.plan.volumetric) {
+    std::vector<std::string> march_reads = cloud_field_resources();
+    march_reads.push_back("terrain");
+    graph.add_pass("march", march_reads, {"cloud_march"},
+                   [timer = frame.timer, this, mode](VkCommandBuffer cmd) {
+                     record_march(cmd, timer(), mode);
+                   });
+    graph.add_pass("clouds", {"cloud_march", "cloud_layer"}, {"cloud_layer"},
+                   [timer = frame.timer, this](VkCommandBuffer cmd) { record_reconstruction(cmd, timer()); });
+  } else {
+    graph.add_pass("clouds", {}, {"cloud_layer"},
+                   [this](VkCommandBuffer cmd) { record_clear_sky(cmd); });
+  }
 }
 
 }  // namespace nephele

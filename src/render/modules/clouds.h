@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/scene.h"
 
 namespace nephele {
@@ -18,9 +19,10 @@ constexpr uint32_t kSkyDomeSize = 64;
 // writes the sky dome's image, so the two are one size.
 constexpr uint32_t kCloudProfileSize = kSkyDomeSize;
 
-class CloudsModule {
+class CloudsModule : public RenderModule {
  public:
   CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // (Re)allocates the cloud buffer and the marched samples at `width` x `height`; true when
   // they were (the history is lost).

@@ -169,9 +169,9 @@ void HostLightingModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
     map_kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "cloud_shadow_map.comp.spv");
     environment_kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "environment.comp.spv");
   }
-  gpu::dispatch(cmd, *lighting_kernel_, set_, timer, "host_lighting", 64, 1, 1, 64, 1, 1);
-  gpu::dispatch(cmd, *map_kernel_, set_, timer, "shadow_map", map_size_, map_size_, 1, 8, 8, 1);
-  gpu::dispatch(cmd, *environment_kernel_, set_, timer, "environment", 6 * environment_size_,
+  gpu::dispatch(cmd, *lighting_kernel_, timer, "host_lighting", 64, 1, 1, 64, 1, 1);
+  gpu::dispatch(cmd, *map_kernel_, timer, "shadow_map", map_size_, map_size_, 1, 8, 8, 1);
+  gpu::dispatch(cmd, *environment_kernel_, timer, "environment", 6 * environment_size_,
                 environment_size_, 1, 8, 8, 1);
 }
 
@@ -182,6 +182,14 @@ std::optional<HostLighting> HostLightingModule::collect(int slot) {
   const HostLighting out = host_lighting(pending_[slot]->scene, pending_[slot]->lights, device);
   pending_[slot].reset();
   return out;
+}
+
+void HostLightingModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.output("host_lighting");
+  if (frame.params.host_shadow_grid.y > 0)
+    graph.add_pass("host_lighting",
+                   {"weather_map", "noise", "voxel_clouds", "light_volume", "ground_light", "sky_view"},
+                   {"host_lighting"}, [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 }  // namespace nephele

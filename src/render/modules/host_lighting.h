@@ -10,6 +10,7 @@
 #include <string>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/frame.h"
 #include "render/frame_params.h"
 #include "render/gpu_params.h"
@@ -33,9 +34,10 @@ glm::mat4 shadow_map_matrix(const glm::vec3& light, float base_m, const glm::vec
 // empty.
 std::string host_lighting_problem(const HostLightingOptions& options);
 
-class HostLightingModule {
+class HostLightingModule : public RenderModule {
  public:
   HostLightingModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // When `options` (valid: host_lighting_problem) are enabled: sizes the shadow map and the
   // environment, binds the slot's buffer and fills params.host_shadow_*. False when not enabled.

@@ -155,7 +155,13 @@ void HostSceneModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
                        1, &after, 0, nullptr, 0, nullptr);
   timer.end(cmd);
   if (!kernel_) kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "host_scene.comp.spv");
-  gpu::dispatch(cmd, *kernel_, set_, timer, "host_scene", host_.width, host_.height, 1, 8, 8, 1);
+  gpu::dispatch(cmd, *kernel_, timer, "host_scene", host_.width, host_.height, 1, 8, 8, 1);
+}
+
+void HostSceneModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  if (frame.params.host_scene.x > 0.0f)
+    graph.add_pass("host_scene", {"terrain"}, {"terrain"},
+                   [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 }  // namespace nephele

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/frame.h"
 #include "render/gpu_params.h"
 
@@ -18,9 +19,10 @@ namespace nephele {
 // allowed), or empty when it is usable.
 std::string host_scene_problem(const HostScene& host, const Scene& scene);
 
-class HostSceneModule {
+class HostSceneModule : public RenderModule {
  public:
   HostSceneModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Sizes the texel buffer for `host` (valid: host_scene_problem) and fills params.host_*;
   // false without a host scene (params.host_scene.x stays 0).

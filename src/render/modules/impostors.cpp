@@ -539,7 +539,7 @@ void ImpostorCache::record_updates(VkCommandBuffer cmd, gpu::PassTimer& timer) {
     vkCmdPushConstants(cmd, tiles_kernel_.interface().pipeline_layout(), gpu::kDrawConstantStages, 0,
                        sizeof(gpu::DrawConstants), &first);
     const int tile = params_.atlas_tile;
-    gpu::dispatch(cmd, tiles_kernel_, set_, timer, "impostor_tiles", uint32_t(tile), uint32_t(tile),
+    gpu::dispatch(cmd, tiles_kernel_, timer, "impostor_tiles", uint32_t(tile), uint32_t(tile),
                   uint32_t(jobs), 8, 8, 1);
     job += jobs;
   }

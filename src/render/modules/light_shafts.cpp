@@ -22,7 +22,15 @@ bool LightShaftsModule::prepare(const Scene& scene, int width, int height) {
 
 void LightShaftsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (!kernel_) kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "light_shafts.comp.spv");
-  gpu::dispatch(cmd, *kernel_, set_, timer, "light_shafts", shafts_.width(), shafts_.height(), 1, 8, 8, 1);
+  gpu::dispatch(cmd, *kernel_, timer, "light_shafts", shafts_.width(), shafts_.height(), 1, 8, 8, 1);
+}
+
+void LightShaftsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.import("shafts");  // read whether or not they are drawn this frame
+  if (!frame.plan.shafts) return;
+  std::vector<std::string> reads = cloud_field_resources();
+  for (const char* r : {"cloud_layer", "ground_light", "terrain", "atmosphere"}) reads.push_back(r);
+  graph.add_pass("light_shafts", reads, {"shafts"}, [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 }  // namespace nephele

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
 
@@ -13,9 +14,10 @@ namespace nephele {
 
 constexpr int kLightShaftsDownsample = 4;
 
-class LightShaftsModule {
+class LightShaftsModule : public RenderModule {
  public:
   LightShaftsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Sizes the shafts' image for a width x height frame; false when the scene has none.
   bool prepare(const Scene& scene, int width, int height);

@@ -88,8 +88,14 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
 
 void LightVolumeModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (rows_ == 0) return;
-  gpu::dispatch(cmd, kernel_, set_, timer, "light_volume", gpu::LIGHT_VOLUME_XY, uint32_t(rows_),
+  gpu::dispatch(cmd, kernel_, timer, "light_volume", gpu::LIGHT_VOLUME_XY, uint32_t(rows_),
                 1, 8, 8, 1);
+}
+
+void LightVolumeModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.import("light_volume", true);  // built over several frames
+  graph.add_pass("light_volume", {"weather_map", "noise", "voxel_clouds", "atmosphere"},
+                 {"light_volume"}, [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 }  // namespace nephele

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
 
@@ -25,9 +26,10 @@ namespace nephele {
 constexpr int kLightVolumeBuildFrames = 256;
 constexpr int kLightVolumeEditFrames = 16;
 
-class LightVolumeModule {
+class LightVolumeModule : public RenderModule {
  public:
   LightVolumeModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Decides this frame's work and sets params.light_volume (the volume read),
   // light_volume_build and light_volume_rows (the band built), and the bindings. `clouds_key`

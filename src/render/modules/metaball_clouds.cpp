@@ -163,9 +163,9 @@ void MetaballCloudsModule::record_light(VkCommandBuffer cmd, gpu::PassTimer& tim
     scatter_ = std::make_unique<gpu::Kernel>(ctx_, set_, "nishita_scatter.comp.spv");
   }
   const glm::uvec3 d(grid_.dims);
-  gpu::dispatch(cmd, *light_, set_, timer, "nishita_light", d.x, d.y, d.z, 4, 4, 4);
+  gpu::dispatch(cmd, *light_, timer, "nishita_light", d.x, d.y, d.z, 4, 4, 4);
   if (want_.nishita_light.z > 1.5f)  // the second order
-    gpu::dispatch(cmd, *scatter_, set_, timer, "nishita_scatter", d.x, d.y, d.z, 4, 4, 4);
+    gpu::dispatch(cmd, *scatter_, timer, "nishita_scatter", d.x, d.y, d.z, 4, 4, 4);
   lit_key_ = want_;
 }
 

@@ -19,18 +19,22 @@ NoiseModule::NoiseModule(gpu::Context& ctx, gpu::DescriptorSet& set)
 void NoiseModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int i) {
   switch (i) {
     case 0:
-      gpu::dispatch(cmd, base_kernel_, set_, timer, "noise_base", kBaseNoiseSize, kBaseNoiseSize,
+      gpu::dispatch(cmd, base_kernel_, timer, "noise_base", kBaseNoiseSize, kBaseNoiseSize,
                     kBaseNoiseSize, 4, 4, 4);
       break;
     case 1:
-      gpu::dispatch(cmd, detail_kernel_, set_, timer, "noise_detail", kDetailNoiseSize,
+      gpu::dispatch(cmd, detail_kernel_, timer, "noise_detail", kDetailNoiseSize,
                     kDetailNoiseSize, kDetailNoiseSize, 4, 4, 4);
       detail_.record_mipmaps(cmd);
       break;
     default:
-      gpu::dispatch(cmd, curl_kernel_, set_, timer, "noise_curl", kCurlNoiseSize, kCurlNoiseSize,
+      gpu::dispatch(cmd, curl_kernel_, timer, "noise_curl", kCurlNoiseSize, kCurlNoiseSize,
                     1, 8, 8, 1);
   }
+}
+
+void NoiseModule::add_passes(FrameGraph& graph, const FrameSetup& /*frame*/) {
+  graph.import("noise");  // made before the frame when stale (update_noise)
 }
 
 }  // namespace nephele

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/scene.h"
 
 namespace nephele {
@@ -15,11 +16,12 @@ constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
 constexpr uint32_t kDetailNoiseLevels = 6;  // and its mip levels down to 1^3 (far clouds)
 constexpr uint32_t kCurlNoiseSize = 128;    // curl noise 128^2
 
-class NoiseModule {
+class NoiseModule : public RenderModule {
  public:
   static constexpr int kTextures = 3;  // base, detail, curl
 
   NoiseModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
   // Whether the textures are not (yet) those of `seed`.
   bool stale(uint32_t seed) const { return seed_ != seed; }
   // Records texture `i` (0 base, 1 detail with its mip levels, 2 curl) for the seed in the

@@ -251,4 +251,10 @@ void ParticleCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   }
 }
 
+void ParticleCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.import("particle_layer");  // read whether or not it is drawn this frame
+  graph.add_pass("particles", {"sky_view", "terrain", "atmosphere"}, {"particle_layer"},
+                 [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
+}
+
 }  // namespace nephele

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "gpu/raster.h"
 #include "render/modules/impostors.h"
 #include "nephele/renderer.h"
@@ -33,9 +34,10 @@ struct ParticleFrameStats {
   double generate_ms = 0.0, lighting_ms = 0.0, sort_ms = 0.0;  // CPU
 };
 
-class ParticleCloudsModule {
+class ParticleCloudsModule : public RenderModule {
  public:
   ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
   ~ParticleCloudsModule();
 
   // Before the frame's GpuState::begin: (re)generates the field when its parameters or, for an

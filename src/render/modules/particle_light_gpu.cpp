@@ -108,7 +108,7 @@ ParticleLightGpuResult ParticleLightGpuModule::light(GpuState& state,
   }
   const uint32_t groups = uint32_t(field.clouds.size());
   const auto timings = state.run_once(gpu::FrameParams{}, [&](VkCommandBuffer cmd) {
-    gpu::dispatch(cmd, pass, set_, *state.timer, "particle_light", groups * uint32_t(invocations_),
+    gpu::dispatch(cmd, pass, *state.timer, "particle_light", groups * uint32_t(invocations_),
                   1, 1, uint32_t(invocations_), 1, 1);
   });
   result.lights.resize(total);

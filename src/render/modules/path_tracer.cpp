@@ -48,7 +48,7 @@ void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool p
   if (!kernels_[variant])
     kernels_[variant] = std::make_unique<gpu::Kernel>(ctx_, set_, "path_trace.comp.spv",
                                                       std::vector<int32_t>{planet ? 1 : 0, baseline});
-  gpu::dispatch(cmd, *kernels_[variant], set_, timer, "path_trace", sum_.width(), sum_.height(), 1, 8, 8, 1);
+  gpu::dispatch(cmd, *kernels_[variant], timer, "path_trace", sum_.width(), sum_.height(), 1, 8, 8, 1);
 }
 
 }  // namespace nephele

@@ -22,6 +22,8 @@ PostModule::PostModule(gpu::Context& ctx, gpu::DescriptorSet& set)
 
 bool PostModule::prepare(const Scene& scene, int width, int height, gpu::FrameParams& params) {
   const OutputParams& o = scene.output;
+  width_ = width;
+  height_ = height;
   const glm::vec2 kernel = bloom_kernel(
       o.bloom_radius_deg, vertical_fov_deg(scene.camera, float(width) / float(height)), width, height);
   params.bloom = glm::vec4(o.bloom_strength, o.bloom_threshold_cd_m2, kernel.x, kernel.y);
@@ -37,11 +39,12 @@ bool PostModule::prepare(const Scene& scene, int width, int height, gpu::FramePa
   return true;
 }
 
-void PostModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int width, int height) {
+void PostModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  const int width = width_, height = height_;
   const auto pass = [&](std::unique_ptr<gpu::Kernel>& kernel, const char* spv, int constant,
                         const char* name) {
     if (!kernel) kernel = std::make_unique<gpu::Kernel>(ctx_, set_, spv, std::vector<int32_t>{constant});
-    gpu::dispatch(cmd, *kernel, set_, timer, name, uint32_t(width), uint32_t(height), 1, 8, 8, 1);
+    gpu::dispatch(cmd, *kernel, timer, name, uint32_t(width), uint32_t(height), 1, 8, 8, 1);
   };
   if (god_rays_) {
     pass(rays_, "god_rays.comp.spv", 0, "god_rays");
@@ -51,6 +54,12 @@ void PostModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int width, i
     pass(bloom_x_, "bloom.comp.spv", 0, "bloom_x");
     pass(bloom_y_, "bloom.comp.spv", 1, "bloom_y");
   }
+}
+
+void PostModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  if (!frame.plan.post) return;
+  graph.add_pass("post", {"color", "cloud_layer", "terrain", "shafts"}, {"color"},
+                 [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 }  // namespace nephele

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
 
@@ -18,20 +19,23 @@ namespace nephele {
 // The most taps each side of bloom's Gaussian: sigma is capped at a third of it.
 constexpr int kBloomMaxTaps = 256;
 
-class PostModule {
+class PostModule : public RenderModule {
  public:
   PostModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Fills params.bloom for a width x height image and sizes the scratch image; false when the
   // scene has no post-processing (nothing to record).
   bool prepare(const Scene& scene, int width, int height, gpu::FrameParams& params);
-  void record(VkCommandBuffer cmd, gpu::PassTimer& timer, int width, int height);
+  // God rays and bloom over the image prepare() sized for.
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
 
  private:
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::Texture temp_;
   bool god_rays_ = false, bloom_ = false;  // this frame's
+  int width_ = 0, height_ = 0;             // this frame's image
   // Made when first recorded: the rays and their blur, bloom along x and along y.
   std::unique_ptr<gpu::Kernel> rays_, rays_blur_, bloom_x_, bloom_y_;
 };

@@ -76,11 +76,17 @@ void SkyViewModule::prepare(bool still, gpu::FrameParams& params) {
 
 void SkyViewModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (rows_.y > 0)
-    gpu::dispatch(cmd, lut_kernel_, set_, timer, "sky_view", kSkyViewWidth, uint32_t(rows_.y), 1,
+    gpu::dispatch(cmd, lut_kernel_, timer, "sky_view", kSkyViewWidth, uint32_t(rows_.y), 1,
                   8, 8, 1);
   if (rows_.w > 0)
-    gpu::dispatch(cmd, volume_kernel_, set_, timer, "aerial_persp", glsl::AP_SIZE_U,
+    gpu::dispatch(cmd, volume_kernel_, timer, "aerial_persp", glsl::AP_SIZE_U,
                   uint32_t(rows_.w), 1, 8, 8, 1);
+}
+
+void SkyViewModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.import("sky_view", true);  // built over several frames, reused while it holds
+  graph.add_pass("sky_view", {"atmosphere"}, {"sky_view"},
+                 [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 }  // namespace nephele

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "render/frame_params.h"
 #include "render/gpu_params.h"
 
@@ -24,9 +25,10 @@ constexpr uint32_t kSkyViewHeight = 108;
 // reuse distance every 10 frames.
 constexpr int kSkyViewBuildFrames = 6;
 
-class SkyViewModule {
+class SkyViewModule : public RenderModule {
  public:
   SkyViewModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Decides this frame's work; sets params.sky_view_up/forward (the pair read) and
   // sky_view_build_up/forward (the pair built), and the bindings.

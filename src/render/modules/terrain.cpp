@@ -128,7 +128,7 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, bool host
 void TerrainModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (!raster_frame_) {
     if (!kernel_) kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "terrain.comp.spv");
-    gpu::dispatch(cmd, *kernel_, set_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
+    gpu::dispatch(cmd, *kernel_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
     return;
   }
   if (!raster_) {
@@ -142,7 +142,15 @@ void TerrainModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   mesh.vertex_count = uint32_t(cells.x) * uint32_t(cells.y) * 6u;
   mesh.constants.info = glm::ivec4(cells.x, 0, 0, 0);
   raster_->record(cmd, timer, "terrain_mesh", {&out_}, {mesh}, &depth_);
-  gpu::dispatch(cmd, *raster_kernel_, set_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
+  gpu::dispatch(cmd, *raster_kernel_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
+}
+
+void TerrainModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.import("terrain");  // read whether or not it is drawn this frame
+  if (frame.params.terrain_shape.z > 0.0f)
+    graph.add_pass("terrain",
+                   {"ground_light", "light_volume", "weather_map", "noise", "sky_view", "atmosphere"},
+                   {"terrain"}, [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 }  // namespace nephele

@@ -12,15 +12,17 @@
 #include <string>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "gpu/raster.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
 
 namespace nephele {
 
-class TerrainModule {
+class TerrainModule : public RenderModule {
  public:
   TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Loads the scene's terrain when it changed (InputError for bad input), sizes the output
   // for a width x height frame (also without terrain when `host_scene`: the host's geometry

@@ -152,4 +152,8 @@ void VoxelCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) {
   }
 }
 
+void VoxelCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& /*frame*/) {
+  graph.import("voxel_clouds");  // the atlas, uploaded before the frame
+}
+
 }  // namespace nephele

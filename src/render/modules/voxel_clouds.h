@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/renderer.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
@@ -17,9 +18,10 @@
 
 namespace nephele {
 
-class VoxelCloudsModule {
+class VoxelCloudsModule : public RenderModule {
  public:
   VoxelCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Loads and uploads the scene's clouds when their sources change (a one-off wait for the
   // device; a grid once loaded is kept for later scenes), fills params.voxel_* with their

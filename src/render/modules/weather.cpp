@@ -142,11 +142,17 @@ void WeatherModule::prepare(const Scene& scene, gpu::FrameParams& params) {
 
 void WeatherModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (build_steps_ > 0)
-    gpu::dispatch(cmd, build_kernel_, set_, timer, "weather", kWeatherMapSize,
+    gpu::dispatch(cmd, build_kernel_, timer, "weather", kWeatherMapSize,
                   uint32_t(build_rows_), uint32_t(build_steps_), 8, 8, 1);
   if (blend_)
-    gpu::dispatch(cmd, blend_kernel_, set_, timer, "weather_blend", kWeatherMapSize,
+    gpu::dispatch(cmd, blend_kernel_, timer, "weather_blend", kWeatherMapSize,
                   kWeatherMapSize, 1, 8, 8, 1);
+}
+
+void WeatherModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.import("weather_map", true);  // advanced over several frames
+  graph.add_pass("weather", {}, {"weather_map"},
+                 [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 }  // namespace nephele

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "gpu/kernel.h"
+#include "render/render_module.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
 
@@ -24,9 +25,10 @@ constexpr int kWeatherBuildFrames = 64;
 // (0.16 s of weather at an hour's evolution).
 constexpr int kWeatherBlends = 64;
 
-class WeatherModule {
+class WeatherModule : public RenderModule {
  public:
   WeatherModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Decides this frame's work, sets params.weather_build and the bindings; uploads a PNG map
   // (a host wait) when the file changes.

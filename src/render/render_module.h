@@ -1,0 +1,53 @@
+// nephele — the module contract: what the frame asks of each of its modules
+// (src/render/modules). A module owns its kernels, images and rebuild rule; each frame it
+// declares the resources it keeps and the passes it records, each with the resources (by name)
+// it reads and writes, and the frame graph (frame_graph.h) orders them and places the barriers.
+// The frame owns no pass's logic: it builds the graph from its modules in a fixed order and
+// executes it (FrameRenderer::Impl::frame_graph).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gpu/kernel.h"
+#include "nephele/scene.h"
+#include "render/frame_graph.h"
+#include "render/gpu_params.h"
+
+namespace nephele {
+
+// What a frame draws, decided from the scene and the modules' prepare.
+struct FramePlan {
+  bool volumetric = false;   // nephele's clouds are marched
+  bool classic = false;      // a classical model (seed 004) draws the cloud layer instead
+  bool shafts = false;       // volumetric light shafts
+  bool post = false;         // screen-space god rays, bloom and glare
+  bool display = false;      // the display image (tonemap) is wanted
+  bool ground_light = false; // the clouds' light on the ground is measured this frame
+};
+
+// What a module's passes see of the frame being recorded.
+struct FrameSetup {
+  const Scene& scene;
+  const gpu::FrameParams& params;
+  const FramePlan& plan;
+  // The pass timer of the frame's slot: valid once the frame's command buffer has begun, which
+  // is when the passes record.
+  std::function<gpu::PassTimer&()> timer;
+};
+
+// What the clouds' density field reads: the passes that sample it (the march, the ground's
+// light, a classical model, the shafts) read these.
+inline std::vector<std::string> cloud_field_resources() {
+  return {"weather_map", "noise", "voxel_clouds", "light_volume"};
+}
+
+class RenderModule {
+ public:
+  virtual ~RenderModule() = default;
+  // Declares what the module keeps (FrameGraph::import, output) and adds this frame's passes.
+  virtual void add_passes(FrameGraph& graph, const FrameSetup& frame) = 0;
+};
+
+}  // namespace nephele
