@@ -7,12 +7,6 @@
 
 #include "gpu/vk_check.h"
 #include "render/gpu_params.h"
-#include "nephele_embedded.h"
-
-namespace nephele_shaders {
-extern const EmbeddedFile kFiles[];
-extern const size_t kFileCount;
-}  // namespace nephele_shaders
 
 namespace nephele::gpu {
 
@@ -160,12 +154,10 @@ void PassInterface::bind(VkCommandBuffer cmd, VkPipelineBindPoint bind_point) co
 }
 
 VkShaderModule create_shader_module(VkDevice device, const std::string& spv_name) {
-  const EmbeddedFile* spv =
-      find_embedded(nephele_shaders::kFiles, nephele_shaders::kFileCount, spv_name);
-  if (!spv) throw RuntimeError("shader '" + spv_name + "' is not embedded in this build");
+  const std::span<const uint32_t> spv = embedded_spirv(spv_name);
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = spv->size;
-  info.pCode = reinterpret_cast<const uint32_t*>(spv->data);
+  info.codeSize = spv.size_bytes();
+  info.pCode = spv.data();
   VkShaderModule module;
   NEPHELE_VK(vkCreateShaderModule(device, &info, nullptr, &module));
   return module;

@@ -89,12 +89,17 @@ std::vector<ShaderBinding> reflect_spirv(const uint32_t* words, size_t word_coun
   return out;
 }
 
-std::vector<ShaderBinding> reflect_embedded(const std::string& spv_name, VkShaderStageFlagBits stage) {
+std::span<const uint32_t> embedded_spirv(const std::string& spv_name) {
   const EmbeddedFile* spv =
       find_embedded(nephele_shaders::kFiles, nephele_shaders::kFileCount, spv_name);
   if (!spv) throw RuntimeError("shader '" + spv_name + "' is not embedded in this build");
   // The embedded bytes are 4-aligned (cmake/embed_files.cmake aligns each file's array).
-  return reflect_spirv(reinterpret_cast<const uint32_t*>(spv->data), spv->size / 4, stage, spv_name);
+  return {reinterpret_cast<const uint32_t*>(spv->data), spv->size / 4};
+}
+
+std::vector<ShaderBinding> reflect_embedded(const std::string& spv_name, VkShaderStageFlagBits stage) {
+  const std::span<const uint32_t> words = embedded_spirv(spv_name);
+  return reflect_spirv(words.data(), words.size(), stage, spv_name);
 }
 
 std::vector<ShaderBinding> merge_bindings(const std::vector<std::vector<ShaderBinding>>& stages) {

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@ struct ShaderBinding {
 // a set other than 0, separate images or samplers (nephele binds combined ones).
 std::vector<ShaderBinding> reflect_spirv(const uint32_t* words, size_t word_count,
                                          VkShaderStageFlagBits stage, const std::string& name);
+
+// The words of an embedded SPIR-V file ("clouds.comp.spv"); throws RuntimeError when this build
+// does not embed it.
+std::span<const uint32_t> embedded_spirv(const std::string& spv_name);
 
 // The same for an embedded shader ("clouds.comp.spv"): throws RuntimeError when this build does
 // not embed it.
