@@ -30,6 +30,7 @@ void DescriptorSet::set_entry(Binding binding, VkDescriptorType type,
 void DescriptorSet::use(int index) {
   current_ = index;
   std::copy(std::begin(table_), std::end(table_), std::begin(used_));
+  module_used_ = module_table_;
   for (PassInterface* i : interfaces_) i->write(index);
 }
 
@@ -53,29 +54,64 @@ void DescriptorSet::bind_sampled_image(Binding binding, const Texture& texture) 
   set_entry(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &info);
 }
 
+void DescriptorSet::bind_module_buffer(const std::string& name, const Buffer& buffer,
+                                       VkDescriptorType type) {
+  if (type != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER && type != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
+    throw RuntimeError("bind_module_buffer('" + name + "'): descriptor type " +
+                       std::to_string(int(type)) + " is not a uniform or storage buffer's");
+  Entry& e = module_table_[name];
+  e = {type, {buffer.handle(), 0, VK_WHOLE_SIZE}, {}, true};
+}
+
+void DescriptorSet::bind_module_storage_image(const std::string& name, const Texture& texture) {
+  Entry& e = module_table_[name];
+  e = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+       {},
+       {texture.sampler(), texture.storage_view(), VK_IMAGE_LAYOUT_GENERAL},
+       true};
+}
+
+void DescriptorSet::bind_module_sampled_image(const std::string& name, const Texture& texture) {
+  Entry& e = module_table_[name];
+  e = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+       {},
+       {texture.sampler(), texture.view(), VK_IMAGE_LAYOUT_GENERAL},
+       true};
+}
+
 PassInterface::PassInterface(DescriptorSet& table, std::string name,
                              std::vector<ShaderBinding> bindings)
     : table_(table), name_(std::move(name)), bindings_(std::move(bindings)) {
   const VkDevice device = table_.device_;
   UndoOnThrow undo([this] { destroy(); });
-  std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
+  std::vector<VkDescriptorSetLayoutBinding> layout_bindings[2];
   std::map<VkDescriptorType, uint32_t> count_of;
   for (const ShaderBinding& b : bindings_) {
-    if (b.binding >= kBindingCount)
+    if (b.set == 0 && b.binding >= kBindingCount)
       throw RuntimeError("pipeline " + name_ + ": binding " + std::to_string(b.binding) +
                          " is not one of bindings_inc.glsl's (0 to " +
                          std::to_string(kBindingCount - 1) + ")");
-    layout_bindings.push_back({b.binding, b.type, 1, b.stages, nullptr});
+    if (b.set != 0 && b.set != kModuleSet)
+      throw RuntimeError("pipeline " + name_ + ": '" + b.name + "' is in descriptor set " +
+                         std::to_string(b.set) + "; nephele binds sets 0 and 1 only");
+    layout_bindings[b.set].push_back({b.binding, b.type, 1, b.stages, nullptr});
+    has_set_[b.set] = true;
     ++count_of[b.type];
   }
-  VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layout_info.bindingCount = uint32_t(layout_bindings.size());
-  layout_info.pBindings = layout_bindings.data();
-  NEPHELE_VK(vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &layout_));
+  // Set 0's layout always (empty when the pipeline uses none of the table: a pipeline layout
+  // needs a valid one for each set below its highest), set 1's when it has bindings.
+  const uint32_t layout_count = has_set_[kModuleSet] ? 2 : 1;
+  for (uint32_t number = 0; number < layout_count; ++number) {
+    VkDescriptorSetLayoutCreateInfo layout_info{
+        VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    layout_info.bindingCount = uint32_t(layout_bindings[number].size());
+    layout_info.pBindings = layout_bindings[number].data();
+    NEPHELE_VK(vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &layouts_[number]));
+  }
 
   VkPipelineLayoutCreateInfo pipeline_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pipeline_info.setLayoutCount = 1;
-  pipeline_info.pSetLayouts = &layout_;
+  pipeline_info.setLayoutCount = layout_count;
+  pipeline_info.pSetLayouts = layouts_;
   // The per-draw constants (params_inc.glsl, DrawConstants).
   const VkPushConstantRange push{kDrawConstantStages, 0, sizeof(DrawConstants)};
   pipeline_info.pushConstantRangeCount = 1;
@@ -83,22 +119,28 @@ PassInterface::PassInterface(DescriptorSet& table, std::string name,
   NEPHELE_VK(vkCreatePipelineLayout(device, &pipeline_info, nullptr, &pipeline_layout_));
 
   if (!bindings_.empty()) {
-    // Room for one set a slot and all their descriptors: lavapipe allocates beyond a pool's
-    // sizes, a GPU's driver does not.
-    const uint32_t set_count = uint32_t(std::size(sets_));
+    // Room for the sets of every slot and all their descriptors: lavapipe allocates beyond a
+    // pool's sizes, a GPU's driver does not. Only the sets with bindings are allocated.
+    const uint32_t slot_count = uint32_t(std::size(sets_));
+    const uint32_t sets_a_slot = uint32_t(has_set_[0]) + uint32_t(has_set_[kModuleSet]);
     std::vector<VkDescriptorPoolSize> sizes;
-    for (const auto& [type, count] : count_of) sizes.push_back({type, count * set_count});
+    for (const auto& [type, count] : count_of) sizes.push_back({type, count * slot_count});
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pool_info.maxSets = set_count;
+    pool_info.maxSets = slot_count * sets_a_slot;
     pool_info.poolSizeCount = uint32_t(sizes.size());
     pool_info.pPoolSizes = sizes.data();
     NEPHELE_VK(vkCreateDescriptorPool(device, &pool_info, nullptr, &pool_));
-    std::vector<VkDescriptorSetLayout> layouts(std::size(sets_), layout_);
-    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    alloc.descriptorPool = pool_;
-    alloc.descriptorSetCount = set_count;
-    alloc.pSetLayouts = layouts.data();
-    NEPHELE_VK(vkAllocateDescriptorSets(device, &alloc, sets_));
+    for (uint32_t number = 0; number < 2; ++number) {
+      if (!has_set_[number]) continue;
+      std::vector<VkDescriptorSetLayout> layouts(slot_count, layouts_[number]);
+      std::vector<VkDescriptorSet> sets(slot_count);
+      VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+      alloc.descriptorPool = pool_;
+      alloc.descriptorSetCount = slot_count;
+      alloc.pSetLayouts = layouts.data();
+      NEPHELE_VK(vkAllocateDescriptorSets(device, &alloc, sets.data()));
+      for (uint32_t slot = 0; slot < slot_count; ++slot) sets_[slot][number] = sets[slot];
+    }
   }
   table_.interfaces_.push_back(this);
   // Made while a command buffer records (a pass's kernel made when first recorded): its set
@@ -115,10 +157,12 @@ void PassInterface::destroy() {
   const VkDevice device = table_.device_;
   vkDestroyDescriptorPool(device, pool_, nullptr);
   vkDestroyPipelineLayout(device, pipeline_layout_, nullptr);
-  vkDestroyDescriptorSetLayout(device, layout_, nullptr);
+  for (VkDescriptorSetLayout& layout : layouts_) {
+    vkDestroyDescriptorSetLayout(device, layout, nullptr);
+    layout = VK_NULL_HANDLE;
+  }
   pool_ = VK_NULL_HANDLE;
   pipeline_layout_ = VK_NULL_HANDLE;
-  layout_ = VK_NULL_HANDLE;
 }
 
 void PassInterface::write(int index) {
@@ -126,31 +170,46 @@ void PassInterface::write(int index) {
   std::vector<VkWriteDescriptorSet> writes;
   writes.reserve(bindings_.size());
   for (const ShaderBinding& b : bindings_) {
-    const DescriptorSet::Entry& e = table_.used_[b.binding];
-    if (!e.bound) continue;  // a pass that runs binds it first
-    if (e.type != b.type)
-      throw RuntimeError("pipeline " + name_ + " reads binding " + std::to_string(b.binding) +
-                         " (" + binding_name(Binding(b.binding)) + ") as descriptor type " +
-                         std::to_string(int(b.type)) + ", but type " + std::to_string(int(e.type)) +
-                         " is bound there");
+    const DescriptorSet::Entry* e = nullptr;
+    std::string what;  // the binding, for errors
+    if (b.set == kModuleSet) {
+      const auto it = table_.module_used_.find(b.name);
+      if (it != table_.module_used_.end()) e = &it->second;
+      what = "set 1's '" + b.name + "' (binding " + std::to_string(b.binding) + ")";
+    } else {
+      e = &table_.used_[b.binding];
+      what = "binding " + std::to_string(b.binding) + " (" + binding_name(Binding(b.binding)) + ")";
+    }
+    // A pass that runs binds it first; one that runs without it reads an unwritten descriptor,
+    // which the validation layer reports.
+    if (!e || !e->bound) continue;
+    if (e->type != b.type)
+      throw RuntimeError("pipeline " + name_ + " reads " + what + " as descriptor type " +
+                         std::to_string(int(b.type)) + ", but type " +
+                         std::to_string(int(e->type)) + " is bound there");
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = sets_[index];
+    w.dstSet = sets_[index][b.set];
     w.dstBinding = b.binding;
     w.descriptorCount = 1;
-    w.descriptorType = e.type;
-    const bool is_buffer = e.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ||
-                           e.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = is_buffer ? &e.buffer : nullptr;
-    w.pImageInfo = is_buffer ? nullptr : &e.image;
+    w.descriptorType = e->type;
+    const bool is_buffer = e->type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ||
+                           e->type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = is_buffer ? &e->buffer : nullptr;
+    w.pImageInfo = is_buffer ? nullptr : &e->image;
     writes.push_back(w);
   }
   vkUpdateDescriptorSets(table_.device_, uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
 void PassInterface::bind(VkCommandBuffer cmd, VkPipelineBindPoint bind_point) const {
-  if (bindings_.empty()) return;
-  const VkDescriptorSet handle = set();
-  vkCmdBindDescriptorSets(cmd, bind_point, pipeline_layout_, 0, 1, &handle, 0, nullptr);
+  const VkDescriptorSet* sets = sets_[table_.current()];
+  if (has_set_[0] && has_set_[kModuleSet])
+    vkCmdBindDescriptorSets(cmd, bind_point, pipeline_layout_, 0, 2, sets, 0, nullptr);
+  else if (has_set_[0] || has_set_[kModuleSet]) {
+    const uint32_t number = has_set_[0] ? 0 : kModuleSet;
+    vkCmdBindDescriptorSets(cmd, bind_point, pipeline_layout_, number, 1, &sets[number], 0,
+                            nullptr);
+  }
 }
 
 VkShaderModule create_shader_module(VkDevice device, const std::string& spv_name) {
@@ -171,9 +230,18 @@ Specialization::Specialization(const std::vector<int32_t>& values) {
 
 Kernel::Kernel(Context& ctx, DescriptorSet& set, const std::string& spv_name,
                const std::vector<int32_t>& specialization)
+    : Kernel(ctx, set, embedded_spirv(spv_name), spv_name, specialization) {}
+
+Kernel::Kernel(Context& ctx, DescriptorSet& set, std::span<const uint32_t> spirv,
+               const std::string& name, const std::vector<int32_t>& specialization)
     : device_(ctx.device()),
-      interface_(set, spv_name, reflect_embedded(spv_name, VK_SHADER_STAGE_COMPUTE_BIT)) {
-  VkShaderModule module = create_shader_module(device_, spv_name);
+      interface_(set, name,
+                 reflect_spirv(spirv.data(), spirv.size(), VK_SHADER_STAGE_COMPUTE_BIT, name)) {
+  VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  module_info.codeSize = spirv.size_bytes();
+  module_info.pCode = spirv.data();
+  VkShaderModule module;
+  NEPHELE_VK(vkCreateShaderModule(device_, &module_info, nullptr, &module));
   const Specialization spec(specialization);
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
@@ -184,7 +252,7 @@ Kernel::Kernel(Context& ctx, DescriptorSet& set, const std::string& spv_name,
   info.layout = interface_.pipeline_layout();
   VkResult result = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
   vkDestroyShaderModule(device_, module, nullptr);
-  check(result, ("vkCreateComputePipelines(" + spv_name + ")").c_str());
+  check(result, ("vkCreateComputePipelines(" + name + ")").c_str());
 }
 
 Kernel::~Kernel() { vkDestroyPipeline(device_, pipeline_, nullptr); }

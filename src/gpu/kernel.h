@@ -1,10 +1,12 @@
-// Compute kernels: the bindings of shaders/common/bindings_inc.glsl kept in one table, each
-// pipeline with a layout of only the bindings its shaders use, compute pipelines from embedded
-// SPIR-V, and per-pass timestamps.
+// Compute kernels: the bindings of shaders/common/bindings_inc.glsl (descriptor set 0) and the
+// modules' own resources (set 1, by name) kept in one table, each pipeline with a layout of only
+// the bindings its shaders use, compute pipelines from embedded SPIR-V, and per-pass timestamps.
 #pragma once
 
 #include <vulkan/vulkan.h>
 
+#include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,9 +30,16 @@ class PassInterface;
 
 // The bindings of every pass, kept as a table on the host (bind_*), and the pipelines'
 // interfaces (PassInterface) that read it. When a command buffer starts, use() writes each
-// interface's bindings from the table into that interface's Vulkan descriptor set for the slot:
+// interface's bindings from the table into that interface's Vulkan descriptor sets for the slot:
 // one of kFramesInFlight + 1, so a set is never updated while a command buffer that uses it may
 // be pending. The last slot is for one-off work that is submitted and waited for.
+//
+// Two parts (shader_interface.h): set 0, numbered by bindings_inc.glsl (gpu::Binding: bind_buffer,
+// bind_storage_image, bind_sampled_image, bind_image), and set 1, a module's own resources,
+// keyed by the names its shaders declare them with (bind_module_buffer,
+// bind_module_storage_image, bind_module_sampled_image) and never added to bindings_inc.glsl.
+// What a pipeline uses and nobody bound is left unwritten (a pass that runs binds it first; the
+// validation layer reports a dispatch or draw that reads an unwritten descriptor).
 class DescriptorSet {
  public:
   static constexpr int kOneOff = kFramesInFlight;
@@ -52,6 +61,15 @@ class DescriptorSet {
   // The texture as a storage image at `written` (where a pass writes it) and sampled at `read`.
   void bind_image(Binding written, Binding read, const Texture& texture);
 
+  // Set 1: a module's resource by the name its shaders give it (a block's name,
+  // "GroundFogBlock"; an image's or sampler's variable name, "ground_fog_map"). Every pipeline
+  // that declares the name in set 1 reads what is bound here, whatever its binding number
+  // there. bind_module_buffer throws RuntimeError when `type` is not a uniform or storage
+  // buffer.
+  void bind_module_buffer(const std::string& name, const Buffer& buffer, VkDescriptorType type);
+  void bind_module_storage_image(const std::string& name, const Texture& texture);
+  void bind_module_sampled_image(const std::string& name, const Texture& texture);
+
  private:
   friend class PassInterface;
   struct Entry {
@@ -64,27 +82,34 @@ class DescriptorSet {
   int current_ = kOneOff;
   Entry table_[kBindingCount];
   Entry used_[kBindingCount];  // the table as the last use() wrote it
+  std::map<std::string, Entry> module_table_;  // set 1, by name
+  std::map<std::string, Entry> module_used_;   // set 1 as the last use() wrote it
   std::vector<PassInterface*> interfaces_;  // registered by their constructors
   void set_entry(Binding binding, VkDescriptorType type, const VkDescriptorBufferInfo* buffer,
                  const VkDescriptorImageInfo* image);
 };
 
-// One pipeline's view of the table: a descriptor-set layout of the bindings its shaders use
-// (shader_interface.h) and the per-draw push constants (DrawConstants), and a descriptor set of
-// that layout for each slot of the DescriptorSet, which writes them.
+// One pipeline's view of the table: descriptor-set layouts of the bindings its shaders use
+// (shader_interface.h) and the per-draw push constants (DrawConstants), and descriptor sets of
+// those layouts for each slot of the DescriptorSet, which writes them. A pipeline with set-1
+// bindings has two set layouts, set 0's (empty when it uses none of the global table) and set
+// 1's, and two sets a slot (set 0's only when it has bindings); others have set 0 alone.
 class PassInterface {
  public:
-  // `name` names the pipeline in errors.
+  // `name` names the pipeline in errors. `bindings` as reflect_spirv or merge_bindings give
+  // them; throws RuntimeError for a set-0 number bindings_inc.glsl does not declare.
   PassInterface(DescriptorSet& table, std::string name, std::vector<ShaderBinding> bindings);
   ~PassInterface();
   PassInterface(const PassInterface&) = delete;
   PassInterface& operator=(const PassInterface&) = delete;
 
   VkPipelineLayout pipeline_layout() const { return pipeline_layout_; }
-  // The set of the table's current slot.
-  VkDescriptorSet set() const { return sets_[table_.current()]; }
+  // Set `number` (0, or kModuleSet) of the table's current slot; VK_NULL_HANDLE when the
+  // pipeline has no bindings in it.
+  VkDescriptorSet set(uint32_t number = 0) const { return sets_[table_.current()][number]; }
   const std::vector<ShaderBinding>& bindings() const { return bindings_; }
-  // Binds set() to `bind_point` with this layout.
+  // Binds the current slot's sets to `bind_point` with this layout: sets 0 and 1 in one call,
+  // or the one of them that has bindings.
   void bind(VkCommandBuffer cmd, VkPipelineBindPoint bind_point) const;
 
  private:
@@ -94,10 +119,14 @@ class PassInterface {
   DescriptorSet& table_;
   std::string name_;
   std::vector<ShaderBinding> bindings_;
-  VkDescriptorSetLayout layout_ = VK_NULL_HANDLE;
+  // Sets 0 and kModuleSet: their layouts (set 1's only with set-1 bindings; set 0's always,
+  // as a pipeline layout needs one for every set below its highest) and whether any binding
+  // is in each.
+  VkDescriptorSetLayout layouts_[2] = {};
+  bool has_set_[2] = {};
   VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet sets_[kFramesInFlight + 1] = {};
+  VkDescriptorSet sets_[kFramesInFlight + 1][2] = {};
 };
 
 // The embedded SPIR-V file `spv_name` as a shader module, for the caller to destroy once its
@@ -123,6 +152,10 @@ class Specialization {
 class Kernel {
  public:
   Kernel(Context& ctx, DescriptorSet& set, const std::string& spv_name,
+         const std::vector<int32_t>& specialization = {});
+  // The same from SPIR-V words the caller holds (a test's own shader), named `name` in errors;
+  // the words need not outlive the constructor.
+  Kernel(Context& ctx, DescriptorSet& set, std::span<const uint32_t> spirv, const std::string& name,
          const std::vector<int32_t>& specialization = {});
   ~Kernel();
   Kernel(const Kernel&) = delete;

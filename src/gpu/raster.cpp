@@ -185,10 +185,12 @@ RasterPass::RasterPass(Context& ctx, DescriptorSet& set, const std::vector<VkFor
   info.pDynamicState = &dynamic;
   info.renderPass = render_pass_;
   for (const RasterShaders& shaders : pipelines) {
+    const std::string name = shaders.vert + " + " + shaders.frag;
     interfaces_.push_back(std::make_unique<PassInterface>(
-        set, shaders.vert + " + " + shaders.frag,
+        set, name,
         merge_bindings({reflect_embedded(shaders.vert, VK_SHADER_STAGE_VERTEX_BIT),
-                        reflect_embedded(shaders.frag, VK_SHADER_STAGE_FRAGMENT_BIT)})));
+                        reflect_embedded(shaders.frag, VK_SHADER_STAGE_FRAGMENT_BIT)},
+                       name)));
     info.layout = interfaces_.back()->pipeline_layout();
     stages[0].module = create_shader_module(device_, shaders.vert);
     stages[1].module = create_shader_module(device_, shaders.frag);

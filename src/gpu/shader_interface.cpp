@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <tuple>
+#include <utility>
 
 #include "nephele/error.h"
 #include "nephele_embedded.h"
@@ -75,17 +77,51 @@ std::vector<ShaderBinding> reflect_spirv(const uint32_t* words, size_t word_coun
     const spvc_reflected_resource* list = nullptr;
     size_t count = 0;
     spvc_resources_get_resource_list_for_type(resources, kind.resource, &list, &count);
+    const bool block = kind.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ||
+                       kind.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     for (size_t i = 0; i < count; ++i) {
-      const unsigned set = spvc_compiler_get_decoration(compiler, list[i].id, SpvDecorationDescriptorSet);
-      if (set != 0)
-        throw RuntimeError("shader " + name + ": a descriptor in set " + std::to_string(set) +
-                           "; nephele binds set 0 only");
-      out.push_back({spvc_compiler_get_decoration(compiler, list[i].id, SpvDecorationBinding),
-                     kind.type, VkShaderStageFlags(stage)});
+      ShaderBinding b;
+      b.binding = spvc_compiler_get_decoration(compiler, list[i].id, SpvDecorationBinding);
+      b.type = kind.type;
+      b.stages = VkShaderStageFlags(stage);
+      b.set = spvc_compiler_get_decoration(compiler, list[i].id, SpvDecorationDescriptorSet);
+      // The names the SPIR-V declares (OpName), empty where it has none: a block's type name,
+      // an image's variable name.
+      b.name = spvc_compiler_get_name(compiler, block ? list[i].base_type_id : list[i].id);
+      const std::string what =
+          "resource " +
+          (b.name.empty() ? "at binding " + std::to_string(b.binding) : "'" + b.name + "'");
+      if (b.set != 0 && b.set != kModuleSet)
+        throw RuntimeError("shader " + name + ": " + what + " is in descriptor set " +
+                           std::to_string(b.set) +
+                           "; nephele binds set 0 (bindings_inc.glsl) and set 1 (a module's own "
+                           "resources, by name) only");
+      if (b.set == kModuleSet && b.name.empty())
+        throw RuntimeError("shader " + name + ": set 1's " + what +
+                           " has no name in the SPIR-V (compiled without names? the build "
+                           "compiles with -g and spv_strip to keep them)");
+      out.push_back(std::move(b));
     }
   }
-  std::sort(out.begin(), out.end(),
-            [](const ShaderBinding& a, const ShaderBinding& b) { return a.binding < b.binding; });
+  std::sort(out.begin(), out.end(), [](const ShaderBinding& a, const ShaderBinding& b) {
+    return std::tie(a.set, a.binding) < std::tie(b.set, b.binding);
+  });
+  // Set 1 is bound by name: a number or a name used twice would make that ambiguous. (Set 0's
+  // numbers are bindings_inc.glsl's, one declaration each.)
+  std::map<uint32_t, const ShaderBinding*> at;
+  std::map<std::string, uint32_t> number_of;
+  for (const ShaderBinding& b : out) {
+    if (b.set != kModuleSet) continue;
+    const auto [it, inserted] = at.emplace(b.binding, &b);
+    if (!inserted)
+      throw RuntimeError("shader " + name + ": two resources at set 1, binding " +
+                         std::to_string(b.binding) + " ('" + it->second->name + "' and '" + b.name +
+                         "')");
+    const auto [named, first] = number_of.emplace(b.name, b.binding);
+    if (!first)
+      throw RuntimeError("shader " + name + ": set 1's '" + b.name + "' at two bindings (" +
+                         std::to_string(named->second) + " and " + std::to_string(b.binding) + ")");
+  }
   return out;
 }
 
@@ -102,19 +138,38 @@ std::vector<ShaderBinding> reflect_embedded(const std::string& spv_name, VkShade
   return reflect_spirv(words.data(), words.size(), stage, spv_name);
 }
 
-std::vector<ShaderBinding> merge_bindings(const std::vector<std::vector<ShaderBinding>>& stages) {
-  std::map<uint32_t, ShaderBinding> merged;
+std::vector<ShaderBinding> merge_bindings(const std::vector<std::vector<ShaderBinding>>& stages,
+                                          const std::string& pipeline) {
+  const std::string who = pipeline.empty() ? "one pipeline" : "pipeline " + pipeline;
+  std::map<std::pair<uint32_t, uint32_t>, ShaderBinding> merged;  // by (set, binding)
   for (const std::vector<ShaderBinding>& stage : stages)
     for (const ShaderBinding& b : stage) {
-      auto [it, inserted] = merged.emplace(b.binding, b);
+      auto [it, inserted] = merged.emplace(std::pair(b.set, b.binding), b);
       if (inserted) continue;
+      const std::string where =
+          "set " + std::to_string(b.set) + ", binding " + std::to_string(b.binding);
       if (it->second.type != b.type)
-        throw RuntimeError("binding " + std::to_string(b.binding) +
-                           " is a different kind of descriptor in two stages of one pipeline");
+        throw RuntimeError(where + " is a different kind of descriptor in two stages of " + who +
+                           (b.name.empty() && it->second.name.empty()
+                                ? ""
+                                : " ('" + it->second.name + "' and '" + b.name + "')"));
+      if (b.set == kModuleSet && it->second.name != b.name)
+        throw RuntimeError(where + " is '" + it->second.name + "' in one stage of " + who +
+                           " and '" + b.name + "' in another");
       it->second.stages |= b.stages;
     }
+  std::map<std::string, uint32_t> number_of;  // set 1's names
   std::vector<ShaderBinding> out;
-  for (const auto& [number, b] : merged) out.push_back(b);
+  for (const auto& [key, b] : merged) {
+    if (b.set == kModuleSet) {
+      const auto [named, first] = number_of.emplace(b.name, b.binding);
+      if (!first)
+        throw RuntimeError("set 1's '" + b.name + "' is at binding " +
+                           std::to_string(named->second) + " in one stage of " + who +
+                           " and at binding " + std::to_string(b.binding) + " in another");
+    }
+    out.push_back(b);
+  }
   return out;
 }
 

@@ -1,18 +1,24 @@
 // The bindings are declared once, in GLSL (shaders/common/bindings_inc.glsl): gpu::Binding is
 // generated from it (cmake/bindings_header.cmake), and each pipeline's layout is reflected from
-// its SPIR-V (gpu/shader_interface.h). These tests hold the three together.
+// its SPIR-V (gpu/shader_interface.h). These tests hold the three together, and check the
+// reflection of a module's own resources (set 1, by name) on the tests' shaders
+// (tests/shaders; the device test is tests/render/module_bindings_test.cpp).
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <map>
 #include <regex>
 #include <set>
+#include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gpu/kernel.h"
 #include "gpu/shader_interface.h"
 #include "nephele/error.h"
 #include "nephele_embedded.h"
+#include "support/test_shaders.h"
 
 namespace nephele_shaders {
 extern const EmbeddedFile kFiles[];
@@ -90,9 +96,16 @@ TEST(Bindings, EveryShaderUsesDeclaredBindingsWithinTheStageLimits) {
     ++shaders;
     size_t images = 0, samplers = 0;
     for (const ShaderBinding& b : bindings) {
+      EXPECT_EQ(b.stages, VkShaderStageFlags(stage)) << name;
+      if (b.set == kModuleSet) {  // a module's own, by name
+        EXPECT_FALSE(b.name.empty()) << name << ", set 1, binding " << b.binding;
+        continue;
+      }
+      ASSERT_EQ(b.set, 0u) << name;
       ASSERT_TRUE(glsl.count(b.binding)) << name << " uses undeclared binding " << b.binding;
       EXPECT_EQ(b.type, glsl.at(b.binding).type) << name << ", binding " << b.binding;
-      EXPECT_EQ(b.stages, VkShaderStageFlags(stage)) << name;
+      // The build keeps the names in the optimised SPIR-V (cmake/spv_strip.cpp).
+      EXPECT_EQ(b.name, glsl.at(b.binding).name) << name << ", binding " << b.binding;
       images += b.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
       samplers += b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     }
@@ -145,6 +158,124 @@ TEST(Bindings, ReflectionRefusesWhatIsNotSpirv) {
                                {{3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                  VK_SHADER_STAGE_FRAGMENT_BIT}}}),
                RuntimeError);
+}
+
+// What a RuntimeError says, or "(no error)".
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const RuntimeError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::vector<ShaderBinding> reflect_test_shader(const std::string& name) {
+  const std::span<const uint32_t> words = test_shader(name);
+  return reflect_spirv(words.data(), words.size(), VK_SHADER_STAGE_COMPUTE_BIT, name);
+}
+
+// A module's own resources are in set 1, by the names the shader gives them (a block's name, an
+// image's variable name), at the shader's own numbers; set 0's beside them keep theirs.
+TEST(Bindings, SetOneResourcesAreReflectedWithTheirNames) {
+  const std::vector<ShaderBinding> both = reflect_test_shader("module_set.comp");
+  ASSERT_EQ(both.size(), 3u);
+  const VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
+  EXPECT_EQ(both[0].set, 0u);
+  EXPECT_EQ(both[0].binding, uint32_t(kColorRw));
+  EXPECT_EQ(both[0].type, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  EXPECT_EQ(both[0].name, "color_rw");
+  EXPECT_EQ(both[1].set, kModuleSet);
+  EXPECT_EQ(both[1].binding, 0u);
+  EXPECT_EQ(both[1].type, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  EXPECT_EQ(both[1].name, "TestModuleBlock");
+  EXPECT_EQ(both[2].set, kModuleSet);
+  EXPECT_EQ(both[2].binding, 1u);
+  EXPECT_EQ(both[2].type, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+  EXPECT_EQ(both[2].name, "test_module_map");
+  for (const ShaderBinding& b : both) EXPECT_EQ(b.stages, compute) << b.name;
+
+  // Set 1 alone, with the numbers the other way round and a storage block.
+  const std::vector<ShaderBinding> only = reflect_test_shader("module_set_only.comp");
+  ASSERT_EQ(only.size(), 3u);
+  const std::pair<std::string, VkDescriptorType> expected[] = {
+      {"test_module_map", VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+      {"TestModuleBlock", VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+      {"TestModuleOutBlock", VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+  for (uint32_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(only[i].set, kModuleSet);
+    EXPECT_EQ(only[i].binding, i);
+    EXPECT_EQ(only[i].name, expected[i].first);
+    EXPECT_EQ(only[i].type, expected[i].second) << expected[i].first;
+    EXPECT_EQ(only[i].stages, compute);
+  }
+}
+
+// Sets 0 and 1 only; in set 1, neither a number with two names nor a name at two numbers (in one
+// shader, or across a pipeline's stages).
+TEST(Bindings, ReflectionRefusesOtherSetsAndAmbiguousSetOneBindings) {
+  const std::string set_two = error_of([] { reflect_test_shader("module_set_2.comp"); });
+  for (const char* part : {"module_set_2.comp", "'TestSetTwoBlock'", "set 2"})
+    EXPECT_NE(set_two.find(part), std::string::npos) << set_two;
+  EXPECT_EQ(set_two.find('\n'), std::string::npos) << set_two;
+
+  const std::string twice = error_of([] { reflect_test_shader("module_set_twice.comp"); });
+  for (const char* part :
+       {"module_set_twice.comp", "set 1, binding 0", "'test_first'", "'test_second'"})
+    EXPECT_NE(twice.find(part), std::string::npos) << twice;
+
+  // module_set.comp has test_module_map at binding 1, module_set_only.comp at 0 (where the
+  // other has TestModuleBlock): not one pipeline's stages.
+  const std::string swapped = error_of([] {
+    merge_bindings(
+        {reflect_test_shader("module_set.comp"), reflect_test_shader("module_set_only.comp")},
+        "test.vert + test.frag");
+  });
+  for (const char* part : {"test.vert + test.frag", "'test_module_map'", "'TestModuleBlock'"})
+    EXPECT_NE(swapped.find(part), std::string::npos) << swapped;
+  const VkDescriptorType sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  const std::string moved = error_of([&] {
+    merge_bindings({{{1, sampler, VK_SHADER_STAGE_VERTEX_BIT, kModuleSet, "fog_map"}},
+                    {{3, sampler, VK_SHADER_STAGE_FRAGMENT_BIT, kModuleSet, "fog_map"}}},
+                   "fog.vert + fog.frag");
+  });
+  for (const char* part : {"fog.vert + fog.frag", "'fog_map'", "binding 1", "binding 3"})
+    EXPECT_NE(moved.find(part), std::string::npos) << moved;
+
+  const std::string renamed = error_of([] {
+    merge_bindings({{{2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT, kModuleSet,
+                      "FogBlock"}},
+                    {{2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT,
+                      kModuleSet, "MistBlock"}}},
+                   "p");
+  });
+  for (const char* part : {"set 1, binding 2", "'FogBlock'", "'MistBlock'", "pipeline p"})
+    EXPECT_NE(renamed.find(part), std::string::npos) << renamed;
+}
+
+// A raster pipeline's two stages: one entry a (set, binding), visible to the stages that use it;
+// the same number in sets 0 and 1 is two bindings.
+TEST(Bindings, MergingKeepsTheSetsApartAndTheStagesRight) {
+  const VkShaderStageFlags vert = VK_SHADER_STAGE_VERTEX_BIT, frag = VK_SHADER_STAGE_FRAGMENT_BIT;
+  const std::vector<ShaderBinding> merged =
+      merge_bindings({{{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, vert, 0, "FrameParamsBlock"},
+                       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, vert, kModuleSet, "FogBlock"}},
+                      {{1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, frag, kModuleSet, "fog_map"},
+                       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frag, kModuleSet, "FogBlock"},
+                       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frag, 0, "FrameParamsBlock"}}});
+  ASSERT_EQ(merged.size(), 3u);
+  EXPECT_EQ(merged[0].set, 0u);
+  EXPECT_EQ(merged[0].binding, 0u);
+  EXPECT_EQ(merged[0].stages, vert | frag);
+  EXPECT_EQ(merged[1].set, kModuleSet);
+  EXPECT_EQ(merged[1].binding, 0u);
+  EXPECT_EQ(merged[1].name, "FogBlock");
+  EXPECT_EQ(merged[1].stages, vert | frag);
+  EXPECT_EQ(merged[2].set, kModuleSet);
+  EXPECT_EQ(merged[2].binding, 1u);
+  EXPECT_EQ(merged[2].name, "fog_map");
+  EXPECT_EQ(merged[2].stages, frag);
 }
 
 }  // namespace
