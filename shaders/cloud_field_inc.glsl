@@ -13,6 +13,12 @@
 #include "voxel_field_inc.glsl"
 #include "noise_density_inc.glsl"
 
+#ifndef CLOUD_FIELD_VARIANTS
+// An includer that compiles variants declares this specialization constant (and defines
+// CLOUD_FIELD_VARIANTS) before including this file: false leaves the voxel clouds out.
+const bool WITH_VOXELS = true;
+#endif
+
 const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 
 // The point at radius r (m) above horizontal position xy (planet frame).
@@ -64,6 +70,10 @@ float layer_thickness_m(vec3 pos) {
 // what the voxel clouds hold there (their distance, region, nearest cloud). Where a whole
 // batch of lanes lies in voxel regions the noise is not read at all.
 vec2 cloud_field(vec3 pos, out VoxelSample voxels) {
+  if (!WITH_VOXELS) {  // what the voxel field holds where there are no voxel clouds
+    voxels = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f, 0);
+    return noise_density_pair(pos);
+  }
   voxels = voxel_field(pos);
   float fade = voxel_noise_fade(voxels.region_m);
   vec2 noise = vec2(0.0f);

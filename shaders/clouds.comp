@@ -20,6 +20,12 @@
 #include "common/phase_inc.glsl"
 
 layout(constant_id = 0) const int MARCH_MODE = 0;
+// The scene's features (CloudsModule::march_variant): WITH_VOXELS false compiles the voxel
+// clouds' code out (lavapipe runs both sides of every branch); LIGHTING 0 the octaves, 1 the
+// two-stream light, -1 as frame.cloud_phase.w says.
+layout(constant_id = 1) const bool WITH_VOXELS = true;
+layout(constant_id = 2) const int LIGHTING = -1;
+#define CLOUD_FIELD_VARIANTS
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"
@@ -100,7 +106,7 @@ void main() {
   // crosses for kilometres.
   bool noise_clouds = frame.cloud_layers[0].shape.x > 0.0f || frame.cloud_layers[0].shape.w > 0.0f ||
                       frame.cloud_layers[1].shape.x > 0.0f || frame.cloud_layers[1].shape.w > 0.0f;
-  if (frame.voxel_info.x > 0 && !noise_clouds) {
+  if (WITH_VOXELS && frame.voxel_info.x > 0 && !noise_clouds) {
     vec2 boxes = voxel_boxes_segment(eye, dir);
     segment = vec2(max(segment.x, boxes.x), min(segment.y, boxes.y));
   }
@@ -136,13 +142,13 @@ void main() {
   vec3 ambient = 0.5f * (ambient_above + ambient_below);
   // The ground light's share under the clouds, once per ray: where it enters the clouds.
   vec3 entry = eye + dir * segment.x;
-  float below_share = frame.voxel_info.x > 0 ? -1.0f : below_light_share(entry, length(entry) - frame.radii_m.x);
+  float below_share = WITH_VOXELS && frame.voxel_info.x > 0 ? -1.0f : below_light_share(entry, length(entry) - frame.radii_m.x);
   float g_f = frame.cloud_phase.x;
   float g_b = frame.cloud_phase.y;
   float lobe = frame.cloud_phase.z;
   float thickness = frame.radii_m.w - frame.radii_m.z;
   vec4 phases = octave_phases(mu);
-  bool two_stream = frame.cloud_phase.w > 0.5f;
+  bool two_stream = LIGHTING < 0 ? frame.cloud_phase.w > 0.5f : LIGHTING == 1;
   float g1 = lobe * g_f + (1.0f - lobe) * g_b;  // the phase function's mean cosine
 
   vec3 scattered = vec3(0.0f);
@@ -218,8 +224,8 @@ void main() {
     // voxel_min_step_m a step near surfaces and box edges, never past the box's exit; phase 3,
     // inside the cloud, the fine steps, entered by stepping back. Leaving the cloud inside the
     // box returns to sphere tracing at once, leaving the box to phase 1.
-    bool three_phase = frame.voxel_info.x > 0 && frame.voxel_info.y == VOXEL_MARCH_THREE_PHASE;
-    bool sdf_shadow = frame.voxel_info.x > 0 && frame.voxel_info.z == VOXEL_SHADOW_SDF_CONE;
+    bool three_phase = WITH_VOXELS && frame.voxel_info.x > 0 && frame.voxel_info.y == VOXEL_MARCH_THREE_PHASE;
+    bool sdf_shadow = WITH_VOXELS && frame.voxel_info.x > 0 && frame.voxel_info.z == VOXEL_SHADOW_SDF_CONE;
     float traced_step = 0.0f;  // the last view-ray step, when it was sphere traced (phase 2)
     int slow = 0;              // phase 2 steps in a row at the shortest step (voxel_min_step_m)
     float lit_visibility = 1.0f;  // the SDF cone's soft shadow of the sample being lit
@@ -233,7 +239,7 @@ void main() {
       vec3 pos = lighting ? lit_pos + sun * mid_m : eye + dir * t;
       VoxelSample vox = VoxelSample(0.0f, 1e9f, 1e9f, 1.0f, 0);
       vec2 field = cloud_field(pos, vox);
-      bool in_region = vox.region_m <= 0.0f;
+      bool in_region = WITH_VOXELS && vox.region_m <= 0.0f;
       // Fine steps from the thickness of the layer the ray is in.
       float fine_step = max(layer_thickness_m(pos) / float(frame.steps.x), FINE_PER_M * t);
       float coarse_step = COARSE_STEPS * fine_step;

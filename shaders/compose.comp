@@ -19,8 +19,19 @@
 #include "common/clouds_inc.glsl"
 #include "cirrus_inc.glsl"
 #include "terrain_inc.glsl"
+// The media of the modules (their *_medium.glsl): media_in_front (generated, media_inc.glsl).
+#include "media_inc.glsl"
 
 layout(constant_id = 0) const int REFERENCE = 0;
+// The scene's features (ComposeModule, from the FramePlan): false compiles a feature's code out
+// of this variant (lavapipe runs both sides of every branch). True keeps it, where the frame's
+// parameters still decide per pixel as they would without the constant.
+layout(constant_id = 1) const bool WITH_CONDITIONS = true;  // the time-of-day keyframes
+layout(constant_id = 2) const bool WITH_SHAFTS = true;      // volumetric light shafts
+layout(constant_id = 3) const bool WITH_SURFACES = true;    // the terrain or the host's scene
+layout(constant_id = 4) const bool WITH_CIRRUS = true;      // the cirrus sheet
+layout(constant_id = 5) const bool WITH_PARTICLES = true;   // the particle clouds' layer
+layout(constant_id = 6) const bool WITH_MEDIA = true;       // a medium's module is on (fog)
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // Moon disk radiance as a share of the full moon's (params_inc.glsl). Its regolith scatters
@@ -106,7 +117,7 @@ void main() {
                      ? vec4(0.0f)
                      : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f);
   }
-  int conditions = int(frame.conditions_sky.w);
+  int conditions = WITH_CONDITIONS ? int(frame.conditions_sky.w) : 0;
   float albedo = frame.sky_model.y;
   float elevation_deg = degrees(asin(clamp(dot(dir, sky_frame.up), -1.0f, 1.0f)));
   if (conditions == 1) {  // artist: the keyframes' sky, and the ground lit by their lights
@@ -149,7 +160,8 @@ void main() {
   // and in front of them (the haze).
   float haze_kept = 1.0f;
   vec4 shaft = vec4(0.0f);
-  if (int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC && REFERENCE == 0 && conditions != 1) {
+  if (WITH_SHAFTS && int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC && REFERENCE == 0 &&
+      conditions != 1) {
     shaft = textureLod(light_shafts, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f);
     vec3 ground_sky = ground_sun.a * albedo * frame_ground_sky() * sky_share;
     vec3 air = max(sky - ground_sky, vec3(0.0f));
@@ -159,7 +171,8 @@ void main() {
   // The terrain (terrain.comp) in place of the sky and the ground behind it, seen through the
   // air in front (the aerial perspective at its distance, its sunlight dimmed by the shafts'
   // share); clouds whose light lies mostly beyond it are hidden.
-  float terrain_m = terrain_distance_at((vec2(pixel) + 0.5f) / vec2(width, height));
+  float terrain_m =
+      WITH_SURFACES ? terrain_distance_at((vec2(pixel) + 0.5f) / vec2(width, height)) : 0.0f;
   for (int i = 0; i < (terrain_m > 0.0f ? 1 : 0); ++i) {  // a loop: see the cirrus' below
     vec4 air = air_in_front(uv, terrain_m);
     vec3 lit = texelFetch(terrain_image, pixel, 0).rgb;
@@ -186,15 +199,32 @@ void main() {
   // A loop of at most one trip rather than a branch: lavapipe runs both sides of a branch, so
   // a sky without cirrus would pay for its lookups.
   vec3 eye = frame.camera_pos_m.xyz;
-  float cirrus_m = cirrus_distance(eye, dir);
+  // The clouds' mean diffuse transmittance to the ground around: the share of the light that
+  // reaches the media under them.
+  float clouds_diffuse = texelFetch(ground_light, ivec2(0), 0).r;
+  // The media (fog) in front of the clouds: the clouds' light through them, and their own light
+  // as far as the clouds cover (premultiplied).
+  if (WITH_MEDIA && cloud.a < 1.0f) {
+    vec4 m = media_in_front(eye, dir, cloud_b.z * 1000.0f, clouds_diffuse);
+    cloud_light = cloud_light * m.a + (1.0f - cloud.a) * m.rgb * illuminance;
+  }
+  float cirrus_m = WITH_CIRRUS ? cirrus_distance(eye, dir) : 0.0f;
   vec4 cirrus = vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  bool cirrus_in_front = length(eye) > frame.cirrus.x;
+  bool cirrus_in_front = WITH_CIRRUS && length(eye) > frame.cirrus.x;
   if (terrain_m > 0.0f && cirrus_m > terrain_m) cirrus_m = 0.0f;  // behind the terrain
   for (int i = 0; i < (cirrus_m > 0.0f ? 1 : 0); ++i) {
     cirrus = cirrus_layer(frame_atmosphere(), eye, dir, cirrus_m);
     if (cirrus_in_front || conditions == 1) continue;
     vec4 air = air_in_front(uv, cirrus_m);
     background = background * cirrus.a + (1.0f - cirrus.a) * air.rgb + cirrus.rgb * air.a;
+  }
+  // The media in front of the surface (the terrain, the host's scene or the ground), else in
+  // front of the sky.
+  if (WITH_MEDIA) {
+    float ground_m = ray_sphere(eye, dir, frame.radii_m.x).x;
+    vec4 m = media_in_front(eye, dir, terrain_m > 0.0f ? terrain_m : max(ground_m, 0.0f),
+                            clouds_diffuse);
+    background = background * m.a + m.rgb;
   }
   // The film layers (frame.display.y, render --layers): everything behind the clouds (sky,
   // sun, moon, the ground and the cirrus seen from below), and what lies in front of it,
@@ -211,12 +241,16 @@ void main() {
   // front of the particles scatters as in front of the clouds. A loop of at most one trip, as
   // the cirrus' below.
   vec2 pixel_uv = (vec2(pixel) + 0.5f) / vec2(width, height);
-  vec4 particles = textureLod(particle_layer, pixel_uv, 0.0f);
+  vec4 particles = WITH_PARTICLES ? textureLod(particle_layer, pixel_uv, 0.0f) : vec4(0.0f);
   for (int i = 0; i < (particles.a > 1e-4f ? 1 : 0); ++i) {
     float particles_m = textureLod(particle_depth, pixel_uv, 0.0f).x / particles.a * 1000.0f;
     if (terrain_m > 0.0f && particles_m > terrain_m) break;  // behind the terrain
     vec4 air = air_in_front(uv, particles_m);
     vec3 particle_light = particles.rgb * air.a + air.rgb * illuminance * particles.a;
+    if (WITH_MEDIA) {
+      vec4 m = media_in_front(eye, dir, particles_m, clouds_diffuse);
+      particle_light = particle_light * m.a + particles.a * m.rgb * illuminance;
+    }
     bool in_front = alpha < 1e-3f || particles_m < cloud_b.z * 1000.0f;
     front = in_front ? particle_light + (1.0f - particles.a) * front
                      : front + (1.0f - alpha) * particle_light;
@@ -225,7 +259,7 @@ void main() {
   }
   if (cirrus_in_front) {
     front = front * cirrus.a + cirrus.rgb * illuminance;
-    alpha = 1.0f - cloud.a * cirrus.a;
+    alpha = 1.0f - (1.0f - alpha) * cirrus.a;  // over the clouds and the particles
   }
   vec3 color = front + (1.0f - alpha) * sky_layer;
   int layer = int(frame.display.y);

@@ -8,6 +8,9 @@
 #extension GL_GOOGLE_include_directive : require
 
 const int MARCH_MODE = 0;
+// False compiles the voxel clouds' code out (LightVolumeModule, from FrameParams::voxel_info.x).
+layout(constant_id = 0) const bool WITH_VOXELS = true;
+#define CLOUD_FIELD_VARIANTS
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"

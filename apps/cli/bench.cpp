@@ -139,6 +139,12 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
                "speedup_direct, speedup_tiles, luminance_difference, cpu_lighting_ms, "
                "gpu_lighting_ms (the same splat on the device) and the atlas statistics "
                "(--frames: the timed frames, default 3)");
+  cmd.add_flag("--no-error", options.no_error,
+               "time the real-time frames only: no comparison with the converged reference "
+               "(the error columns, which take minutes at 900x600 on a CPU device)");
+  cmd.add_flag("--full-shaders", options.full_shaders,
+               "run every pass's full shader rather than the variant compiled for the scene's "
+               "features (RendererOptions::feature_variants off): what the variants save");
   cmd.add_option("--json", options.json,
                  "write the real-time figures (static_fps, moving_fps, static_p99_ms, "
                  "moving_p99_ms, moving_max_ms, speedup_vs_baseline, static_error, "
@@ -169,12 +175,15 @@ void print_realtime(const nlohmann::json& r) {
               "fps", "error", "rebuild frames (light volume, weather)");
   for (const char* series : {"static", "moving"}) {
     const std::string p = series;
-    std::printf("  %-14s %8.1f %8.1f %8.1f %8.1f %7.2f %6.2f%%  %d, %d of %d\n",
+    char error[16] = "      -";  // not measured (--no-error)
+    if (!r[p + "_error"].is_null())
+      std::snprintf(error, sizeof error, "%6.2f%%", 100.0 * r[p + "_error"].get<double>());
+    std::printf("  %-14s %8.1f %8.1f %8.1f %8.1f %7.2f %s  %d, %d of %d\n",
                 p == "static" ? "still camera" : "flying camera", r[p + "_ms"].get<double>(),
                 r[p + "_p95_ms"].get<double>(), r[p + "_p99_ms"].get<double>(),
-                r[p + "_max_ms"].get<double>(), r[p + "_fps"].get<double>(),
-                100.0 * r[p + "_error"].get<double>(), r[p + "_light_volume_frames"].get<int>(),
-                r[p + "_weather_frames"].get<int>(), r[p + "_frames"].get<int>());
+                r[p + "_max_ms"].get<double>(), r[p + "_fps"].get<double>(), error,
+                r[p + "_light_volume_frames"].get<int>(), r[p + "_weather_frames"].get<int>(),
+                r[p + "_frames"].get<int>());
   }
   std::printf("  flight %g m/s, %g deg/s; seed's algorithm: %.1f ms (%.2f fps); speed-up %.1fx\n",
               r["flight"]["speed_mps"].get<double>(), r["flight"]["turn_deg_s"].get<double>(),
@@ -251,7 +260,8 @@ int run_study(const BenchOptions& options, const char* image_name, Study study) 
 int run_bench(const BenchOptions& options) {
   const Scene base = resolve_scene(options.scene);
   namespace fs = std::filesystem;
-  const RendererOptions renderer_options{options.device, options.validation, options.verbose, {}};
+  RendererOptions renderer_options{options.device, options.validation, options.verbose, {}};
+  renderer_options.feature_variants = !options.full_shaders;
   if (options.ablation)  // seed 002's ablation alone
     return run_study(options, "ablation.png", [&](const std::string& image) {
       Renderer renderer(renderer_options);
@@ -288,6 +298,7 @@ int run_bench(const BenchOptions& options) {
   renderer.render(base);  // builds the noise and weather textures
 
   RealtimeSettings settings;
+  settings.errors = !options.no_error;
   if (options.quick) {
     settings.static_frames = settings.moving_frames = 8;
     settings.error_frames = 1;

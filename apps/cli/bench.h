@@ -19,6 +19,8 @@ struct BenchOptions {
   bool realtime_only = false;         // skip the seed's sweeps
   bool ablation = false;              // only seed 002's voxel-cloud ablation
   bool impostors = false;             // only seed 003's particle clouds and impostors
+  bool no_error = false;              // real time: no comparison with the reference
+  bool full_shaders = false;          // RendererOptions::feature_variants off
   std::string json;                   // also write the real-time figures here
   std::string device;
   bool verbose = false;

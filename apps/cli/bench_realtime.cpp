@@ -143,11 +143,12 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   }
 
   // Errors, untimed: the still view once more, then flight frames spread over a few cycles.
-  scene.time_s += f.frame_dt_s;
-  const double static_error =
-      error_against_reference(reference, scene, renderer.render_next(scene).color);
-  double moving_error = 0.0;
-  for (int k = 0; k < f.error_frames; ++k) {
+  double static_error = 0.0, moving_error = 0.0;
+  if (f.errors) {
+    scene.time_s += f.frame_dt_s;
+    static_error = error_against_reference(reference, scene, renderer.render_next(scene).color);
+  }
+  for (int k = 0; f.errors && k < f.error_frames; ++k) {
     for (int i = 0; i < cycle; ++i) {
       ++flight_frame;
       const Scene s = flight_at(start, f, float(flight_frame) * f.frame_dt_s);
@@ -169,8 +170,9 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   out["baseline_ms"] = seed.median_wall();
   out["baseline_fps"] = 1000.0 / seed.median_wall();
   out["speedup_vs_baseline"] = seed.median_wall() / still.median_wall();
-  out["static_error"] = static_error;
-  out["moving_error"] = moving_error;
+  out["static_error"] = f.errors ? nlohmann::json(static_error) : nlohmann::json();
+  out["moving_error"] = f.errors ? nlohmann::json(moving_error) : nlohmann::json();
+  out["feature_variants"] = options.feature_variants;
   out["flight"] = {{"speed_mps", f.speed_mps},
                    {"turn_deg_s", f.turn_deg_s},
                    {"frame_dt_s", f.frame_dt_s}};

@@ -17,6 +17,7 @@ struct RealtimeSettings {
   int static_frames = 200;
   int moving_frames = 200;
   int error_frames = 3;      // flight frames compared with a reference
+  bool errors = true;        // false: no comparison with the reference (errors are null)
   float speed_mps = 100.0f;  // flight speed along the view's heading
   float turn_deg_s = 20.0f;  // yaw rate
   float frame_dt_s = 0.05f;  // animation time per frame (the moving target: 20 frames/s)

@@ -484,6 +484,8 @@ ParamNamer make_namer(const SceneFlags& flags, size_t first_flag_cloud) {
   std::map<std::string, std::string> flag_of_key;
   for (const FlagSpec& spec : flag_specs())
     if (*spec.key && (flags.*spec.member).has_value()) flag_of_key[spec.key] = spec.flag;
+  for (const auto& [key, value] : flags.table_values)
+    flag_of_key[key] = "--" + find_scene_parameter(key)->flag;
   std::string origin =
       flags.scene_file ? *flags.scene_file : "preset '" + flags.preset.value_or("default") + "'";
   return [flag_of_key, origin, first_flag_cloud](const std::string& key) -> std::string {
@@ -552,6 +554,8 @@ std::vector<std::pair<std::string, std::string>> scene_flag_keys() {
   std::vector<std::pair<std::string, std::string>> pairs;
   for (const FlagSpec& spec : flag_specs())
     if (*spec.key) pairs.emplace_back(spec.flag, spec.key);
+  for (const SceneParameter& p : scene_parameters())
+    if (!p.flag.empty()) pairs.emplace_back("--" + p.flag, p.key);
   return pairs;
 }
 
@@ -566,6 +570,23 @@ void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
     cmd.add_option_function<std::string>(
            spec.flag, [&flags, member](const std::string& value) { flags.*member = value; }, help)
         ->type_name(spec.type_name)
+        ->group("Scene");
+  }
+  // The flags the scene's field table declares: the field's meaning, unit and range are its
+  // help, set_scene_value reads the value.
+  for (const SceneParameter& p : scene_parameters()) {
+    if (p.flag.empty()) continue;
+    std::string help = p.meaning;
+    if (!p.unit.empty()) help += " (" + p.unit + ")";
+    if (!p.allowed_values.empty()) help += "; allowed: " + p.allowed_values;
+    std::string type = p.unit.empty() ? "X" : p.unit == "m" ? "M" : "V";
+    cmd.add_option_function<std::string>(
+           "--" + p.flag,
+           [&flags, key = p.key](const std::string& value) {
+             flags.table_values.emplace_back(key, value);
+           },
+           help)
+        ->type_name(type)
         ->group("Scene");
   }
   // Repeatable: a vector option, one value an occurrence (no extra arguments after it).
@@ -594,6 +615,13 @@ Scene resolve_scene(const SceneFlags& flags) {
             parse_into(spec.flag, *text, target(scene));
         },
         spec.target);
+  }
+  for (const auto& [key, value] : flags.table_values) {
+    try {
+      set_scene_value(scene, key, value);
+    } catch (const InputError& e) {  // names the key: name the flag
+      fail("--" + find_scene_parameter(key)->flag, value, e.what());
+    }
   }
   if (flags.terrain && *flags.terrain == "mountains") {  // the procedural range, not a file
     scene.terrain.file.clear();

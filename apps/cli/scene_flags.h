@@ -42,6 +42,9 @@ struct SceneFlags {
   // --voxel-cloud SPEC, repeatable: FILE@E,N,U or preset:NAME[:SEED]@E,N,U, each appended to
   // the scene's voxel clouds in the order given.
   std::vector<std::string> voxel_clouds;
+  // The flags the scene's field table declares (SceneParameter::flag): (key, value) in the
+  // order given.
+  std::vector<std::pair<std::string, std::string>> table_values;
 };
 
 // One --voxel-cloud SPEC as a voxel cloud (the other fields at their defaults); throws an

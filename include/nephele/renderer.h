@@ -33,6 +33,12 @@ struct RendererOptions {
   // image, renders in tiles (render(), render_layers()): the same image, drawn a window at a
   // time; 0 = 3840 x 2160 (kDefaultMaxTilePixels), else at least 1024.
   int64_t max_tile_pixels = 0;
+  // Each pass is compiled for the features a frame uses (the sky model, voxel clouds, the
+  // cloud lighting, keyframes, shafts, terrain, cirrus, particles), so that a feature a scene
+  // does not use costs nothing: a CPU device runs both sides of every branch. A new set of
+  // features compiles its variant on first use. False runs every pass's full shader: the same
+  // image, slower; for comparison (nephele bench).
+  bool feature_variants = true;
 };
 
 constexpr int64_t kDefaultMaxTilePixels = int64_t(3840) * 2160;

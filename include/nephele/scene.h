@@ -235,6 +235,17 @@ struct CirrusParams {
   glm::vec2 wind_mps{25.0f, 5.0f};  // east, north: the jet stream moves it faster than the clouds
 };
 
+// Ground fog, the "ground fog" layer of simulator image generators (render/modules/ground_fog,
+// docs/ground-fog.md): a slab of fog from base_m to top_m above the ground, in which an object
+// at visibility_m is seen with 2% of its contrast, fading to clear air over the top softness_m.
+// Lit by the sun through the atmosphere, the clouds and the fog above, and by the sky.
+struct GroundFogParams {
+  float visibility_m = 0.0f;  // inside the fog (m), 0 or [1, 1e5]; 0 = no fog
+  float base_m = 0.0f;        // bottom above the ground (m); 0 = down to the ground
+  float top_m = 150.0f;       // top above the ground (m)
+  float softness_m = 40.0f;   // the density fades out over this much below the top (m)
+};
+
 struct QualityParams {
   MarchMode mode = MarchMode::Default;
   int primary_steps = 64;  // [1, 1024] steps through the cloud layer
@@ -511,6 +522,7 @@ struct Scene {
   CloudParams clouds;
   HighCloudParams high_clouds;
   CirrusParams cirrus;
+  GroundFogParams ground_fog;
   QualityParams quality;
   OutputParams output;
   LocationParams location;

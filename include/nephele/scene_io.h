@@ -92,6 +92,9 @@ struct SceneParameter {
   bool min_open = false, max_open = false;
   std::optional<double> off;
   std::string default_value;  // TOML literal text of Scene{}'s value (no preset)
+  // The command line's flag for it, declared with the field ("ground-fog-visibility-m" for
+  // --ground-fog-visibility-m); empty: none, or one of the CLI's own.
+  std::string flag;
 };
 
 // In scene_to_toml's order: time, time_s, noise_seed, then [location], [camera], [sun], ...

@@ -52,6 +52,10 @@ class Context {
   double timestamp_period_ns() const { return timestamp_period_ns_; }
   bool has_timestamps() const { return has_timestamps_; }
   int validation_messages() const { return validation_messages_.load(); }
+  // Whether passes compile a variant for the features a frame uses (KernelVariants); false
+  // runs their full shaders (RendererOptions::feature_variants).
+  bool feature_variants() const { return feature_variants_; }
+  void set_feature_variants(bool on) { feature_variants_ = on; }
 
   // Waits until the queue has finished everything submitted to it (before freeing resources
   // that frames in flight may still use).
@@ -96,6 +100,7 @@ class Context {
   bool owns_device_ = true;
   std::string device_name_;
   bool is_cpu_ = false;
+  bool feature_variants_ = true;
   bool has_graphics_ = false;
   bool has_timestamps_ = false;
   double timestamp_period_ns_ = 1.0;

@@ -190,7 +190,7 @@ std::vector<std::string> FrameRenderer::Impl::march_in_bands(const FrameGraph& g
     const int first = block_rows * b / bands, rows = block_rows * (b + 1) / bands - first;
     band.cloud_band.x = first;
     keep(state.run_once(band, [&](VkCommandBuffer cmd) {
-      clouds.record_march(cmd, *state.timer, scene.quality.mode, rows);
+      clouds.record_march(cmd, *state.timer, scene.quality.mode, band, rows);
     }));
     progress("clouds", b + 2, bands + 1);
   }
@@ -242,7 +242,9 @@ Image FrameRenderer::Impl::compose_layer(const Scene& scene, int layer) {
   params.display.y = float(layer);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     state.begin(cmd, last_slot, params);
-    pass_compose(cmd, state, scene.atmosphere.model);
+    pass_compose(
+        cmd, state,
+        compose_variant(params, scene.atmosphere.model, last_plan.particles, last_plan.media));
     if (layer == 1) pass_stars(cmd, state);  // the stars are behind the clouds
     gpu::frame_end_barrier(cmd, ctx.has_graphics());
   });
@@ -256,8 +258,9 @@ double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode
   params.march_offset = glm::ivec4(0, 0, 0, 1);
   params.cloud_band = glm::ivec4(0);  // the dome's own pixels, whatever window the view was
   clouds.bind_march(true);
-  const auto results = state.run_once(
-      params, [&](VkCommandBuffer cmd) { clouds.record_sky_dome(cmd, *state.timer, mode); });
+  const auto results = state.run_once(params, [&](VkCommandBuffer cmd) {
+    clouds.record_sky_dome(cmd, *state.timer, mode, params);
+  });
   clouds.bind_march(false);
   ms = 0.0;
   for (const auto& [name, pass_ms] : results) ms += pass_ms;
@@ -328,7 +331,10 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       host_scene(ctx, state.set),
       host_lighting(ctx, state.set),
       particle_light(ctx, state.set),
-      path_tracer(ctx, state.set) {}
+      path_tracer(ctx, state.set),
+      ground_fog(ctx, state.set) {
+  ctx.set_feature_variants(options.feature_variants);
+}
 
 FrameRenderer::FrameRenderer(const RendererOptions& options)
     : impl_(std::make_unique<Impl>(options)) {}
@@ -494,6 +500,8 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   plan.shafts = shafts;
   plan.post = post_processed;
   plan.display = options.display;
+  plan.particles = particles.active();
+  plan.media = ground_fog.prepare(scene, params, slot);
   plan.ground_light = light_volume.completed() || params.light_volume.w == 0.0f;
   const FrameGraph graph = frame_graph(scene, params, plan);
   if (verbose && frames_recorded == 0)
@@ -515,6 +523,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   previous_light_dir = lights.key.direction;
   ++frame_counter;
   last_params = params;
+  last_plan = plan;
 
   FrameStats stats;
   stats.device = ctx.device_name();

@@ -7,25 +7,26 @@
 #include <string>
 
 #include "nephele/frame.h"
+#include "render/frame_graph.h"
 #include "render/frame_params.h"
 #include "render/modules/atmosphere.h"
+#include "render/modules/classic_clouds.h"
 #include "render/modules/clouds.h"
+#include "render/modules/compose.h"
+#include "render/modules/ground_fog/ground_fog.h"
 #include "render/modules/host_lighting.h"
 #include "render/modules/host_scene.h"
+#include "render/modules/light_shafts.h"
 #include "render/modules/light_volume.h"
 #include "render/modules/noise.h"
-#include "render/modules/light_shafts.h"
-#include "render/modules/post.h"
-#include "render/modules/classic_clouds.h"
-#include "render/modules/compose.h"
 #include "render/modules/particle_clouds.h"
 #include "render/modules/particle_light_gpu.h"
 #include "render/modules/path_tracer.h"
+#include "render/modules/post.h"
 #include "render/modules/sky_view.h"
 #include "render/modules/terrain.h"
 #include "render/modules/voxel_clouds.h"
 #include "render/modules/weather.h"
-#include "render/frame_graph.h"
 #include "render/passes.h"
 #include "render/path_majorant.h"
 
@@ -73,14 +74,16 @@ struct FrameRenderer::Impl {
   HostLightingModule host_lighting;     // the host's light (FrameOptions::lighting)
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
+  GroundFogModule ground_fog;    // a medium of compose: the fog above the ground
   ComposeModule compose{state};  // the final image: compose.comp, then the stars
   DisplayModule display{state};  // its meter and display image
   // The modules of a frame in the order their passes are added: the graph keeps it wherever
   // their reads and writes allow.
   std::vector<RenderModule*> frame_modules() {
-    return {&noise,   &atmosphere,     &voxel_clouds, &weather,   &sky_view,     &light_volume,
-            &clouds,  &terrain,        &host_scene,   &host_lighting, &classic_clouds,
-            &particles, &light_shafts, &compose,      &post,      &display};
+    return {&noise,          &atmosphere, &voxel_clouds, &weather,    &sky_view,
+            &light_volume,   &clouds,     &terrain,      &host_scene, &host_lighting,
+            &classic_clouds, &particles,  &light_shafts, &ground_fog, &compose,
+            &post,           &display};
   }
 
   void update_atmosphere_luts(const Scene& scene);
@@ -118,6 +121,7 @@ struct FrameRenderer::Impl {
   NoiseBlockBounds noise_bounds;
   uint32_t noise_bounds_seed = ~0u;
   gpu::FrameParams last_params{};  // of the last frame recorded
+  FramePlan last_plan{};           // of the last frame recorded
   // Set while Renderer draws a still in tiles: the frames recorded are this window of it.
   std::optional<ImageWindow> window;
 

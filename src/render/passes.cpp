@@ -13,8 +13,7 @@ namespace nephele {
 GpuState::GpuState(gpu::Context& c)
     : ctx(c),
       set(c),
-      compose_kernel(c, set, "compose.comp.spv", {0}),
-      compose_reference_kernel(c, set, "compose.comp.spv", {1}),
+      compose_kernels(c, set, "compose.comp.spv", 1, {1, 1, 1, 1, 1, 1}),
       stars_kernel(c, set, "stars.comp.spv"),
       reference_psi_kernel(c, set, "sky_reference_psi.comp.spv"),
       reference_sky_kernel(c, set, "sky_reference.comp.spv"),
@@ -106,8 +105,22 @@ double metered_luminance(const GpuState& s, int slot) {
   return std::isfinite(mean_log) ? std::exp(double(mean_log)) : 0.0;
 }
 
-void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model) {
-  gpu::dispatch(cmd, model == SkyModel::Reference ? s.compose_reference_kernel : s.compose_kernel, *s.timer, "compose", uint32_t(s.width), uint32_t(s.height), 1, 8, 8, 1);
+std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel model, bool particles,
+                                     bool media) {
+  // Each feature exactly where compose.comp would find it in the parameters, so that a variant
+  // draws what the full shader draws.
+  return {model == SkyModel::Reference ? 1 : 0,
+          params.conditions_sky.w != 0.0f ? 1 : 0,
+          int(params.light_shafts.x) == gpu::LIGHT_SHAFTS_VOLUMETRIC ? 1 : 0,
+          params.terrain_shape.z > 0.5f || params.host_scene.x > 0.5f ? 1 : 0,
+          params.cirrus.y > 0.0f ? 1 : 0,
+          particles ? 1 : 0,
+          media ? 1 : 0};
+}
+
+void pass_compose(VkCommandBuffer cmd, GpuState& s, const std::vector<int32_t>& variant) {
+  gpu::dispatch(cmd, s.compose_kernels.get(variant), *s.timer, "compose", uint32_t(s.width),
+                uint32_t(s.height), 1, 8, 8, 1);
 }
 
 }  // namespace nephele

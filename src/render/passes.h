@@ -8,6 +8,7 @@
 
 #include "gpu/context.h"
 #include "gpu/kernel.h"
+#include "gpu/kernel_variants.h"
 #include "gpu/resources.h"
 #include "nephele/image.h"
 #include "nephele/scene.h"
@@ -44,7 +45,8 @@ struct GpuState {
 
   gpu::Context& ctx;
   gpu::DescriptorSet set;
-  gpu::Kernel compose_kernel, compose_reference_kernel, stars_kernel;
+  gpu::KernelVariants compose_kernels;  // compose.comp's, by compose_variant
+  gpu::Kernel stars_kernel;
   gpu::Kernel reference_psi_kernel, reference_sky_kernel, tonemap_kernel, meter_kernel;
   std::unique_ptr<gpu::PassTimer> timers[kSlots];
   gpu::PassTimer* timer = nullptr;  // the slot's, since begin()
@@ -63,7 +65,12 @@ struct GpuState {
   int width = 0, height = 0;
 };
 
-void pass_compose(VkCommandBuffer cmd, GpuState& s, SkyModel model);
+// compose.comp's specialization constants for a frame: the sky model's (REFERENCE) and the
+// features it uses, from its parameters, whether particles draw and whether a medium's module
+// is on (FramePlan::particles, media).
+std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel model, bool particles,
+                                     bool media);
+void pass_compose(VkCommandBuffer cmd, GpuState& s, const std::vector<int32_t>& variant);
 // One tile (FrameParams::reference_tile) of the brute-force reference sky.
 void pass_reference_sky(VkCommandBuffer cmd, GpuState& s);
 void pass_stars(VkCommandBuffer cmd, GpuState& s);

@@ -25,6 +25,8 @@ struct FramePlan {
   bool post = false;         // screen-space god rays, bloom and glare
   bool display = false;      // the display image (tonemap) is wanted
   bool ground_light = false; // the clouds' light on the ground is measured this frame
+  bool particles = false;    // the particle clouds draw their layer
+  bool media = false;        // a medium's module (the ground fog) is on: compose draws media
 };
 
 // What a module's passes see of the frame being recorded.

@@ -58,6 +58,9 @@ struct Field {
   std::string_view note;  // what it means; the range and choices are added to it (field_comment)
   Range range{};          // numbers: the values allowed
   std::vector<std::string_view> choices{};  // strings and integers: the only values allowed
+  // The command line's flag that sets it ("ground-fog-visibility-m" for --ground-fog-...);
+  // empty: none, or one of the CLI's own (apps/cli/scene_flags.cpp).
+  std::string_view flag{};
 };
 
 // What a field holds, for the range's wording and checks.

@@ -132,6 +132,7 @@ const std::vector<SceneParameter>& scene_parameters() {
           if (field.range.has_off) parameter.off = field.range.off;
         }
         parameter.default_value = scene_detail::field_value_text(defaults, field);
+        parameter.flag = std::string(field.flag);
         std::visit(
             [&](auto access) {
               using T = std::remove_reference_t<decltype(access(std::declval<Scene&>()))>;

@@ -466,15 +466,22 @@ TEST_F(CliTest, BenchQuickWritesCsvJsonAndPlot) {
   EXPECT_EQ(fs::exists(path("bench/bench_frame_times.png")), j.contains("frame_times_ms"));
 }
 
+// The real-time figures alone, timed without the reference (--no-error: the errors are null,
+// printed as "-"; BenchQuickWritesCsvJsonAndPlot checks them) and with the full shaders.
 TEST_F(CliTest, BenchRealtimeOnlyWritesTheJsonFile) {
-  const CliRun r = run_cli("bench --quick --realtime-only --width 48 --height 32 --json " +
-                           path("realtime.json"));
+  const CliRun r = run_cli(
+      "bench --quick --realtime-only --no-error --full-shaders --width 48 "
+      "--height 32 --json " +
+      path("realtime.json"));
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("realtime.json")));
-  for (const char* key : {"static_fps", "moving_fps", "speedup_vs_baseline", "static_error",
-                          "moving_error", "device"})
+  for (const char* key : {"static_fps", "moving_fps", "speedup_vs_baseline", "device"})
     EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : {"static_error", "moving_error"})
+    EXPECT_TRUE(j.contains(key) && j[key].is_null()) << key;
+  EXPECT_FALSE(j["feature_variants"].get<bool>());
   EXPECT_NE(r.output.find("still camera"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("flight frame"), std::string::npos) << r.output;  // no error frames
   // Per-pass device time per frame: every pass of an animation frame is reported.
   for (const char* key : {"static_passes_ms", "moving_passes_ms"})
     for (const char* pass : {"clouds", "march_range", "resolve", "compose"}) {

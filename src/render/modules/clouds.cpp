@@ -5,8 +5,7 @@ namespace nephele {
 CloudsModule::CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     : ctx_(ctx),
       set_(set),
-      march_default_(ctx, set, "clouds.comp.spv", {0}),
-      march_baseline_(ctx, set, "clouds.comp.spv", {1}),
+      march_(ctx, set, "clouds.comp.spv", 1, {1, -1}),
       range_(ctx, set, "march_range.comp.spv"),
       resolve_(ctx, set, "resolve.comp.spv"),
       profile_(ctx, set, "cloud_profile.comp.spv"),
@@ -64,14 +63,17 @@ void CloudsModule::swap_history() {
   set_.bind_sampled_image(gpu::kHistoryB, clouds_b_[1 - current_]);
 }
 
-const gpu::Kernel& CloudsModule::march_kernel(MarchMode mode) const {
-  return mode == MarchMode::Baseline ? march_baseline_ : march_default_;
+std::vector<int32_t> CloudsModule::march_variant(MarchMode mode, const gpu::FrameParams& params) {
+  // Each feature where clouds.comp would find it in the parameters, so that a variant draws
+  // what the full shader draws.
+  return {mode == MarchMode::Baseline ? 1 : 0, params.voxel_info.x > 0 ? 1 : 0,
+          params.cloud_phase.w > 0.5f ? 1 : 0};
 }
 
 void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
-                                int rows) {
+                                const gpu::FrameParams& params, int rows) {
   const auto blocks = [&](int n) { return uint32_t((n + stride_ - 1) / stride_); };
-  gpu::dispatch(cmd, march_kernel(mode), timer, "clouds", blocks(width_),
+  gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "clouds", blocks(width_),
                 rows < 0 ? blocks(height_) : uint32_t(rows), 1, 8, 8, 1);
 }
 
@@ -98,9 +100,10 @@ void CloudsModule::record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& time
                 timer, "ground_light", 16, 16, 1, 16, 16, 1);
 }
 
-void CloudsModule::record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode) {
-  gpu::dispatch(cmd, march_kernel(mode), timer, "sky_dome", kSkyDomeSize, kSkyDomeSize, 1,
-                8, 8, 1);
+void CloudsModule::record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
+                                   const gpu::FrameParams& params) {
+  gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "sky_dome", kSkyDomeSize,
+                kSkyDomeSize, 1, 8, 8, 1);
 }
 
 void CloudsModule::record_profile(VkCommandBuffer cmd, gpu::PassTimer& timer) {
@@ -130,8 +133,8 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
     std::vector<std::string> march_reads = cloud_field_resources();
     march_reads.push_back("terrain");
     graph.add_pass("march", march_reads, {"cloud_march"},
-                   [timer = frame.timer, this, mode](VkCommandBuffer cmd) {
-                     record_march(cmd, timer(), mode);
+                   [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
+                     record_march(cmd, timer(), mode, *params);
                    });
     graph.add_pass("clouds", {"cloud_march", "cloud_layer"}, {"cloud_layer"},
                    [timer = frame.timer, this](VkCommandBuffer cmd) { record_reconstruction(cmd, timer()); });

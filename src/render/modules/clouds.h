@@ -7,8 +7,9 @@
 #pragma once
 
 #include "gpu/kernel.h"
-#include "render/render_module.h"
+#include "gpu/kernel_variants.h"
 #include "nephele/scene.h"
+#include "render/render_module.h"
 
 namespace nephele {
 
@@ -33,8 +34,13 @@ class CloudsModule : public RenderModule {
   void bind_march(bool sky_dome);
   void set_stride(int stride) { stride_ = stride; }
 
-  // The march: every row of blocks, or `rows` of them from FrameParams::cloud_band.x.
-  void record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode, int rows = -1);
+  // clouds.comp's specialization constants for a frame of these parameters: the march mode,
+  // whether there are voxel clouds and which light the clouds scatter.
+  static std::vector<int32_t> march_variant(MarchMode mode, const gpu::FrameParams& params);
+  // The march of the frame of `params`: every row of blocks, or `rows` of them from
+  // FrameParams::cloud_band.x.
+  void record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
+                    const gpu::FrameParams& params, int rows = -1);
   // The march range and the resolve: the cloud buffer of this frame.
   void record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // Instead of the march and the reconstruction when the scene has no volumetric clouds: this
@@ -47,7 +53,8 @@ class CloudsModule : public RenderModule {
   void record_clear_ground_light(VkCommandBuffer cmd);
   // The march over the sky dome (FrameParams::steps.w = PROJECTION_SKY_DOME) into dome_a and
   // dome_b, and the cloud profile into dome_a (bind_march(true) first).
-  void record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode);
+  void record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
+                       const gpu::FrameParams& params);
   void record_profile(VkCommandBuffer cmd, gpu::PassTimer& timer);
 
   int width() const { return width_; }
@@ -57,11 +64,10 @@ class CloudsModule : public RenderModule {
   const gpu::Texture& dome() const { return dome_a_; }
 
  private:
-  const gpu::Kernel& march_kernel(MarchMode mode) const;
-
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
-  gpu::Kernel march_default_, march_baseline_, range_, resolve_, profile_;
+  gpu::KernelVariants march_;
+  gpu::Kernel range_, resolve_, profile_;
   gpu::Kernel ground_default_, ground_baseline_;
   gpu::Texture march_a_, march_b_, range_lo_, range_hi_, dome_a_, dome_b_, ground_light_;
   gpu::Texture clouds_a_[2], clouds_b_[2];

@@ -5,11 +5,13 @@ namespace nephele {
 void ComposeModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   graph.import("reference_sky");  // made before the frame, when the scene asks for it
   graph.output("color");
-  const SkyModel sky = frame.scene.atmosphere.model;
+  const std::vector<int32_t> variant = compose_variant(frame.params, frame.scene.atmosphere.model,
+                                                       frame.plan.particles, frame.plan.media);
   graph.add_pass("compose",
                  {"atmosphere", "sky_view", "cloud_layer", "ground_light", "shafts",
                   "particle_layer", "terrain", "reference_sky"},
-                 {"color"}, [this, sky](VkCommandBuffer cmd) { pass_compose(cmd, state_, sky); });
+                 {"color"},
+                 [this, variant](VkCommandBuffer cmd) { pass_compose(cmd, state_, variant); });
   graph.add_pass("stars", {"color", "cloud_layer", "particle_layer", "terrain", "atmosphere"},
                  {"color"}, [this](VkCommandBuffer cmd) { pass_stars(cmd, state_); });
 }

@@ -4,16 +4,16 @@
 // successor is complete; only a still image, or the first frame, builds a volume at once.
 #pragma once
 
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <optional>
 #include <string>
 
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-
 #include "gpu/kernel.h"
-#include "render/render_module.h"
+#include "gpu/kernel_variants.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
+#include "render/render_module.h"
 
 namespace nephele {
 
@@ -56,7 +56,8 @@ class LightVolumeModule : public RenderModule {
   bool stale(const Key& built, const Key& now, float half_m) const;
 
   gpu::DescriptorSet& set_;
-  gpu::Kernel kernel_;
+  gpu::KernelVariants kernels_;  // light_volume.comp's, with or without the voxel clouds
+  bool with_voxels_ = false;     // this frame's variant
   gpu::Texture volumes_[2];
   std::optional<Key> read_key_;  // the volume the clouds read, volumes_[read_]
   int read_ = 0;

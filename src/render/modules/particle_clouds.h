@@ -50,6 +50,8 @@ class ParticleCloudsModule : public RenderModule {
                gpu::FrameParams& params);
   // Draws the particles prepared (or only clears the layers: none, or no particle clouds).
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  // Whether this frame draws particles (prepare decided; else the layer is clear).
+  bool active() const { return active_; }
 
   const ParticleFrameStats& stats() const { return stats_; }
   const particles::ParticleField& field() const { return field_; }

@@ -1,0 +1,66 @@
+#include "render/modules/ground_fog/ground_fog.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "render/glsl.h"
+#include "render/gpu_params.h"
+// The block's one definition and the fog's closed forms, as the shader has them.
+#include "render/modules/ground_fog/ground_fog_gpu_inc.glsl"
+
+namespace nephele {
+
+namespace {
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"  // the shader's functions this file needs not
+namespace fog {
+using namespace nephele::glsl;
+#include "common/ground_fog_inc.glsl"
+}  // namespace fog
+#pragma GCC diagnostic pop
+
+constexpr const char* kBlockName = "GroundFogBlock";
+constexpr float kDropletPhaseG = 0.8f;  // fog droplets (micrometres) scatter forward
+}  // namespace
+
+GroundFogModule::GroundFogModule(gpu::Context& ctx, gpu::DescriptorSet& set) : set_(set) {
+  for (gpu::Buffer& b : blocks_) {
+    b = gpu::Buffer(ctx, sizeof(gpu::GroundFogGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    std::memset(b.data(), 0, sizeof(gpu::GroundFogGpu));  // no fog
+  }
+  // compose.comp declares the block whether or not a frame has fog: always bound.
+  set_.bind_module_buffer(kBlockName, blocks_[0], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+}
+
+bool GroundFogModule::prepare(const Scene& scene, const gpu::FrameParams& params, int slot) {
+  const GroundFogParams& p = scene.ground_fog;
+  gpu::GroundFogGpu block{};
+  const bool fog = p.visibility_m > 0.0f && p.top_m > p.base_m;
+  if (fog) {
+    const fog::GroundFog f =
+        fog::ground_fog_layer(p.base_m, p.top_m, p.softness_m, p.visibility_m, 1.0f);
+    block.layer = glm::vec4(f.base_m, f.top_m, f.soft_m, f.sigma_t_per_m);
+    const glm::vec3 up = glm::normalize(glm::vec3(params.camera_pos_m));
+    const float sin_elevation = glm::dot(glm::vec3(params.sun_dir), up);
+    // Per unit of the key light's illuminance: its beam through the atmosphere, and an even
+    // field of the sky's radiance above (ground_sky_light: the sky's irradiance / pi) and the
+    // ground's below (its albedo times the sky's and the sun's irradiance / pi).
+    const glm::vec3 per_unit =
+        1.0f / glm::max(glm::vec3(params.sun_illuminance), glm::vec3(1e-20f));
+    const glm::vec3 sun = glm::vec3(params.sun_transmittance);
+    const glm::vec3 sky = glm::vec3(params.ground_sky_light) * per_unit;
+    const float albedo = params.sky_model.y;
+    const glm::vec3 ground = albedo * (sky + sun * std::max(sin_elevation, 0.0f) / glsl::PI);
+    block.sun = glm::vec4(sun, sin_elevation);
+    block.sky = glm::vec4(0.5f * (sky + ground), kDropletPhaseG);
+  }
+  std::memcpy(blocks_[slot].data(), &block, sizeof(block));
+  set_.bind_module_buffer(kBlockName, blocks_[slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  return fog;
+}
+
+void GroundFogModule::add_passes(FrameGraph&, const FrameSetup&) {
+  // No pass: compose reads the block as one of its media.
+}
+
+}  // namespace nephele

@@ -1,0 +1,73 @@
+// The ground fog as a medium of compose.comp (media_inc.glsl, generated from the modules'
+// folders): what the fog between the eye and a layer at `distance_m` along `dir` does to the
+// layer's light. The layer and the fog are those of GroundFogModule (ground_fog.h); the fog's
+// shape and optical depth are common/ground_fog_inc.glsl's closed forms.
+#ifndef NEPHELE_GROUND_FOG_MEDIUM
+#define NEPHELE_GROUND_FOG_MEDIUM
+
+#include "common/clouds_inc.glsl"
+#include "common/ground_fog_inc.glsl"
+#include "common/math_inc.glsl"
+#include "common/phase_inc.glsl"
+#include "render/modules/ground_fog/ground_fog_gpu_inc.glsl"
+
+layout(std140, set = 1, binding = 0) uniform GroundFogBlock { GroundFogGpu ground_fog; };
+
+// The light scattered towards the eye per unit of sigma_s inside the fog at altitude z, per
+// unit of the key light's illuminance: the sun's beam through the fog above (its phase
+// function forward-peaked, as water droplets' is); the diffuse light of the sun, as a
+// two-stream slab has it (the clouds' diffuse transmittance, cloud_diffuse_transmittance): going
+// down, what the fog above has scattered on, and going up, what the fog below reflects (a
+// conservative slab reflects what it does not let through), each a flux of mu_sun times the
+// sun's, scattered evenly ((down + up) / 2 pi); the sky's and the ground's light, through the
+// fog above as diffuse light; all dimmed by the clouds' mean diffuse transmittance over the
+// ground around (`cloud_light`).
+vec3 ground_fog_light(GroundFog f, float altitude_m, float mu, float cloud_light) {
+  float mu_sun = max(ground_fog.sun.w, 0.0f);
+  float tau_sun = ground_fog_sun_optical_depth(f, altitude_m, ground_fog.sun.w, frame.radii_m.x);
+  float direct = exp(-tau_sun);
+  float down = cloud_diffuse_transmittance(tau_sun);  // the sun's light reaching z
+  float tau_below = f.sigma_t_per_m * ground_fog_cumulative_m(f, altitude_m);
+  float up = down * (1.0f - cloud_diffuse_transmittance(tau_below));
+  float diffuse = (max(down - direct, 0.0f) + up) * mu_sun / (2.0f * PI);
+  float phase = cornette_shanks_phase(ground_fog.sky.w, mu);
+  float tau_up = f.sigma_t_per_m * ground_fog_column_above_m(f, altitude_m);
+  vec3 sky = ground_fog.sky.rgb * cloud_diffuse_transmittance(tau_up);
+  return cloud_light * (ground_fog.sun.rgb * (direct * phase + diffuse) + sky);
+}
+
+// The fog in front of a layer at `distance_m` (0: nothing there, the sky: the ray to where it
+// leaves the fog's top): rgb the light it adds per unit of the key light's illuminance, a its
+// transmittance. `cloud_light`: the clouds' mean diffuse transmittance to the ground.
+vec4 ground_fog_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
+  if (ground_fog.layer.w <= 0.0f) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  float radius_m = frame.radii_m.x;
+  GroundFog f;
+  f.base_m = ground_fog.layer.x;
+  f.top_m = ground_fog.layer.y;
+  f.soft_m = ground_fog.layer.z;
+  f.sigma_t_per_m = ground_fog.layer.w;
+  f.albedo = 1.0f;
+  float length_m = distance_m;
+  if (length_m <= 0.0f) {  // the sky: up to where the ray leaves the top's sphere
+    vec2 top = ray_sphere(eye, dir, radius_m + f.top_m);
+    length_m = max(top.y, 0.0f);
+  }
+  if (length_m <= 0.0f) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  float z0 = length(eye) - radius_m;
+  float z1 = length(eye + dir * length_m) - radius_m;
+  float tau = ground_fog_optical_depth(f, z0, z1, length_m);
+  float transmittance = exp(-tau);
+  // Lit as where the light it scatters to the eye comes from: the centroid of sigma_s T along
+  // the segment's part in the layer (its density taken even; altitude linear along it), at half
+  // its length when it is thin and 1 / sigma_t from the eye when it is thick, so that a layer
+  // behind an opaque fog, or above it, sees the same fog as the sky does.
+  float share = tau < 1e-3f ? 0.5f
+                               : (1.0f - (1.0f + tau) * transmittance) /
+                                     (tau * max(1.0f - transmittance, 1e-30f));
+  float z_lit = mix(clamp(z0, f.base_m, f.top_m), clamp(z1, f.base_m, f.top_m), share);
+  vec3 light = ground_fog_light(f, z_lit, dot(dir, frame.sun_dir.xyz), cloud_light);
+  return vec4(f.albedo * (1.0f - transmittance) * light, transmittance);
+}
+
+#endif
