@@ -186,10 +186,12 @@ void main() {
   vec3 illuminance = frame.sun_illuminance.rgb;
   // The air in front of a cloud scatters as the sky does along this direction.
   vec3 cloud_light = haze_color * haze * haze_kept * illuminance + cloud.rgb;
+  // The surface along the view: the terrain or the host's scene, else the ground; 0 for none.
+  float surface_m = terrain_m > 0.0f
+                        ? terrain_m
+                        : max(ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x).x, 0.0f);
   if (conditions != 0) {  // the keyframes' fog on the ground and the clouds, by distance
     vec3 fog = frame.conditions_fog.rgb * illuminance;
-    vec2 ground = ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x);
-    float surface_m = terrain_m > 0.0f ? terrain_m : ground.x;
     if (surface_m > 0.0f) background = mix(background, frame.conditions_fog.rgb, distance_fog(surface_m));
     cloud_light = mix(cloud_light, fog * (1.0f - cloud.a), distance_fog(cloud_b.z * 1000.0f));
   }
@@ -221,9 +223,7 @@ void main() {
   // The media in front of the surface (the terrain, the host's scene or the ground), else in
   // front of the sky.
   if (WITH_MEDIA) {
-    float ground_m = ray_sphere(eye, dir, frame.radii_m.x).x;
-    vec4 m = media_in_front(eye, dir, terrain_m > 0.0f ? terrain_m : max(ground_m, 0.0f),
-                            clouds_diffuse);
+    vec4 m = media_in_front(eye, dir, surface_m, clouds_diffuse);
     background = background * m.a + m.rgb;
   }
   // The film layers (frame.display.y, render --layers): everything behind the clouds (sky,

@@ -50,6 +50,17 @@ struct ModuleFixture {
     return texel[c] * scale[c] + offset[c];
   }
 
+  // The shader's output read back (4 floats a texel, row by row) against expected(), and no
+  // validation message.
+  void expect_written(const float* texels) const {
+    for (uint32_t y = 0; y < kSize; ++y)
+      for (uint32_t x = 0; x < kSize; ++x)
+        for (int c = 0; c < 4; ++c)
+          EXPECT_EQ(texels[(y * kSize + x) * 4 + c], expected(x, y, c))
+              << "texel (" << x << ", " << y << "), channel " << c;
+    EXPECT_EQ(ctx.validation_messages(), 0) << "Vulkan validation messages (printed above)";
+  }
+
   // Writes the table into the one-off slot and dispatches `kernel` over the 4 x 4 texels.
   void run(const Kernel& kernel) {
     table.use(DescriptorSet::kOneOff);
@@ -75,12 +86,7 @@ TEST(ModuleBindings, AComputePassReadsSetOneByNameAndWritesSetZero) {
   Buffer staging(f.ctx, kSize * kSize * 4 * sizeof(float), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   f.ctx.submit_and_wait([&](VkCommandBuffer cmd) { out.record_download(cmd, staging); });
   const float* texels = static_cast<const float*>(staging.data());
-  for (uint32_t y = 0; y < kSize; ++y)
-    for (uint32_t x = 0; x < kSize; ++x)
-      for (int c = 0; c < 4; ++c)
-        EXPECT_EQ(texels[(y * kSize + x) * 4 + c], f.expected(x, y, c))
-            << "texel (" << x << ", " << y << "), channel " << c;
-  EXPECT_EQ(f.ctx.validation_messages(), 0) << "Vulkan validation messages (printed above)";
+  f.expect_written(texels);
 }
 
 // Set 1 alone (set 0's layout empty, set 1 bound by itself), at other numbers than
@@ -98,12 +104,7 @@ TEST(ModuleBindings, APassWithSetOneAloneBindsItByName) {
   f.run(kernel);
 
   const float* texels = static_cast<const float*>(out.data());
-  for (uint32_t y = 0; y < kSize; ++y)
-    for (uint32_t x = 0; x < kSize; ++x)
-      for (int c = 0; c < 4; ++c)
-        EXPECT_EQ(texels[(y * kSize + x) * 4 + c], f.expected(x, y, c))
-            << "texel (" << x << ", " << y << "), channel " << c;
-  EXPECT_EQ(f.ctx.validation_messages(), 0) << "Vulkan validation messages (printed above)";
+  f.expect_written(texels);
 }
 
 // A name bound as another kind of descriptor than the pipeline reads is refused, naming both.
