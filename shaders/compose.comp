@@ -64,15 +64,10 @@ vec4 cirrus_layer(Atmosphere atmo, vec3 eye, vec3 dir, float distance_m) {
   return vec4((1.0f - transmittance) * (sun_t * phase + ambient), transmittance);
 }
 
-// Linear fog ramps of the time-of-day keyframes: 1 at and below `start_deg`, 0 at and above
-// `end_deg`; and by distance, 0 up to fog near, 1 from fog far on.
+// Linear fog ramp of the time-of-day keyframes on the sky and the discs: 1 at and below
+// `start_deg`, 0 at and above `end_deg`. Their fog by distance is the ground fog's medium's.
 float fog_ramp(float elevation_deg, float start_deg, float end_deg) {
   return saturate((end_deg - elevation_deg) / max(end_deg - start_deg, 1e-3f));
-}
-float distance_fog(float distance_m) {
-  float near_m = frame.conditions_disk_fog.w;
-  float far_m = frame.conditions_fog.w;
-  return saturate((distance_m - near_m) / max(far_m - near_m, 1e-3f));
 }
 
 // The resolved cloud buffer at image pixel (x, y), filtered bilinearly when the clouds are
@@ -190,11 +185,6 @@ void main() {
   float surface_m = terrain_m > 0.0f
                         ? terrain_m
                         : max(ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x).x, 0.0f);
-  if (conditions != 0) {  // the keyframes' fog on the ground and the clouds, by distance
-    vec3 fog = frame.conditions_fog.rgb * illuminance;
-    if (surface_m > 0.0f) background = mix(background, frame.conditions_fog.rgb, distance_fog(surface_m));
-    cloud_light = mix(cloud_light, fog * (1.0f - cloud.a), distance_fog(cloud_b.z * 1000.0f));
-  }
   // The cirrus sheet: seen from below, over the sky and the discs and behind the volumetric
   // clouds, its light dimmed by the air in front and the air's own light kept; from above,
   // in front of everything.

@@ -2,7 +2,8 @@
 // Pass 5: stars. One invocation per star of the catalogue (data/stars.csv): its J2000
 // direction turned into the sky of the date and place, projected into the image and added to
 // the pixel it falls in as radiance = irradiance / the pixel's solid angle, dimmed by the air
-// (extinction grows towards the horizon) and by the clouds and particle clouds in front of it.
+// (extinction grows towards the horizon), by the media (the ground fog: media_inc.glsl) and by
+// the clouds and particle clouds in front of it.
 // Stars fade as the sky brightens by themselves: a magnitude-0 star is 1e-11 of the sun, far
 // below a day sky.
 #extension GL_GOOGLE_include_directive : require
@@ -11,6 +12,7 @@
 #include "frame_atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"
 #include "terrain_inc.glsl"
+#include "media_inc.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -39,6 +41,8 @@ void main() {
                     : textureLod(clouds_a, uv, 0.0f).a * (1.0f - textureLod(particle_layer, uv, 0.0f).a);
   if (terrain_distance_at(uv) > 0.0f) cloud = 0.0f;  // behind the terrain
   float visibility = frame.conditions_sky_fog.w;  // the keyframes' star visibility, 1 when off
-  vec3 radiance = star.irradiance.rgb * frame.stars.x / frame.stars.z * air * cloud * visibility;
+  float media = media_in_front(eye, dir, 0.0f, 1.0f).a;  // their transmittance towards the sky
+  vec3 radiance =
+      star.irradiance.rgb * frame.stars.x / frame.stars.z * air * cloud * visibility * media;
   imageStore(color_rw, pixel, imageLoad(color_rw, pixel) + vec4(radiance, 0.0f));
 }

@@ -331,8 +331,9 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       host_scene(ctx, state.set),
       host_lighting(ctx, state.set),
       particle_light(ctx, state.set),
-      path_tracer(ctx, state.set),
-      ground_fog(ctx, state.set) {
+      path_tracer(ctx, state.set) {
+  for (const RegisteredModule& module : registered_modules())
+    registered.push_back(module.make(ModuleContext{ctx, state.set}));
   ctx.set_feature_variants(options.feature_variants);
 }
 
@@ -501,7 +502,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   plan.post = post_processed;
   plan.display = options.display;
   plan.particles = particles.active();
-  plan.media = ground_fog.prepare(scene, params, slot);
+  for (const auto& module : registered) module->prepare({scene, params, slot, still}, plan);
   plan.ground_light = light_volume.completed() || params.light_volume.w == 0.0f;
   const FrameGraph graph = frame_graph(scene, params, plan);
   if (verbose && frames_recorded == 0)

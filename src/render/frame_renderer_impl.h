@@ -13,7 +13,6 @@
 #include "render/modules/classic_clouds.h"
 #include "render/modules/clouds.h"
 #include "render/modules/compose.h"
-#include "render/modules/ground_fog/ground_fog.h"
 #include "render/modules/host_lighting.h"
 #include "render/modules/host_scene.h"
 #include "render/modules/light_shafts.h"
@@ -74,16 +73,20 @@ struct FrameRenderer::Impl {
   HostLightingModule host_lighting;     // the host's light (FrameOptions::lighting)
   ParticleLightGpuModule particle_light;  // only measured against the CPU lighting
   PathTracerModule path_tracer;
-  GroundFogModule ground_fog;    // a medium of compose: the fog above the ground
+  // The modules in their own folders (registered_modules(): the ground fog, a medium of
+  // compose), made once, prepared and added to the graph before compose.
+  std::vector<std::unique_ptr<RenderModule>> registered;
   ComposeModule compose{state};  // the final image: compose.comp, then the stars
   DisplayModule display{state};  // its meter and display image
   // The modules of a frame in the order their passes are added: the graph keeps it wherever
   // their reads and writes allow.
   std::vector<RenderModule*> frame_modules() {
-    return {&noise,          &atmosphere, &voxel_clouds, &weather,    &sky_view,
-            &light_volume,   &clouds,     &terrain,      &host_scene, &host_lighting,
-            &classic_clouds, &particles,  &light_shafts, &ground_fog, &compose,
-            &post,           &display};
+    std::vector<RenderModule*> modules{
+        &noise,   &atmosphere, &voxel_clouds,  &weather,        &sky_view,  &light_volume, &clouds,
+        &terrain, &host_scene, &host_lighting, &classic_clouds, &particles, &light_shafts};
+    for (const auto& module : registered) modules.push_back(module.get());
+    modules.insert(modules.end(), {&compose, &post, &display});
+    return modules;
   }
 
   void update_atmosphere_luts(const Scene& scene);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,11 +46,39 @@ inline std::vector<std::string> cloud_field_resources() {
   return {"weather_map", "noise", "voxel_clouds", "light_volume"};
 }
 
+// What a module sees of the frame before the graph is built.
+struct FramePrepare {
+  const Scene& scene;
+  const gpu::FrameParams& params;
+  int slot;    // the frame slot recorded: a module keeps per-slot copies of what frames read
+  bool still;  // a still image (every pixel marched), not a frame of a sequence
+};
+
 class RenderModule {
  public:
   virtual ~RenderModule() = default;
+  // Before the graph is built: updates what the module keeps for this frame (its uniform
+  // blocks, the images it rebuilds) and says what the frame draws with it (`plan`).
+  virtual void prepare(const FramePrepare&, FramePlan&) {}
   // Declares what the module keeps (FrameGraph::import, output) and adds this frame's passes.
   virtual void add_passes(FrameGraph& graph, const FrameSetup& frame) = 0;
 };
+
+// What a module is made with: the device and the frame's descriptor table (its set-1 bindings).
+struct ModuleContext {
+  gpu::Context& ctx;
+  gpu::DescriptorSet& set;
+};
+
+// The modules that live in their own folder, src/render/modules/NAME/, whose NAME.h declares
+//   std::unique_ptr<RenderModule> make_NAME_module(const ModuleContext&);
+// listed at configure time (cmake/module_registry.cmake) in the folders' order. The frame makes
+// each once and runs its prepare and add_passes with its own modules': adding such a module
+// edits nothing outside its folder.
+struct RegisteredModule {
+  const char* name;
+  std::unique_ptr<RenderModule> (*make)(const ModuleContext&);
+};
+const std::vector<RegisteredModule>& registered_modules();
 
 }  // namespace nephele

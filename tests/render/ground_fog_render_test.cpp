@@ -6,10 +6,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "nephele/conditions.h"
 #include "nephele/error.h"
+#include "nephele/exposure.h"
 #include "nephele/image_compare.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
+#include "render/render_module.h"
 #include "render_fixture.h"
 
 using nephele::Scene;
@@ -85,6 +88,87 @@ TEST_F(GroundFogTest, InsideADenseFogTheViewIsEvenAndLit) {
   EXPECT_LT(hi / lo, 1.3);
   EXPECT_GT(lo, 0.05 * clear_hi);
   EXPECT_LT(hi, clear_hi);
+}
+
+// The stars are behind the fog: inside a dense fog at night they are gone (stars.comp applies
+// the media's transmittance towards the sky), while the same night without fog shows them.
+TEST_F(GroundFogTest, InsideADenseFogTheStarsAreHidden) {
+  Scene s;
+  s.clouds.coverage = 0.0f;
+  s.output.width = 96;
+  s.output.height = 64;
+  s.time = "2026-12-21T22:00:00Z";  // Paris, a long winter night
+  s.sun.from_time = true;
+  s.location = {48.85f, 2.35f, 0.0f};
+  s.camera.view_dir = {0.0f, 1.0f, 0.6f};
+  s.conditions.mode = nephele::ConditionsMode::Overlay;  // for the stars' visibility
+  s.conditions.hour = 0.0f;
+  // The stars' light: the image less the same image with the stars' visibility 0.
+  const auto stars = [&](float visibility_m) {
+    Scene with = s;
+    with.ground_fog.visibility_m = visibility_m;
+    Scene without = with;
+    without.conditions.good.keys[0].set.star_visibility = 0.0f;
+    const nephele::Image a = render(with).color, b = render(without).color;
+    double excess = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+      excess += nephele::luminance(a.pixels[i]) - nephele::luminance(b.pixels[i]);
+    return excess;
+  };
+  const double clear = stars(0.0f);
+  ASSERT_GT(clear, 0.0) << "no stars in view";
+  // 100 m visibility, 150 m of fog above the eye: an optical depth of 6 straight up.
+  EXPECT_LT(stars(100.0f), 0.01 * clear);
+}
+
+// The time-of-day keyframes' fog by distance is the ground fog's medium: the ground beyond the
+// keyframes' far distance is their fog colour; nearer, the colour is mixed in linearly with
+// distance, as the seed does.
+TEST_F(GroundFogTest, TheKeyframesFogIsAMedium) {
+  Scene s;
+  s.clouds.coverage = 0.0f;
+  s.output.width = 32;
+  s.output.height = 24;
+  s.camera.position_m.z = 500.0f;
+  s.camera.view_dir = {0.0f, 1.0f, -1.0f};  // the ground 700 m to 1.5 km away
+  s.conditions.mode = nephele::ConditionsMode::Artist;
+  s.conditions.hour = 13.0f;
+  const glm::vec3 fog_rgb{0.2f, 0.3f, 0.4f};
+  const auto with_fog = [&](float near_m, float far_m) {
+    Scene v = s;
+    for (auto* table : {&v.conditions.good, &v.conditions.bad})
+      for (auto& key : table->keys) {
+        key.set.fog_rgb = fog_rgb;
+        key.set.fog_near_m = near_m;
+        key.set.fog_far_m = far_m;
+      }
+    return render(v).color;
+  };
+  const nephele::Image whole = with_fog(0.0f, 1.0f), none = with_fog(1e6f, 2e6f);
+  // Linear in distance: with the far distance at 4 and at 8 km (the ground nearer), the share of
+  // fog mixed in halves, the same in every channel.
+  const nephele::Image ramp4 = with_fog(0.0f, 4000.0f), ramp8 = with_fog(0.0f, 8000.0f);
+  const glm::vec3 expected = fog_rgb * nephele::kLegacyLuxPerUnit;
+  const glm::vec4 far = whole.at(16, 20), clear = none.at(16, 20);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(far[c], expected[c], 1e-3f * expected[c]) << c;
+    ASSERT_GT(std::abs(clear[c] - expected[c]), 0.1f * expected[c]) << "the ground differs";
+    const float share4 = (clear[c] - ramp4.at(16, 20)[c]) / (clear[c] - expected[c]);
+    const float share8 = (clear[c] - ramp8.at(16, 20)[c]) / (clear[c] - expected[c]);
+    EXPECT_GT(share4, 0.1f) << c;
+    EXPECT_LT(share4, 0.5f) << c;
+    EXPECT_NEAR(share4, 2.0f * share8, 0.01f * share4) << c;
+  }
+}
+
+// The frame knows the fog only through the registry generated from the modules' folders
+// (cmake/module_registry.cmake): src/render/modules/ground_fog/ground_fog.h is listed.
+TEST(GroundFogScene, TheModuleIsRegisteredFromItsFolder) {
+  const auto& modules = nephele::registered_modules();
+  const auto it = std::find_if(modules.begin(), modules.end(),
+                               [](const auto& m) { return std::string(m.name) == "ground_fog"; });
+  ASSERT_NE(it, modules.end());
+  EXPECT_NE(it->make, nullptr);
 }
 
 // The fog is reachable from its field table alone: the keys read from TOML.

@@ -23,17 +23,18 @@ constexpr const char* kBlockName = "GroundFogBlock";
 constexpr float kDropletPhaseG = 0.8f;  // fog droplets (micrometres) scatter forward
 }  // namespace
 
-GroundFogModule::GroundFogModule(gpu::Context& ctx, gpu::DescriptorSet& set) : set_(set) {
+GroundFogModule::GroundFogModule(const ModuleContext& context) : set_(context.set) {
   for (gpu::Buffer& b : blocks_) {
-    b = gpu::Buffer(ctx, sizeof(gpu::GroundFogGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    b = gpu::Buffer(context.ctx, sizeof(gpu::GroundFogGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     std::memset(b.data(), 0, sizeof(gpu::GroundFogGpu));  // no fog
   }
-  // compose.comp declares the block whether or not a frame has fog: always bound.
+  // compose.comp and stars.comp declare the block whether or not a frame has fog: always bound.
   set_.bind_module_buffer(kBlockName, blocks_[0], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
 }
 
-bool GroundFogModule::prepare(const Scene& scene, const gpu::FrameParams& params, int slot) {
-  const GroundFogParams& p = scene.ground_fog;
+void GroundFogModule::prepare(const FramePrepare& frame, FramePlan& plan) {
+  const gpu::FrameParams& params = frame.params;
+  const GroundFogParams& p = frame.scene.ground_fog;
   gpu::GroundFogGpu block{};
   const bool fog = p.visibility_m > 0.0f && p.top_m > p.base_m;
   if (fog) {
@@ -54,13 +55,25 @@ bool GroundFogModule::prepare(const Scene& scene, const gpu::FrameParams& params
     block.sun = glm::vec4(sun, sin_elevation);
     block.sky = glm::vec4(0.5f * (sky + ground), kDropletPhaseG);
   }
-  std::memcpy(blocks_[slot].data(), &block, sizeof(block));
-  set_.bind_module_buffer(kBlockName, blocks_[slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-  return fog;
+  // The keyframes' fog (frame_params.cpp's set_conditions, per unit of the key light's
+  // illuminance): its colour, and the distances where it begins and where it is whole.
+  const bool keyframes = params.conditions_sky.w != 0.0f;
+  if (keyframes) {
+    block.keyframes = glm::vec4(glm::vec3(params.conditions_fog), 1.0f);
+    block.keyframes_range_m =
+        glm::vec4(params.conditions_disk_fog.w, params.conditions_fog.w, 0, 0);
+  }
+  std::memcpy(blocks_[frame.slot].data(), &block, sizeof(block));
+  set_.bind_module_buffer(kBlockName, blocks_[frame.slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  plan.media = plan.media || fog || keyframes;
 }
 
 void GroundFogModule::add_passes(FrameGraph&, const FrameSetup&) {
   // No pass: compose reads the block as one of its media.
+}
+
+std::unique_ptr<RenderModule> make_ground_fog_module(const ModuleContext& context) {
+  return std::make_unique<GroundFogModule>(context);
 }
 
 }  // namespace nephele

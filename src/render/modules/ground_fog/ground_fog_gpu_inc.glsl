@@ -15,6 +15,9 @@ struct GroundFogGpu {
                // (through the atmosphere), w the sine of the sun's elevation
   vec4 sky;    // rgb the light of the sky and the ground around, scattered as from an even
                // field, per unit of the key light's illuminance; w the droplets' phase g
+  vec4 keyframes;          // the time-of-day keyframes' fog: rgb its colour per unit of the key
+                           // light's illuminance; w 1 when on, 0 off
+  vec4 keyframes_range_m;  // x the distance it begins at, y where it is whole (m)
 };
 
 #ifdef __cplusplus

@@ -36,10 +36,11 @@ vec3 ground_fog_light(GroundFog f, float altitude_m, float mu, float cloud_light
   return cloud_light * (ground_fog.sun.rgb * (direct * phase + diffuse) + sky);
 }
 
-// The fog in front of a layer at `distance_m` (0: nothing there, the sky: the ray to where it
-// leaves the fog's top): rgb the light it adds per unit of the key light's illuminance, a its
-// transmittance. `cloud_light`: the clouds' mean diffuse transmittance to the ground.
-vec4 ground_fog_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
+// The fog layer in front of a layer at `distance_m` (0: nothing there, the sky: the ray to
+// where it leaves the fog's top): rgb the light it adds per unit of the key light's
+// illuminance, a its transmittance. `cloud_light`: the clouds' mean diffuse transmittance to
+// the ground.
+vec4 ground_fog_layer_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
   if (ground_fog.layer.w <= 0.0f) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
   float radius_m = frame.radii_m.x;
   GroundFog f;
@@ -68,6 +69,25 @@ vec4 ground_fog_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light) 
   float z_lit = mix(clamp(z0, f.base_m, f.top_m), clamp(z1, f.base_m, f.top_m), share);
   vec3 light = ground_fog_light(f, z_lit, dot(dir, frame.sun_dir.xyz), cloud_light);
   return vec4(f.albedo * (1.0f - transmittance) * light, transmittance);
+}
+
+// The time-of-day keyframes' fog (seed 003) in front of a layer at `distance_m`: its colour
+// mixed in linearly, none up to the near distance, whole from the far one on; the sky
+// (`distance_m` 0) is fogged by the keyframes' sky fog instead, by elevation (compose.comp).
+vec4 ground_fog_keyframes_medium(float distance_m) {
+  if (ground_fog.keyframes.w == 0.0f || distance_m <= 0.0f) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  float near_m = ground_fog.keyframes_range_m.x;
+  float far_m = ground_fog.keyframes_range_m.y;
+  float mixed = saturate((distance_m - near_m) / max(far_m - near_m, 1e-3f));
+  return vec4(ground_fog.keyframes.rgb * mixed, 1.0f - mixed);
+}
+
+// The ground fog in front of a layer at `distance_m` (0: the sky): the fog layer in front of
+// the keyframes' fog, each as above.
+vec4 ground_fog_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
+  vec4 front = ground_fog_layer_medium(eye, dir, distance_m, cloud_light);
+  vec4 behind = ground_fog_keyframes_medium(distance_m);
+  return vec4(front.rgb + front.a * behind.rgb, front.a * behind.a);
 }
 
 #endif
