@@ -1,8 +1,9 @@
 # The modules that live in their own folders (src/render/modules/NAME/), found at configure time.
 #
-# module_registry.cpp: each folder NAME holding NAME.h is a module; NAME.h declares
+# module_registry.cpp: each folder NAME whose NAME.h declares
 #   std::unique_ptr<RenderModule> make_NAME_module(const ModuleContext&);
-# and registered_modules() (render/render_module.h) lists them in the folders' order.
+# registers its module, and registered_modules() (render/render_module.h) lists them in the
+# folders' order. (The older modules, in folders too, are members of FrameRenderer::Impl.)
 #
 # media_inc.glsl: compose.comp's media, from the modules' folders. Each module folder that holds
 # a NAME_medium.glsl (src/render/modules/NAME/) adds a medium: its file defines
@@ -31,6 +32,10 @@ function(nephele_module_registry modules_dir out)
     get_filename_component(folder ${folder} NAME)
     if(NOT name STREQUAL folder)
       continue()
+    endif()
+    file(STRINGS ${path} factory REGEX "make_${name}_module")
+    if(NOT factory)
+      continue()  # a module the frame holds itself (FrameRenderer::Impl)
     endif()
     file(RELATIVE_PATH relative ${modules_dir}/../.. ${path})
     string(APPEND includes "#include \"${relative}\"\n")

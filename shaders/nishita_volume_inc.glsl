@@ -1,4 +1,4 @@
-// Nishita and Nakamae's voxel grid (render/modules/metaball_clouds.h): lookups into the three
+// Nishita and Nakamae's voxel grid (render/modules/metaball_clouds/metaball_clouds.h): lookups into the three
 // volumes stacked in nishita_volume (NISHITA_SLABS of classic_nishita_grid.z voxels each), on a
 // flat earth in ENU metres. GLSL only.
 #ifndef NEPHELE_NISHITA_VOLUME_INC

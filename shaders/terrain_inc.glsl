@@ -1,4 +1,4 @@
-// The terrain's heightfield (render/modules/terrain.h) and rays cast against it: the terrain
+// The terrain's heightfield (render/modules/terrain/terrain.h) and rays cast against it: the terrain
 // stands on the ground sphere, its points at altitude |p| - R over the planet frame's east and
 // north (p.xy, the ENU tangent plane's: camera_path.h's enu_from_lat_lon). Rays walk a pyramid
 // of the heights' maxima (terrain_ray). GLSL only; the includer includes bindings_inc.glsl and

@@ -355,8 +355,8 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
                    std::filesystem::path(options.output).extension() == ".EXR";
   const ExrPixels pixels = options.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf;
   if (exr)
-    write_exr_layers({{"", &image.mean, 4}, {"variance", &image.variance, 3}}, options.output,
-                     pixels);
+    write_exr_layers({{"", &image.mean, 4, {}}, {"variance", &image.variance, 3, {}}},
+                     options.output, pixels);
   else
     write_image(image.mean, options.output, still_exposure(scene.output, image.mean), pixels,
                 scene.output.tonemap);

@@ -48,7 +48,7 @@ struct PassTiming {
   double ms = 0.0;
 };
 
-// A voxel cloud on the device (the sparse bricks of render/modules/voxel_clouds.h).
+// A voxel cloud on the device (the sparse bricks of render/modules/voxel_clouds/voxel_clouds.h).
 struct VoxelCloudMemory {
   std::string source;        // its file, or "preset:NAME:SEED"
   int dims[3] = {0, 0, 0};   // its grid (voxels)
@@ -71,7 +71,7 @@ struct ParticleCloudStats {
   int layer_width = 0, layer_height = 0;  // the particle layer's pixels (layer_resolution)
   int impostors_waiting = 0;  // far clouds drawn particle by particle, their images not yet drawn
   // The impostor images' resolution, of impostor_resolution: below 1 while the atlas is short
-  // of room (render/modules/impostors.h).
+  // of room (render/modules/impostors/impostors.h).
   double impostor_resolution_scale = 1.0;
   double generate_ms = 0.0, lighting_ms = 0.0, sort_ms = 0.0;  // host wall time
   // The atlas (particles/atlas.h, AtlasStats): shares of its texels, defragmentations per

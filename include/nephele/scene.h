@@ -298,7 +298,7 @@ struct OutputParams {
   ToneMap tonemap = ToneMap::Aces;        // the display's tone map (PNG files, the viewer)
   // Bloom and glare: the lens spreads a share bloom_strength of the light above
   // bloom_threshold_cd_m2 over a Gaussian of bloom_radius_deg (its sigma, in degrees of view),
-  // keeping the image's total light (render/modules/bloom.h). Strength 0: off. Threshold 0:
+  // keeping the image's total light (render/modules/post/post.h). Strength 0: off. Threshold 0:
   // every pixel's light, as a lens's veiling glare; above 0, only the brightest (the sun,
   // sunlit cloud edges).
   float bloom_strength = 0.0f;            // [0, 1]

@@ -11,7 +11,7 @@
 layout(std140, set = 0, binding = 0) uniform FrameParamsBlock { FrameParams frame; };
 layout(set = 0, binding = 1, rgba8) uniform writeonly image3D base_noise_out;
 layout(set = 0, binding = 2, rgba8) uniform writeonly image3D detail_noise_out;
-// The evolving weather's states (render/modules/weather.h), one a layer, written by
+// The evolving weather's states (render/modules/weather/weather.h), one a layer, written by
 // weather.comp and read by weather_blend.comp.
 layout(set = 0, binding = 3, rgba8) uniform image3D weather_states;
 layout(set = 0, binding = 4) uniform sampler3D base_noise;
@@ -95,7 +95,7 @@ layout(set = 0, binding = 48) uniform sampler2D ms_field;
 // The exposure meter (meter.comp), one per frame in flight, read by the host: the mean of
 // log(luminance, cd/m^2) over METER_GRID^2 points of the final image.
 layout(std430, set = 0, binding = 49) writeonly buffer MeterBlock { float meter_mean_log_luminance; };
-// Particle clouds (render/modules/particle_clouds.h): this frame's particles back to front
+// Particle clouds (render/modules/particle_clouds/particle_clouds.h): this frame's particles back to front
 // (particles.vert), their procedural textures side by side (PARTICLE_TEXTURES tiles of
 // PARTICLE_TEXTURE_SIZE texels), and the layer they are drawn into, read by compose.comp:
 // rgb premultiplied radiance, a opacity; and x their opacity-weighted distance (km) times
@@ -104,7 +104,7 @@ layout(std430, set = 0, binding = 50) readonly buffer ParticlesBlock { ParticleG
 layout(set = 0, binding = 51) uniform sampler2D particle_textures;
 layout(set = 0, binding = 52) uniform sampler2D particle_layer;
 layout(set = 0, binding = 53) uniform sampler2D particle_depth;
-// Impostors of far particle clouds (render/modules/impostors.h): this frame's quads back to
+// Impostors of far particle clouds (render/modules/impostors/impostors.h): this frame's quads back to
 // front (impostor.vert), the atlas their images live in, each impostor's tile slots (the tiles
 // method), the scratch image an impostor is drawn into before impostor_tiles.comp splits it
 // into tiles, the atlas as that pass writes it, and its jobs (one per tile).
@@ -120,7 +120,7 @@ layout(std430, set = 0, binding = 59) readonly buffer ImpostorTileJobsBlock { Im
 layout(std430, set = 0, binding = 60) readonly buffer ParticleSplatsBlock { ParticleSplatGpu particle_splats[]; };
 layout(std430, set = 0, binding = 61) readonly buffer ParticleLightCloudsBlock { ParticleLightCloudGpu particle_light_clouds[]; };
 layout(std430, set = 0, binding = 62) writeonly buffer ParticleLightsBlock { float particle_lights[]; };
-// Nishita and Nakamae's metaball clouds (render/modules/metaball_clouds.h): three volumes of
+// Nishita and Nakamae's metaball clouds (render/modules/metaball_clouds/metaball_clouds.h): three volumes of
 // the grid stacked in depth (NISHITA_SLABS): the density field (r), the sun's transmittance and
 // the sky's light (r, gba), the second order's light (x its total, yzw its flux vector).
 layout(set = 0, binding = 63, rgba32f) uniform writeonly image3D nishita_volume_out;
@@ -131,7 +131,7 @@ layout(set = 0, binding = 65, rgba32f) uniform image2D post_temp;
 // the clouds' shadows, a the share of it in front of the clouds.
 layout(set = 0, binding = 66, rgba32f) uniform writeonly image2D light_shafts_out;
 layout(set = 0, binding = 67) uniform sampler2D light_shafts;
-// The terrain (render/modules/terrain.h): its heights (r, m above the ground; rows [0, H), row
+// The terrain (render/modules/terrain/terrain.h): its heights (r, m above the ground; rows [0, H), row
 // 0 the north edge) with their pyramid of maxima packed below them (rows from H:
 // terrain::MaxPyramid; texelFetch); per pixel what terrain.comp finds (read by compose, the
 // clouds and the shafts): rgb its radiance per unit key-light illuminance before the air in
@@ -146,7 +146,7 @@ layout(set = 0, binding = 71) uniform sampler2D terrain_albedo_map;
 // HostScene; host_scene.comp merges them into terrain_out): the depth from word 0, the colour
 // from word frame.host_layout.x.
 layout(std430, set = 0, binding = 72) readonly buffer HostSceneBlock { uint host_texels[]; };
-// The lighting for the host (host_lighting.comp; render/modules/host_lighting.h): [0] x, y the
+// The lighting for the host (host_lighting.comp; render/modules/host_lighting/host_lighting.h): [0] x, y the
 // clouds' transmittance at the camera towards the key and the second light, z the clouds'
 // sigma_t there (1/m), w the share of the clear sky's light under the clouds; [1 + k] the sky's
 // radiance's spherical-harmonic coefficient k (rgb, per unit key-light illuminance). And the

@@ -1,4 +1,4 @@
-// Where an impostor's image is read in the atlas (render/modules/impostors.h), shared with the
+// Where an impostor's image is read in the atlas (render/modules/impostors/impostors.h), shared with the
 // CPU (the tests check that bilinear filtering never reads a neighbour's texels).
 #ifndef NEPHELE_IMPOSTOR_INC
 #define NEPHELE_IMPOSTOR_INC

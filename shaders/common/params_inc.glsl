@@ -27,7 +27,7 @@ struct CloudLayerGpu {
   vec4 wind;     // xy its displacement by the wind (wind x time, m); zw its wind (m/s)
 };
 
-// Voxel clouds (render/modules/voxel_clouds.h, shaders/voxel_field_inc.glsl): each cloud's grid
+// Voxel clouds (render/modules/voxel_clouds/voxel_clouds.h, shaders/voxel_field_inc.glsl): each cloud's grid
 // is cut into bricks of VOXEL_BRICK^3 voxels; the bricks near its surface are stored in one
 // atlas texture (VOXEL_BRICK_TEXELS per edge: a brick's voxels and the next one's first, so
 // trilinear filtering stays inside a brick; VOXEL_ATLAS_BRICKS^2 bricks per layer) and a page
@@ -148,7 +148,7 @@ struct FrameParams {
   // line of LIGHT_VOLUME_XY voxels; row = z LIGHT_VOLUME_XY + y).
   vec4 light_volume_build;
   ivec4 light_volume_rows;
-  // The evolving weather (render/modules/weather.h): states at steps of the weather's time
+  // The evolving weather (render/modules/weather/weather.h): states at steps of the weather's time
   // scale / WEATHER_STEPS, step s in layer s mod 3. weather_build: x the first step computed
   // this frame, y how many (consecutive), z the first row, w the rows (weather.comp);
   // weather_blend: x the share of the later state in the map, y, z the layers of the earlier
@@ -156,7 +156,7 @@ struct FrameParams {
   ivec4 weather_build;
   vec4 weather_blend;
   // The frame of the sky-view LUT and aerial-perspective volume being built (as sky_view_up
-  // and sky_view_forward are the frame of the pair read; render/modules/sky_view.h).
+  // and sky_view_forward are the frame of the pair read; render/modules/sky_view/sky_view.h).
   vec4 sky_view_build_up;
   vec4 sky_view_build_forward;
   // The rows built this frame: x the LUT's first, y its count (of kSkyViewHeight), z the
@@ -216,13 +216,13 @@ struct FrameParams {
   vec4 light_shafts;
   // Kajiya and Von Herzen: x Romberg's levels, y 1 for the brute-force reference march instead
   vec4 classic_kajiya;
-  // Nishita and Nakamae (render/modules/metaball_clouds.h): the voxel grid's corner (xyz, ENU
+  // Nishita and Nakamae (render/modules/metaball_clouds/metaball_clouds.h): the voxel grid's corner (xyz, ENU
   // on a flat earth, m) and its voxels' edge (w, m); its size in voxels (xyz); x sigma_t at
   // density 1 (1/m), y albedo, z the scattering orders (1 or 2), w 1: sky light
   vec4 classic_nishita;
   vec4 classic_nishita_grid;
   vec4 classic_nishita_light;
-  // The terrain (render/modules/terrain.h, terrain_inc.glsl): its rectangle (x west, y north
+  // The terrain (render/modules/terrain/terrain.h, terrain_inc.glsl): its rectangle (x west, y north
   // edge, z, w extent east-west, north-south, m); x its lowest, y its highest height (m above
   // the ground), z 1 when there is one, w the snow's lower edge (m; 0 none); the bare ground's
   // albedo (rgb; w 1: from the albedo map instead); its grid (xy points) and pyramid of maxima (z its top level, w the width of
@@ -231,14 +231,14 @@ struct FrameParams {
   vec4 terrain_shape;
   vec4 terrain_albedo;
   ivec4 terrain_grid;
-  // The host's scene (nephele::HostScene, render/modules/host_scene.h): its projection's inverse
+  // The host's scene (nephele::HostScene, render/modules/host_scene/host_scene.h): its projection's inverse
   // (clip to view space, m); x 1 when there is one, y 1 for reversed depth (far at 0), z its
   // depth's texel format (HOST_DEPTH_*), w its colour's (HOST_COLOR_*); x where its colour starts
   // in host_texels (words), y its colour's scale, zw unused
   mat4 host_inverse_projection;
   vec4 host_scene;
   vec4 host_layout;
-  // The cloud shadow map for the host (render/modules/host_lighting.h): x its west, y its north
+  // The cloud shadow map for the host (render/modules/host_lighting/host_lighting.h): x its west, y its north
   // edge (ENU m), z its side (m), w the altitude of its plane, the cloud shell's bottom (m);
   // x its texels a side, y 1 when it is made; z the environment cube map's face (texels a
   // side), w unused
@@ -296,7 +296,7 @@ struct ParticleGpu {
   vec4 shading;          // x the light reaching it (CPU lighting, [0, 1]), y its texture, zw unused
 };
 // Per draw of a raster pass (push constants; gpu/raster.h): the camera it projects with. The
-// frame's camera for the image; for an impostor (render/modules/impostors.h) a square view from
+// frame's camera for the image; for an impostor (render/modules/impostors/impostors.h) a square view from
 // the same eye framing the cloud's bounding sphere.
 struct DrawConstants {
   vec4 forward;  // xyz unit view direction; w tan(vertical fov / 2)
@@ -341,7 +341,7 @@ struct ParticleLightCloudGpu {
   vec4 shading;  // x the forward share f, y a particle's opacity at its centre
 };
 
-// The particles' procedural textures (render/modules/particle_clouds.cpp).
+// The particles' procedural textures (render/modules/particle_clouds/particle_clouds.cpp).
 const int PARTICLE_TEXTURES = 4;
 const int PARTICLE_TEXTURE_SIZE = 64;
 

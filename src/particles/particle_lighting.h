@@ -27,7 +27,7 @@ float forward_share(const ParticleCloudParams& params);
 // The cloud seen from the light: its particles nearest the light first (a stable sort on the
 // distance along `towards_light`), each with its centre and radius in the texels of a
 // `buffer` x `buffer` splat buffer framing the cloud. light_cloud splats them in this order;
-// the GPU version (render/modules/particle_light_gpu.h) uploads them.
+// the GPU version (render/modules/particle_light_gpu/particle_light_gpu.h) uploads them.
 struct Splat {
   float x, y, radius;
   uint32_t index;  // the particle's in cloud.particles

@@ -1,6 +1,7 @@
 // The particle clouds' lighting on the CPU (particles/particle_lighting.h) against the same
-// splat on the device (render/modules/particle_light_gpu.h), timed: the seed's claim that the
-// CPU is two orders of magnitude faster than the graphics card, measured (`nephele bench
+// splat on the device (render/modules/particle_light_gpu/particle_light_gpu.h), timed: the seed's
+// claim that the CPU is two orders of magnitude faster than the graphics card, measured (`nephele
+// bench
 // --impostors`).
 #pragma once
 

@@ -2,17 +2,16 @@
 // (FrameRenderer) into a command buffer of its own context, submitted, waited for, read back.
 #include "nephele/renderer.h"
 
-#include "nephele/cloud_query.h"
-#include "nephele/error.h"
-#include "nephele/exposure.h"
-#include "nephele/scene_io.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
+#include "nephele/cloud_query.h"
+#include "nephele/error.h"
+#include "nephele/exposure.h"
+#include "nephele/scene_io.h"
 #include "render/frame_renderer_impl.h"
-#include "render/modules/light_shafts.h"
+#include "render/modules/light_shafts/light_shafts.h"
 
 namespace nephele {
 

@@ -1,6 +1,6 @@
 // The terrain's heights on a regular east-north grid (issue 24), read from a 16-bit PNG, an
 // EXR, a GeoTIFF elevation model (GDAL) or an OBJ mesh, or made by the procedural `mountains`.
-// No Vulkan: render/modules/terrain.h puts it on the device.
+// No Vulkan: render/modules/terrain/terrain.h puts it on the device.
 #pragma once
 
 #include <glm/vec2.hpp>

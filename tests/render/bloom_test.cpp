@@ -1,11 +1,11 @@
-// Bloom and glare (render/modules/post.h, bloom.comp): the lens's spread keeps the image's
+// Bloom and glare (render/modules/post/post.h, bloom.comp): the lens's spread keeps the image's
 // light, brightens the sun's surroundings, and leaves alone what lies beyond its reach.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "nephele/scene_io.h"
-#include "render/modules/post.h"
+#include "render/modules/post/post.h"
 #include "render_fixture.h"
 
 namespace nephele {

@@ -7,9 +7,9 @@
 
 #include "nephele/scene_io.h"
 #include "render/frame_params.h"
-#include "render/modules/classic_clouds.h"
-#include "render/modules/metaball_clouds.h"
 #include "render/glsl.h"
+#include "render/modules/classic_clouds/classic_clouds.h"
+#include "render/modules/metaball_clouds/metaball_clouds.h"
 #include "render_fixture.h"
 
 namespace nephele {

@@ -1,4 +1,4 @@
-// Voxel clouds rendered among the noise clouds (render/modules/voxel_clouds.h,
+// Voxel clouds rendered among the noise clouds (render/modules/voxel_clouds/voxel_clouds.h,
 // shaders/voxel_field_inc.glsl): placed where the camera projection says, seen from the
 // ground, from above and from inside, shadowing the ground, and drawn alike by the plain and
 // three-phase marches and both light modes.

@@ -1,6 +1,8 @@
 // Weather that evolves (clouds.weather_evolution_s): deterministic in the seed and the time,
 // smooth from second to second, a different sky ten minutes on. A weather map from a PNG lies
 // on the ground as a map is drawn: row 0 north, columns west to east (scene.h).
+#include "render/modules/weather/weather.h"
+
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
 
@@ -12,9 +14,8 @@
 #include "nephele/image_compare.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
-#include "render/glsl.h"
-#include "render/modules/weather.h"
 #include "render/frame_renderer_impl.h"
+#include "render/glsl.h"
 #include "render_fixture.h"
 
 using nephele::Frame;

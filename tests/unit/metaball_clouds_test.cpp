@@ -1,13 +1,15 @@
-// Nishita and Nakamae's metaball clouds (render/modules/metaball_clouds.h, seed 004, issue 23):
-// the cumulus made from the scene, their voxel grid against the balls' closed-form field and
-// mass, and the second order's phase (classic_inc.glsl) against Henyey-Greenstein's moments.
+// Nishita and Nakamae's metaball clouds (render/modules/metaball_clouds/metaball_clouds.h, seed
+// 004, issue 23): the cumulus made from the scene, their voxel grid against the balls' closed-form
+// field and mass, and the second order's phase (classic_inc.glsl) against Henyey-Greenstein's
+// moments.
+#include "render/modules/metaball_clouds/metaball_clouds.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "nephele/scene_io.h"
 #include "render/glsl.h"
-#include "render/modules/metaball_clouds.h"
 
 namespace nephele {
 namespace {

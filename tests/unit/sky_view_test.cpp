@@ -1,13 +1,14 @@
 // The sky-view LUT mapping (shaders/common/sky_view_inc.glsl compiled as C++): directions and
 // LUT coordinates round-trip, the horizon is the row boundary v = 0.5, and the LUT's texels on
 // either side of it see sky and ground as sky_single_scattering does.
+#include "render/modules/sky_view/sky_view.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
 #include "render/glsl.h"
-#include "render/modules/sky_view.h"
 
 namespace g = nephele::glsl;
 using glm::vec2;

@@ -1,0 +1,145 @@
+#include "render/modules/clouds/clouds.h"
+
+namespace nephele {
+
+CloudsModule::CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : ctx_(ctx),
+      set_(set),
+      march_(ctx, set, "clouds.comp.spv", 1, {1, -1}),
+      range_(ctx, set, "march_range.comp.spv"),
+      resolve_(ctx, set, "resolve.comp.spv"),
+      profile_(ctx, set, "cloud_profile.comp.spv"),
+      ground_default_(ctx, set, "ground_light.comp.spv", {0}),
+      ground_baseline_(ctx, set, "ground_light.comp.spv", {1}),
+      ground_light_(ctx, 1, 1, 1, VK_FORMAT_R32_SFLOAT) {
+  for (gpu::Texture* t : {&dome_a_, &dome_b_})
+    *t = gpu::Texture(ctx, kSkyDomeSize, kSkyDomeSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  set_.bind_image(gpu::kGroundLightOut, gpu::kGroundLight, ground_light_);
+  resize(1, 1);
+}
+
+bool CloudsModule::resize(int w, int h) {
+  if (w == width_ && h == height_) return false;
+  const auto cloud_image = [&] {
+    return gpu::Texture(ctx_, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  };
+  // Room for a still image's march of every pixel.
+  march_a_ = cloud_image();
+  march_b_ = cloud_image();
+  range_lo_ = cloud_image();
+  range_hi_ = cloud_image();
+  for (int i = 0; i < 2; ++i) {
+    clouds_a_[i] = cloud_image();
+    clouds_b_[i] = cloud_image();
+  }
+  bind_march(false);
+  set_.bind_storage_image(gpu::kRangeLo, range_lo_);
+  set_.bind_storage_image(gpu::kRangeHi, range_hi_);
+  // Defined contents: filters read neighbours of the texels a frame writes.
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
+    for (const gpu::Texture* t : {&march_a_, &march_b_, &range_lo_, &range_hi_, &clouds_a_[0],
+                                  &clouds_a_[1], &clouds_b_[0], &clouds_b_[1]})
+      t->record_clear(cmd);
+  });
+  current_ = 1;
+  swap_history();
+  width_ = w;
+  height_ = h;
+  return true;
+}
+
+void CloudsModule::bind_march(bool sky_dome) {
+  set_.bind_image(gpu::kMarchAOut, gpu::kMarchA, sky_dome ? dome_a_ : march_a_);
+  set_.bind_image(gpu::kMarchBOut, gpu::kMarchB, sky_dome ? dome_b_ : march_b_);
+}
+
+void CloudsModule::swap_history() {
+  current_ = 1 - current_;
+  set_.bind_image(gpu::kCloudsAOut, gpu::kCloudsA, clouds_a_[current_]);
+  set_.bind_image(gpu::kCloudsBOut, gpu::kCloudsB, clouds_b_[current_]);
+  set_.bind_sampled_image(gpu::kHistoryA, clouds_a_[1 - current_]);
+  set_.bind_sampled_image(gpu::kHistoryB, clouds_b_[1 - current_]);
+}
+
+std::vector<int32_t> CloudsModule::march_variant(MarchMode mode, const gpu::FrameParams& params) {
+  // Each feature where clouds.comp would find it in the parameters, so that a variant draws
+  // what the full shader draws.
+  return {mode == MarchMode::Baseline ? 1 : 0, params.voxel_info.x > 0 ? 1 : 0,
+          params.cloud_phase.w > 0.5f ? 1 : 0};
+}
+
+void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
+                                const gpu::FrameParams& params, int rows) {
+  const auto blocks = [&](int n) { return uint32_t((n + stride_ - 1) / stride_); };
+  gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "clouds", blocks(width_),
+                rows < 0 ? blocks(height_) : uint32_t(rows), 1, 8, 8, 1);
+}
+
+void CloudsModule::record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  const auto blocks = [&](int n) { return uint32_t((n + stride_ - 1) / stride_); };
+  gpu::dispatch(cmd, range_, timer, "march_range", blocks(width_), blocks(height_), 1, 8, 8, 1);
+  gpu::dispatch(cmd, resolve_, timer, "resolve", uint32_t(width_), uint32_t(height_), 1, 8, 8, 1);
+}
+
+void CloudsModule::record_clear_sky(VkCommandBuffer cmd) {
+  clouds_a_[current_].record_clear(cmd, {{0.0f, 0.0f, 0.0f, 1.0f}});
+  clouds_b_[current_].record_clear(cmd, {{0.0f, 1.0f, 0.0f, 1.0f}});
+}
+
+void CloudsModule::record_clear_ground_light(VkCommandBuffer cmd) {
+  ground_light_.record_clear(cmd, {{1.0f, 1.0f, 1.0f, 1.0f}});
+}
+
+void CloudsModule::record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode) {
+  gpu::dispatch(cmd, mode == MarchMode::Baseline ? ground_baseline_ : ground_default_, timer,
+                "ground_light", 16, 16, 1, 16, 16, 1);
+}
+
+void CloudsModule::record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
+                                   const gpu::FrameParams& params) {
+  gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "sky_dome", kSkyDomeSize,
+                kSkyDomeSize, 1, 8, 8, 1);
+}
+
+void CloudsModule::record_profile(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  gpu::dispatch(cmd, profile_, timer, "cloud_profile", kCloudProfileSize, kCloudProfileSize, 1, 8,
+                8, 1);
+}
+
+void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  // Kept: the ground's light, read back by a later frame, and the cloud buffer, the next
+  // frame's history.
+  graph.import("ground_light", true);
+  graph.import("cloud_layer", true);
+  // The ground's light changes as slowly as the light volume's (3.9 ms on lavapipe). Without
+  // nephele's clouds the gaps pass all the sky's light (a classical model's shadow is its
+  // own, in the cloud buffer).
+  const MarchMode mode = frame.scene.quality.mode;
+  if (!frame.plan.volumetric)
+    graph.add_pass("ground_light", {}, {"ground_light"},
+                   [this](VkCommandBuffer cmd) { record_clear_ground_light(cmd); });
+  else if (frame.plan.ground_light)
+    graph.add_pass("ground_light", cloud_field_resources(), {"ground_light"},
+                   [timer = frame.timer, this, mode](VkCommandBuffer cmd) {
+                     record_ground_light(cmd, timer(), mode);
+                   });
+  if (frame.plan.classic) return;  // a classical model draws the cloud layer
+  if (frame.plan.volumetric) {
+    std::vector<std::string> march_reads = cloud_field_resources();
+    march_reads.push_back("terrain");
+    graph.add_pass("march", march_reads, {"cloud_march"},
+                   [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
+                     record_march(cmd, timer(), mode, *params);
+                   });
+    graph.add_pass(
+        "clouds", {"cloud_march", "cloud_layer"}, {"cloud_layer"},
+        [timer = frame.timer, this](VkCommandBuffer cmd) { record_reconstruction(cmd, timer()); });
+  } else {
+    graph.add_pass("clouds", {}, {"cloud_layer"},
+                   [this](VkCommandBuffer cmd) { record_clear_sky(cmd); });
+  }
+}
+
+}  // namespace nephele

@@ -1,0 +1,104 @@
+#include "render/modules/light_volume/light_volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "render/frame_params.h"
+
+namespace nephele {
+
+namespace {
+constexpr int kRows = gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_Z;
+constexpr int rows_per_frame(int frames) {
+  return (kRows + frames - 1) / frames;
+}
+}  // namespace
+
+LightVolumeModule::LightVolumeModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : set_(set), kernels_(ctx, set, "light_volume.comp.spv", 0, {1}) {
+  for (gpu::Texture& v : volumes_)
+    v = gpu::Texture(ctx, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
+                     VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  set_.bind_image(gpu::kLightVolumeOut, gpu::kLightVolume, volumes_[0]);
+}
+
+// Rebuilt when the clouds or the light (by 0.25 deg) change, when the camera has moved 1/20 of
+// the half extent from the centre in cloud space (where the voxels are finest), when the
+// clouds' features have moved 100 m against the volume's frame (shear, detail wind, the high
+// layer's wind, the flow), or when the weather has evolved by 1/360 of its time scale (10 s at
+// an hour: its clusters move a 2000th of a tile).
+bool LightVolumeModule::stale(const Key& built, const Key& now, float half_m) const {
+  return built.clouds != now.clouds ||
+         glm::dot(built.light, now.light) < std::cos(glm::radians(0.25f)) ||
+         glm::distance(built.centre_m, now.centre_m) > 0.05f * half_m ||
+         std::abs(now.drift_m - built.drift_m) > 100.0f ||
+         std::abs(now.weather_time - built.weather_time) > 1.0 / 360.0;
+}
+
+void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_key,
+                                double weather_time, bool still, bool needed,
+                                gpu::FrameParams& params) {
+  completed_ = false;
+  first_row_ = rows_ = 0;
+  with_voxels_ = params.voxel_info.x > 0;  // set by VoxelCloudsModule::prepare, which runs first
+  const float half_m = float(scene.quality.light_volume_km) * 1000.0f;
+  if (!needed || half_m <= 0.0f || scene.quality.mode == MarchMode::Baseline) {
+    params.light_volume = glm::vec4(0.0f);
+    read_key_.reset();
+    build_key_.reset();
+    return;
+  }
+  const Key now{clouds_key, glm::vec3(params.sun_dir),
+                glm::vec2(scene.camera.position_m) - glm::vec2(params.wind_offset_m),
+                cloud_relative_drift_m(scene), weather_time};
+  const bool read_stale = !read_key_ || stale(*read_key_, now, half_m);
+  if (read_stale && (still || !read_key_)) {
+    // At once: into the volume not read, which becomes the one read in this frame.
+    build_key_ = now;
+    next_row_ = 0;
+    first_row_ = 0;
+    rows_ = kRows;
+  } else if (read_stale || build_key_) {
+    if (!build_key_ || (read_stale && build_key_->clouds != now.clouds)) {
+      build_key_ = now;  // a new build (one for other clouds is abandoned)
+      next_row_ = 0;
+    }
+    const bool edit = build_key_->clouds != read_key_->clouds;
+    first_row_ = next_row_;
+    rows_ = std::min(rows_per_frame(edit ? kLightVolumeEditFrames : kLightVolumeBuildFrames),
+                     kRows - next_row_);
+  }
+  next_row_ = first_row_ + rows_;
+  if (rows_ > 0 && next_row_ >= kRows) {  // complete this frame: read after its last band
+    read_ = 1 - read_;
+    read_key_ = build_key_;
+    build_key_.reset();
+    next_row_ = 0;
+    completed_ = true;
+  }
+  const gpu::Texture& read = volumes_[read_];
+  const gpu::Texture& built = completed_ ? volumes_[read_] : volumes_[1 - read_];
+  set_.bind_storage_image(gpu::kLightVolumeOut, built);
+  set_.bind_sampled_image(gpu::kLightVolume, read);
+  const Key& target = completed_ ? *read_key_ : build_key_ ? *build_key_ : *read_key_;
+  params.light_volume = glm::vec4(read_key_->centre_m, half_m, 1.0f);
+  params.light_volume_build = glm::vec4(target.centre_m, half_m, 0.0f);
+  params.light_volume_rows = glm::ivec4(first_row_, rows_, 0, 0);
+}
+
+void LightVolumeModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
+  if (rows_ == 0) return;
+  gpu::dispatch(cmd, kernels_.get({with_voxels_ ? 1 : 0}), timer, "light_volume",
+                gpu::LIGHT_VOLUME_XY, uint32_t(rows_), 1, 8, 8, 1);
+}
+
+void LightVolumeModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.import("light_volume", true);  // built over several frames
+  graph.add_pass("light_volume", {"weather_map", "noise", "voxel_clouds", "atmosphere"},
+                 {"light_volume"},
+                 [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
+}
+
+}  // namespace nephele

@@ -1,0 +1,70 @@
+// The light volume module: optical depth towards the key light on a grid in cloud space
+// (light_volume.comp), rebuilt without a hitch. A stale volume keeps being read while its
+// successor is built into a second volume, a band of rows a frame, and the two swap when the
+// successor is complete; only a still image, or the first frame, builds a volume at once.
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <optional>
+#include <string>
+
+#include "gpu/kernel.h"
+#include "gpu/kernel_variants.h"
+#include "nephele/scene.h"
+#include "render/gpu_params.h"
+#include "render/render_module.h"
+
+namespace nephele {
+
+// Frames over which an animation rebuilds the light volume (LIGHT_VOLUME_Z LIGHT_VOLUME_XY
+// rows): on lavapipe a whole volume costs some 200 frames' worth of clouds at 240x160. When
+// the light, the camera or the clouds' drift made it stale, over kLightVolumeBuildFrames
+// (12.8 s at 20 frames/s; the light moves by 0.25 deg in a minute); when the clouds
+// themselves changed (an edit), over kLightVolumeEditFrames, so that the lighting follows
+// the edit within a second.
+constexpr int kLightVolumeBuildFrames = 256;
+constexpr int kLightVolumeEditFrames = 16;
+
+class LightVolumeModule : public RenderModule {
+ public:
+  LightVolumeModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
+
+  // Decides this frame's work and sets params.light_volume (the volume read),
+  // light_volume_build and light_volume_rows (the band built), and the bindings. `clouds_key`
+  // changes with anything that shapes the clouds; `weather_time` is the evolving weather's
+  // (in clouds.weather_evolution_s). `still`: a volume that is stale is rebuilt whole now.
+  // `needed`: false when nothing this frame reads the volume (a clear sky, particle clouds
+  // only, a classical model other than Kajiya's): none is built or read, and the next frame
+  // that needs one builds it at once.
+  void prepare(const Scene& scene, const std::string& clouds_key, double weather_time, bool still,
+               bool needed, gpu::FrameParams& params);
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  // A volume was completed this frame (what the ground's light follows).
+  bool completed() const { return completed_; }
+
+ private:
+  // What a volume is built for.
+  struct Key {
+    std::string clouds;
+    glm::vec3 light{0.0f};
+    glm::vec2 centre_m{0.0f};  // in cloud space
+    float drift_m = 0.0f;      // cloud_relative_drift_m
+    double weather_time = 0.0;
+  };
+  bool stale(const Key& built, const Key& now, float half_m) const;
+
+  gpu::DescriptorSet& set_;
+  gpu::KernelVariants kernels_;  // light_volume.comp's, with or without the voxel clouds
+  bool with_voxels_ = false;     // this frame's variant
+  gpu::Texture volumes_[2];
+  std::optional<Key> read_key_;  // the volume the clouds read, volumes_[read_]
+  int read_ = 0;
+  std::optional<Key> build_key_;  // the volume being built, volumes_[1 - read_]
+  int next_row_ = 0;
+  int first_row_ = 0, rows_ = 0;  // this frame's band
+  bool completed_ = false;
+};
+
+}  // namespace nephele

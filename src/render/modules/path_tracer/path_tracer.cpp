@@ -1,0 +1,56 @@
+#include "render/modules/path_tracer/path_tracer.h"
+
+#include <cstring>
+
+#include "render/gpu_params.h"
+
+namespace nephele {
+
+PathTracerModule::PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+    : ctx_(ctx),
+      set_(set),
+      // Depth 2: a texture of depth 1 is a 2D image, and the shader reads a 3D one.
+      majorant_(ctx, 1, 1, 2, VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
+  set_.bind_sampled_image(gpu::kPathMajorant, majorant_);
+}
+
+void PathTracerModule::upload_majorant(const std::vector<float>& grid) {
+  const uint32_t n = gpu::PATH_GRID_XY, depth = gpu::CLOUD_LAYERS * gpu::PATH_GRID_BINS;
+  if (majorant_.width() != n) {
+    ctx_.wait_queue_idle();
+    majorant_ = gpu::Texture(ctx_, n, n, depth, VK_FORMAT_R32_SFLOAT,
+                             VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    set_.bind_sampled_image(gpu::kPathMajorant, majorant_);
+  }
+  gpu::Buffer staging(ctx_, VkDeviceSize(grid.size() * sizeof(float)),
+                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  std::memcpy(staging.data(), grid.data(), grid.size() * sizeof(float));
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) { majorant_.record_upload(cmd, staging); });
+}
+
+void PathTracerModule::resize(int width, int height) {
+  if (int(sum_.width()) == width && int(sum_.height()) == height) return;
+  for (gpu::Texture* t : {&sum_, &squares_})
+    *t = gpu::Texture(ctx_, uint32_t(width), uint32_t(height), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  set_.bind_storage_image(gpu::kPathSum, sum_);
+  set_.bind_storage_image(gpu::kPathSquares, squares_);
+}
+
+void PathTracerModule::clear(VkCommandBuffer cmd) const {
+  sum_.record_clear(cmd);
+  squares_.record_clear(cmd);
+}
+
+void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet,
+                              MarchMode mode) const {
+  const int baseline = mode == MarchMode::Baseline ? 1 : 0;
+  const int variant = planet ? 1 + baseline : 0;
+  if (!kernels_[variant])
+    kernels_[variant] = std::make_unique<gpu::Kernel>(
+        ctx_, set_, "path_trace.comp.spv", std::vector<int32_t>{planet ? 1 : 0, baseline});
+  gpu::dispatch(cmd, *kernels_[variant], timer, "path_trace", sum_.width(), sum_.height(), 1, 8, 8,
+                1);
+}
+
+}  // namespace nephele
