@@ -1,8 +1,9 @@
 // nephele — the frame graph: passes declare the resources they read and write (by name); the
 // graph orders them, drops those whose results nobody uses, and places a barrier wherever a
 // pass touches what an earlier one wrote (or writes what an earlier one read). A frame, the
-// stills drawn in bands, the sky-cover measurement and the cloud profile each record the same
-// graph, or the part of it that one pass needs (Filament's FrameGraph is the model).
+// stills drawn in bands, the measurements (the sky cover, the cloud profile, the reference:
+// FramePlan::measure) and the film layers each record the same graph, or the part of it that
+// one pass needs (Filament's FrameGraph is the model).
 #pragma once
 
 #include <vulkan/vulkan.h>

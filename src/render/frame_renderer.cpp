@@ -240,27 +240,40 @@ void FrameRenderer::Impl::render_reference_sky(gpu::FrameParams params) {
 Image FrameRenderer::Impl::compose_layer(const Scene& scene, int layer) {
   gpu::FrameParams params = last_params;
   params.display.y = float(layer);
+  // Compose alone over the last frame's layers, and the stars for the sky, which they are in.
+  const FrameGraph graph = frame_graph(scene, params, last_plan);
+  std::vector<std::string> passes{"compose"};
+  if (layer == 1) passes.push_back("stars");
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     state.begin(cmd, last_slot, params);
-    pass_compose(
-        cmd, state,
-        compose_variant(params, scene.atmosphere.model, last_plan.particles, last_plan.media));
-    if (layer == 1) pass_stars(cmd, state);  // the stars are behind the clouds
+    graph.execute(cmd, graph_barrier, passes);
     gpu::frame_end_barrier(cmd, ctx.has_graphics());
   });
   return download(ctx, state.color[last_slot], false);
 }
 
-double FrameRenderer::Impl::measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms) {
+void FrameRenderer::Impl::record_measure(VkCommandBuffer cmd, const FrameGraph& graph,
+                                         const std::string& pass, bool with_needs) const {
+  std::vector<std::string> passes =
+      with_needs ? graph.dependencies_of(pass) : std::vector<std::string>{};
+  passes.push_back(pass);
+  graph.execute(cmd, graph_barrier, passes);
+}
+
+double FrameRenderer::Impl::measure_sky_cover(const Scene& scene, double& ms) {
+  gpu::FrameParams params = last_params;
   params.steps.w = gpu::PROJECTION_SKY_DOME;
   params.cloud_shape.x = 0.0f;  // the detail noise's finest level, as an observer sees it
   params.cloud_grid = glm::ivec4(kSkyDomeSize, kSkyDomeSize, 1, 0);
   params.march_offset = glm::ivec4(0, 0, 0, 1);
   params.cloud_band = glm::ivec4(0);  // the dome's own pixels, whatever window the view was
+  FramePlan plan = last_plan;
+  plan.measure = FramePlan::Measure::kSkyDome;
+  const FrameGraph graph = frame_graph(scene, params, plan);
   clouds.bind_march(true);
-  const auto results = state.run_once(params, [&](VkCommandBuffer cmd) {
-    clouds.record_sky_dome(cmd, *state.timer, mode, params);
-  });
+  // The dome alone: what it reads (the weather map, the light volume) is the last frame's.
+  const auto results = state.run_once(
+      params, [&](VkCommandBuffer cmd) { record_measure(cmd, graph, "sky_dome", false); });
   clouds.bind_march(false);
   ms = 0.0;
   for (const auto& [name, pass_ms] : results) ms += pass_ms;
@@ -278,10 +291,13 @@ CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
   params.cloud_weather.w = 0.5f * scene.clouds.weather_period_m;
   update_noise(scene, params);
   weather.prepare(scene, params);
+  FramePlan plan;
+  plan.volumetric = true;
+  plan.measure = FramePlan::Measure::kCloudProfile;
+  const FrameGraph graph = frame_graph(scene, params, plan);
   clouds.bind_march(true);
   state.run_once(params, [&](VkCommandBuffer cmd) {
-    weather.record(cmd, *state.timer);
-    clouds.record_profile(cmd, *state.timer);
+    record_measure(cmd, graph, "cloud_profile", true);  // the weather map first
   });
   clouds.bind_march(false);
   const Image sums = download(ctx, clouds.dome(), false);

@@ -85,9 +85,13 @@ struct FrameRenderer::Impl {
         &noise,   &atmosphere, &voxel_clouds,  &weather,        &sky_view,  &light_volume, &clouds,
         &terrain, &host_scene, &host_lighting, &classic_clouds, &particles, &light_shafts};
     for (const auto& module : registered) modules.push_back(module.get());
-    modules.insert(modules.end(), {&compose, &post, &display});
+    modules.insert(modules.end(), {&compose, &post, &display, &path_tracer});
     return modules;
   }
+  // Records the pass `pass` of `graph` (built for a measurement: FramePlan::measure), after
+  // the passes it needs when `with_needs`; without, it reads what the last frame left.
+  void record_measure(VkCommandBuffer cmd, const FrameGraph& graph, const std::string& pass,
+                      bool with_needs) const;
 
   void update_atmosphere_luts(const Scene& scene);
   // The brute-force reference sky, tile by tile (one submission each), into state.reference_sky.
@@ -109,7 +113,7 @@ struct FrameRenderer::Impl {
   Frame download_last(const Scene& scene);
   // The clouds pass over the sky dome (after a frame, with its parameters and textures):
   // the share of the observer's upper hemisphere with cloud T < 0.5, and the pass's time.
-  double measure_sky_cover(gpu::FrameParams params, MarchMode mode, double& ms);
+  double measure_sky_cover(const Scene& scene, double& ms);
   // After the last frame completed: compose again over its resolved clouds, writing film layer
   // `layer` (params_inc.glsl, FrameParams::display.y: 1 sky, 2 clouds, 3 depth) into its final
   // image, and read it back. The frame's own image must have been read back before.

@@ -152,6 +152,11 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   // limit is kept to within about a pass and progress is reported often.
   int taken = 0, per_pass = 1;
   bool weather_built = false;
+  FramePlan plan;
+  plan.volumetric = true;
+  plan.measure = FramePlan::Measure::kReference;
+  plan.planet_reference = planet;
+  const FrameGraph graph = frame_graph(scene, params, plan);
   while (taken < spp) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -162,9 +167,9 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     const int n = std::min(per_pass, spp - taken);
     params.path_info = glm::ivec4(taken, n, int(options.seed), max_bounces);
     const auto pass_start = std::chrono::steady_clock::now();
+    // The first pass after what the paths read (the planet's weather map), then alone.
     state.run_once(params, [&](VkCommandBuffer cmd) {
-      if (planet && !weather_built) weather.record(cmd, *state.timer);
-      path_tracer.record(cmd, *state.timer, planet, scene.quality.mode);
+      record_measure(cmd, graph, "path_trace", !weather_built);
     });
     weather_built = true;
     const double pass_s =

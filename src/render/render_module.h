@@ -28,6 +28,14 @@ struct FramePlan {
   bool ground_light = false; // the clouds' light on the ground is measured this frame
   bool particles = false;    // the particle clouds draw their layer
   bool media = false;        // a medium's module (the ground fog) is on: compose draws media
+  // What the graph is built for besides a frame's image: a measurement whose pass the module
+  // that owns it adds as an output; only that pass and what it needs are recorded
+  // (FrameGraph::dependencies_of), so it runs after the same passes, in the same order, as in
+  // a frame. kSkyDome: the clouds over the observer's dome (the sky cover); kCloudProfile: the
+  // clouds' density by altitude; kReference: the path tracer's samples.
+  enum class Measure { kNone, kSkyDome, kCloudProfile, kReference };
+  Measure measure = Measure::kNone;
+  bool planet_reference = true;  // kReference: the planet's scene, else the lab's grid
 };
 
 // What a module's passes see of the frame being recorded.

@@ -184,7 +184,7 @@ FilmLayers Renderer::render_tiles(const Scene& scene, const Tiling& t, bool laye
   stats.cloud_cover_fraction = cloud_cover_fraction(scene, out.frame.clouds);
   if (scene.clouds.model == CloudModel::Nephele) {  // the sky dome, once: the same for every tile
     double ms = 0.0;
-    stats.sky_cover_fraction = f.measure_sky_cover(f.last_params, scene.quality.mode, ms);
+    stats.sky_cover_fraction = f.measure_sky_cover(scene, ms);
     stats.passes.push_back({"sky_dome", ms});
   }
   stats.wall_ms =
@@ -236,7 +236,7 @@ Frame Renderer::render_frame(const Scene& scene, bool still, bool read_back, boo
   }
   if (sky_cover && still && read_back && scene.clouds.model == CloudModel::Nephele) {
     double ms = 0.0;
-    frame.stats.sky_cover_fraction = f.measure_sky_cover(f.last_params, scene.quality.mode, ms);
+    frame.stats.sky_cover_fraction = f.measure_sky_cover(scene, ms);
     frame.stats.passes.push_back({"sky_dome", ms});
   }
   frame.stats.wall_ms =

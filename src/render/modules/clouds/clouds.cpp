@@ -117,6 +117,22 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   // nephele's clouds the gaps pass all the sky's light (a classical model's shadow is its
   // own, in the cloud buffer).
   const MarchMode mode = frame.scene.quality.mode;
+  // The measurements: the profile reads only the density field's sources, the dome the march's.
+  if (frame.plan.measure == FramePlan::Measure::kCloudProfile) {
+    graph.output("cloud_profile");
+    graph.add_pass(
+        "cloud_profile", {"weather_map", "noise", "voxel_clouds"}, {"cloud_profile"},
+        [timer = frame.timer, this](VkCommandBuffer cmd) { record_profile(cmd, timer()); });
+  }
+  if (frame.plan.measure == FramePlan::Measure::kSkyDome) {
+    std::vector<std::string> reads = cloud_field_resources();
+    reads.push_back("atmosphere");
+    graph.output("sky_dome");
+    graph.add_pass("sky_dome", reads, {"sky_dome"},
+                   [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
+                     record_sky_dome(cmd, timer(), mode, *params);
+                   });
+  }
   if (!frame.plan.volumetric)
     graph.add_pass("ground_light", {}, {"ground_light"},
                    [this](VkCommandBuffer cmd) { record_clear_ground_light(cmd); });

@@ -53,4 +53,18 @@ void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool p
                 1);
 }
 
+void PathTracerModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  if (frame.plan.measure != FramePlan::Measure::kReference) return;
+  const bool planet = frame.plan.planet_reference;
+  const MarchMode mode = frame.scene.quality.mode;
+  graph.output("path_sums");
+  graph.add_pass(
+      "path_trace",
+      planet ? std::vector<std::string>{"weather_map", "noise", "voxel_clouds", "atmosphere"}
+             : std::vector<std::string>{"voxel_clouds"},
+      {"path_sums"}, [timer = frame.timer, this, planet, mode](VkCommandBuffer cmd) {
+        record(cmd, timer(), planet, mode);
+      });
+}
+
 }  // namespace nephele

@@ -7,10 +7,11 @@
 
 #include "gpu/kernel.h"
 #include "nephele/scene.h"
+#include "render/render_module.h"
 
 namespace nephele {
 
-class PathTracerModule {
+class PathTracerModule : public RenderModule {
  public:
   PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set);
 
@@ -21,6 +22,9 @@ class PathTracerModule {
   // Adds FrameParams::path_info.y samples to every pixel: of the lab (`planet` false), or of
   // the planet's scene with the noise clouds' field of `mode`.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode) const;
+  // With FramePlan::Measure::kReference: the pass "path_trace" (record), after the passes it
+  // needs (the planet's: the weather map).
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Uploads the noise clouds' majorant grid (path_majorant.h's layout) and binds it.
   void upload_majorant(const std::vector<float>& grid);
