@@ -90,6 +90,29 @@ TEST_F(GroundFogTest, InsideADenseFogTheViewIsEvenAndLit) {
   EXPECT_LT(hi, clear_hi);
 }
 
+// Under a dense fog the ground gets the sun's and the sky's light through it: looking down from
+// 1 m (through a metre of fog) the ground is about half as bright as in the clear, the fog above
+// having scattered its direct light (diffusely, mostly on: a forward-scattering slab of optical
+// depth 8 lets through about half).
+TEST_F(GroundFogTest, UnderADenseFogTheGroundGetsLessLight) {
+  Scene clear = small_default();
+  clear.clouds.coverage = 0.0f;
+  clear.camera.position_m.z = 1.0f;
+  clear.camera.view_dir = glm::vec3(0.0f, 0.05f, -1.0f);
+  clear.camera.fov_deg = 20.0f;
+  Scene fog = clear;
+  fog.ground_fog.visibility_m = 100.0f;  // sigma_t 0.039 / m: 0.04 between the eye and the ground
+  fog.ground_fog.top_m = 200.0f;         // 7.8 above it
+  const nephele::Image a = render(clear).color, b = render(fog).color;
+  double lit_clear = 0.0, lit_fog = 0.0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    lit_clear += nephele::luminance(a.pixels[i]);
+    lit_fog += nephele::luminance(b.pixels[i]);
+  }
+  EXPECT_GT(lit_fog / lit_clear, 0.3);
+  EXPECT_LT(lit_fog / lit_clear, 0.75);
+}
+
 // The stars are behind the fog: inside a dense fog at night they are gone (stars.comp applies
 // the media's transmittance towards the sky), while the same night without fog shows them.
 TEST_F(GroundFogTest, InsideADenseFogTheStarsAreHidden) {

@@ -138,7 +138,15 @@ void main() {
   // the clear blue sky, and a broken field's shadows keep the gaps' blue light. Off the
   // ground ground_sun.a is 0.
   float sky_share = cloud_ground_sky_share(ground_shadow, texelFetch(ground_light, ivec2(0), 0).r);
-  sky = max(sky - (1.0f - sky_share) * ground_sun.a * albedo * frame_ground_sky(), 0.0f);
+  // A medium above the ground (a fog) dims the sun's and the sky's light on it as well.
+  // The ground along the view, 0 for none.
+  float ground_m = max(ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x).x, 0.0f);
+  vec2 ground_media = WITH_MEDIA && ground_m > 0.0f
+                          ? media_surface_light(frame.camera_pos_m.xyz + dir * ground_m)
+                          : vec2(1.0f);
+  sky = max(sky - (1.0f - sky_share * ground_media.y) * ground_sun.a * albedo * frame_ground_sky(),
+            0.0f);
+  ground_sun.rgb *= ground_media.x;
   // The planet hides the part of the sun's disk below the horizon.
   vec3 sun_light = above_horizon
                        ? frame.sun_transmittance.rgb * sun_disk(dir, sun, frame.sun_dir.w)
@@ -184,7 +192,7 @@ void main() {
   // The surface along the view: the terrain or the host's scene, else the ground; 0 for none.
   float surface_m = terrain_m > 0.0f
                         ? terrain_m
-                        : max(ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x).x, 0.0f);
+                        : ground_m;
   // The cirrus sheet: seen from below, over the sky and the discs and behind the volumetric
   // clouds, its light dimmed by the air in front and the air's own light kept; from above,
   // in front of everything.

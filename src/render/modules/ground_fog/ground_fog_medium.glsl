@@ -13,6 +13,17 @@
 
 layout(std140, set = 1, binding = 0) uniform GroundFogBlock { GroundFogGpu ground_fog; };
 
+// The layer of the block (GroundFogModule::prepare).
+GroundFog ground_fog_from_block() {
+  GroundFog f;
+  f.base_m = ground_fog.layer.x;
+  f.top_m = ground_fog.layer.y;
+  f.soft_m = ground_fog.layer.z;
+  f.sigma_t_per_m = ground_fog.layer.w;
+  f.albedo = 1.0f;
+  return f;
+}
+
 // The light scattered towards the eye per unit of sigma_s inside the fog at altitude z, per
 // unit of the key light's illuminance: the sun's beam through the fog above (its phase
 // function forward-peaked, as water droplets' is); the diffuse light of the sun, as a
@@ -43,12 +54,7 @@ vec3 ground_fog_light(GroundFog f, float altitude_m, float mu, float cloud_light
 vec4 ground_fog_layer_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
   if (ground_fog.layer.w <= 0.0f) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
   float radius_m = frame.radii_m.x;
-  GroundFog f;
-  f.base_m = ground_fog.layer.x;
-  f.top_m = ground_fog.layer.y;
-  f.soft_m = ground_fog.layer.z;
-  f.sigma_t_per_m = ground_fog.layer.w;
-  f.albedo = 1.0f;
+  GroundFog f = ground_fog_from_block();
   float length_m = distance_m;
   if (length_m <= 0.0f) {  // the sky: up to where the ray leaves the top's sphere
     vec2 top = ray_sphere(eye, dir, radius_m + f.top_m);
@@ -80,6 +86,20 @@ vec4 ground_fog_keyframes_medium(float distance_m) {
   float far_m = ground_fog.keyframes_range_m.y;
   float mixed = saturate((distance_m - near_m) / max(far_m - near_m, 1e-3f));
   return vec4(ground_fog.keyframes.rgb * mixed, 1.0f - mixed);
+}
+
+// The share of the sun's (x) and the sky's (y) light that reaches a surface at `pos` (planet
+// frame) through the fog above it: the sun's beam scattered on (the fog's droplets scatter
+// forward: a two-stream slab lets through what it does not reflect), the sky's light as a
+// diffuse light through the column above. 1 above the fog and without it.
+vec2 ground_fog_surface_light(vec3 pos) {
+  if (ground_fog.layer.w <= 0.0f) return vec2(1.0f);
+  GroundFog f = ground_fog_from_block();
+  float radius_m = frame.radii_m.x;
+  float z = length(pos) - radius_m;
+  float tau_sun = ground_fog_sun_optical_depth(f, z, ground_fog.sun.w, radius_m);
+  float tau_up = f.sigma_t_per_m * ground_fog_column_above_m(f, z);
+  return vec2(cloud_diffuse_transmittance(tau_sun), cloud_diffuse_transmittance(tau_up));
 }
 
 // The ground fog in front of a layer at `distance_m` (0: the sky): the fog layer in front of

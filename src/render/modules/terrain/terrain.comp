@@ -20,6 +20,7 @@
 const int MARCH_MODE = 0;  // cloud_field_inc.glsl's lookups
 #include "cloud_field_inc.glsl"
 #include "terrain_inc.glsl"
+#include "media_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 // RASTER (specialization constant) 1: the view rays' distances come from the mesh drawn with
@@ -86,6 +87,7 @@ void main() {
              (cos_sun * clouds * self / PI);
   }
   float sky_share = cloud_ground_sky_share(clouds, texelFetch(ground_light, ivec2(0), 0).r);
-  vec3 radiance = albedo * (direct + hemisphere_radiance(n) * sky_share);
+  vec2 media = media_surface_light(p);  // what a fog above lets through, of the sun's and the sky's
+  vec3 radiance = albedo * (direct * media.x + hemisphere_radiance(n) * sky_share * media.y);
   imageStore(terrain_out, pixel, vec4(radiance, t));
 }
