@@ -5,6 +5,8 @@
 #ifndef NEPHELE_PARAMS_INC
 #define NEPHELE_PARAMS_INC
 
+#include "common/push_constants_inc.glsl"
+
 #ifdef __cplusplus
 namespace nephele::gpu {
 using glm::ivec4;
@@ -126,7 +128,6 @@ struct FrameParams {
   vec4 ozone;               // rgb ozone sigma_a at the layer's peak (1/m); w peak altitude (m)
   vec4 sky_model;           // x ozone half width (m), y ground albedo, z SKY_MODEL_*, w Preetham
                             // turbidity
-  ivec4 reference_tile;     // the reference sky's tile: xy its first pixel, z its size (pixels)
   ivec4 sky_options;        // x how multiple scattering reaches view rays (MS_ANGULAR or
                             // MS_ISOTROPIC, atmosphere_lut_inc.glsl); yzw unused
   // Time-of-day keyframes (seed 003; nephele/conditions.h), colours per unit key-light
@@ -138,10 +139,8 @@ struct FrameParams {
   vec4 conditions_fog;       // rgb fog on clouds and ground; w fog far (m)
   vec4 conditions_light;     // rgb the key light on the ground (artist mode); w unused
   vec4 display;              // x exposure (linear scale before the tone map, tonemap.comp);
-                             // y the film layer compose.comp writes: 0 the image, 1 the sky
-                             // behind the clouds, 2 the clouds premultiplied (a = 1 - T),
-                             // 3 the clouds' depth (m); z the tone map (TONEMAP_*,
-                             // output.tonemap)
+                             // y unused (the film layer is compose's push constant,
+                             // DispatchConstants); z the tone map (TONEMAP_*, output.tonemap)
   // The light volume being built (light_volume.comp), a band of its rows each frame while the
   // clouds pass reads the last one completed (light_volume): xy its centre in cloud space (m),
   // z half extent (m); light_volume_rows x its first row, y the rows this frame (a row is one
@@ -162,8 +161,8 @@ struct FrameParams {
   // The rows built this frame: x the LUT's first, y its count (of kSkyViewHeight), z the
   // volume's first, w its count (of AP_SIZE_V).
   ivec4 sky_view_rows;
-  ivec4 cloud_band;  // x the first row of blocks the clouds pass marches (a still in bands);
-                     // zw the image's first pixel in the whole image (a tile's; 0 0)
+  ivec4 cloud_band;  // zw the image's first pixel in the whole image (a tile's; 0 0); xy unused
+                     // (a band's first row is the march's push constant, DispatchConstants)
   ivec4 voxel_info;  // x voxel clouds, y VOXEL_MARCH_*, z VOXEL_SHADOW_*, w unused
   // x the SDF cone's half-angle tangent (the seed's LightTangent), y the distance (m) over
   // which the noise clouds fade in away from a voxel region, z how much the detail noise
@@ -175,7 +174,7 @@ struct FrameParams {
   // majorant (1/m): sigma_t's largest value.
   vec4 path_medium;
   vec4 path_light;  // xyz unit direction towards the sun (planet frame), w its irradiance (W/m^2)
-  // x the first sample of this dispatch, y samples per pixel in it, z the seed, w max_bounces
+  // z the seed, w max_bounces; xy unused (a dispatch's samples are its push constants)
   ivec4 path_info;
   // xyz the camera in the lab's own frame (m: x east, y north, z up, from voxel cloud 0's
   // anchor; the cloud's to_grid rows map that frame, its anchor_m.xyz is not used): small
@@ -295,15 +294,7 @@ struct ParticleGpu {
   vec4 position_radius;  // xyz from the camera (m, the planet frame's axes), w radius (m)
   vec4 shading;          // x the light reaching it (CPU lighting, [0, 1]), y its texture, zw unused
 };
-// Per draw of a raster pass (push constants; gpu/raster.h): the camera it projects with. The
-// frame's camera for the image; for an impostor (render/modules/impostors/impostors.h) a square view from
-// the same eye framing the cloud's bounding sphere.
-struct DrawConstants {
-  vec4 forward;  // xyz unit view direction; w tan(vertical fov / 2)
-  vec4 right;    // xyz unit right vector; w aspect (width / height)
-  vec4 up;       // xyz unit up vector (image up); w unused
-  ivec4 info;    // x the first impostor of an impostor draw (impostor.vert); yzw unused
-};
+// The push constants (DrawConstants, DispatchConstants): common/push_constants_inc.glsl.
 
 // An impostor's quad (impostor.vert): a cloud's image from the atlas, facing the camera.
 struct ImpostorGpu {

@@ -5,8 +5,8 @@
 #include <map>
 #include <vector>
 
+#include "common/push_constants_inc.glsl"  // DrawConstants, DispatchConstants
 #include "gpu/vk_check.h"
-#include "render/gpu_params.h"
 
 namespace nephele::gpu {
 
@@ -314,6 +314,15 @@ void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const
                 (size_z + local_z - 1) / local_z);
   compute_barrier(cmd);
   timer.end(cmd);
+}
+
+void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const std::string& name,
+              uint32_t size_x, uint32_t size_y, uint32_t size_z, uint32_t local_x, uint32_t local_y,
+              uint32_t local_z, const DispatchConstants& constants) {
+  // The range covers every stage (kDrawConstantStages): pushed for all of them, as Vulkan asks.
+  vkCmdPushConstants(cmd, kernel.interface().pipeline_layout(), kDrawConstantStages, 0,
+                     sizeof(constants), &constants);
+  dispatch(cmd, kernel, timer, name, size_x, size_y, size_z, local_x, local_y, local_z);
 }
 
 }  // namespace nephele::gpu

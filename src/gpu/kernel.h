@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/push_constants_inc.glsl"  // DrawConstants, DispatchConstants
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "gpu/shader_interface.h"
@@ -195,5 +196,10 @@ class PassTimer {
 void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const std::string& name,
               uint32_t size_x, uint32_t size_y, uint32_t size_z, uint32_t local_x, uint32_t local_y,
               uint32_t local_z);
+// The same with the dispatch's own values pushed first (DispatchConstants: a shader including
+// dispatch_inc.glsl reads them; it must be dispatched through this).
+void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const std::string& name,
+              uint32_t size_x, uint32_t size_y, uint32_t size_z, uint32_t local_x, uint32_t local_y,
+              uint32_t local_z, const DispatchConstants& constants);
 
 }  // namespace nephele::gpu

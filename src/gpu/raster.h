@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "common/push_constants_inc.glsl"  // DrawConstants, DispatchConstants
 #include "gpu/context.h"
 #include "gpu/kernel.h"
 #include "gpu/resources.h"
-#include "render/gpu_params.h"
 
 namespace nephele::gpu {
 

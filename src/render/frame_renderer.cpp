@@ -186,11 +186,9 @@ std::vector<std::string> FrameRenderer::Impl::march_in_bands(const FrameGraph& g
                       [&](VkCommandBuffer cmd) { graph.execute(cmd, graph_barrier, before); }));
   progress("clouds", 1, bands + 1);
   for (int b = 0; b < bands; ++b) {
-    gpu::FrameParams band = params;
     const int first = block_rows * b / bands, rows = block_rows * (b + 1) / bands - first;
-    band.cloud_band.x = first;
-    keep(state.run_once(band, [&](VkCommandBuffer cmd) {
-      clouds.record_march(cmd, *state.timer, scene.quality.mode, band, rows);
+    keep(state.run_once(params, [&](VkCommandBuffer cmd) {
+      clouds.record_march(cmd, *state.timer, scene.quality.mode, params, rows, first);
     }));
     progress("clouds", b + 2, bands + 1);
   }
@@ -229,19 +227,20 @@ void FrameRenderer::Impl::render_reference_sky(gpu::FrameParams params) {
   double ms = 0.0;
   for (int y = 0; y < state.height; y += gpu::REFERENCE_TILE)
     for (int x = 0; x < state.width; x += gpu::REFERENCE_TILE) {
-      params.reference_tile = glm::ivec4(x, y, gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES);
-      for (const auto& [name, pass_ms] :
-           state.run_once(params, [&](VkCommandBuffer cmd) { pass_reference_sky(cmd, state); }))
+      for (const auto& [name, pass_ms] : state.run_once(params, [&](VkCommandBuffer cmd) {
+             pass_reference_sky(cmd, state, glm::ivec2(x, y));
+           }))
         ms += pass_ms;
     }
   if (verbose) std::fprintf(stderr, "nephele: pass %-12s %8.2f ms\n", "reference", ms);
 }
 
 Image FrameRenderer::Impl::compose_layer(const Scene& scene, int layer) {
-  gpu::FrameParams params = last_params;
-  params.display.y = float(layer);
+  const gpu::FrameParams& params = last_params;
+  FramePlan plan = last_plan;
+  plan.film_layer = layer;
   // Compose alone over the last frame's layers, and the stars for the sky, which they are in.
-  const FrameGraph graph = frame_graph(scene, params, last_plan);
+  const FrameGraph graph = frame_graph(scene, params, plan);
   std::vector<std::string> passes{"compose"};
   if (layer == 1) passes.push_back("stars");
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {

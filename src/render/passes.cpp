@@ -78,18 +78,18 @@ void GpuState::resize_reference_sky(int w, int h) {
   set.bind_image(gpu::kReferenceSkyOut, gpu::kReferenceSky, reference_sky);
 }
 
-void pass_reference_sky(VkCommandBuffer cmd, GpuState& s) {
+void pass_reference_sky(VkCommandBuffer cmd, GpuState& s, glm::ivec2 tile) {
+  const gpu::DispatchConstants constants{glm::ivec4(tile, 0, 0)};
   gpu::dispatch(cmd, s.reference_psi_kernel, *s.timer, "reference_psi", gpu::REFERENCE_TILE,
-                gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES, 4, 4, 4);
+                gpu::REFERENCE_TILE, gpu::REFERENCE_SAMPLES, 4, 4, 4, constants);
   gpu::dispatch(cmd, s.reference_sky_kernel, *s.timer, "reference_sky", gpu::REFERENCE_TILE,
-                gpu::REFERENCE_TILE, 1, 8, 8, 1);
+                gpu::REFERENCE_TILE, 1, 8, 8, 1, constants);
 }
 
-void pass_stars(VkCommandBuffer cmd, GpuState& s) {
-  gpu::dispatch(cmd, s.stars_kernel, *s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1,
-                1);
+void pass_stars(VkCommandBuffer cmd, GpuState& s, int layer) {
+  gpu::dispatch(cmd, s.stars_kernel, *s.timer, "stars", uint32_t(s.star_count), 1, 1, 64, 1, 1,
+                gpu::DispatchConstants{glm::ivec4(layer, 0, 0, 0)});
 }
-
 
 void pass_tonemap(VkCommandBuffer cmd, GpuState& s) {
   gpu::dispatch(cmd, s.tonemap_kernel, *s.timer, "tonemap", uint32_t(s.width),
@@ -118,9 +118,10 @@ std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel mo
           media ? 1 : 0};
 }
 
-void pass_compose(VkCommandBuffer cmd, GpuState& s, const std::vector<int32_t>& variant) {
+void pass_compose(VkCommandBuffer cmd, GpuState& s, const std::vector<int32_t>& variant,
+                  int layer) {
   gpu::dispatch(cmd, s.compose_kernels.get(variant), *s.timer, "compose", uint32_t(s.width),
-                uint32_t(s.height), 1, 8, 8, 1);
+                uint32_t(s.height), 1, 8, 8, 1, gpu::DispatchConstants{glm::ivec4(layer, 0, 0, 0)});
 }
 
 }  // namespace nephele

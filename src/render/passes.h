@@ -70,10 +70,11 @@ struct GpuState {
 // is on (FramePlan::particles, media).
 std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel model, bool particles,
                                      bool media);
-void pass_compose(VkCommandBuffer cmd, GpuState& s, const std::vector<int32_t>& variant);
-// One tile (FrameParams::reference_tile) of the brute-force reference sky.
-void pass_reference_sky(VkCommandBuffer cmd, GpuState& s);
-void pass_stars(VkCommandBuffer cmd, GpuState& s);
+// `layer`: the film layer written (FramePlan::film_layer; 0 the image).
+void pass_compose(VkCommandBuffer cmd, GpuState& s, const std::vector<int32_t>& variant, int layer);
+// The tile of the brute-force reference sky whose first pixel is `tile`.
+void pass_reference_sky(VkCommandBuffer cmd, GpuState& s, glm::ivec2 tile);
+void pass_stars(VkCommandBuffer cmd, GpuState& s, int layer);
 // The display image from the final one: exposure, ACES fit, sRGB.
 void pass_tonemap(VkCommandBuffer cmd, GpuState& s);
 // The exposure meter (meter.comp) of the final image, into s.meter[s.slot].

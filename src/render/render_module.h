@@ -36,6 +36,9 @@ struct FramePlan {
   enum class Measure { kNone, kSkyDome, kCloudProfile, kReference };
   Measure measure = Measure::kNone;
   bool planet_reference = true;  // kReference: the planet's scene, else the lab's grid
+  // The film layer compose writes (render --layers): 0 the image, 1 the sky behind the clouds,
+  // 2 the clouds premultiplied (a = 1 - T), 3 the clouds' depth (m).
+  int film_layer = 0;
 };
 
 // What a module's passes see of the frame being recorded.

@@ -29,6 +29,7 @@ layout(constant_id = 2) const int LIGHTING = -1;
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"
+#include "dispatch_inc.glsl"
 #include "cirrus_inc.glsl"
 #include "air_inc.glsl"
 #include "terrain_inc.glsl"
@@ -83,7 +84,7 @@ void write_sample(ivec2 block, vec3 scattered, float transmittance, float haze, 
 void main() {
   int stride = frame.cloud_grid.z;
   int blocks_x = (frame.cloud_grid.x + stride - 1) / stride;
-  ivec2 block = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, frame.cloud_band.x);
+  ivec2 block = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, dispatch.values.x);
   ivec2 pixel = block * stride + frame.march_offset.xy;
   int width = frame.cloud_grid.x;
   int height = frame.cloud_grid.y;

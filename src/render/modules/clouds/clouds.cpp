@@ -71,10 +71,11 @@ std::vector<int32_t> CloudsModule::march_variant(MarchMode mode, const gpu::Fram
 }
 
 void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
-                                const gpu::FrameParams& params, int rows) {
+                                const gpu::FrameParams& params, int rows, int first_row) {
   const auto blocks = [&](int n) { return uint32_t((n + stride_ - 1) / stride_); };
   gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "clouds", blocks(width_),
-                rows < 0 ? blocks(height_) : uint32_t(rows), 1, 8, 8, 1);
+                rows < 0 ? blocks(height_) : uint32_t(rows), 1, 8, 8, 1,
+                gpu::DispatchConstants{glm::ivec4(first_row, 0, 0, 0)});
 }
 
 void CloudsModule::record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer) {
@@ -100,7 +101,7 @@ void CloudsModule::record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& time
 void CloudsModule::record_sky_dome(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
                                    const gpu::FrameParams& params) {
   gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "sky_dome", kSkyDomeSize,
-                kSkyDomeSize, 1, 8, 8, 1);
+                kSkyDomeSize, 1, 8, 8, 1, gpu::DispatchConstants{glm::ivec4(0)});
 }
 
 void CloudsModule::record_profile(VkCommandBuffer cmd, gpu::PassTimer& timer) {

@@ -37,10 +37,10 @@ class CloudsModule : public RenderModule {
   // clouds.comp's specialization constants for a frame of these parameters: the march mode,
   // whether there are voxel clouds and which light the clouds scatter.
   static std::vector<int32_t> march_variant(MarchMode mode, const gpu::FrameParams& params);
-  // The march of the frame of `params`: every row of blocks, or `rows` of them from
-  // FrameParams::cloud_band.x.
+  // The march of the frame of `params`: every row of blocks, or `rows` of them from row
+  // `first_row` (a band of a still; pushed, DispatchConstants).
   void record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
-                    const gpu::FrameParams& params, int rows = -1);
+                    const gpu::FrameParams& params, int rows = -1, int first_row = 0);
   // The march range and the resolve: the cloud buffer of this frame.
   void record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // Instead of the march and the reconstruction when the scene has no volumetric clouds: this

@@ -9,6 +9,7 @@
 // (sky_reference.comp), which the LUT path is checked against.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
+#include "dispatch_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
 #include "common/sun_disk_inc.glsl"
@@ -224,7 +225,7 @@ void main() {
     vec4 m = media_in_front(eye, dir, surface_m, clouds_diffuse);
     background = background * m.a + m.rgb;
   }
-  // The film layers (frame.display.y, render --layers): everything behind the clouds (sky,
+  // The film layers (dispatch.values.x, render --layers): everything behind the clouds (sky,
   // sun, moon, the ground and the cirrus seen from below), and what lies in front of it,
   // premultiplied: the clouds' light with the haze in front of them, and the cirrus seen from
   // above over both; alpha = 1 - their transmittance. The image is their "over": exactly
@@ -260,7 +261,7 @@ void main() {
     alpha = 1.0f - (1.0f - alpha) * cirrus.a;  // over the clouds and the particles
   }
   vec3 color = front + (1.0f - alpha) * sky_layer;
-  int layer = int(frame.display.y);
+  int layer = dispatch.values.x;
   vec4 out_value = layer == 1   ? vec4(sky_layer, 1.0f)
                    : layer == 2 ? vec4(front, alpha)
                    : layer == 3 ? vec4(depth_m, depth_m, depth_m, 1.0f)

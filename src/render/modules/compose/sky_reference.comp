@@ -4,6 +4,7 @@
 // in place at every step and Psi_ms from pass 1. compose.comp reads the result.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
+#include "dispatch_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
 #include "common/atmosphere_inc.glsl"
@@ -15,7 +16,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 void main() {
   ivec2 id = ivec2(gl_GlobalInvocationID.xy);
   if (id.x >= REFERENCE_TILE || id.y >= REFERENCE_TILE) return;
-  ivec2 pixel = frame.reference_tile.xy + id;
+  ivec2 pixel = dispatch.values.xy + id;
   if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),

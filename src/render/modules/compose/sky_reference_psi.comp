@@ -5,6 +5,7 @@
 // an invocation after 65535; one step takes about 23,000.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
+#include "dispatch_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
 #include "common/atmosphere_inc.glsl"
@@ -16,7 +17,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 void main() {
   ivec3 id = ivec3(gl_GlobalInvocationID);
   if (id.x >= REFERENCE_TILE || id.y >= REFERENCE_TILE || id.z >= REFERENCE_SAMPLES) return;
-  ivec2 pixel = frame.reference_tile.xy + id.xy;
+  ivec2 pixel = dispatch.values.xy + id.xy;
   if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;
   vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
                         frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x),

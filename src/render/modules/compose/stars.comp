@@ -8,6 +8,7 @@
 // below a day sky.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
+#include "dispatch_inc.glsl"
 #include "common/math_inc.glsl"
 #include "frame_atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"
@@ -34,9 +35,9 @@ void main() {
   ivec2 pixel = ivec2(floor(q + 0.5f));
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(width, height)))) return;
   vec3 air = transmittance_to_light(frame_atmosphere(), transmittance_lut, false, eye, dir);
-  // The clouds in front hide it, except in the sky layer (frame.display.y 1: what is behind them).
+  // The clouds in front hide it, except in the sky layer (dispatch.values.x 1: what is behind them).
   vec2 uv = (vec2(pixel) + 0.5f) / vec2(width, height);
-  float cloud = int(frame.display.y) == 1
+  float cloud = dispatch.values.x == 1
                     ? 1.0f
                     : textureLod(clouds_a, uv, 0.0f).a * (1.0f - textureLod(particle_layer, uv, 0.0f).a);
   if (terrain_distance_at(uv) > 0.0f) cloud = 0.0f;  // behind the terrain

@@ -21,6 +21,7 @@ layout(constant_id = 0) const int PLANET = 0;
 layout(constant_id = 1) const int MARCH_MODE = 0;
 
 #include "common/bindings_inc.glsl"
+#include "dispatch_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
 #include "common/sun_disk_inc.glsl"
@@ -338,8 +339,8 @@ void main() {
   vec4 squares = imageLoad(path_squares, pixel);
   uint pixel_key = uint(pixel.y * size.x + pixel.x);
   vec3 eye = PLANET == 1 ? frame.camera_pos_m.xyz : frame.path_eye_m.xyz;
-  for (int k = 0; k < frame.path_info.y; ++k) {
-    uint sample_index = uint(frame.path_info.x + k);
+  for (int k = 0; k < dispatch.values.y; ++k) {
+    uint sample_index = uint(dispatch.values.x + k);
     uint stream = pt_stream(pixel_key, sample_index, uint(frame.path_info.z));
     // A random point in the pixel (box filter).
     float jx = pt_uniform(stream, 0u), jy = pt_uniform(stream, 1u);

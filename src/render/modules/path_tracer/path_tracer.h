@@ -21,7 +21,15 @@ class PathTracerModule : public RenderModule {
   void clear(VkCommandBuffer cmd) const;
   // Adds FrameParams::path_info.y samples to every pixel: of the lab (`planet` false), or of
   // the planet's scene with the noise clouds' field of `mode`.
-  void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode) const;
+  // Adds `samples` samples to every pixel, the first numbered `first_sample`: of the lab
+  // (`planet` false), or of the planet's scene with the noise clouds' field of `mode`.
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode,
+              int first_sample, int samples) const;
+  // The samples the next path_trace pass of the graph adds (record's).
+  void set_samples(int first_sample, int samples) {
+    first_sample_ = first_sample;
+    samples_ = samples;
+  }
   // With FramePlan::Measure::kReference: the pass "path_trace" (record), after the passes it
   // needs (the planet's: the weather map).
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
@@ -40,6 +48,7 @@ class PathTracerModule : public RenderModule {
   mutable std::unique_ptr<gpu::Kernel> kernels_[3];
   gpu::Texture sum_, squares_;
   gpu::Texture majorant_;  // 1 x 1 x 2 texels until a grid is uploaded
+  int first_sample_ = 0, samples_ = 1;
 };
 
 }  // namespace nephele
