@@ -115,7 +115,7 @@ struct FrameRenderer::Impl {
   // the share of the observer's upper hemisphere with cloud T < 0.5, and the pass's time.
   double measure_sky_cover(const Scene& scene, double& ms);
   // After the last frame completed: compose again over its resolved clouds, writing film layer
-  // `layer` (params_inc.glsl, FrameParams::display.y: 1 sky, 2 clouds, 3 depth) into its final
+  // `layer` (FramePlan::film_layer: 1 sky, 2 clouds, 3 depth) into its final
   // image, and read it back. The frame's own image must have been read back before.
   Image compose_layer(const Scene& scene, int layer);
   CloudProfile cloud_profile(const Scene& scene);
