@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "nephele/conditions.h"
 #include "nephele/error.h"
@@ -65,6 +66,47 @@ TEST_F(GroundFogTest, FromAboveItHidesTheGroundAndLeavesTheSky) {
   // to), where the clear ground shows the clouds' shadows.
   EXPECT_LT(hi / lo, 1.35);
   EXPECT_GT(clear_hi / clear_lo, 1.5 * (hi / lo)) << "the fog hides the clouds' shadows";
+}
+
+// A fog sea under broken clouds shows their shadows: where the clear ground is sunlit, the fog
+// above it is brighter than where the ground is shadowed (the ground's shadow stands for the
+// fog's). Lit only by the clouds' mean transmittance it was even (ratio 1.0).
+TEST_F(GroundFogTest, AFogSeaShowsTheCloudsShadows) {
+  Scene clear = nephele::load_preset("broken");
+  clear.output.width = 64;
+  clear.output.height = 48;
+  clear.camera.position_m.z = 700.0f;
+  clear.camera.view_dir = glm::vec3(0.0f, 1.0f, -0.25f);
+  Scene fog = clear;
+  fog.ground_fog.visibility_m = 200.0f;
+  fog.ground_fog.top_m = 400.0f;
+  const nephele::Image a = render(clear).color, b = render(fog).color;
+  // Row by row (one distance each), each pixel against its row's mean: the clear ground sunlit
+  // (above 1.2) or shadowed (below 0.8), and the fog above it. Nearer, under the clouds, the
+  // ground is all in their shadow.
+  double lit = 0.0, shaded = 0.0;
+  int n_lit = 0, n_shaded = 0;
+  for (int y = a.height * 35 / 100; y < a.height * 55 / 100; ++y) {  // the ground 3 to 8 km away
+    double mean_a = 0.0, mean_b = 0.0;
+    for (int x = 0; x < a.width; ++x) {
+      mean_a += nephele::luminance(a.at(x, y)) / a.width;
+      mean_b += nephele::luminance(b.at(x, y)) / a.width;
+    }
+    for (int x = 0; x < a.width; ++x) {
+      const double ground = nephele::luminance(a.at(x, y)) / mean_a;
+      const double over = nephele::luminance(b.at(x, y)) / mean_b;
+      if (ground > 1.2) {
+        lit += over;
+        ++n_lit;
+      } else if (ground < 0.8) {
+        shaded += over;
+        ++n_shaded;
+      }
+    }
+  }
+  ASSERT_GT(n_lit, 20) << "sunlit ground in view";
+  ASSERT_GT(n_shaded, 20);
+  EXPECT_GT((lit / n_lit) / (shaded / n_shaded), 1.2);
 }
 
 // Inside a dense fog the view above the horizon is nearly even (the sky and the clouds fade

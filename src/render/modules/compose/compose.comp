@@ -200,9 +200,12 @@ void main() {
   // A loop of at most one trip rather than a branch: lavapipe runs both sides of a branch, so
   // a sky without cirrus would pay for its lookups.
   vec3 eye = frame.camera_pos_m.xyz;
-  // The clouds' mean diffuse transmittance to the ground around: the share of the light that
-  // reaches the media under them.
+  // The share of the light that reaches the media under the clouds: their mean diffuse
+  // transmittance to the ground around, and where the view meets the ground, at least the
+  // clouds' transmittance to the sun there, so that a fog sea shows the clouds' shadows and is
+  // sunlit in their gaps (the ground's shadow stands for the fog's above it).
   float clouds_diffuse = texelFetch(ground_light, ivec2(0), 0).r;
+  if (ground_m > 0.0f) clouds_diffuse = max(clouds_diffuse, ground_shadow);
   // The media (fog) in front of the clouds: the clouds' light through them, and their own light
   // as far as the clouds cover (premultiplied).
   if (WITH_MEDIA && cloud.a < 1.0f) {
