@@ -95,27 +95,14 @@ TEST_F(ConditionsRenderTest, ArtistSkyIsTheKeyframesSky) {
 
 // Overlay mode: the physical night sky with the keyframes' star visibility on the stars.
 TEST_F(ConditionsRenderTest, StarVisibilityScalesTheStars) {
-  Scene s;
-  s.clouds.coverage = 0.0f;
-  s.output.width = 120;
-  s.output.height = 80;
-  s.time = "2026-12-21T22:00:00Z";  // Paris, a long winter night
-  s.sun.from_time = true;
-  s.location = {48.85f, 2.35f, 0.0f};
-  s.camera.view_dir = {0.0f, 1.0f, 0.6f};
-  s.conditions.mode = ConditionsMode::Overlay;
-  s.conditions.hour = 0.0f;  // the night key exactly
+  const Scene s = starry_night(120, 80);
   const auto stars = [&](float visibility) {
     Scene v = s;
     v.conditions.good.keys[0].set.star_visibility = visibility;
     return render(v).color;
   };
   const nephele::Image none = stars(0.0f), half = stars(0.5f), all = stars(1.0f);
-  double excess_half = 0.0, excess_all = 0.0;
-  for (size_t i = 0; i < none.pixels.size(); ++i) {
-    excess_half += nephele::luminance(half.pixels[i]) - nephele::luminance(none.pixels[i]);
-    excess_all += nephele::luminance(all.pixels[i]) - nephele::luminance(none.pixels[i]);
-  }
+  const double excess_half = luminance_excess(half, none), excess_all = luminance_excess(all, none);
   ASSERT_GT(excess_all, 0.0) << "no stars in view";
   EXPECT_NEAR(excess_half / excess_all, 0.5, 0.02);
 }

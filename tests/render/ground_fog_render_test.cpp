@@ -158,27 +158,14 @@ TEST_F(GroundFogTest, UnderADenseFogTheGroundGetsLessLight) {
 // The stars are behind the fog: inside a dense fog at night they are gone (stars.comp applies
 // the media's transmittance towards the sky), while the same night without fog shows them.
 TEST_F(GroundFogTest, InsideADenseFogTheStarsAreHidden) {
-  Scene s;
-  s.clouds.coverage = 0.0f;
-  s.output.width = 96;
-  s.output.height = 64;
-  s.time = "2026-12-21T22:00:00Z";  // Paris, a long winter night
-  s.sun.from_time = true;
-  s.location = {48.85f, 2.35f, 0.0f};
-  s.camera.view_dir = {0.0f, 1.0f, 0.6f};
-  s.conditions.mode = nephele::ConditionsMode::Overlay;  // for the stars' visibility
-  s.conditions.hour = 0.0f;
+  const Scene s = starry_night(96, 64);
   // The stars' light: the image less the same image with the stars' visibility 0.
   const auto stars = [&](float visibility_m) {
     Scene with = s;
     with.ground_fog.visibility_m = visibility_m;
     Scene without = with;
     without.conditions.good.keys[0].set.star_visibility = 0.0f;
-    const nephele::Image a = render(with).color, b = render(without).color;
-    double excess = 0.0;
-    for (size_t i = 0; i < a.pixels.size(); ++i)
-      excess += nephele::luminance(a.pixels[i]) - nephele::luminance(b.pixels[i]);
-    return excess;
+    return luminance_excess(render(with).color, render(without).color);
   };
   const double clear = stars(0.0f);
   ASSERT_GT(clear, 0.0) << "no stars in view";
