@@ -10,14 +10,16 @@
 #include "common/math_inc.glsl"
 #include "common/clouds_inc.glsl"
 #include "common/light_volume_inc.glsl"
+#ifndef CLOUD_FIELD_VARIANTS
+// An includer that compiles variants declares these specialization constants (and defines
+// CLOUD_FIELD_VARIANTS) before including this file: false leaves the voxel clouds, or the flow
+// map's swirls, out.
+const bool WITH_VOXELS = true;
+const bool WITH_FLOW = true;
+#endif
 #include "voxel_field_inc.glsl"
 #include "noise_density_inc.glsl"
 
-#ifndef CLOUD_FIELD_VARIANTS
-// An includer that compiles variants declares this specialization constant (and defines
-// CLOUD_FIELD_VARIANTS) before including this file: false leaves the voxel clouds out.
-const bool WITH_VOXELS = true;
-#endif
 
 const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 

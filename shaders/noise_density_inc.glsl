@@ -2,8 +2,9 @@
 // coverage, type and density from the weather map, carved by the base noise and eroded by the
 // detail noise. Shared by the passes (through cloud_field_inc.glsl) and by the host's CPU
 // queries (render/cloud_query.cpp), which define what it reads: `frame` (FrameParams), the
-// samplers base_noise, detail_noise, weather_map and curl_noise, and the int MARCH_MODE (0
-// default, 1 the seed's baseline). Written without swizzles, so that it compiles as C++ (glm).
+// samplers base_noise, detail_noise, weather_map and curl_noise, the int MARCH_MODE (0
+// default, 1 the seed's baseline) and the bool WITH_FLOW (false: a variant without the flow
+// map's reads). Written without swizzles, so that it compiles as C++ (glm).
 #ifndef NEPHELE_NOISE_DENSITY_INC
 #define NEPHELE_NOISE_DENSITY_INC
 
@@ -41,8 +42,10 @@ vec2 noise_density_pair(vec3 pos) {
   float altitude_m = radius_m - frame.radii_m.x;
   // The shape noise, moved by the flow map's swirls in two phases half a cycle apart (seed
   // 002, 局部流动效果); without a flow, one phase of weight 1 and no displacement. The flow's
-  // reads are loops with a uniform trip count (0 without a flow), which a CPU device skips.
-  bool flowing = frame.cloud_flow.x > 0.0f;
+  // reads are loops of at most one trip. A CPU device (lavapipe) still runs a loop's body once
+  // when no lane takes a trip, so a scene without a flow runs a variant without them
+  // (WITH_FLOW false): 15% of the clouds pass at 900x600.
+  bool flowing = WITH_FLOW && frame.cloud_flow.x > 0.0f;
   vec2 flow_m = vec2(0.0f);  // the flow's displacement over a whole cycle
   for (int k = 0; k < (flowing ? 1 : 0); ++k)
     flow_m = vec2(textureLod(curl_noise, ground_xy * frame.cloud_flow.w, 0.0f)) *

@@ -98,6 +98,7 @@ thread_local const sampler3D* detail_now = nullptr;
 thread_local const sampler2D* weather_now = nullptr;
 thread_local const sampler2D* curl_now = nullptr;
 constexpr int MARCH_MODE = 0;
+constexpr bool WITH_FLOW = true;
 
 #define frame (*frame_now)
 #define base_noise (*base_now)

@@ -40,11 +40,12 @@ TEST_F(FeatureVariantsTest, EachSceneDrawsWhatTheFullShadersDraw) {
   artist.conditions.mode = nephele::ConditionsMode::Artist;
   artist.conditions.hour = 18.5f;
   artist.cirrus.coverage = 0.4f;
+  artist.clouds.flow_speed_mps = 20.0f;
   // Between them the scenes switch each feature on and off: voxel clouds, either cloud light,
-  // keyframes, shafts, terrain, cirrus and particles.
+  // keyframes, shafts, terrain, cirrus, the flow map and particles.
   const std::pair<std::string, Scene> scenes[] = {{"default", small("default")},
                                                   {"voxel-cumulus, two-stream", voxels},
-                                                  {"mountains, artist, cirrus", artist},
+                                                  {"mountains, artist, cirrus, flow", artist},
                                                   {"particle-cumulus", small("particle-cumulus")}};
   const int messages_before = full_shaders_renderer().validation_messages();
   for (const auto& [name, scene] : scenes) {

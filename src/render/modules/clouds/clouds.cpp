@@ -5,7 +5,7 @@ namespace nephele {
 CloudsModule::CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     : ctx_(ctx),
       set_(set),
-      march_(ctx, set, "clouds.comp.spv", 1, {1, -1}),
+      march_(ctx, set, "clouds.comp.spv", 1, {1, -1, 1}),
       range_(ctx, set, "march_range.comp.spv"),
       resolve_(ctx, set, "resolve.comp.spv"),
       profile_(ctx, set, "cloud_profile.comp.spv"),
@@ -67,7 +67,7 @@ std::vector<int32_t> CloudsModule::march_variant(MarchMode mode, const gpu::Fram
   // Each feature where clouds.comp would find it in the parameters, so that a variant draws
   // what the full shader draws.
   return {mode == MarchMode::Baseline ? 1 : 0, params.voxel_info.x > 0 ? 1 : 0,
-          params.cloud_phase.w > 0.5f ? 1 : 0};
+          params.cloud_phase.w > 0.5f ? 1 : 0, params.cloud_flow.x > 0.0f ? 1 : 0};
 }
 
 void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,

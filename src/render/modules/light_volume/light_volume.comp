@@ -8,8 +8,10 @@
 #extension GL_GOOGLE_include_directive : require
 
 const int MARCH_MODE = 0;
-// False compiles the voxel clouds' code out (LightVolumeModule, from FrameParams::voxel_info.x).
+// False compiles the voxel clouds' code out (LightVolumeModule, from FrameParams::voxel_info.x),
+// or the flow map's reads (from FrameParams::cloud_flow.x).
 layout(constant_id = 0) const bool WITH_VOXELS = true;
+layout(constant_id = 1) const bool WITH_FLOW = true;
 #define CLOUD_FIELD_VARIANTS
 layout(local_size_x = 8, local_size_y = 8) in;
 

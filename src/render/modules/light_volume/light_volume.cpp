@@ -17,7 +17,7 @@ constexpr int rows_per_frame(int frames) {
 }  // namespace
 
 LightVolumeModule::LightVolumeModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : set_(set), kernels_(ctx, set, "light_volume.comp.spv", 0, {1}) {
+    : set_(set), kernels_(ctx, set, "light_volume.comp.spv", 0, {1, 1}) {
   for (gpu::Texture& v : volumes_)
     v = gpu::Texture(ctx, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
                      VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
@@ -43,6 +43,7 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
   completed_ = false;
   first_row_ = rows_ = 0;
   with_voxels_ = params.voxel_info.x > 0;  // set by VoxelCloudsModule::prepare, which runs first
+  with_flow_ = params.cloud_flow.x > 0.0f;
   const float half_m = float(scene.quality.light_volume_km) * 1000.0f;
   if (!needed || half_m <= 0.0f || scene.quality.mode == MarchMode::Baseline) {
     params.light_volume = glm::vec4(0.0f);
@@ -90,8 +91,8 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
 
 void LightVolumeModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (rows_ == 0) return;
-  gpu::dispatch(cmd, kernels_.get({with_voxels_ ? 1 : 0}), timer, "light_volume",
-                gpu::LIGHT_VOLUME_XY, uint32_t(rows_), 1, 8, 8, 1);
+  gpu::dispatch(cmd, kernels_.get({with_voxels_ ? 1 : 0, with_flow_ ? 1 : 0}), timer,
+                "light_volume", gpu::LIGHT_VOLUME_XY, uint32_t(rows_), 1, 8, 8, 1);
 }
 
 void LightVolumeModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

@@ -57,7 +57,8 @@ class LightVolumeModule : public RenderModule {
 
   gpu::DescriptorSet& set_;
   gpu::KernelVariants kernels_;  // light_volume.comp's, with or without the voxel clouds
-  bool with_voxels_ = false;     // this frame's variant
+  bool with_voxels_ = false;     // this frame's variant: voxel clouds, the flow map
+  bool with_flow_ = false;
   gpu::Texture volumes_[2];
   std::optional<Key> read_key_;  // the volume the clouds read, volumes_[read_]
   int read_ = 0;
