@@ -161,8 +161,8 @@ float depth_behind(vec3 pos, vec3 sun) {
 // Optical depth (density field x m) of the clouds towards the sun from `base`, a point at the
 // bottom of the cloud shell: from the light volume if `from_volume`, else `samples` samples of
 // the full density over the light ray (coarser sampling turns thin wisps into deep shadow). A
-// loop with a per-lane trip count, not a branch: a CPU device executes both sides of a
-// branch, but ends a loop once no lane has iterations left.
+// loop with a per-lane trip count: a CPU device (lavapipe) ends it once no lane has iterations
+// left, but runs its body once even when no lane takes a trip.
 float depth_towards_sun(vec3 base, vec3 sun, bool from_volume, int samples) {
   float depth = from_volume ? light_volume_lookup(base) : 0.0f;
   int n = from_volume ? 0 : samples;

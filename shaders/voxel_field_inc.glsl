@@ -46,7 +46,7 @@ float voxel_surface_erosion(float density, float sdf_voxels, vec3 u, float voxel
   float skin = saturate(1.0f + sdf_voxels / 3.0f);  // 1 at the surface, 0 three voxels in
   float eroded = density;
   // Deeper than the skin, or where there is no cloud, erosion changes nothing: a loop of one
-  // trip or none, which a CPU device skips when no lane of the batch needs the noise.
+  // trip or none (a CPU device, lavapipe, still runs its body once when no lane needs it).
   for (int k = 0; k < (skin > 0.0f && density > 0.0f ? 1 : 0); ++k) {
     float frequency = frame.cloud_noise.y * frame.voxel_light.w;
     float footprint_texels = distance(p, frame.camera_pos_m.xyz) * frame.cloud_shape.x *
@@ -65,9 +65,9 @@ VoxelSample voxel_field(vec3 p) {
     vec3 u = voxel_grid_coord(c, p);
     float box = voxel_box_distance(u, c.dims.xyz);
     vec2 v = vec2(0.0f, box);
-    // A loop of one trip or none, not a branch: a CPU device (lavapipe) runs both sides of a
-    // branch for every lane, but skips a loop that no lane enters, so a cloud whose box no lane
-    // of the batch is in costs no texture reads.
+    // A loop of one trip or none. A CPU device (lavapipe, Mesa 22.3) runs both sides of a
+    // branch for every lane, and this body once even when no lane of the batch is in the box:
+    // each voxel cloud costs its texture reads at every sample.
     for (int k = 0; k < (box <= 0.0f ? 1 : 0); ++k) {
       v = voxel_lookup(c, u);
       v.x = voxel_surface_erosion(v.x, v.y, u, c.dims.w, p);

@@ -74,8 +74,8 @@ vec4 pt_walk(vec3 p, vec3 d, float t, vec2 segment, float u) {
   float step = segment.x > 0.0f ? -log(1.0f - u) / segment.x : 1e30f;
   bool crossing = t + step >= segment.y;
   t = crossing ? segment.y : t + step;
-  // The next segment as a loop of one trip or none: a CPU device runs both sides of a branch
-  // for every lane, but skips a loop no lane enters (most draws cross no edge).
+  // The next segment as a loop of one trip or none. A CPU device (lavapipe) runs a branch's
+  // both sides for every lane, and such a loop's body once even when no lane enters it.
   for (int k = 0; k < (crossing ? 1 : 0); ++k) segment = pt_majorant_segment(p, d, t);
   return vec4(t, crossing ? 0.0f : 1.0f, segment);
 }

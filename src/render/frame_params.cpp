@@ -1,12 +1,14 @@
 #include "render/frame_params.h"
-#include "nephele/exposure.h"
-#include "nephele/image.h"
-#include "nephele/sky.h"
-#include "sky/stars.h"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
+
+#include "nephele/exposure.h"
+#include "nephele/image.h"
+#include "nephele/scene_io.h"
+#include "nephele/sky.h"
+#include "sky/stars.h"
 
 namespace nephele {
 
@@ -526,6 +528,15 @@ SkyViewKey sky_view_key(const gpu::FrameParams& f) {
           .sky_options = f.sky_options,
           .radii_m = glm::vec2(f.radii_m),
           .samples = f.steps.z};
+}
+
+std::string history_key(Scene scene) {
+  scene.camera = CameraParams{};
+  scene.sun = SunParams{};
+  scene.time_s = 0.0f;
+  scene.output.ev100 = 0.0f;  // the exposure does not touch the HDR image
+  scene.output.auto_exposure = false;
+  return scene_to_toml(scene);
 }
 
 }  // namespace nephele

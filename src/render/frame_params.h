@@ -127,6 +127,10 @@ struct ImageWindow {
 gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const SkyLights& lights,
                                    const AtmosphereTables& tables,
                                    const ImageWindow* window = nullptr);
+// Everything but the camera, the time and the sun (the scene as TOML): when it changes, a
+// frame's history is stale.
+std::string history_key(Scene scene);
+
 inline gpu::FrameParams make_frame_params(const Scene& scene, int frame_index) {
   return make_frame_params(scene, frame_index, sky_lights(scene), compute_atmosphere_tables(scene));
 }

@@ -69,33 +69,6 @@ glm::ivec2 march_offset(int stride, long long k) {
   return {0, 0};
 }
 
-// Everything but the camera, the time and the sun: when it changes, the history is stale.
-std::string history_key(Scene scene) {
-  scene.camera = CameraParams{};
-  scene.sun = SunParams{};
-  scene.time_s = 0.0f;
-  scene.output.ev100 = 0.0f;  // the exposure does not touch the HDR image
-  scene.output.auto_exposure = false;
-  return scene_to_toml(scene);
-}
-
-// What shapes the clouds' density, for the light volume: the history's key less the image's
-// size (the viewer's dynamic resolution changes it every few frames, and each change restarted
-// the volume's build, 16 frames of 140 ms bands on lavapipe), how the view rays are marched
-// and how their samples are lit.
-std::string density_key(Scene scene) {
-  const QualityParams shipped;
-  scene.output = OutputParams{};
-  scene.quality.primary_steps = shipped.primary_steps;
-  scene.quality.light_steps = shipped.light_steps;
-  scene.quality.march_stride = shipped.march_stride;
-  scene.quality.cloud_downsample = shipped.cloud_downsample;
-  scene.quality.voxel_march = shipped.voxel_march;
-  scene.quality.voxel_shadow = shipped.voxel_shadow;
-  scene.quality.sdf_light_tangent = shipped.sdf_light_tangent;
-  return history_key(scene);
-}
-
 // The camera's side of the cloud layer: -1 below, 0 inside, 1 above.
 int layer_side(const Scene& scene) {
   const float z = scene.camera.position_m.z;
@@ -482,48 +455,25 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
   params.cloud_shape.x = 2.0f * params.camera_pos_m.w / float(cloud_h);  // detail noise's LOD
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
-  voxel_clouds.prepare(scene, params);
-  if (lab) params.voxel_light.z = 0.0f;  // the grid as the file has it: no surface erosion
-  // What reads files or may still refuse the frame (a terrain mesh that does not parse,
-  // particles on a queue without graphics) comes before the modules that advance their builds
-  // for this frame (weather, light volume, sky view), so that a refused frame leaves them as
-  // they were. The weather's map file is read before it advances.
-  const bool host = host_scene.prepare(options.host_scene, params);
-  terrain.prepare(scene, s.width, s.height, host, params);
-  particles.prepare(scene, slot, s.width, s.height, still, params);
-  weather.prepare(scene, params);
   // A classical model (seed 004) draws instead of the march; a sky without volumetric clouds
-  // (clear, or particle clouds only) skips it. Only the march and Kajiya's model read the
-  // light volume.
-  const bool classic = scene.clouds.model != CloudModel::Nephele;
-  const bool volumetric =
-      !classic && (scene.clouds.coverage > 0.0f || scene.high_clouds.coverage > 0.0f ||
-                   !scene.voxel_clouds.empty());
-  light_volume.prepare(scene, density_key(scene), WeatherModule::weather_time(scene), still,
-                       volumetric || scene.clouds.model == CloudModel::Kajiya, params);
-  sky_view.prepare(still, params);
+  // (clear, or particle clouds only) skips it.
+  FramePlan plan;
+  plan.classic = scene.clouds.model != CloudModel::Nephele;
+  plan.volumetric =
+      !plan.classic && (scene.clouds.coverage > 0.0f || scene.high_clouds.coverage > 0.0f ||
+                        !scene.voxel_clouds.empty());
+  plan.display = options.display;
+  FramePrepare prepare{scene, params, slot, still, s.width, s.height, &options, &lights};
+  for (RenderModule* module : prepare_order()) module->prepare(prepare, plan);
+  if (lab) params.voxel_light.z = 0.0f;  // the grid as the file has it: no surface erosion
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);
-  classic_clouds.prepare(scene, params);
-  const bool post_processed = post.prepare(scene, s.width, s.height, params);
-  const bool shafts = light_shafts.prepare(scene, s.width, s.height);
-  const bool lighting = host_lighting.prepare(options.lighting, scene, lights, slot, params);
-  clouds.swap_history();
-
-  FramePlan plan;
-  plan.volumetric = volumetric;
-  plan.classic = classic;
-  plan.shafts = shafts;
-  plan.post = post_processed;
-  plan.display = options.display;
-  plan.particles = particles.active();
-  for (const auto& module : registered) module->prepare({scene, params, slot, still}, plan);
   plan.ground_light = light_volume.completed() || params.light_volume.w == 0.0f;
   const FrameGraph graph = frame_graph(scene, params, plan);
   if (verbose && frames_recorded == 0)
     std::fprintf(stderr, "nephele: frame graph\n%s", graph.describe().c_str());
   // Bands are submitted now, before the host's commands that draw its scene.
-  const bool in_bands = still && progress && volumetric && !host;
+  const bool in_bands = still && progress && plan.volumetric && !plan.host_scene;
   band_timings.clear();
   std::vector<std::string> passes;
   if (in_bands) passes = march_in_bands(graph, scene, params);
@@ -541,10 +491,24 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   last_params = params;
   last_plan = plan;
 
+  FrameStats stats = frame_stats(scene, lights);
+  stats.wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (const PassTiming& p : band_timings) {
+    stats.passes.push_back(p);
+    stats.frame_ms += p.ms;
+  }
+  pending[slot] = std::move(stats);
+  ++frames_recorded;
+  last_slot = slot;
+  return frame_images(slot, plan.host_lighting);
+}
+
+FrameStats FrameRenderer::Impl::frame_stats(const Scene& scene, const SkyLights& lights) const {
   FrameStats stats;
   stats.device = ctx.device_name();
-  stats.width = s.width;
-  stats.height = s.height;
+  stats.width = state.width;
+  stats.height = state.height;
   stats.ephemeris = lights.ephemeris;
   stats.voxel_clouds = voxel_clouds.memory();
   stats.voxel_bytes = scene.voxel_clouds.empty() ? 0 : voxel_clouds.device_bytes();
@@ -556,15 +520,11 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     const SunAngles angles = sun_angles_from_direction(sun);
     stats.sun = {angles.elevation_deg, angles.azimuth_deg, 0.0, sun};
   }
-  stats.wall_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  for (const PassTiming& p : band_timings) {
-    stats.passes.push_back(p);
-    stats.frame_ms += p.ms;
-  }
-  pending[slot] = std::move(stats);
-  ++frames_recorded;
-  last_slot = slot;
+  return stats;
+}
+
+FrameImages FrameRenderer::Impl::frame_images(int slot, bool host_lighting_images) const {
+  const GpuState& s = state;
   FrameImages images{slot,
                      uint32_t(s.width),
                      uint32_t(s.height),
@@ -572,7 +532,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
                      s.color[slot].view(),
                      s.display[slot].image(),
                      s.display[slot].view()};
-  if (lighting) {
+  if (host_lighting_images) {
     images.cloud_shadow = host_lighting.shadow_map().image();
     images.cloud_shadow_view = host_lighting.shadow_map().view();
     images.world_to_cloud_shadow = host_lighting.world_to_shadow_map();

@@ -88,6 +88,19 @@ struct FrameRenderer::Impl {
     modules.insert(modules.end(), {&compose, &post, &display, &path_tracer});
     return modules;
   }
+  // The order of the modules' prepare (RenderModule::prepare): the voxel clouds first (they
+  // widen the cloud shell); what reads files or may still refuse the frame (the host's scene,
+  // a terrain mesh that does not parse, particles on a queue without graphics) before the
+  // modules that advance their builds for this frame (weather, light volume, sky view), so that
+  // a refused frame leaves them as they were; the weather's map file is read before it
+  // advances. The clouds' history swaps last.
+  std::vector<RenderModule*> prepare_order() {
+    std::vector<RenderModule*> modules{
+        &voxel_clouds, &host_scene,     &terrain, &particles,    &weather,       &light_volume,
+        &sky_view,     &classic_clouds, &post,    &light_shafts, &host_lighting, &clouds};
+    for (const auto& module : registered) modules.push_back(module.get());
+    return modules;
+  }
   // Records the pass `pass` of `graph` (built for a measurement: FramePlan::measure), after
   // the passes it needs when `with_needs`; without, it reads what the last frame left.
   void record_measure(VkCommandBuffer cmd, const FrameGraph& graph, const std::string& pass,
@@ -98,6 +111,10 @@ struct FrameRenderer::Impl {
   void render_reference_sky(gpu::FrameParams params);
 
   FrameImages record_frame(VkCommandBuffer cmd, const Scene& scene, const FrameOptions& options);
+  // What record_frame reports of the frame it recorded (the timings come with collect), and
+  // hands the host: the images of `slot`, with the host's lighting when it asked for it.
+  FrameStats frame_stats(const Scene& scene, const SkyLights& lights) const;
+  FrameImages frame_images(int slot, bool host_lighting_images) const;
   // The frame's passes as its modules declare them (render_module.h), compiled: the order, the
   // barriers and the part the march needs come from the graph (frame_graph.h).
   FrameGraph frame_graph(const Scene& scene, const gpu::FrameParams& params, const FramePlan& plan);

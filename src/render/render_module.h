@@ -18,10 +18,15 @@
 
 namespace nephele {
 
+struct FrameOptions;
+struct SkyLights;
+
 // What a frame draws, decided from the scene and the modules' prepare.
 struct FramePlan {
   bool volumetric = false;   // nephele's clouds are marched
   bool classic = false;      // a classical model (seed 004) draws the cloud layer instead
+  bool host_scene = false;   // the host's geometry is drawn (FrameOptions::host_scene)
+  bool host_lighting = false;  // the host's light is computed (FrameOptions::lighting)
   bool shafts = false;       // volumetric light shafts
   bool post = false;         // screen-space god rays, bloom and glare
   bool display = false;      // the display image (tonemap) is wanted
@@ -60,16 +65,22 @@ inline std::vector<std::string> cloud_field_resources() {
 // What a module sees of the frame before the graph is built.
 struct FramePrepare {
   const Scene& scene;
-  const gpu::FrameParams& params;
+  gpu::FrameParams& params;  // the frame's block: each module fills its own part
   int slot;    // the frame slot recorded: a module keeps per-slot copies of what frames read
   bool still;  // a still image (every pixel marched), not a frame of a sequence
+  int width = 0, height = 0;              // the image's size (pixels)
+  const FrameOptions* options = nullptr;  // the host's scene and light, if any
+  const SkyLights* lights = nullptr;      // the frame's ephemeris and key light
 };
 
 class RenderModule {
  public:
   virtual ~RenderModule() = default;
-  // Before the graph is built: updates what the module keeps for this frame (its uniform
-  // blocks, the images it rebuilds) and says what the frame draws with it (`plan`).
+  // Before the graph is built, in the frame's prepare order (FrameRenderer::Impl::
+  // prepare_modules): updates what the module keeps for this frame (its uniform blocks, its
+  // part of the frame's parameters, the images it rebuilds) and says what the frame draws
+  // with it (`plan`). May refuse the frame (InputError) only before any module that advances
+  // a build has run: the order puts those that read files first.
   virtual void prepare(const FramePrepare&, FramePlan&) {}
   // Declares what the module keeps (FrameGraph::import, output) and adds this frame's passes.
   virtual void add_passes(FrameGraph& graph, const FrameSetup& frame) = 0;

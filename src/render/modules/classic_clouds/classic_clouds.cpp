@@ -78,4 +78,8 @@ void ClassicCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame)
                  });
 }
 
+void ClassicCloudsModule::prepare(const FramePrepare& frame, FramePlan&) {
+  prepare(frame.scene, frame.params);
+}
+
 }  // namespace nephele

@@ -25,6 +25,8 @@ class ClassicCloudsModule : public RenderModule {
   // Fills params.classic_*: the scene's [classic] values in the shader's terms (and, when the
   // scene draws Nishita's metaballs, makes them).
   void prepare(const Scene& scene, gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   // One thread per pixel of the width x height cloud buffer bound as clouds_a_out / _b_out.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, CloudModel model, int width, int height);
 

@@ -159,4 +159,8 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   }
 }
 
+void CloudsModule::prepare(const FramePrepare&, FramePlan&) {
+  swap_history();
+}
+
 }  // namespace nephele

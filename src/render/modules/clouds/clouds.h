@@ -30,6 +30,8 @@ class CloudsModule : public RenderModule {
   bool resize(int width, int height);
   // The cloud buffer just written becomes the history of the next frame.
   void swap_history();
+  // The contract's (render_module.h): swaps the history.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   // Points the march's outputs at the sky dome's images (true) or the marched samples.
   void bind_march(bool sky_dome);
   void set_stride(int stride) { stride_ = stride; }

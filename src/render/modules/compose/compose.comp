@@ -197,8 +197,9 @@ void main() {
   // The cirrus sheet: seen from below, over the sky and the discs and behind the volumetric
   // clouds, its light dimmed by the air in front and the air's own light kept; from above,
   // in front of everything.
-  // A loop of at most one trip rather than a branch: lavapipe runs both sides of a branch, so
-  // a sky without cirrus would pay for its lookups.
+  // Lavapipe runs both sides of a branch, and a loop's body once even when no lane takes a
+  // trip (measured: four lookups in a loop no lane entered cost compose 38%): only the
+  // variant without cirrus (WITH_CIRRUS false) saves a sky without it the lookups.
   vec3 eye = frame.camera_pos_m.xyz;
   // The share of the light that reaches the media under the clouds: their mean diffuse
   // transmittance to the ground around, and where the view meets the ground, at least the
@@ -241,7 +242,7 @@ void main() {
   // The particle clouds (particles.vert) in depth order with the volumetric ones: both
   // premultiplied, the nearer over the farther, at their opacity-weighted distances; the air in
   // front of the particles scatters as in front of the clouds. A loop of at most one trip, as
-  // the cirrus' below.
+  // the cirrus' below, whose cost only the variant without particles saves.
   vec2 pixel_uv = (vec2(pixel) + 0.5f) / vec2(width, height);
   vec4 particles = WITH_PARTICLES ? textureLod(particle_layer, pixel_uv, 0.0f) : vec4(0.0f);
   for (int i = 0; i < (particles.a > 1e-4f ? 1 : 0); ++i) {

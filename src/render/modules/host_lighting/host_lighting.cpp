@@ -194,4 +194,10 @@ void HostLightingModule::add_passes(FrameGraph& graph, const FrameSetup& frame) 
         [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
+void HostLightingModule::prepare(const FramePrepare& frame, FramePlan& plan) {
+  plan.host_lighting =
+      frame.options && frame.lights &&
+      prepare(frame.options->lighting, frame.scene, *frame.lights, frame.slot, frame.params);
+}
+
 }  // namespace nephele

@@ -43,6 +43,8 @@ class HostLightingModule : public RenderModule {
   // environment, binds the slot's buffer and fills params.host_shadow_*. False when not enabled.
   bool prepare(const HostLightingOptions& options, const Scene& scene, const SkyLights& lights,
                int slot, gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   // The two passes; after the light volume, the sky view and the ground light.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // The lighting of the frame recorded in `slot`, once it completed; empty when that frame did

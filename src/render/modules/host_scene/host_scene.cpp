@@ -164,4 +164,8 @@ void HostSceneModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
                    [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
+void HostSceneModule::prepare(const FramePrepare& frame, FramePlan& plan) {
+  plan.host_scene = prepare(frame.options ? frame.options->host_scene : nullptr, frame.params);
+}
+
 }  // namespace nephele

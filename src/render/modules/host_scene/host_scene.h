@@ -27,6 +27,8 @@ class HostSceneModule : public RenderModule {
   // Sizes the texel buffer for `host` (valid: host_scene_problem) and fills params.host_*;
   // false without a host scene (params.host_scene.x stays 0).
   bool prepare(const HostScene* host, gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   // The copies of the host's images and host_scene.comp; after the terrain's pass.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
 

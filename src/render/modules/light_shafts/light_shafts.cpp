@@ -37,4 +37,8 @@ void LightShaftsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
+void LightShaftsModule::prepare(const FramePrepare& frame, FramePlan& plan) {
+  plan.shafts = prepare(frame.scene, frame.width, frame.height);
+}
+
 }  // namespace nephele

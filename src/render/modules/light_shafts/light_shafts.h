@@ -21,6 +21,8 @@ class LightShaftsModule : public RenderModule {
 
   // Sizes the shafts' image for a width x height frame; false when the scene has none.
   bool prepare(const Scene& scene, int width, int height);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
 
  private:

@@ -6,10 +6,28 @@
 #include <glm/trigonometric.hpp>
 
 #include "render/frame_params.h"
+#include "render/modules/weather/weather.h"
 
 namespace nephele {
 
 namespace {
+
+// What shapes the clouds' density, for the light volume: the history's key less the image's
+// size (the viewer's dynamic resolution changes it every few frames, and each change restarted
+// the volume's build, 16 frames of 140 ms bands on lavapipe), how the view rays are marched
+// and how their samples are lit.
+std::string density_key(Scene scene) {
+  const QualityParams shipped;
+  scene.output = OutputParams{};
+  scene.quality.primary_steps = shipped.primary_steps;
+  scene.quality.light_steps = shipped.light_steps;
+  scene.quality.march_stride = shipped.march_stride;
+  scene.quality.cloud_downsample = shipped.cloud_downsample;
+  scene.quality.voxel_march = shipped.voxel_march;
+  scene.quality.voxel_shadow = shipped.voxel_shadow;
+  scene.quality.sdf_light_tangent = shipped.sdf_light_tangent;
+  return history_key(scene);
+}
 constexpr int kRows = gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_Z;
 constexpr int rows_per_frame(int frames) {
   return (kRows + frames - 1) / frames;
@@ -100,6 +118,13 @@ void LightVolumeModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   graph.add_pass("light_volume", {"weather_map", "noise", "voxel_clouds", "atmosphere"},
                  {"light_volume"},
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
+}
+
+void LightVolumeModule::prepare(const FramePrepare& frame, FramePlan& plan) {
+  // Only the march and Kajiya's model read the light volume.
+  prepare(frame.scene, density_key(frame.scene), WeatherModule::weather_time(frame.scene),
+          frame.still, plan.volumetric || frame.scene.clouds.model == CloudModel::Kajiya,
+          frame.params);
 }
 
 }  // namespace nephele

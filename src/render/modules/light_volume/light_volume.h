@@ -40,6 +40,8 @@ class LightVolumeModule : public RenderModule {
   // that needs one builds it at once.
   void prepare(const Scene& scene, const std::string& clouds_key, double weather_time, bool still,
                bool needed, gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // A volume was completed this frame (what the ground's light follows).
   bool completed() const { return completed_; }

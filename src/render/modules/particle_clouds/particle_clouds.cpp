@@ -260,4 +260,9 @@ void ParticleCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
+void ParticleCloudsModule::prepare(const FramePrepare& frame, FramePlan& plan) {
+  prepare(frame.scene, frame.slot, frame.width, frame.height, frame.still, frame.params);
+  plan.particles = active();
+}
+
 }  // namespace nephele

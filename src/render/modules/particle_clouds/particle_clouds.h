@@ -47,6 +47,8 @@ class ParticleCloudsModule : public RenderModule {
   // and the device's queue cannot draw.
   void prepare(const Scene& scene, int slot, int width, int height, bool still,
                gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   // Draws the particles prepared (or only clears the layers: none, or no particle clouds).
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // Whether this frame draws particles (prepare decided; else the layer is clear).

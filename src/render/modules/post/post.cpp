@@ -66,4 +66,8 @@ void PostModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
+void PostModule::prepare(const FramePrepare& frame, FramePlan& plan) {
+  plan.post = prepare(frame.scene, frame.width, frame.height, frame.params);
+}
+
 }  // namespace nephele

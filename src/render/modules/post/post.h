@@ -27,6 +27,8 @@ class PostModule : public RenderModule {
   // Fills params.bloom for a width x height image and sizes the scratch image; false when the
   // scene has no post-processing (nothing to record).
   bool prepare(const Scene& scene, int width, int height, gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   // God rays and bloom over the image prepare() sized for.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
 

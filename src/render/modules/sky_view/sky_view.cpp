@@ -89,4 +89,8 @@ void SkyViewModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
+void SkyViewModule::prepare(const FramePrepare& frame, FramePlan&) {
+  prepare(frame.still, frame.params);
+}
+
 }  // namespace nephele

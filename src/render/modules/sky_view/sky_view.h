@@ -33,6 +33,8 @@ class SkyViewModule : public RenderModule {
   // Decides this frame's work; sets params.sky_view_up/forward (the pair read) and
   // sky_view_build_up/forward (the pair built), and the bindings.
   void prepare(bool still, gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // The table the frames read (its sky rows, then its ground rows).
   const gpu::Texture& lut() const { return luts_[read_index_]; }

@@ -161,4 +161,8 @@ void TerrainModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
         {"terrain"}, [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
+void TerrainModule::prepare(const FramePrepare& frame, FramePlan& plan) {
+  prepare(frame.scene, frame.width, frame.height, plan.host_scene, frame.params);
+}
+
 }  // namespace nephele

@@ -30,6 +30,8 @@ class TerrainModule : public RenderModule {
   // params.terrain_shape.z stays 0).
   bool prepare(const Scene& scene, int width, int height, bool host_scene,
                gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   const gpu::Texture& output() const { return out_; }
 

@@ -157,4 +157,8 @@ void VoxelCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& /*frame*
   graph.import("voxel_clouds");  // the atlas, uploaded before the frame
 }
 
+void VoxelCloudsModule::prepare(const FramePrepare& frame, FramePlan&) {
+  prepare(frame.scene, frame.params);
+}
+
 }  // namespace nephele

@@ -27,6 +27,8 @@ class VoxelCloudsModule : public RenderModule {
   // device; a grid once loaded is kept for later scenes), fills params.voxel_* with their
   // places at the scene's time and widens the cloud shell (params.radii_m.zw) to hold them.
   void prepare(const Scene& scene, gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
 
   const std::vector<VoxelCloudMemory>& memory() const { return memory_; }
 

@@ -155,4 +155,8 @@ void WeatherModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
+void WeatherModule::prepare(const FramePrepare& frame, FramePlan&) {
+  prepare(frame.scene, frame.params);
+}
+
 }  // namespace nephele

@@ -33,6 +33,8 @@ class WeatherModule : public RenderModule {
   // Decides this frame's work, sets params.weather_build and the bindings; uploads a PNG map
   // (a host wait) when the file changes.
   void prepare(const Scene& scene, gpu::FrameParams& params);
+  // The contract's (render_module.h): the above with the frame's values.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
   // The weather's time in units of clouds.weather_evolution_s (0 for a static map).
   static double weather_time(const Scene& scene);
