@@ -278,10 +278,11 @@ int run_bench(const BenchOptions& options) {
   // match bench.json (a trace is drawn only when the JSON has frame times).
   const std::string png = (fs::path(options.out_dir) / "bench.png").string();
   const std::string trace_png = (fs::path(options.out_dir) / "bench_frame_times.png").string();
+  // The folder first: --json may name a file in it.
+  std::error_code ec;
+  if (!options.realtime_only) fs::create_directories(options.out_dir, ec);
   if (!options.json.empty()) check_output_file(options.json, "--json", true);
   if (!options.realtime_only) {
-    std::error_code ec;
-    fs::create_directories(options.out_dir, ec);
     for (const std::string& p : {csv, json}) check_output_file(p, "--out-dir");
     for (const std::string& p : {png, trace_png}) check_output_path(p, "--out-dir");
     if (!options.json.empty())
@@ -328,7 +329,6 @@ int run_bench(const BenchOptions& options) {
   write_text_output(csv, to_csv(samples));
   write_text_output(json, summary.dump(2) + "\n");
   std::printf("%s\n%s\n", csv.c_str(), json.c_str());
-  std::error_code ec;
   for (const std::string& p : {png, trace_png}) fs::remove(p, ec);
   draw_plots(json, options.out_dir);
   return 0;

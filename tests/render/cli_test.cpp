@@ -426,11 +426,13 @@ TEST_F(CliTest, BenchImpostorsComparesEveryParticleWithBothAtlases) {
 
 // bench.json holds every row of bench.csv ("sweeps"), from which scripts/plot_bench.py draws
 // bench.png where /usr/bin/python3 has matplotlib; elsewhere one line says the plot was
-// skipped, and the benchmark still succeeds.
+// skipped, and the benchmark still succeeds. --json may name a file in the --out-dir it makes.
 TEST_F(CliTest, BenchQuickWritesCsvJsonAndPlot) {
   const CliRun r = run_cli("bench --quick --frames 1 --width 48 --height 32 --out-dir " +
-                           path("bench"));
+                           path("bench") + " --json " + path("bench/realtime.json"));
   ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json realtime = nlohmann::json::parse(std::ifstream(path("bench/realtime.json")));
+  EXPECT_GT(realtime["speedup_vs_baseline"].get<double>(), 0.0);
   std::ifstream csv(path("bench/bench.csv"));
   std::string header;
   std::getline(csv, header);
