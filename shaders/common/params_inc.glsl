@@ -174,8 +174,7 @@ struct FrameParams {
   // majorant (1/m): sigma_t's largest value.
   vec4 path_medium;
   vec4 path_light;  // xyz unit direction towards the sun (planet frame), w its irradiance (W/m^2)
-  // z the seed, w max_bounces; xy unused (a dispatch's samples are its push constants)
-  ivec4 path_info;
+  // (The seed, the bounces and a dispatch's samples are the path tracer's push constants.)
   // xyz the camera in the lab's own frame (m: x east, y north, z up, from voxel cloud 0's
   // anchor; the cloud's to_grid rows map that frame, its anchor_m.xyz is not used): small
   // numbers, full float precision, where the planet frame's are 0.5 m apart; w 1 to use the

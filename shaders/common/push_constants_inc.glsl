@@ -27,7 +27,8 @@ struct DrawConstants {
 // frame's parameters (FrameParams) stay one block a frame.
 //   clouds.comp: x the first row of blocks of a band (a still marched in bands; else 0)
 //   sky_reference.comp, sky_reference_psi.comp: xy the tile's first pixel
-//   path_trace.comp: x the first sample of this dispatch, y its samples per pixel
+//   path_trace.comp: x the first sample of this dispatch, y its samples per pixel, z the random
+//     streams' seed, w the paths' largest number of bounces
 //   compose.comp, stars.comp: x the film layer (FramePlan::film_layer; 0 the image)
 struct DispatchConstants {
   ivec4 values;

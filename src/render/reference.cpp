@@ -165,7 +165,7 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
         elapsed >= options.time_limit_s)
       break;
     const int n = std::min(per_pass, spp - taken);
-    params.path_info = glm::ivec4(0, 0, int(options.seed), max_bounces);
+    path_tracer.set_paths(int(options.seed), max_bounces);
     path_tracer.set_samples(taken, n);
     const auto pass_start = std::chrono::steady_clock::now();
     // The first pass after what the paths read (the planet's weather map), then alone.

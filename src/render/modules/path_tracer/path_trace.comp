@@ -2,7 +2,7 @@
 // The reference path tracer (issue 21). Unbiased: delta tracking samples collisions, ratio
 // tracking estimates each light's transmittance (next-event estimation at every collision),
 // the phase functions are sampled exactly or with their ratio to a sampled one as a weight
-// (common/path_inc.glsl). Each invocation adds path_info.y paths to its pixel's sums in
+// (common/path_inc.glsl). Each invocation adds dispatch.values.y paths to its pixel's sums in
 // path_sum and path_squares; the host dispatches until it has the samples or the time it was
 // asked for. Two scenes (PLANET, a specialization constant):
 //  0 the lab: voxel cloud 0's density grid in vacuum (no planet, no air, black background)
@@ -341,7 +341,7 @@ void main() {
   vec3 eye = PLANET == 1 ? frame.camera_pos_m.xyz : frame.path_eye_m.xyz;
   for (int k = 0; k < dispatch.values.y; ++k) {
     uint sample_index = uint(dispatch.values.x + k);
-    uint stream = pt_stream(pixel_key, sample_index, uint(frame.path_info.z));
+    uint stream = pt_stream(pixel_key, sample_index, uint(dispatch.values.z));
     // A random point in the pixel (box filter).
     float jx = pt_uniform(stream, 0u), jy = pt_uniform(stream, 1u);
     vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
@@ -351,12 +351,12 @@ void main() {
     vec3 value;
     if (PLANET == 1) {
       pt_channel = int(sample_index % 3u);
-      float radiance = planet_path_radiance(eye, dir, frame.path_info.w, pt_hash(stream ^ 0x68bc21ebu));
+      float radiance = planet_path_radiance(eye, dir, dispatch.values.w, pt_hash(stream ^ 0x68bc21ebu));
       value = vec3(0.0f);
       value[pt_channel] = 3.0f * radiance;
     } else {
       value = vec3(pt_path_radiance(eye, dir, frame.path_light.xyz, frame.path_light.w, 0.0f,
-                                    frame.path_medium.y, frame.path_medium.z, frame.path_info.w,
+                                    frame.path_medium.y, frame.path_medium.z, dispatch.values.w,
                                     pt_hash(stream ^ 0x68bc21ebu)));
     }
     sum += vec4(value, 1.0f);

@@ -43,14 +43,15 @@ void PathTracerModule::clear(VkCommandBuffer cmd) const {
 }
 
 void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet,
-                              MarchMode mode, int first_sample, int samples) const {
+                              MarchMode mode) const {
   const int baseline = mode == MarchMode::Baseline ? 1 : 0;
   const int variant = planet ? 1 + baseline : 0;
   if (!kernels_[variant])
     kernels_[variant] = std::make_unique<gpu::Kernel>(
         ctx_, set_, "path_trace.comp.spv", std::vector<int32_t>{planet ? 1 : 0, baseline});
   gpu::dispatch(cmd, *kernels_[variant], timer, "path_trace", sum_.width(), sum_.height(), 1, 8, 8,
-                1, gpu::DispatchConstants{glm::ivec4(first_sample, samples, 0, 0)});
+                1,
+                gpu::DispatchConstants{glm::ivec4(first_sample_, samples_, seed_, max_bounces_)});
 }
 
 void PathTracerModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
@@ -63,7 +64,7 @@ void PathTracerModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
       planet ? std::vector<std::string>{"weather_map", "noise", "voxel_clouds", "atmosphere"}
              : std::vector<std::string>{"voxel_clouds"},
       {"path_sums"}, [timer = frame.timer, this, planet, mode](VkCommandBuffer cmd) {
-        record(cmd, timer(), planet, mode, first_sample_, samples_);
+        record(cmd, timer(), planet, mode);
       });
 }
 

@@ -19,16 +19,20 @@ class PathTracerModule : public RenderModule {
   // uses them starts recording), then clear() records setting them to zero.
   void resize(int width, int height);
   void clear(VkCommandBuffer cmd) const;
-  // Adds FrameParams::path_info.y samples to every pixel: of the lab (`planet` false), or of
-  // the planet's scene with the noise clouds' field of `mode`.
-  // Adds `samples` samples to every pixel, the first numbered `first_sample`: of the lab
-  // (`planet` false), or of the planet's scene with the noise clouds' field of `mode`.
-  void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode,
-              int first_sample, int samples) const;
-  // The samples the next path_trace pass of the graph adds (record's).
+  // Adds the samples set_samples gave to every pixel, with the paths set_paths gave: of the
+  // lab (`planet` false), or of the planet's scene with the noise clouds' field of `mode`. All
+  // four numbers travel as the dispatch's push constants.
+  void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode) const;
+  // The samples the next path_trace pass of the graph adds: `samples` a pixel, the first
+  // numbered `first_sample`.
   void set_samples(int first_sample, int samples) {
     first_sample_ = first_sample;
     samples_ = samples;
+  }
+  // The random streams' seed and the paths' largest number of bounces.
+  void set_paths(int seed, int max_bounces) {
+    seed_ = seed;
+    max_bounces_ = max_bounces;
   }
   // With FramePlan::Measure::kReference: the pass "path_trace" (record), after the passes it
   // needs (the planet's: the weather map).
@@ -49,6 +53,7 @@ class PathTracerModule : public RenderModule {
   gpu::Texture sum_, squares_;
   gpu::Texture majorant_;  // 1 x 1 x 2 texels until a grid is uploaded
   int first_sample_ = 0, samples_ = 1;
+  int seed_ = 0, max_bounces_ = 0;
 };
 
 }  // namespace nephele
