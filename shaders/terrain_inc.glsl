@@ -6,11 +6,13 @@
 #ifndef NEPHELE_TERRAIN_INC
 #define NEPHELE_TERRAIN_INC
 
+#include "layers_inc.glsl"
+
 const int TERRAIN_MAX_STEPS = 2048;   // squares a ray visits at most
 const float TERRAIN_NONE_M = -1.0e9f;  // the height outside the terrain's rectangle
 
 bool terrain_present() { return frame.terrain_shape.z > 0.5f; }
-// terrain_out holds surfaces: the terrain's, or the host's geometry (host_scene.comp), or both.
+// LAYER_SURFACES holds the terrain's, or the host's geometry (host_scene.comp), or both.
 bool surfaces_present() { return terrain_present() || frame.host_scene.x > 0.5f; }
 
 vec2 terrain_points() { return vec2(frame.terrain_grid.xy); }
@@ -150,8 +152,7 @@ float terrain_ray(vec3 eye, vec3 dir, float t_max, bool shadow) {
 // terrain as terrain.comp found it at the pixel there, or the host's geometry nearer; 0 where
 // the ray misses both or there are none.
 float terrain_distance_at(vec2 uv) {
-  ivec2 size = textureSize(terrain_image, 0);
-  float m = texelFetch(terrain_image, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0).a;
+  float m = layer_texel(LAYER_SURFACES, ivec2(uv * vec2(textureSize(layers, 0).xy))).a;
   return surfaces_present() ? m : 0.0f;
 }
 

@@ -96,14 +96,17 @@ layout(set = 0, binding = 48) uniform sampler2D ms_field;
 // log(luminance, cd/m^2) over METER_GRID^2 points of the final image.
 layout(std430, set = 0, binding = 49) writeonly buffer MeterBlock { float meter_mean_log_luminance; };
 // Particle clouds (render/modules/particle_clouds/particle_clouds.h): this frame's particles back to front
-// (particles.vert), their procedural textures side by side (PARTICLE_TEXTURES tiles of
-// PARTICLE_TEXTURE_SIZE texels), and the layer they are drawn into, read by compose.comp:
-// rgb premultiplied radiance, a opacity; and x their opacity-weighted distance (km) times
-// the opacity, a the opacity.
+// (particles.vert) and their procedural textures side by side (PARTICLE_TEXTURES tiles of
+// PARTICLE_TEXTURE_SIZE texels); they are drawn into the layers LAYER_PARTICLES and
+// LAYER_PARTICLE_DEPTH (below).
 layout(std430, set = 0, binding = 50) readonly buffer ParticlesBlock { ParticleGpu particle_list[]; };
 layout(set = 0, binding = 51) uniform sampler2D particle_textures;
-layout(set = 0, binding = 52) uniform sampler2D particle_layer;
-layout(set = 0, binding = 53) uniform sampler2D particle_depth;
+// The layers compose blends over the clouds (render/image_layers.h): one 2D array at the
+// frame's size, a layer (LAYER_*, params_inc.glsl) each, written by the modules that draw them
+// (terrain.comp, host_scene.comp, the particles' raster pass) and read through
+// layers_inc.glsl, so that a new layer adds no binding.
+layout(set = 0, binding = 52) uniform sampler2DArray layers;
+layout(set = 0, binding = 53, rgba32f) uniform image2DArray layers_out;
 // Impostors of far particle clouds (render/modules/impostors/impostors.h): this frame's quads back to
 // front (impostor.vert), the atlas their images live in, each impostor's tile slots (the tiles
 // method), the scratch image an impostor is drawn into before impostor_tiles.comp splits it
@@ -133,28 +136,23 @@ layout(set = 0, binding = 66, rgba32f) uniform writeonly image2D light_shafts_ou
 layout(set = 0, binding = 67) uniform sampler2D light_shafts;
 // The terrain (render/modules/terrain/terrain.h): its heights (r, m above the ground; rows [0, H), row
 // 0 the north edge) with their pyramid of maxima packed below them (rows from H:
-// terrain::MaxPyramid; texelFetch); per pixel what terrain.comp finds (read by compose, the
-// clouds and the shafts): rgb its radiance per unit key-light illuminance before the air in
-// front, a its distance (m; 0 where the ray misses it) - with terrain.method "raster" the mesh
-// pass leaves its distances in a first, which terrain.comp reads back; and its albedo map
-// (terrain.albedo_map; linear rgb) over its rectangle, row 0 north.
+// terrain::MaxPyramid; texelFetch), and its albedo map (terrain.albedo_map; linear rgb) over
+// its rectangle, row 0 north. What terrain.comp finds goes into the layer LAYER_SURFACES.
 layout(set = 0, binding = 68) uniform sampler2D terrain_heights;
-layout(set = 0, binding = 69, rgba32f) uniform image2D terrain_out;
-layout(set = 0, binding = 70) uniform sampler2D terrain_image;
-layout(set = 0, binding = 71) uniform sampler2D terrain_albedo_map;
+layout(set = 0, binding = 69) uniform sampler2D terrain_albedo_map;
 // The host's depth and colour texels as the frame copied them from its images (nephele::
-// HostScene; host_scene.comp merges them into terrain_out): the depth from word 0, the colour
+// HostScene; host_scene.comp merges them into LAYER_SURFACES): the depth from word 0, the colour
 // from word frame.host_layout.x.
-layout(std430, set = 0, binding = 72) readonly buffer HostSceneBlock { uint host_texels[]; };
+layout(std430, set = 0, binding = 70) readonly buffer HostSceneBlock { uint host_texels[]; };
 // The lighting for the host (host_lighting.comp; render/modules/host_lighting/host_lighting.h): [0] x, y the
 // clouds' transmittance at the camera towards the key and the second light, z the clouds'
 // sigma_t there (1/m), w the share of the clear sky's light under the clouds; [1 + k] the sky's
 // radiance's spherical-harmonic coefficient k (rgb, per unit key-light illuminance). And the
 // cloud shadow map (r: the key light's share through the clouds; cloud_shadow_map.comp).
-layout(std430, set = 0, binding = 73) writeonly buffer HostLightingBlock { vec4 host_lighting_out[]; };
-layout(set = 0, binding = 74, r32f) uniform writeonly image2D cloud_shadow_map_out;
+layout(std430, set = 0, binding = 71) writeonly buffer HostLightingBlock { vec4 host_lighting_out[]; };
+layout(set = 0, binding = 72, r32f) uniform writeonly image2D cloud_shadow_map_out;
 // The host's environment cube map (environment.comp): its six faces side by side, +X -X +Y -Y
 // +Z -Z of ENU, radiance (cd/m^2).
-layout(set = 0, binding = 75, rgba16f) uniform writeonly image2D environment_out;
+layout(set = 0, binding = 73, rgba16f) uniform writeonly image2D environment_out;
 
 #endif

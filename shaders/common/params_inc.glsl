@@ -22,6 +22,18 @@ const int LIGHT_VOLUME_Z = 32;    // light volume voxels across the cloud layer
 // to the highest top (FrameParams::radii_m.zw) and takes each sample's layer by its altitude.
 const int CLOUD_LAYERS = 2;
 
+// The image layers compose blends over the clouds (render/image_layers.h; the bindings layers
+// and layers_out): one 2D array at the frame's size, RGBA 32-bit float, a layer each.
+// LAYER_SURFACES: the terrain or the host's geometry nearer (terrain.comp, host_scene.comp),
+// rgb its radiance per unit key-light illuminance before the air in front, a its distance (m;
+// 0 where the ray meets none). LAYER_PARTICLES: the particle clouds, rgb premultiplied
+// radiance, a opacity; LAYER_PARTICLE_DEPTH: x their opacity-weighted distance (km) times the
+// opacity; both drawn into the top-left particle_light.yz share of the layer.
+const int LAYER_SURFACES = 0;
+const int LAYER_PARTICLES = 1;
+const int LAYER_PARTICLE_DEPTH = 2;
+const int IMAGE_LAYERS = 3;
+
 struct CloudLayerGpu {
   vec4 radii_m;  // x bottom, y top radius (m, planet frame; a layer that is off lies beyond
                  // the atmosphere); zw where it reads the weather map (offset, in tiles)
@@ -71,12 +83,10 @@ struct FrameParams {
   vec4 rayleigh;            // rgb sigma_s at sea level (1/m); w scale height (m)
   vec4 mie;                 // x sigma_s (1/m), y sigma_t (1/m), z scale height (m), w g
   vec4 cloud_shape;         // x the view's angle per cloud pixel (rad; 0: the detail noise's
-                            // finest level everywhere), y unused; z sigma_t at density 1
-                            // (1/m), w albedo
+                            // finest level everywhere), y the cloud profile's half extent (m;
+                            // cloud_profile.comp); z sigma_t at density 1 (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
   vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w 1: two-stream light
-  vec4 cloud_weather;       // x, y, z unused; w the
-                            // cloud profile's half extent (m; cloud_profile.comp)
   CloudLayerGpu cloud_layers[CLOUD_LAYERS];
   // The wind (seed 002; common/clouds_inc.glsl, cloud_wind_offset): xy its growth from a
   // layer's bottom to its top (m/s), z skew (s), w the time the shear has acted
@@ -138,9 +148,10 @@ struct FrameParams {
   vec4 conditions_disk_fog;  // rgb fog on the sun and moon discs; w fog near (m)
   vec4 conditions_fog;       // rgb fog on clouds and ground; w fog far (m)
   vec4 conditions_light;     // rgb the key light on the ground (artist mode); w unused
-  vec4 display;              // x exposure (linear scale before the tone map, tonemap.comp);
-                             // y unused (the film layer is compose's push constant,
-                             // DispatchConstants); z the tone map (TONEMAP_*, output.tonemap)
+  vec4 output_image;         // x exposure (linear scale before the tone map, tonemap.comp);
+                             // y the tone map (TONEMAP_*, output.tonemap); zw the image's first
+                             // pixel in the whole image (a tile's window; 0 0). (The film layer
+                             // and a band's first row are push constants, DispatchConstants.)
   // The light volume being built (light_volume.comp), a band of its rows each frame while the
   // clouds pass reads the last one completed (light_volume): xy its centre in cloud space (m),
   // z half extent (m); light_volume_rows x its first row, y the rows this frame (a row is one
@@ -161,8 +172,6 @@ struct FrameParams {
   // The rows built this frame: x the LUT's first, y its count (of kSkyViewHeight), z the
   // volume's first, w its count (of AP_SIZE_V).
   ivec4 sky_view_rows;
-  ivec4 cloud_band;  // zw the image's first pixel in the whole image (a tile's; 0 0); xy unused
-                     // (a band's first row is the march's push constant, DispatchConstants)
   ivec4 voxel_info;  // x voxel clouds, y VOXEL_MARCH_*, z VOXEL_SHADOW_*, w unused
   // x the SDF cone's half-angle tangent (the seed's LightTangent), y the distance (m) over
   // which the noise clouds fade in away from a voxel region, z how much the detail noise
@@ -190,7 +199,10 @@ struct FrameParams {
   // Particle clouds (particles.vert): x albedo, y Henyey-Greenstein g, z 1 for Harris and
   // Lastra's Rayleigh phase instead, w a particle's opacity at its centre
   vec4 particle_shading;
-  vec4 particle_light;  // x the multiply scattered light's strength (diffuse_strength); yzw unused
+  // x the multiply scattered light's strength (diffuse_strength); yz the share of the image
+  // layers' width and height their layer is drawn at (ParticleCloudsParams::layer_resolution);
+  // w unused
+  vec4 particle_light;
   // The classical models (classic_clouds.comp, seed 004): Blinn's x optical depth tau along the
   // vertical, y albedo omega, z his phase function's x or g, w its kind (BLINN_PHASE_*)
   vec4 classic_blinn;

@@ -212,12 +212,12 @@ RasterPass::~RasterPass() {
   vkDestroyRenderPass(device_, render_pass_, nullptr);
 }
 
-VkFramebuffer RasterPass::framebuffer_for(const std::vector<const Texture*>& targets,
+VkFramebuffer RasterPass::framebuffer_for(const std::vector<RenderTarget>& targets,
                                           const DepthTarget* depth) {
   std::vector<VkImageView> views;
-  for (const Texture* t : targets) views.push_back(t->storage_view());
+  for (const RenderTarget& t : targets) views.push_back(t.view);
   if (depth) views.push_back(depth->view());
-  const uint32_t w = targets[0]->width(), h = targets[0]->height();
+  const uint32_t w = targets[0].width, h = targets[0].height;
   for (const Cached& c : framebuffers_)
     if (c.views == views && c.width == w && c.height == h) return c.framebuffer;
   VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
@@ -233,15 +233,16 @@ VkFramebuffer RasterPass::framebuffer_for(const std::vector<const Texture*>& tar
   return framebuffer;
 }
 
-void RasterPass::record(VkCommandBuffer cmd, PassTimer& timer,
-                        const std::string& name, const std::vector<const Texture*>& targets,
+void RasterPass::record(VkCommandBuffer cmd, PassTimer& timer, const std::string& name,
+                        const std::vector<RenderTarget>& targets,
                         const std::vector<RasterDraw>& draws, const DepthTarget* depth) {
   if (targets.size() != attachments_) throw RuntimeError("RasterPass: wrong number of targets");
-  if (with_depth_ != (depth != nullptr) ||
-      (depth && (depth->width() != targets[0]->width() || depth->height() != targets[0]->height())))
+  const uint32_t w = targets[0].width, h = targets[0].height;
+  for (const RenderTarget& t : targets)
+    if (t.width != w || t.height != h) throw RuntimeError("RasterPass: targets of different sizes");
+  if (with_depth_ != (depth != nullptr) || (depth && (depth->width() != w || depth->height() != h)))
     throw RuntimeError("RasterPass: a depth buffer of the targets' size is needed exactly when the pass has depth");
   timer.begin(cmd, name);
-  const uint32_t w = targets[0]->width(), h = targets[0]->height();
   std::vector<VkClearValue> clears(targets.size() + (depth ? 1 : 0));  // depth cleared to 0: far
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   begin.renderPass = render_pass_;

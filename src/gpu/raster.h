@@ -71,15 +71,15 @@ class RasterPass {
   RasterPass(const RasterPass&) = delete;
   RasterPass& operator=(const RasterPass&) = delete;
 
-  // Records the draws into `targets` (one per format, all the same size) and makes the
-  // result visible to compute shaders and transfers; timed as `name`.
-  // With depth, `depth` is the pass's depth buffer, of the targets' size.
-  void record(VkCommandBuffer cmd, PassTimer& timer,
-              const std::string& name, const std::vector<const Texture*>& targets,
-              const std::vector<RasterDraw>& draws, const DepthTarget* depth = nullptr);
+  // Records the draws into `targets` (one per format, all the same size: the part drawn,
+  // Texture::render_target) and makes the result visible to compute shaders and transfers;
+  // timed as `name`. With depth, `depth` is the pass's depth buffer, of the targets' size.
+  void record(VkCommandBuffer cmd, PassTimer& timer, const std::string& name,
+              const std::vector<RenderTarget>& targets, const std::vector<RasterDraw>& draws,
+              const DepthTarget* depth = nullptr);
 
  private:
-  VkFramebuffer framebuffer_for(const std::vector<const Texture*>& targets, const DepthTarget* depth);
+  VkFramebuffer framebuffer_for(const std::vector<RenderTarget>& targets, const DepthTarget* depth);
   VkDevice device_;
   VkRenderPass render_pass_ = VK_NULL_HANDLE;
   std::vector<std::unique_ptr<PassInterface>> interfaces_;  // one a pipeline, its layout

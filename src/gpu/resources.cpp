@@ -7,9 +7,8 @@
 
 namespace nephele::gpu {
 
-void create_device_local_image(Context& ctx, const VkImageCreateInfo& info,
-                               VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory,
-                               VkImageView& view) {
+void allocate_device_local_image(Context& ctx, const VkImageCreateInfo& info, VkImage& image,
+                                 VkDeviceMemory& memory) {
   const VkDevice device = ctx.device();
   NEPHELE_VK(vkCreateImage(device, &info, nullptr, &image));
   VkMemoryRequirements req;
@@ -19,18 +18,26 @@ void create_device_local_image(Context& ctx, const VkImageCreateInfo& info,
   alloc.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   NEPHELE_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
   NEPHELE_VK(vkBindImageMemory(device, image, memory, 0));
-  view = create_image_view(device, image, info, aspect, info.mipLevels);
+}
+
+void create_device_local_image(Context& ctx, const VkImageCreateInfo& info,
+                               VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory,
+                               VkImageView& view) {
+  allocate_device_local_image(ctx, info, image, memory);
+  view = create_image_view(ctx.device(), image, info, aspect, info.mipLevels);
 }
 
 VkImageView create_image_view(VkDevice device, VkImage image, const VkImageCreateInfo& info,
-                              VkImageAspectFlags aspect, uint32_t levels) {
+                              VkImageAspectFlags aspect, uint32_t levels, bool array,
+                              uint32_t first_layer, uint32_t layers) {
   VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   view.image = image;
-  view.viewType = info.imageType == VK_IMAGE_TYPE_3D   ? VK_IMAGE_VIEW_TYPE_3D
+  view.viewType = array                                ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                  : info.imageType == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D
                   : info.imageType == VK_IMAGE_TYPE_1D ? VK_IMAGE_VIEW_TYPE_1D
                                                        : VK_IMAGE_VIEW_TYPE_2D;
   view.format = info.format;
-  view.subresourceRange = {aspect, 0, levels, 0, 1};
+  view.subresourceRange = {aspect, 0, levels, first_layer, layers};
   VkImageView handle = VK_NULL_HANDLE;
   NEPHELE_VK(vkCreateImageView(device, &view, nullptr, &handle));
   return handle;
@@ -80,8 +87,25 @@ void Buffer::reset() {
 Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
                  VkSamplerAddressMode address, uint32_t mip_levels, bool render_target)
     : device_(ctx.device()), width_(width), height_(height), depth_(depth), levels_(mip_levels) {
+  create(ctx, format, address, render_target);
+}
+
+Texture::Texture(Context& ctx, uint32_t width, uint32_t height, ArrayLayers layers, VkFormat format,
+                 bool render_target)
+    : device_(ctx.device()),
+      width_(width),
+      height_(height),
+      depth_(1),
+      layers_(std::max(layers.count, 1u)),
+      array_(true) {
+  create(ctx, format, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, render_target);
+}
+
+void Texture::create(Context& ctx, VkFormat format, VkSamplerAddressMode address,
+                     bool render_target) {
   // A failure part way (out of memory) frees what was made: no destructor runs for it.
   const UndoOnThrow undo([this] { reset(); });
+  const uint32_t mip_levels = levels_;
   // Every texture is written by a compute pass and then sampled with linear filtering.
   VkFormatProperties props;
   vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), format, &props);
@@ -92,13 +116,13 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
   if ((props.optimalTilingFeatures & needed) != needed)
     throw RuntimeError("Vulkan format " + std::to_string(int(format)) +
                        " cannot be a filtered storage image on " + ctx.device_name());
-  const bool is_3d = depth > 1;
+  const bool is_3d = depth_ > 1;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = is_3d ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   info.format = format;
-  info.extent = {width, height, depth};
+  info.extent = {width_, height_, depth_};
   info.mipLevels = mip_levels;
-  info.arrayLayers = 1;
+  info.arrayLayers = layers_;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
@@ -110,8 +134,13 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
     info.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   }
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  create_device_local_image(ctx, info, VK_IMAGE_ASPECT_COLOR_BIT, image_, memory_, view_);
-  storage_view_ = create_image_view(device_, image_, info, VK_IMAGE_ASPECT_COLOR_BIT, 1);
+  allocate_device_local_image(ctx, info, image_, memory_);
+  const VkImageAspectFlags color = VK_IMAGE_ASPECT_COLOR_BIT;
+  view_ = create_image_view(device_, image_, info, color, mip_levels, array_, 0, layers_);
+  storage_view_ = create_image_view(device_, image_, info, color, 1, array_, 0, layers_);
+  if (array_ && render_target)
+    for (uint32_t layer = 0; layer < layers_; ++layer)
+      layer_views_.push_back(create_image_view(device_, image_, info, color, 1, false, layer, 1));
 
   VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sampler.magFilter = VK_FILTER_LINEAR;
@@ -132,11 +161,19 @@ Texture::Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, 
     barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
     barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image_;
-    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, 1};
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, mip_levels, 0, layers_};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                          0, nullptr, 0, nullptr, 1, &barrier);
   });
+}
+
+RenderTarget Texture::render_target(uint32_t layer) const {
+  if (layer >= layers_ || (array_ && layer >= layer_views_.size()))
+    throw RuntimeError("Texture::render_target: layer " + std::to_string(layer) +
+                       " of a texture of " + std::to_string(layers_) +
+                       (array_ ? " layers not made as a render target" : " layer"));
+  return {array_ ? layer_views_[layer] : storage_view_, width_, height_};
 }
 
 Texture& Texture::operator=(Texture&& other) noexcept {
@@ -147,11 +184,14 @@ Texture& Texture::operator=(Texture&& other) noexcept {
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
     storage_view_ = std::exchange(other.storage_view_, VK_NULL_HANDLE);
+    layer_views_ = std::exchange(other.layer_views_, {});
     sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
     width_ = other.width_;
     height_ = other.height_;
     depth_ = other.depth_;
     levels_ = other.levels_;
+    layers_ = other.layers_;
+    array_ = other.array_;
   }
   return *this;
 }
@@ -161,6 +201,8 @@ void Texture::reset() {
   vkDestroySampler(device_, sampler_, nullptr);
   vkDestroyImageView(device_, view_, nullptr);
   vkDestroyImageView(device_, storage_view_, nullptr);
+  for (VkImageView v : layer_views_) vkDestroyImageView(device_, v, nullptr);
+  layer_views_.clear();
   vkDestroyImage(device_, image_, nullptr);
   vkFreeMemory(device_, memory_, nullptr);
   device_ = VK_NULL_HANDLE;
@@ -168,14 +210,15 @@ void Texture::reset() {
 
 static VkBufferImageCopy whole_image_copy(const Texture& t) {
   VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, t.layers()};
   region.imageExtent = {t.width(), t.height(), t.depth()};
   return region;
 }
 
 // Moves `image` between GENERAL (where shaders use it) and a transfer layout, making all
 // earlier compute and transfer work visible.
-static void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to) {
+static void transition(VkCommandBuffer cmd, VkImage image, uint32_t layers, VkImageLayout from,
+                       VkImageLayout to) {
   VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
@@ -184,7 +227,7 @@ static void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, V
   barrier.newLayout = to;
   barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
                        nullptr, 0, nullptr, 1, &barrier);
@@ -192,24 +235,31 @@ static void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, V
 
 void Texture::record_upload(VkCommandBuffer cmd, const Buffer& staging) const {
   VkBufferImageCopy region = whole_image_copy(*this);
-  transition(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  transition(cmd, image_, layers_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
   vkCmdCopyBufferToImage(cmd, staging.handle(), image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                          &region);
-  transition(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+  transition(cmd, image_, layers_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
 }
 
 void Texture::record_download(VkCommandBuffer cmd, const Buffer& staging) const {
   VkBufferImageCopy region = whole_image_copy(*this);
-  transition(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  transition(cmd, image_, layers_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   vkCmdCopyImageToBuffer(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
                          &region);
-  transition(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+  transition(cmd, image_, layers_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
   compute_barrier(cmd);
 }
 
 void Texture::record_clear(VkCommandBuffer cmd, const VkClearColorValue& value) const {
-  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers_};
   vkCmdClearColorImage(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, &value, 1, &range);
+  compute_barrier(cmd);
+}
+
+void Texture::record_clear_layer(VkCommandBuffer cmd, uint32_t layer) const {
+  const VkClearColorValue zero{};
+  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, layer, 1};
+  vkCmdClearColorImage(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   compute_barrier(cmd);
 }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <exception>
 #include <utility>
+#include <vector>
 
 #include "gpu/context.h"
 
@@ -29,6 +30,10 @@ class UndoOnThrow {
   int exceptions_ = std::uncaught_exceptions();
 };
 
+// vkCreateImage into `image`, and device-local memory for it (vkAllocateMemory into `memory`,
+// vkBindImageMemory); each handle stored as soon as it is made (below).
+void allocate_device_local_image(Context& ctx, const VkImageCreateInfo& info, VkImage& image,
+                                 VkDeviceMemory& memory);
 // The steps of a device-local image after its VkImageCreateInfo: vkCreateImage into `image`,
 // device-local memory for it (vkAllocateMemory into `memory`, vkBindImageMemory) and a view of
 // every mip level (create_image_view into `view`). Each handle is stored as soon as it is made,
@@ -36,10 +41,24 @@ class UndoOnThrow {
 void create_device_local_image(Context& ctx, const VkImageCreateInfo& info,
                                VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory,
                                VkImageView& view);
-// A view of `image`, made from `info`: its type and format, `aspect`, mip levels 0 to
-// `levels` - 1 of its first layer.
+// A view of `image`, made from `info`: its format, `aspect`, mip levels 0 to `levels` - 1, and
+// its array layers `first_layer` to `first_layer + layers - 1`; `array` makes it a 2D array
+// view (else 1D, 2D or 3D as the image).
 VkImageView create_image_view(VkDevice device, VkImage image, const VkImageCreateInfo& info,
-                              VkImageAspectFlags aspect, uint32_t levels);
+                              VkImageAspectFlags aspect, uint32_t levels, bool array = false,
+                              uint32_t first_layer = 0, uint32_t layers = 1);
+
+// What a raster pass draws into (gpu/raster.h): a 2D image view, and the part of it drawn, its
+// top-left width x height texels.
+struct RenderTarget {
+  VkImageView view = VK_NULL_HANDLE;
+  uint32_t width = 0, height = 0;
+};
+
+// The number of layers of a 2D array texture (Texture's constructor).
+struct ArrayLayers {
+  uint32_t count = 1;
+};
 
 // A host-visible, coherent buffer (storage, uniform or transfer), persistently mapped.
 class Buffer {
@@ -78,36 +97,50 @@ class Texture {
   Texture(Context& ctx, uint32_t width, uint32_t height, uint32_t depth, VkFormat format,
           VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT, uint32_t mip_levels = 1,
           bool render_target = false);
+  // A 2D array of `layers.count` images of one size (sampler2DArray, image2DArray), clamped at
+  // its edges, one mip level; each layer a render target (render_target(layer)) when asked.
+  Texture(Context& ctx, uint32_t width, uint32_t height, ArrayLayers layers, VkFormat format,
+          bool render_target = false);
   ~Texture() { reset(); }
   Texture(Texture&& other) noexcept { *this = std::move(other); }
   Texture& operator=(Texture&& other) noexcept;
 
   VkImage image() const { return image_; }
-  VkImageView view() const { return view_; }  // every mip level, for sampling
+  VkImageView view() const { return view_; }  // every mip level (and layer), for sampling
   VkImageView storage_view() const { return storage_view_; }  // level 0
+  // Level 0 of `layer` as a raster pass's target (a texture made with render_target).
+  RenderTarget render_target(uint32_t layer = 0) const;
   VkSampler sampler() const { return sampler_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   uint32_t depth() const { return depth_; }
+  uint32_t layers() const { return layers_; }
 
   // Copies tightly packed texels from `staging` into the image (recorded into `cmd`).
   void record_upload(VkCommandBuffer cmd, const Buffer& staging) const;
   // Copies the image into `staging` (recorded into `cmd`).
   void record_download(VkCommandBuffer cmd, const Buffer& staging) const;
-  // Sets every texel to zero (recorded into `cmd`).
+  // Sets every texel (of every layer) to `value` (recorded into `cmd`).
   void record_clear(VkCommandBuffer cmd, const VkClearColorValue& value = {}) const;
+  // The same for one layer of an array.
+  void record_clear_layer(VkCommandBuffer cmd, uint32_t layer) const;
   // Box-filters each mip level from the one above it (recorded into `cmd`).
   void record_mipmaps(VkCommandBuffer cmd) const;
 
  private:
+  // Both constructors': `layers` 0 makes a 2D or 3D image, else a 2D array.
+  void create(Context& ctx, VkFormat format, VkSamplerAddressMode address, bool render_target);
   void reset();
   VkDevice device_ = VK_NULL_HANDLE;
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
   VkImageView storage_view_ = VK_NULL_HANDLE;
+  std::vector<VkImageView> layer_views_;  // a render-target array's, one a layer
   VkSampler sampler_ = VK_NULL_HANDLE;
   uint32_t width_ = 0, height_ = 0, depth_ = 0, levels_ = 1;
+  uint32_t layers_ = 1;
+  bool array_ = false;
 };
 
 // A full memory barrier between compute/transfer work (shader writes -> reads).

@@ -373,7 +373,6 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
                             c.ambient_strength);
   f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight,
                             c.two_stream_light ? 1.0f : 0.0f);
-  f.cloud_weather = glm::vec4(0.0f);
   f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
                             1.0f / c.weather_period_m, c.detail_erosion);
   f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);
@@ -404,7 +403,6 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   f.camera_forward = glm::vec4(basis.forward, aspect);
   f.camera_right = glm::vec4(basis.right, shift.x);
   f.camera_up = glm::vec4(basis.up, shift.y);
-  if (window) f.cloud_band = glm::ivec4(0, 0, window->x, window->y);
   f.sun_dir = glm::vec4(sun, std::cos(glm::radians(scene.sun.disk_angular_radius_deg)));
   const glm::vec3 illuminance(key.illuminance);
   f.sun_illuminance = glm::vec4(illuminance, key.moon ? 1.0f : 0.0f);
@@ -475,8 +473,9 @@ gpu::FrameParams make_frame_params(const Scene& scene, int frame_index, const Sk
   f.light_shafts = glm::vec4(float(light_shafts_method(scene.quality.light_shafts)),
                              float(scene.quality.screen_shaft_samples),
                              scene.quality.screen_shaft_strength, scene.quality.screen_shaft_decay);
-  f.display = glm::vec4(float(exposure_from_ev100(scene.output.ev100)), 0.0f,
-                        float(int(scene.output.tonemap)), 0.0f);
+  f.output_image =
+      glm::vec4(float(exposure_from_ev100(scene.output.ev100)), float(int(scene.output.tonemap)),
+                window ? float(window->x) : 0.0f, window ? float(window->y) : 0.0f);
   return f;
 }
 

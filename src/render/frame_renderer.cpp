@@ -238,7 +238,7 @@ double FrameRenderer::Impl::measure_sky_cover(const Scene& scene, double& ms) {
   params.cloud_shape.x = 0.0f;  // the detail noise's finest level, as an observer sees it
   params.cloud_grid = glm::ivec4(kSkyDomeSize, kSkyDomeSize, 1, 0);
   params.march_offset = glm::ivec4(0, 0, 0, 1);
-  params.cloud_band = glm::ivec4(0);  // the dome's own pixels, whatever window the view was
+  params.output_image.z = params.output_image.w = 0.0f;  // the dome's own pixels, whatever window
   FramePlan plan = last_plan;
   plan.measure = FramePlan::Measure::kSkyDome;
   const FrameGraph graph = frame_graph(scene, params, plan);
@@ -260,7 +260,7 @@ CloudProfile FrameRenderer::Impl::cloud_profile(const Scene& scene) {
   update_atmosphere_luts(scene);
   gpu::FrameParams params = make_frame_params(scene, 0, sky_lights(scene), atmosphere.tables());
   voxel_clouds.prepare(scene, params);
-  params.cloud_weather.w = 0.5f * scene.clouds.weather_period_m;
+  params.cloud_shape.y = 0.5f * scene.clouds.weather_period_m;
   update_noise(scene, params);
   weather.prepare(scene, params);
   FramePlan plan;
@@ -311,17 +311,17 @@ FrameRenderer::Impl::Impl(std::unique_ptr<gpu::Context> context, const RendererO
       voxel_clouds(ctx, state.set),
       sky_view(ctx, state.set),
       clouds(ctx, state.set),
-      particles(ctx, state.set),
+      particles(ctx, state.set, state.layers),
       classic_clouds(ctx, state.set),
       post(ctx, state.set),
       light_shafts(ctx, state.set),
-      terrain(ctx, state.set),
+      terrain(ctx, state.set, state.layers),
       host_scene(ctx, state.set),
       host_lighting(ctx, state.set),
       particle_light(ctx, state.set),
       path_tracer(ctx, state.set) {
   for (const RegisteredModule& module : registered_modules())
-    registered.push_back(module.make(ModuleContext{ctx, state.set}));
+    registered.push_back(module.make(ModuleContext{ctx, state.set, state.layers}));
   ctx.set_feature_variants(options.feature_variants);
 }
 

@@ -13,6 +13,7 @@ namespace nephele {
 GpuState::GpuState(gpu::Context& c)
     : ctx(c),
       set(c),
+      layers(c, set),
       compose_kernels(c, set, "compose.comp.spv", 1, {1, 1, 1, 1, 1, 1}),
       stars_kernel(c, set, "stars.comp.spv"),
       reference_psi_kernel(c, set, "sky_reference_psi.comp.spv"),

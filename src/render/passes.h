@@ -13,6 +13,7 @@
 #include "nephele/image.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
+#include "render/image_layers.h"
 
 namespace nephele {
 
@@ -45,6 +46,7 @@ struct GpuState {
 
   gpu::Context& ctx;
   gpu::DescriptorSet set;
+  ImageLayers layers;  // the layers compose blends over the clouds (image_layers.h)
   gpu::KernelVariants compose_kernels;  // compose.comp's, by compose_variant
   gpu::Kernel stars_kernel;
   gpu::Kernel reference_psi_kernel, reference_sky_kernel, tonemap_kernel, meter_kernel;

@@ -18,6 +18,7 @@
 
 namespace nephele {
 
+class ImageLayers;
 struct FrameOptions;
 struct SkyLights;
 
@@ -86,10 +87,12 @@ class RenderModule {
   virtual void add_passes(FrameGraph& graph, const FrameSetup& frame) = 0;
 };
 
-// What a module is made with: the device and the frame's descriptor table (its set-1 bindings).
+// What a module is made with: the device, the frame's descriptor table (its set-1 bindings) and
+// the image layers compose blends (a module that draws a layer writes its own).
 struct ModuleContext {
   gpu::Context& ctx;
   gpu::DescriptorSet& set;
+  ImageLayers& layers;
 };
 
 // The modules that live in their own folder, src/render/modules/NAME/, whose NAME.h declares

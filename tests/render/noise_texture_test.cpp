@@ -89,13 +89,13 @@ struct Modules {
         voxel_clouds(ctx, s.set),
         sky_view(ctx, s.set),
         clouds(ctx, s.set),
-        particles(ctx, s.set),
+        particles(ctx, s.set, s.layers),
         particle_light(ctx, s.set),
         path_tracer(ctx, s.set),
         metaballs(ctx, s.set),
         post(ctx, s.set),
         light_shafts(ctx, s.set),
-        terrain(ctx, s.set),
+        terrain(ctx, s.set, s.layers),
         host_scene(ctx, s.set),
         host_lighting(ctx, s.set) {}
   nephele::NoiseModule noise;

@@ -144,6 +144,20 @@ TEST(Bindings, APassSeesExactlyTheBindingsItsShaderUses) {
   EXPECT_FALSE(stages.count(kBaseNoise));
 }
 
+// Compose reads what it blends through a fixed set of samplers: the layers besides the
+// volumetric clouds (the surfaces, the particle clouds, those to come) are layers of one
+// array (render/image_layers.h), so that a new layer adds none. (base_noise: the cirrus.)
+TEST(Bindings, ComposeReadsItsLayersThroughOneArray) {
+  std::set<std::string> samplers;
+  for (const ShaderBinding& b : reflect_embedded("compose.comp.spv", VK_SHADER_STAGE_COMPUTE_BIT))
+    if (b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
+      samplers.insert(binding_name(Binding(b.binding)));
+  EXPECT_EQ(samplers,
+            (std::set<std::string>{"sky_view_lut", "clouds_a", "clouds_b", "transmittance_lut",
+                                   "aerial_perspective", "reference_sky", "ground_light",
+                                   "light_shafts", "base_noise", "layers"}));
+}
+
 TEST(Bindings, ReflectionRefusesWhatIsNotSpirv) {
   const uint32_t words[] = {0xdeadbeef, 1, 2, 3, 4, 5, 6, 7};
   try {

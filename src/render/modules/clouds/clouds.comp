@@ -203,8 +203,8 @@ void main() {
     float fine_base = layer_thickness_m(eye + dir * segment.x) / float(frame.steps.x);
     // A new jitter pattern per frame index (Jimenez 2014: offset the pixel by 5.588238 per frame).
     float shift = 5.588238f * float(frame.march_offset.z);
-    // In the whole image's pixels: a tile's pattern continues its neighbours' (cloud_band.zw).
-    vec2 image_pixel = vec2(pixel + frame.cloud_band.zw);
+    // In the whole image's pixels: a tile's pattern continues its neighbours' (output_image.zw).
+    vec2 image_pixel = vec2(pixel) + frame.output_image.zw;
     float jitter = interleaved_gradient_noise(image_pixel.x + shift, image_pixel.y + shift);
     float t = segment.x + COARSE_STEPS * max(fine_base, FINE_PER_M * segment.x) * jitter;
     bool fine = false;

@@ -179,7 +179,7 @@ void main() {
       WITH_SURFACES ? terrain_distance_at((vec2(pixel) + 0.5f) / vec2(width, height)) : 0.0f;
   for (int i = 0; i < (terrain_m > 0.0f ? 1 : 0); ++i) {  // a loop: see the cirrus' below
     vec4 air = air_in_front(uv, terrain_m);
-    vec3 lit = texelFetch(terrain_image, pixel, 0).rgb;
+    vec3 lit = layer_texel(LAYER_SURFACES, pixel).rgb;
     background = lit * air.a + air.rgb * (1.0f - shaft.rgb);
     if (cloud_b.z * 1000.0f > terrain_m) {
       cloud = vec4(0.0f, 0.0f, 0.0f, 1.0f);
@@ -244,9 +244,12 @@ void main() {
   // front of the particles scatters as in front of the clouds. A loop of at most one trip, as
   // the cirrus' below, whose cost only the variant without particles saves.
   vec2 pixel_uv = (vec2(pixel) + 0.5f) / vec2(width, height);
-  vec4 particles = WITH_PARTICLES ? textureLod(particle_layer, pixel_uv, 0.0f) : vec4(0.0f);
+  vec2 particle_share = frame.particle_light.yz;
+  vec4 particles =
+      WITH_PARTICLES ? layer_sample(LAYER_PARTICLES, pixel_uv, particle_share) : vec4(0.0f);
   for (int i = 0; i < (particles.a > 1e-4f ? 1 : 0); ++i) {
-    float particles_m = textureLod(particle_depth, pixel_uv, 0.0f).x / particles.a * 1000.0f;
+    float particles_m =
+        layer_sample(LAYER_PARTICLE_DEPTH, pixel_uv, particle_share).x / particles.a * 1000.0f;
     if (terrain_m > 0.0f && particles_m > terrain_m) break;  // behind the terrain
     vec4 air = air_in_front(uv, particles_m);
     vec3 particle_light = particles.rgb * air.a + air.rgb * illuminance * particles.a;

@@ -39,7 +39,7 @@ void main() {
   vec2 uv = (vec2(pixel) + 0.5f) / vec2(width, height);
   float cloud = dispatch.values.x == 1
                     ? 1.0f
-                    : textureLod(clouds_a, uv, 0.0f).a * (1.0f - textureLod(particle_layer, uv, 0.0f).a);
+                    : textureLod(clouds_a, uv, 0.0f).a * (1.0f - layer_sample(LAYER_PARTICLES, uv, frame.particle_light.yz).a);
   if (terrain_distance_at(uv) > 0.0f) cloud = 0.0f;  // behind the terrain
   float visibility = frame.conditions_sky_fog.w;  // the keyframes' star visibility, 1 when off
   float media = media_in_front(eye, dir, 0.0f, 1.0f).a;  // their transmittance towards the sky

@@ -2,7 +2,7 @@
 // Pass: the host's geometry (render/modules/host_scene/host_scene.h), after the terrain and before the
 // clouds, one thread per pixel: its depth turned into a distance along the view ray through
 // the host's inverse projection, and where it is nearer than the terrain (or there is none)
-// its radiance per unit key-light illuminance and that distance go into terrain_out, where
+// its radiance per unit key-light illuminance and that distance go into LAYER_SURFACES, where
 // the clouds stop, compose fogs it with the aerial perspective and hides the sky behind it,
 // as it does the terrain's.
 #extension GL_GOOGLE_include_directive : require
@@ -30,7 +30,7 @@ vec3 host_color(uint i) {
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= frame.size.x || pixel.y >= frame.size.y) return;
-  vec4 terrain = terrain_present() ? imageLoad(terrain_out, pixel) : vec4(0.0f);
+  vec4 terrain = terrain_present() ? imageLoad(layers_out, ivec3(pixel, LAYER_SURFACES)) : vec4(0.0f);
   uint i = uint(pixel.y) * uint(frame.size.x) + uint(pixel.x);
   float depth = host_depth(i);
   bool reversed = frame.host_scene.y > 0.5f;
@@ -43,5 +43,5 @@ void main() {
     vec3 radiance = host_color(i) * frame.host_layout.y;
     terrain = vec4(radiance / max(frame.sun_illuminance.rgb, vec3(1e-30f)), distance_m);
   }
-  imageStore(terrain_out, pixel, terrain);
+  imageStore(layers_out, ivec3(pixel, LAYER_SURFACES), terrain);
 }

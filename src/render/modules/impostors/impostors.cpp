@@ -545,10 +545,12 @@ void ImpostorCache::record_updates(VkCommandBuffer cmd, gpu::PassTimer& timer) {
       draws.push_back(d);
     }
     if (direct_) {
-      pass_->record(cmd, timer, "impostor_draw", {&atlas_, &atlas_aux_}, draws);
+      pass_->record(cmd, timer, "impostor_draw",
+                    {atlas_.render_target(), atlas_aux_.render_target()}, draws);
       continue;
     }
-    pass_->record(cmd, timer, "impostor_draw", {&scratch_, &scratch_aux_}, draws);
+    pass_->record(cmd, timer, "impostor_draw",
+                  {scratch_.render_target(), scratch_aux_.render_target()}, draws);
     gpu::DrawConstants first{};
     first.info.x = int(job);  // impostor_tiles.comp's first job
     vkCmdPushConstants(cmd, tiles_kernel_.interface().pipeline_layout(), gpu::kDrawConstantStages,

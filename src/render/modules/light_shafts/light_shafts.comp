@@ -29,8 +29,8 @@ void main() {
   vec2 uv = (pixel + 0.5f) / image;
   float transmittance = textureLod(clouds_a, uv, 0.0f).a;
   float cloud_m = transmittance < 0.999f ? textureLod(clouds_b, uv, 0.0f).z * 1000.0f : SHAFT_FAR_M;
-  // Jittered by the whole image's texel (a tile's window starts at cloud_band.zw).
-  vec2 texel = vec2(q) + round(vec2(frame.cloud_band.zw) * vec2(size) / image);
+  // Jittered by the whole image's texel (a tile's window starts at output_image.zw).
+  vec2 texel = vec2(q) + round(frame.output_image.zw * vec2(size) / image);
   float jitter = interleaved_gradient_noise(texel.x, texel.y);
   float terrain_m = terrain_distance_at(uv);
   ShaftLight s = light_shaft_light(frame.camera_pos_m.xyz, dir, cloud_m,

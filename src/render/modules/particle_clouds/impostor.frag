@@ -8,8 +8,8 @@
 layout(location = 0) in vec2 uv;
 layout(location = 1) flat in int index;
 
-layout(location = 0) out vec4 layer_out;  // particle_layer
-layout(location = 1) out vec4 depth_out;  // particle_depth
+layout(location = 0) out vec4 layer_out;  // LAYER_PARTICLES of the image layers
+layout(location = 1) out vec4 depth_out;  // LAYER_PARTICLE_DEPTH
 
 // The atlas method, fixed per pipeline: lavapipe runs both sides of a branch, and the tiles'
 // lookup (a buffer read, divisions) tripled the direct method's cost per fragment.

@@ -16,9 +16,6 @@ namespace nephele {
 
 namespace {
 
-constexpr VkFormat kLayerFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kDepthFormat = VK_FORMAT_R16_SFLOAT;  // opacity-weighted distance (km)
-
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
@@ -61,27 +58,20 @@ std::vector<uint8_t> particle_texels() {
 
 }  // namespace
 
-ParticleCloudsModule::ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : ctx_(ctx), set_(set), impostors_(ctx, set) {
+ParticleCloudsModule::ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set,
+                                           ImageLayers& layers)
+    : ctx_(ctx), set_(set), layers_(layers), impostors_(ctx, set) {
   const int n = gpu::PARTICLE_TEXTURE_SIZE, tiles = gpu::PARTICLE_TEXTURES;
   textures_ = gpu::Texture(ctx, uint32_t(n * tiles), uint32_t(n), 1, VK_FORMAT_R8G8B8A8_UNORM,
                            VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   const std::vector<uint8_t> texels = particle_texels();
   gpu::Buffer staging(ctx, VkDeviceSize(texels.size()), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   std::memcpy(staging.data(), texels.data(), texels.size());
-  // Until a scene has particle clouds: empty layers (1 x 1, zero) and a one-particle buffer.
-  layer_ = gpu::Texture(ctx, 1, 1, 1, kLayerFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
-  depth_ = gpu::Texture(ctx, 1, 1, 1, kDepthFormat, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
-  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    textures_.record_upload(cmd, staging);
-    layer_.record_clear(cmd);
-    depth_.record_clear(cmd);
-  });
+  // Until a scene has particle clouds: a one-particle buffer.
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) { textures_.record_upload(cmd, staging); });
   for (gpu::Buffer& b : buffers_)
     b = gpu::Buffer(ctx, sizeof(gpu::ParticleGpu), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   set_.bind_sampled_image(gpu::kParticleTextures, textures_);
-  set_.bind_sampled_image(gpu::kParticleLayer, layer_);
-  set_.bind_sampled_image(gpu::kParticleDepth, depth_);
   set_.bind_buffer(gpu::kParticles, buffers_[0], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 }
 
@@ -99,7 +89,8 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   near_first_ = near_count_ = 0;
   params.particle_shading =
       glm::vec4(p.albedo, p.phase_g, p.rayleigh_phase ? 1.0f : 0.0f, p.opacity);
-  params.particle_light = glm::vec4(p.diffuse_strength, 0.0f, 0.0f, 0.0f);
+  params.particle_light = glm::vec4(p.diffuse_strength, float(layer_width) / float(width),
+                                    float(layer_height) / float(height), 0.0f);
   if (!active_) {
     field_ = {};
     field_shape_.reset();
@@ -111,7 +102,7 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
                      ctx_.device_name() + " has no graphics");
   if (!pass_)
     pass_ = std::make_unique<gpu::RasterPass>(
-        ctx_, set_, std::vector<VkFormat>{kLayerFormat, kDepthFormat}, true,
+        ctx_, set_, std::vector<VkFormat>{ImageLayers::kFormat, ImageLayers::kFormat}, true,
         std::vector<gpu::RasterShaders>{
             {"particles.vert.spv", "particles.frag.spv"},
             {"impostor.vert.spv", "impostor.frag.spv", {gpu::IMPOSTOR_DIRECT}},
@@ -195,23 +186,17 @@ void ParticleCloudsModule::prepare(const Scene& scene, int slot, int width, int 
   stats_.clouds = int(field_.clouds.size());
   set_.bind_buffer(gpu::kParticles, buffer, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 
-  if (layer_.width() != uint32_t(layer_width) || layer_.height() != uint32_t(layer_height)) {
-    ctx_.wait_queue_idle();
-    layer_ = gpu::Texture(ctx_, uint32_t(layer_width), uint32_t(layer_height), 1, kLayerFormat,
-                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
-    depth_ = gpu::Texture(ctx_, uint32_t(layer_width), uint32_t(layer_height), 1, kDepthFormat,
-                          VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
-    set_.bind_sampled_image(gpu::kParticleLayer, layer_);
-    set_.bind_sampled_image(gpu::kParticleDepth, depth_);
-  }
+  layers_.require(width, height);
+  layer_width_ = layer_width;
+  layer_height_ = layer_height;
 }
 
 ParticleCloudStats ParticleCloudsModule::frame_stats() const {
   ParticleCloudStats out;
   out.particles = stats_.field_particles;
   out.drawn = stats_.particles;
-  out.layer_width = int(layer_.width());
-  out.layer_height = int(layer_.height());
+  out.layer_width = layer_width_;
+  out.layer_height = layer_height_;
   out.clouds = stats_.clouds;
   out.relit_clouds = stats_.relit_clouds;
   out.generate_ms = stats_.generate_ms;
@@ -244,11 +229,14 @@ void ParticleCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
     near.vertex_count = 6 * near_count_;
     near.constants = camera_;
     draws.push_back(near);
-    pass_->record(cmd, timer, "particles", {&layer_, &depth_}, draws);
+    pass_->record(cmd, timer, "particles",
+                  {layers_.target(gpu::LAYER_PARTICLES, layer_width_, layer_height_),
+                   layers_.target(gpu::LAYER_PARTICLE_DEPTH, layer_width_, layer_height_)},
+                  draws);
     drawn_ = true;
   } else if (drawn_) {  // a scene without particle clouds after one with them
-    layer_.record_clear(cmd);
-    depth_.record_clear(cmd);
+    layers_.texture().record_clear_layer(cmd, gpu::LAYER_PARTICLES);
+    layers_.texture().record_clear_layer(cmd, gpu::LAYER_PARTICLE_DEPTH);
     gpu::full_barrier(cmd);
     drawn_ = false;
   }

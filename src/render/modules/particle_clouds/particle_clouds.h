@@ -17,6 +17,7 @@
 #include "nephele/scene.h"
 #include "particles/particle_field.h"
 #include "render/gpu_params.h"
+#include "render/image_layers.h"
 #include "render/modules/impostors/impostors.h"
 #include "render/render_module.h"
 
@@ -35,16 +36,16 @@ struct ParticleFrameStats {
 
 class ParticleCloudsModule : public RenderModule {
  public:
-  ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  ParticleCloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set, ImageLayers& layers);
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
   ~ParticleCloudsModule();
 
   // Before the frame's GpuState::begin: (re)generates the field when its parameters or, for an
   // evolving sky, the time step changed; relights the clouds whose light moved (all of them
   // for a still, else within kParticleRelightBudget); writes the particles back to front from
-  // the camera into the buffer of frame slot `slot`; sizes the layers to the image and binds
-  // them; fills params.particle_shading. Throws InputError when the scene has particle clouds
-  // and the device's queue cannot draw.
+  // the camera into the buffer of frame slot `slot`; sizes the image layers to the image;
+  // fills params.particle_shading and particle_light. Throws InputError when the scene has particle
+  // clouds and the device's queue cannot draw.
   void prepare(const Scene& scene, int slot, int width, int height, bool still,
                gpu::FrameParams& params);
   // The contract's (render_module.h): the above with the frame's values.
@@ -65,7 +66,10 @@ class ParticleCloudsModule : public RenderModule {
   gpu::DescriptorSet& set_;
   std::unique_ptr<gpu::RasterPass> pass_;  // made when first needed
   gpu::Texture textures_;
-  gpu::Texture layer_, depth_;
+  // The image layers they are drawn into (LAYER_PARTICLES, LAYER_PARTICLE_DEPTH), the
+  // top-left layer_width_ x layer_height_ of them.
+  ImageLayers& layers_;
+  int layer_width_ = 1, layer_height_ = 1;
   gpu::Buffer buffers_[gpu::kFramesInFlight];
   particles::ParticleField field_;
   std::optional<particles::FieldShape> field_shape_;  // field_'s

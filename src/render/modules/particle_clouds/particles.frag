@@ -9,8 +9,8 @@ layout(location = 0) in vec2 corner;
 layout(location = 1) flat in vec3 radiance;
 layout(location = 2) flat in vec2 tile;
 
-layout(location = 0) out vec4 layer_out;  // particle_layer
-layout(location = 1) out vec4 depth_out;  // particle_depth
+layout(location = 0) out vec4 layer_out;  // LAYER_PARTICLES of the image layers
+layout(location = 1) out vec4 depth_out;  // LAYER_PARTICLE_DEPTH
 
 void main() {
   float q2 = dot(corner, corner);

@@ -57,10 +57,10 @@ void main() {
   vec3 eye = frame.camera_pos_m.xyz;
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
   float t_max = ground.x > 0.0f ? ground.x : 1.0e9f;  // the ground sphere hides what is below it
-  float t = RASTER == 1 ? imageLoad(terrain_out, pixel).a : terrain_ray(eye, dir, t_max, false);
+  float t = RASTER == 1 ? imageLoad(layers_out, ivec3(pixel, LAYER_SURFACES)).a : terrain_ray(eye, dir, t_max, false);
   if (t > t_max) t = 0.0f;
   if (t <= 0.0f) {
-    imageStore(terrain_out, pixel, vec4(0.0f));
+    imageStore(layers_out, ivec3(pixel, LAYER_SURFACES), vec4(0.0f));
     return;
   }
   vec3 p = eye + dir * t;
@@ -89,5 +89,5 @@ void main() {
   float sky_share = cloud_ground_sky_share(clouds, texelFetch(ground_light, ivec2(0), 0).r);
   vec2 media = media_surface_light(p);  // what a fog above lets through, of the sun's and the sky's
   vec3 radiance = albedo * (direct * media.x + hemisphere_radiance(n) * sky_share * media.y);
-  imageStore(terrain_out, pixel, vec4(radiance, t));
+  imageStore(layers_out, ivec3(pixel, LAYER_SURFACES), vec4(radiance, t));
 }

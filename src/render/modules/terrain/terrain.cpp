@@ -16,12 +16,6 @@ gpu::Texture r32f(gpu::Context& ctx, uint32_t w, uint32_t h) {
   return gpu::Texture(ctx, w, h, 1, VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
 }
 
-// The per-pixel result (terrain.comp's, and the mesh pass's distances before it).
-gpu::Texture output_texture(gpu::Context& ctx, uint32_t w, uint32_t h) {
-  return gpu::Texture(ctx, w, h, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-                      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 1, true);
-}
-
 // What the heights depend on: [terrain], the place (a GeoTIFF's) and the planet's radius.
 std::string terrain_key(const Scene& scene) {
   Scene only;
@@ -57,29 +51,25 @@ void upload(gpu::Context& ctx, const gpu::Texture& texture, const std::vector<fl
 
 }  // namespace
 
-TerrainModule::TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set)
+TerrainModule::TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set, ImageLayers& layers)
     : ctx_(ctx),
       set_(set),
       heights_(r32f(ctx, 1, 1)),
       albedo_(ctx, 1, 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
-      out_(output_texture(ctx, 1, 1)) {
+      layers_(layers) {
   set_.bind_sampled_image(gpu::kTerrainHeights, heights_);
-  set_.bind_image(gpu::kTerrainOut, gpu::kTerrainImage, out_);
   set_.bind_sampled_image(gpu::kTerrainAlbedoMap, albedo_);
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
-    for (const gpu::Texture* t : {&heights_, &out_, &albedo_}) t->record_clear(cmd);
+    for (const gpu::Texture* t : {&heights_, &albedo_}) t->record_clear(cmd);
   });
 }
 
 bool TerrainModule::prepare(const Scene& scene, int width, int height, bool host_scene,
                             gpu::FrameParams& params) {
   const bool present = !scene.terrain.file.empty() || !scene.terrain.preset.empty();
-  if ((present || host_scene) &&
-      (out_.width() != uint32_t(width) || out_.height() != uint32_t(height))) {
-    ctx_.wait_queue_idle();  // a frame in flight may still read the old one
-    out_ = output_texture(ctx_, uint32_t(width), uint32_t(height));
-    set_.bind_image(gpu::kTerrainOut, gpu::kTerrainImage, out_);
-  }
+  if (present || host_scene) layers_.require(width, height);
+  width_ = width;
+  height_ = height;
   if (!present) return false;
   raster_frame_ = scene.terrain.method == "raster";
   if (raster_frame_ && (depth_.width() != uint32_t(width) || depth_.height() != uint32_t(height))) {
@@ -134,12 +124,12 @@ bool TerrainModule::prepare(const Scene& scene, int width, int height, bool host
 void TerrainModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (!raster_frame_) {
     if (!kernel_) kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "terrain.comp.spv");
-    gpu::dispatch(cmd, *kernel_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
+    gpu::dispatch(cmd, *kernel_, timer, "terrain", uint32_t(width_), uint32_t(height_), 1, 8, 8, 1);
     return;
   }
   if (!raster_) {
     raster_ = std::make_unique<gpu::RasterPass>(
-        ctx_, set_, std::vector<VkFormat>{VK_FORMAT_R32G32B32A32_SFLOAT}, true,
+        ctx_, set_, std::vector<VkFormat>{ImageLayers::kFormat}, true,
         std::vector<gpu::RasterShaders>{{"terrain.vert.spv", "terrain.frag.spv"}}, true);
     raster_kernel_ =
         std::make_unique<gpu::Kernel>(ctx_, set_, "terrain.comp.spv", std::vector<int32_t>{1});
@@ -148,8 +138,10 @@ void TerrainModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   const glm::ivec2 cells = glm::ivec2(grid_) - 1;
   mesh.vertex_count = uint32_t(cells.x) * uint32_t(cells.y) * 6u;
   mesh.constants.info = glm::ivec4(cells.x, 0, 0, 0);
-  raster_->record(cmd, timer, "terrain_mesh", {&out_}, {mesh}, &depth_);
-  gpu::dispatch(cmd, *raster_kernel_, timer, "terrain", out_.width(), out_.height(), 1, 8, 8, 1);
+  raster_->record(cmd, timer, "terrain_mesh",
+                  {layers_.target(gpu::LAYER_SURFACES, width_, height_)}, {mesh}, &depth_);
+  gpu::dispatch(cmd, *raster_kernel_, timer, "terrain", uint32_t(width_), uint32_t(height_), 1, 8,
+                8, 1);
 }
 
 void TerrainModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

@@ -15,25 +15,25 @@
 #include "gpu/raster.h"
 #include "nephele/scene.h"
 #include "render/gpu_params.h"
+#include "render/image_layers.h"
 #include "render/render_module.h"
 
 namespace nephele {
 
 class TerrainModule : public RenderModule {
  public:
-  TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set);
+  TerrainModule(gpu::Context& ctx, gpu::DescriptorSet& set, ImageLayers& layers);
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
-  // Loads the scene's terrain when it changed (InputError for bad input), sizes the output
-  // for a width x height frame (also without terrain when `host_scene`: the host's geometry
-  // goes there) and fills params.terrain_*; false when the scene has none (then
-  // params.terrain_shape.z stays 0).
+  // Loads the scene's terrain when it changed (InputError for bad input), sizes the image
+  // layers for a width x height frame (also without terrain when `host_scene`: the host's
+  // geometry goes into the same layer, LAYER_SURFACES) and fills params.terrain_*; false when the
+  // scene has none (then params.terrain_shape.z stays 0).
   bool prepare(const Scene& scene, int width, int height, bool host_scene,
                gpu::FrameParams& params);
   // The contract's (render_module.h): the above with the frame's values.
   void prepare(const FramePrepare& frame, FramePlan& plan) override;
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
-  const gpu::Texture& output() const { return out_; }
 
  private:
   gpu::Context& ctx_;
@@ -41,9 +41,10 @@ class TerrainModule : public RenderModule {
   gpu::Texture heights_;     // and below them terrain::MaxPyramid's levels
   gpu::Texture albedo_;      // terrain.albedo_map, linear
   std::string albedo_path_;  // the map albedo_ holds
-  gpu::Texture out_;
-  // The raster method's: the mesh pass (its distances into out_) and depth, terrain.comp
-  // reading them.
+  ImageLayers& layers_;      // terrain.comp's result goes into LAYER_SURFACES
+  int width_ = 0, height_ = 0;  // the frame's
+  // The raster method's: the mesh pass (its distances into LAYER_SURFACES) and depth,
+  // terrain.comp reading them.
   std::unique_ptr<gpu::RasterPass> raster_;
   gpu::DepthTarget depth_;
   std::unique_ptr<gpu::Kernel> raster_kernel_;
