@@ -112,6 +112,12 @@ void FrameGraph::compile() {
 
   needs_.assign(n, {});
   for (size_t i = 0; i < n; ++i) needs_[i].assign(data[i].begin(), data[i].end());
+  // In the sorted order every pass comes after those whose results it uses.
+  per_view_.assign(n, false);
+  for (size_t i : sorted) {
+    per_view_[i] = contains(passes_[i].reads, kView);
+    for (size_t j : data[i]) per_view_[i] = per_view_[i] || per_view_[j];
+  }
   order_.clear();
   for (size_t i : sorted)
     if (live[i]) order_.push_back(i);
@@ -183,9 +189,33 @@ std::string FrameGraph::describe() const {
     if (step.barrier_before) text += "  barrier (" + join(step.hazards) + ")\n";
     const Pass& p = pass(step.pass);
     text += p.name + ": reads " + (p.reads.empty() ? "-" : join(p.reads)) + "; writes " +
-            join(p.writes) + "\n";
+            join(p.writes) + (per_view(p.name) ? " [view]" : "") + "\n";
   }
   return text;
+}
+
+bool FrameGraph::per_view(const std::string& name) const {
+  for (size_t i = 0; i < passes_.size(); ++i)
+    if (passes_[i].name == name) {
+      if (per_view_.size() != passes_.size())
+        throw std::logic_error("frame graph: per_view before compile");
+      return per_view_[i];
+    }
+  throw std::logic_error("frame graph: no pass named " + name);
+}
+
+std::vector<std::string> FrameGraph::shared_passes() const {
+  std::vector<std::string> names;
+  for (size_t i : order_)
+    if (!per_view_[i]) names.push_back(passes_[i].name);
+  return names;
+}
+
+std::set<std::string> FrameGraph::per_view_resources() const {
+  std::set<std::string> resources;
+  for (size_t i : order_)
+    if (per_view_[i]) resources.insert(passes_[i].writes.begin(), passes_[i].writes.end());
+  return resources;
 }
 
 }  // namespace nephele

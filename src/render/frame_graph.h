@@ -19,6 +19,12 @@ class FrameGraph {
  public:
   using Record = std::function<void(VkCommandBuffer)>;
 
+  // The view: the camera's direction and projection (not its position), which every pass that
+  // draws the image's pixels reads. The frame imports it. What depends on it, and what does
+  // not, tells several views of one eye point (display channels) which passes each must record
+  // and which one recording serves them all (per_view, shared_passes).
+  static constexpr const char* kView = "view";
+
   // A resource no pass of the graph creates: made before the frame (the atmosphere's tables,
   // the noise) or kept across frames (`kept`: the light volume, the clouds' history), whose
   // writers are never dropped.
@@ -49,8 +55,18 @@ class FrameGraph {
                const std::vector<std::string>& passes) const;
   // The compiled passes `pass` needs, directly or not, in the graph's order (not itself).
   std::vector<std::string> dependencies_of(const std::string& pass) const;
-  // One line a step: "barrier (weather_map)" and "light_volume: reads a, b; writes c".
+  // One line a step: "barrier (weather_map)" and "light_volume: reads a, b; writes c", with
+  // " [view]" after a pass that depends on the view.
   std::string describe() const;
+
+  // After compile: whether `pass` depends on the view: it reads kView, or what such a pass
+  // wrote, directly or not.
+  bool per_view(const std::string& pass) const;
+  // The compiled passes that do not, in the graph's order: recorded once for every view.
+  std::vector<std::string> shared_passes() const;
+  // The resources the passes that do write: each view needs its own (its image, its clouds'
+  // history, its layers).
+  std::set<std::string> per_view_resources() const;
 
  private:
   struct Pass {
@@ -65,6 +81,7 @@ class FrameGraph {
   std::vector<Pass> passes_;
   std::set<std::string> imported_, kept_, outputs_;
   std::vector<std::vector<size_t>> needs_;  // after compile: the passes each pass follows
+  std::vector<bool> per_view_;              // after compile: each pass depends on the view
   std::vector<size_t> order_;               // after compile: the kept passes, in order
   std::vector<Step> steps_;
 };

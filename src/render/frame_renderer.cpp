@@ -175,6 +175,7 @@ std::vector<std::string> FrameRenderer::Impl::march_in_bands(const FrameGraph& g
 FrameGraph FrameRenderer::Impl::frame_graph(const Scene& scene, const gpu::FrameParams& params,
                                             const FramePlan& plan) {
   FrameGraph graph;
+  graph.import(FrameGraph::kView);
   const FrameSetup setup{scene, params, plan, [this]() -> gpu::PassTimer& { return *state.timer; }};
   for (RenderModule* module : frame_modules()) module->add_passes(graph, setup);
   graph.compile();

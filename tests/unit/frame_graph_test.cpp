@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -127,6 +128,38 @@ TEST(FrameGraph, RecordsThePartOnePassNeeds) {
   EXPECT_NE(graph.describe().find("  barrier (weather)\nground_light: reads weather; writes ground_light\n"),
             std::string::npos)
       << graph.describe();
+}
+
+// Several views of one eye point (display channels) share what does not depend on the view:
+// a pass that reads it, and every pass that uses what such a pass wrote, is per view; the
+// others are recorded once for all.
+TEST(FrameGraph, TellsThePassesEachViewNeedsFromThoseTheyShare) {
+  Log log;
+  FrameGraph graph;
+  graph.import(FrameGraph::kView);
+  graph.import("noise");
+  graph.import("history", true);
+  graph.output("display");
+  graph.add_pass("weather", {"noise"}, {"weather"}, log.pass("weather"));
+  graph.add_pass("light_volume", {"weather", "noise"}, {"light_volume"}, log.pass("light_volume"));
+  graph.add_pass("march", {"light_volume", FrameGraph::kView}, {"march"}, log.pass("march"));
+  graph.add_pass("resolve", {"march", "history"}, {"history"}, log.pass("resolve"));
+  graph.add_pass("compose", {"history", "light_volume"}, {"color"}, log.pass("compose"));
+  graph.add_pass("tonemap", {"color"}, {"display"}, log.pass("tonemap"));
+  EXPECT_THROW(graph.per_view("march"), std::logic_error);  // before compile
+  graph.compile();
+  EXPECT_FALSE(graph.per_view("weather"));
+  EXPECT_FALSE(graph.per_view("light_volume"));
+  for (const char* pass : {"march", "resolve", "compose", "tonemap"})
+    EXPECT_TRUE(graph.per_view(pass)) << pass;
+  EXPECT_EQ(graph.shared_passes(), (Lines{"weather", "light_volume"}));
+  EXPECT_EQ(graph.per_view_resources(),
+            (std::set<std::string>{"march", "history", "color", "display"}));
+  EXPECT_NE(graph.describe().find("compose: reads history, light_volume; writes color [view]\n"),
+            std::string::npos)
+      << graph.describe();
+  EXPECT_NE(graph.describe().find("weather: reads noise; writes weather\n"), std::string::npos);
+  EXPECT_THROW(graph.per_view("no_such_pass"), std::logic_error);
 }
 
 }  // namespace

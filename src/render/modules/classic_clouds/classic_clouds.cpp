@@ -72,7 +72,9 @@ void ClassicCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame)
   if (!frame.plan.classic) return;
   const CloudModel model = frame.scene.clouds.model;
   const int width = frame.params.cloud_grid.x, height = frame.params.cloud_grid.y;
-  graph.add_pass("clouds", cloud_field_resources(), {"cloud_layer"},
+  std::vector<std::string> reads = cloud_field_resources();
+  reads.push_back(FrameGraph::kView);
+  graph.add_pass("clouds", reads, {"cloud_layer"},
                  [timer = frame.timer, this, model, width, height](VkCommandBuffer cmd) {
                    record(cmd, timer(), model, width, height);
                  });

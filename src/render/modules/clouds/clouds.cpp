@@ -145,7 +145,7 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   if (frame.plan.classic) return;  // a classical model draws the cloud layer
   if (frame.plan.volumetric) {
     std::vector<std::string> march_reads = cloud_field_resources();
-    march_reads.push_back("terrain");
+    march_reads.insert(march_reads.end(), {"terrain", FrameGraph::kView});
     graph.add_pass("march", march_reads, {"cloud_march"},
                    [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
                      record_march(cmd, timer(), mode, *params);
@@ -154,7 +154,7 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
         "clouds", {"cloud_march", "cloud_layer"}, {"cloud_layer"},
         [timer = frame.timer, this](VkCommandBuffer cmd) { record_reconstruction(cmd, timer()); });
   } else {
-    graph.add_pass("clouds", {}, {"cloud_layer"},
+    graph.add_pass("clouds", {FrameGraph::kView}, {"cloud_layer"},
                    [this](VkCommandBuffer cmd) { record_clear_sky(cmd); });
   }
 }

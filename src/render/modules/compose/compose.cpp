@@ -9,14 +9,16 @@ void ComposeModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
                                                        frame.plan.particles, frame.plan.media);
   graph.add_pass("compose",
                  {"atmosphere", "sky_view", "cloud_layer", "ground_light", "shafts",
-                  "particle_layer", "terrain", "reference_sky"},
+                  "particle_layer", "terrain", "reference_sky", FrameGraph::kView},
                  {"color"}, [this, variant, layer = frame.plan.film_layer](VkCommandBuffer cmd) {
                    pass_compose(cmd, state_, variant, layer);
                  });
-  graph.add_pass("stars", {"color", "cloud_layer", "particle_layer", "terrain", "atmosphere"},
-                 {"color"}, [this, layer = frame.plan.film_layer](VkCommandBuffer cmd) {
-                   pass_stars(cmd, state_, layer);
-                 });
+  graph.add_pass(
+      "stars",
+      {"color", "cloud_layer", "particle_layer", "terrain", "atmosphere", FrameGraph::kView},
+      {"color"}, [this, layer = frame.plan.film_layer](VkCommandBuffer cmd) {
+        pass_stars(cmd, state_, layer);
+      });
 }
 
 void DisplayModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

@@ -160,7 +160,7 @@ void HostSceneModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
 
 void HostSceneModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   if (frame.params.host_scene.x > 0.0f)
-    graph.add_pass("host_scene", {"terrain"}, {"terrain"},
+    graph.add_pass("host_scene", {"terrain", FrameGraph::kView}, {"terrain"},
                    [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 

@@ -32,7 +32,8 @@ void LightShaftsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   graph.import("shafts");  // read whether or not they are drawn this frame
   if (!frame.plan.shafts) return;
   std::vector<std::string> reads = cloud_field_resources();
-  for (const char* r : {"cloud_layer", "ground_light", "terrain", "atmosphere"}) reads.push_back(r);
+  for (const char* r : {"cloud_layer", "ground_light", "terrain", "atmosphere", FrameGraph::kView})
+    reads.push_back(r);
   graph.add_pass("light_shafts", reads, {"shafts"},
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }

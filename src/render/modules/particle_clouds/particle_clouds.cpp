@@ -244,7 +244,8 @@ void ParticleCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
 
 void ParticleCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   graph.import("particle_layer");  // read whether or not it is drawn this frame
-  graph.add_pass("particles", {"sky_view", "terrain", "atmosphere"}, {"particle_layer"},
+  graph.add_pass("particles", {"sky_view", "terrain", "atmosphere", FrameGraph::kView},
+                 {"particle_layer"},
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 

@@ -59,13 +59,13 @@ void PathTracerModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   const bool planet = frame.plan.planet_reference;
   const MarchMode mode = frame.scene.quality.mode;
   graph.output("path_sums");
-  graph.add_pass(
-      "path_trace",
-      planet ? std::vector<std::string>{"weather_map", "noise", "voxel_clouds", "atmosphere"}
-             : std::vector<std::string>{"voxel_clouds"},
-      {"path_sums"}, [timer = frame.timer, this, planet, mode](VkCommandBuffer cmd) {
-        record(cmd, timer(), planet, mode);
-      });
+  graph.add_pass("path_trace",
+                 planet ? std::vector<std::string>{"weather_map", "noise", "voxel_clouds",
+                                                   "atmosphere", FrameGraph::kView}
+                        : std::vector<std::string>{"voxel_clouds", FrameGraph::kView},
+                 {"path_sums"}, [timer = frame.timer, this, planet, mode](VkCommandBuffer cmd) {
+                   record(cmd, timer(), planet, mode);
+                 });
 }
 
 }  // namespace nephele

@@ -62,7 +62,8 @@ void PostModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
 
 void PostModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   if (!frame.plan.post) return;
-  graph.add_pass("post", {"color", "cloud_layer", "terrain", "shafts"}, {"color"},
+  graph.add_pass("post", {"color", "cloud_layer", "terrain", "shafts", FrameGraph::kView},
+                 {"color"},
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 

@@ -147,10 +147,11 @@ void TerrainModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
 void TerrainModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   graph.import("terrain");  // read whether or not it is drawn this frame
   if (frame.params.terrain_shape.z > 0.0f)
-    graph.add_pass(
-        "terrain",
-        {"ground_light", "light_volume", "weather_map", "noise", "sky_view", "atmosphere"},
-        {"terrain"}, [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
+    graph.add_pass("terrain",
+                   {"ground_light", "light_volume", "weather_map", "noise", "sky_view",
+                    "atmosphere", FrameGraph::kView},
+                   {"terrain"},
+                   [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 void TerrainModule::prepare(const FramePrepare& frame, FramePlan& plan) {
