@@ -153,6 +153,9 @@ class Viewer {
   // before at output.adaptation_ev_per_s over the wall-clock time between frames.
   double display_ev100(const OutputParams& output);
   std::optional<double> display_ev_;  // the auto exposure shown, once a frame was metered
+  float applied_ev100_ = 0.0f;        // the exposure the last frame was recorded with
+  bool last_reused_ = false;          // the last frame drawn was the one before, settled
+  long reused_frames_ = 0;            // frames drawn that way
   std::chrono::steady_clock::time_point display_time_;
   bool draw_frame(const std::string& window_capture_path);
 
@@ -871,9 +874,17 @@ bool Viewer::draw_frame(const std::string& window_capture_path) {
   std::optional<FrameImages> images;
   try {
     Scene scene = render_scene();
-    scene.output.ev100 = float(display_ev100(scene.output));  // the live auto exposure
+    // The live auto exposure, held where it moves by less than 0.02 EV (1.4%, unseen): the
+    // meter's reading of a settled view varies that little from frame to frame, and an
+    // unchanged scene lets the renderer hand out its settled frame again (reuse_settled).
+    const float ev100 = float(display_ev100(scene.output));
+    if (!scene.output.auto_exposure || std::abs(ev100 - applied_ev100_) > 0.02f)
+      applied_ev100_ = ev100;
+    scene.output.ev100 = applied_ev100_;
     scene.output.auto_exposure = false;
-    images = renderer_->record_frame(cmd, scene);
+    images = renderer_->record_frame(cmd, scene, FrameOptions{.reuse_settled = true});
+    last_reused_ = images->reused;
+    reused_frames_ += images->reused ? 1 : 0;
     ++records_;
   } catch (const InputError& e) {
     std::fprintf(stderr, "nephele-view: frame not rendered: %s\n", e.what());
@@ -1082,7 +1093,8 @@ int Viewer::run() {
 
     const bool still = !input_this_frame_ && !playing_ && editor_.revision() == last_revision_;
     last_revision_ = editor_.revision();
-    dynres_.update(t, double(dt_s) * 1000.0, still);
+    // A frame handed out again took no rendering: its time says nothing of the render size.
+    if (!last_reused_) dynres_.update(t, double(dt_s) * 1000.0, still);
 
     // A window capture asked for at this frame.
     std::string capture;
@@ -1098,8 +1110,11 @@ int Viewer::run() {
 
   if (!options_.screenshot.empty() && !take_screenshot(options_.screenshot)) exit_status_ = 1;
   if (timed_frames_ > 0)
-    std::fprintf(stderr, "nephele-view: %ld frames on %s, mean %.1f ms a frame after the first two\n",
-                 frame_, renderer_->device_name().c_str(), total_frame_ms_ / double(timed_frames_));
+    std::fprintf(stderr,
+                 "nephele-view: %ld frames on %s, mean %.1f ms a frame after the first two; %ld "
+                 "of them the settled frame again (nothing rendered)\n",
+                 frame_, renderer_->device_name().c_str(), total_frame_ms_ / double(timed_frames_),
+                 reused_frames_);
   if (options_.soak) {
     const double end_mib = rss_mib();
     if (soak_start_mib_ < 0.0) {

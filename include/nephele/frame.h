@@ -125,6 +125,13 @@ struct FrameOptions {
   // (RendererOptions::progress), which would run before the host's commands draw its scene.
   const HostScene* host_scene = nullptr;
   HostLightingOptions lighting;
+  // true: a frame of a sequence whose scene (every parameter, its time and camera) and options
+  // are those of the last frame recorded, once that frame's clouds have settled (its history
+  // 2 x quality.march_stride^2 frames old: every pixel marched twice), records nothing and
+  // hands out the last frame's images again (FrameImages::reused): a paused view costs nothing.
+  // Never with a host scene or the host's lighting, whose inputs may change while the options
+  // do not.
+  bool reuse_settled = false;
 };
 
 // The images a recorded frame leaves, quality.* and output.* of its scene applied.
@@ -164,6 +171,9 @@ struct FrameImages {
   // (vkCmdCopyImage). The sun's and the moon's discs are not in it (HostLighting has them).
   VkImage environment = VK_NULL_HANDLE;
   VkImageView environment_view = VK_NULL_HANDLE;
+  // The last frame's images handed out again (FrameOptions::reuse_settled): nothing was
+  // recorded into the command buffer, and `slot` is the last frame's.
+  bool reused = false;
 };
 
 class FrameRenderer {

@@ -425,6 +425,18 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     lab = lab_fast_scene(requested, voxel_clouds.grid(lab_voxel_cloud(requested)));
   const Scene& scene = lab ? *lab : requested;
   const bool still = options.still;
+  // A paused view (FrameOptions::reuse_settled): the last frame again, once settled.
+  const bool reusable =
+      options.reuse_settled && !still && !options.host_scene && !options.lighting.enabled;
+  const std::string toml = reusable ? scene_to_toml(requested) : std::string();
+  const int stride_now = scene.quality.mode == MarchMode::Baseline ? 1 : scene.quality.march_stride;
+  const long long settled = stride_now == 1 ? 1 : 2LL * stride_now * stride_now;
+  if (reusable && last_slot >= 0 && toml == previous_toml && unchanged_frames >= settled &&
+      (previous_display || !options.display)) {
+    FrameImages images = frame_images(last_slot, false);
+    images.reused = true;
+    return images;
+  }
   const auto start = std::chrono::steady_clock::now();
   const int slot = int(frames_recorded % gpu::kFramesInFlight);
   collect(slot);  // the host has waited for the frame recorded there before
@@ -487,6 +499,9 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
 
   previous = scene;
   previous_key = key;
+  unchanged_frames = !toml.empty() && toml == previous_toml ? unchanged_frames + 1 : 1;
+  previous_toml = toml;
+  previous_display = options.display;
   previous_light_dir = lights.key.direction;
   ++frame_counter;
   last_params = params;

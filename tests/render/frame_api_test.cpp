@@ -104,6 +104,48 @@ TEST(FrameApi, TwoFramesInFlightOnTheHostsDeviceWithSynchronisationValidation) {
   EXPECT_EQ(host.messages, 0);
 }
 
+// A paused view (FrameOptions::reuse_settled): once the same scene has been recorded for
+// 2 x march_stride^2 frames (every pixel marched twice), the last frame's images are handed out
+// again and nothing is recorded; any change (here the camera) renders again, and settles again.
+TEST(FrameApi, APausedViewReusesItsSettledFrame) {
+  Host host;
+  ASSERT_NE(host.vk.device, VK_NULL_HANDLE) << "no Vulkan device with validation";
+  nephele::Scene scene = small_scene();
+  scene.quality.march_stride = 2;  // settled after 8 frames
+  {
+    nephele::FrameRenderer sky(host.vk);
+    nephele::FrameOptions options;
+    options.reuse_settled = true;
+    std::vector<bool> reused;
+    nephele::FrameImages last;
+    for (int i = 0; i < 22; ++i) {
+      if (i == 11) scene.camera.position_m.x += 5.0f;
+      const int slot = i % sky.frames_in_flight();
+      VkCommandBuffer cmd = host.begin(slot);
+      const nephele::FrameImages images = sky.record_frame(cmd, scene, options);
+      host.submit(slot);
+      vkWaitForFences(host.vk.device, 1, &host.fence[slot], VK_TRUE, UINT64_MAX);
+      reused.push_back(images.reused);
+      if (images.reused) {  // the last frame's images, as they were
+        EXPECT_EQ(images.slot, last.slot) << "frame " << i;
+        EXPECT_EQ(images.display, last.display) << "frame " << i;
+      }
+      last = images;
+    }
+    // Frames 0-7 and, after the change at 11, 11-18 are recorded.
+    for (int i = 0; i < 22; ++i)
+      EXPECT_EQ(reused[size_t(i)], (i >= 8 && i < 11) || i >= 19) << "frame " << i;
+    // A still, or the host's lighting, is always recorded.
+    VkCommandBuffer cmd = host.begin(0);
+    options.lighting.enabled = true;
+    options.lighting.shadow_map_size = 32;
+    EXPECT_FALSE(sky.record_frame(cmd, scene, options).reused);
+    host.submit(0);
+    vkDeviceWaitIdle(host.vk.device);
+  }
+  EXPECT_EQ(host.messages, 0);
+}
+
 // The check above can fail: the same host reports a hazard of its own (two writes to one
 // buffer with no barrier between them).
 TEST(FrameApi, SynchronisationValidationSeesAHazard) {

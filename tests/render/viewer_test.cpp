@@ -204,6 +204,52 @@ TEST_F(ViewerTest, ScriptedCoverageChangesTheImage) {
   EXPECT_GT(error, 0.1) << "mean luminance change relative to the few-cloud image";
 }
 
+// A paused view settles (every cloud pixel marched twice, the exposure adapted) and is then
+// drawn from its last frame with nothing rendered (FrameOptions::reuse_settled); a change
+// renders again.
+TEST_F(ViewerTest, APausedViewStopsRenderingOnceSettled) {
+  const std::string script = write("settle.txt",
+                                   "frame 0 set clouds.coverage 0.15\n"
+                                   "frame 69 window-screenshot " +
+                                       path("few.png") +
+                                       "\n"
+                                       "frame 70 set clouds.coverage 0.95\n"
+                                       "frame 89 window-screenshot " +
+                                       path("many.png") +
+                                       "\n"
+                                       "frame 90 quit\n");
+  const ProcessRun r =
+      view("--preset default --size 480x320 --no-dynamic-resolution --script " + script);
+  expect_clean(r);
+  const size_t at = r.output.find(" of them the settled frame again");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const long reused = std::stol(r.output.substr(r.output.rfind(' ', at - 1) + 1));
+  std::printf("%ld of 90 frames the settled frame again\n", reused);
+  // Not before frame 32 (2 x 4^2 frames of a march stride of 4) nor in the 20 frames after
+  // the coverage changed (it would settle after 32 more); settled by frame 50 at the latest
+  // (the exposure's adaptation).
+  EXPECT_GE(reused, 20);
+  EXPECT_LE(reused, 70 - 32);
+  // The sky right of the panel and below the timings (x >= 400, y >= 270 of 480 x 320) is
+  // drawn again after the change: more cloud.
+  const auto corner = [](const nephele::Image& window) {
+    nephele::Image part;
+    part.width = window.width - 400;
+    part.height = window.height - 270;
+    for (int y = 270; y < window.height; ++y)
+      for (int x = 400; x < window.width; ++x)
+        part.pixels.push_back(window.pixels[size_t(y) * size_t(window.width) + size_t(x)]);
+    return part;
+  };
+  const nephele::Image few = nephele::read_image(path("few.png"));
+  const nephele::Image many = nephele::read_image(path("many.png"));
+  ASSERT_EQ(few.width, 480);
+  ASSERT_EQ(many.height, 320);
+  const double change = nephele::luminance_error(corner(many), corner(few));
+  std::printf("the sky's corner after the change: mean luminance change %.3f\n", change);
+  EXPECT_GT(change, 0.05) << "the window after the change of coverage";
+}
+
 TEST_F(ViewerTest, InvalidScriptValueIsReportedAndThePreviousSceneKeepsRendering) {
   const std::string script = write("script.txt",
                                    "frame 1 screenshot " + path("before.png") + "\n"
