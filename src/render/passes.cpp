@@ -106,7 +106,7 @@ double metered_luminance(const GpuState& s, int slot) {
   return std::isfinite(mean_log) ? std::exp(double(mean_log)) : 0.0;
 }
 
-std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel model, bool particles,
+std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel model, bool layers,
                                      bool media) {
   // Each feature exactly where compose.comp would find it in the parameters, so that a variant
   // draws what the full shader draws.
@@ -115,7 +115,7 @@ std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel mo
           int(params.light_shafts.x) == gpu::LIGHT_SHAFTS_VOLUMETRIC ? 1 : 0,
           params.terrain_shape.z > 0.5f || params.host_scene.x > 0.5f ? 1 : 0,
           params.cirrus.y > 0.0f ? 1 : 0,
-          particles ? 1 : 0,
+          layers ? 1 : 0,
           media ? 1 : 0};
 }
 

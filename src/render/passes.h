@@ -68,9 +68,9 @@ struct GpuState {
 };
 
 // compose.comp's specialization constants for a frame: the sky model's (REFERENCE) and the
-// features it uses, from its parameters, whether particles draw and whether a medium's module
-// is on (FramePlan::particles, media).
-std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel model, bool particles,
+// features it uses, from its parameters, whether a translucent layer draws and whether a
+// medium's module is on (FramePlan::layers, media).
+std::vector<int32_t> compose_variant(const gpu::FrameParams& params, SkyModel model, bool layers,
                                      bool media);
 // `layer`: the film layer written (FramePlan::film_layer; 0 the image).
 void pass_compose(VkCommandBuffer cmd, GpuState& s, const std::vector<int32_t>& variant, int layer);

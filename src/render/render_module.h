@@ -32,7 +32,7 @@ struct FramePlan {
   bool post = false;         // screen-space god rays, bloom and glare
   bool display = false;      // the display image (tonemap) is wanted
   bool ground_light = false; // the clouds' light on the ground is measured this frame
-  bool particles = false;    // the particle clouds draw their layer
+  bool layers = false;       // a translucent layer (a module's NAME_layer.glsl) draws this frame
   bool media = false;        // a medium's module (the ground fog) is on: compose draws media
   // What the graph is built for besides a frame's image: a measurement whose pass the module
   // that owns it adds as an output; only that pass and what it needs are recorded

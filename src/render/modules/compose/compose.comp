@@ -31,7 +31,7 @@ layout(constant_id = 1) const bool WITH_CONDITIONS = true;  // the time-of-day k
 layout(constant_id = 2) const bool WITH_SHAFTS = true;      // volumetric light shafts
 layout(constant_id = 3) const bool WITH_SURFACES = true;    // the terrain or the host's scene
 layout(constant_id = 4) const bool WITH_CIRRUS = true;      // the cirrus sheet
-layout(constant_id = 5) const bool WITH_PARTICLES = true;   // the particle clouds' layer
+layout(constant_id = 5) const bool WITH_LAYERS = true;      // a translucent layer (particles)
 layout(constant_id = 6) const bool WITH_MEDIA = true;       // a medium's module is on (fog)
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -86,6 +86,44 @@ vec4 air_in_front(vec2 uv, float distance_m) {
                     vec3(uv.x, sky_view_v_clamped(uv, float(AP_SIZE_V)), aerial_perspective_w(distance_m)),
                     0.0f);
 }
+
+// What the translucent layers are blended over (layers_over): the light in front of the sky so
+// far (premultiplied), its opacity and distance, and what blending a layer needs.
+#define NEPHELE_LAYER_BLEND
+struct LayerBlend {
+  vec3 front;
+  float alpha;
+  float depth_m;
+  vec2 sky_uv;         // the view's sky-view coordinates (the aerial perspective's)
+  vec3 eye, dir;
+  vec3 illuminance;    // the key light's
+  float surface_m;     // the terrain or the host's geometry along the view; 0 for none
+  float clouds_m;      // the volumetric clouds' opacity-weighted distance
+  float clouds_diffuse;  // the media's light under the clouds (media_in_front)
+};
+
+// One translucent layer (premultiplied radiance and opacity at its distance layer_m) in depth
+// order with the volumetric clouds: the air and the media in front of it dim its light and add
+// their own as far as it covers, and it goes in front of the clouds or behind them. Hidden
+// behind the surface. A loop of at most one trip, as the cirrus' below, whose cost only the
+// variant without layers saves.
+void blend_layer(vec4 layer, float layer_m, inout LayerBlend b) {
+  for (int i = 0; i < (layer.a > 1e-4f ? 1 : 0); ++i) {
+    if (b.surface_m > 0.0f && layer_m > b.surface_m) break;  // behind the terrain
+    vec4 air = air_in_front(b.sky_uv, layer_m);
+    vec3 light = layer.rgb * air.a + air.rgb * b.illuminance * layer.a;
+    if (WITH_MEDIA) {
+      vec4 m = media_in_front(b.eye, b.dir, layer_m, b.clouds_diffuse);
+      light = light * m.a + layer.a * m.rgb * b.illuminance;
+    }
+    bool in_front = b.alpha < 1e-3f || layer_m < b.clouds_m;
+    b.front = in_front ? light + (1.0f - layer.a) * b.front : b.front + (1.0f - b.alpha) * light;
+    b.depth_m = in_front ? layer_m : b.depth_m;
+    b.alpha = 1.0f - (1.0f - b.alpha) * (1.0f - layer.a);
+  }
+}
+// The translucent layers of the modules (their *_layer.glsl): layers_over (generated).
+#include "layer_list_inc.glsl"
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -239,33 +277,20 @@ void main() {
   float alpha = 1.0f - cloud.a;
   // The clouds' opacity-weighted distance (clouds.comp), where they are not clear; 0 elsewhere.
   float depth_m = cloud.a < 0.999f ? cloud_b.z * 1000.0f : 0.0f;
-  // The particle clouds (particles.vert) in depth order with the volumetric ones: both
-  // premultiplied, the nearer over the farther, at their opacity-weighted distances; the air in
-  // front of the particles scatters as in front of the clouds. A loop of at most one trip, as
-  // the cirrus' below, whose cost only the variant without particles saves.
-  vec2 pixel_uv = (vec2(pixel) + 0.5f) / vec2(width, height);
-  vec2 particle_share = frame.particle_light.yz;
-  vec4 particles =
-      WITH_PARTICLES ? layer_sample(LAYER_PARTICLES, pixel_uv, particle_share) : vec4(0.0f);
-  for (int i = 0; i < (particles.a > 1e-4f ? 1 : 0); ++i) {
-    float particles_m =
-        layer_sample(LAYER_PARTICLE_DEPTH, pixel_uv, particle_share).x / particles.a * 1000.0f;
-    if (terrain_m > 0.0f && particles_m > terrain_m) break;  // behind the terrain
-    vec4 air = air_in_front(uv, particles_m);
-    vec3 particle_light = particles.rgb * air.a + air.rgb * illuminance * particles.a;
-    if (WITH_MEDIA) {
-      vec4 m = media_in_front(eye, dir, particles_m, clouds_diffuse);
-      particle_light = particle_light * m.a + particles.a * m.rgb * illuminance;
-    }
-    bool in_front = alpha < 1e-3f || particles_m < cloud_b.z * 1000.0f;
-    front = in_front ? particle_light + (1.0f - particles.a) * front
-                     : front + (1.0f - alpha) * particle_light;
-    depth_m = in_front ? particles_m : depth_m;
-    alpha = 1.0f - (1.0f - alpha) * (1.0f - particles.a);
+  // The translucent layers (the particle clouds, particles.vert) in depth order with the
+  // volumetric clouds: both premultiplied, the nearer over the farther, at their
+  // opacity-weighted distances (blend_layer).
+  if (WITH_LAYERS) {
+    LayerBlend blend = LayerBlend(front, alpha, depth_m, uv, eye, dir, illuminance, terrain_m,
+                                  cloud_b.z * 1000.0f, clouds_diffuse);
+    layers_over((vec2(pixel) + 0.5f) / vec2(width, height), blend);
+    front = blend.front;
+    alpha = blend.alpha;
+    depth_m = blend.depth_m;
   }
   if (cirrus_in_front) {
     front = front * cirrus.a + cirrus.rgb * illuminance;
-    alpha = 1.0f - (1.0f - alpha) * cirrus.a;  // over the clouds and the particles
+    alpha = 1.0f - (1.0f - alpha) * cirrus.a;  // over the clouds and the layers
   }
   vec3 color = front + (1.0f - alpha) * sky_layer;
   int layer = dispatch.values.x;

@@ -3,7 +3,8 @@
 // direction turned into the sky of the date and place, projected into the image and added to
 // the pixel it falls in as radiance = irradiance / the pixel's solid angle, dimmed by the air
 // (extinction grows towards the horizon), by the media (the ground fog: media_inc.glsl) and by
-// the clouds and particle clouds in front of it.
+// the clouds and the translucent layers (the particle clouds: layer_list_inc.glsl) in front of
+// it.
 // Stars fade as the sky brightens by themselves: a magnitude-0 star is 1e-11 of the sun, far
 // below a day sky.
 #extension GL_GOOGLE_include_directive : require
@@ -14,6 +15,7 @@
 #include "common/atmosphere_lut_inc.glsl"
 #include "terrain_inc.glsl"
 #include "media_inc.glsl"
+#include "layer_list_inc.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -39,7 +41,7 @@ void main() {
   vec2 uv = (vec2(pixel) + 0.5f) / vec2(width, height);
   float cloud = dispatch.values.x == 1
                     ? 1.0f
-                    : textureLod(clouds_a, uv, 0.0f).a * (1.0f - layer_sample(LAYER_PARTICLES, uv, frame.particle_light.yz).a);
+                    : textureLod(clouds_a, uv, 0.0f).a * layers_transmittance(uv);
   if (terrain_distance_at(uv) > 0.0f) cloud = 0.0f;  // behind the terrain
   float visibility = frame.conditions_sky_fog.w;  // the keyframes' star visibility, 1 when off
   float media = media_in_front(eye, dir, 0.0f, 1.0f).a;  // their transmittance towards the sky

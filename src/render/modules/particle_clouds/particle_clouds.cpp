@@ -243,15 +243,14 @@ void ParticleCloudsModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
 }
 
 void ParticleCloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
-  graph.import("particle_layer");  // read whether or not it is drawn this frame
-  graph.add_pass("particles", {"sky_view", "terrain", "atmosphere", FrameGraph::kView},
-                 {"particle_layer"},
+  graph.import("layers");  // the translucent layers: read whether or not they are drawn
+  graph.add_pass("particles", {"sky_view", "terrain", "atmosphere", FrameGraph::kView}, {"layers"},
                  [timer = frame.timer, this](VkCommandBuffer cmd) { record(cmd, timer()); });
 }
 
 void ParticleCloudsModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   prepare(frame.scene, frame.slot, frame.width, frame.height, frame.still, frame.params);
-  plan.particles = active();
+  plan.layers = plan.layers || active();
 }
 
 }  // namespace nephele
