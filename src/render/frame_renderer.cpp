@@ -425,12 +425,16 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
     lab = lab_fast_scene(requested, voxel_clouds.grid(lab_voxel_cloud(requested)));
   const Scene& scene = lab ? *lab : requested;
   const bool still = options.still;
+  // The seed's algorithm (baseline) is run as written: every pixel, every frame. A still image
+  // marches every pixel at full resolution.
+  const bool baseline = scene.quality.mode == MarchMode::Baseline;
+  const int downsample = baseline || still ? 1 : scene.quality.cloud_downsample;
+  const int stride = still || baseline ? 1 : scene.quality.march_stride;
   // A paused view (FrameOptions::reuse_settled): the last frame again, once settled.
   const bool reusable =
       options.reuse_settled && !still && !options.host_scene && !options.lighting.enabled;
   const std::string toml = reusable ? scene_to_toml(requested) : std::string();
-  const int stride_now = scene.quality.mode == MarchMode::Baseline ? 1 : scene.quality.march_stride;
-  const long long settled = stride_now == 1 ? 1 : 2LL * stride_now * stride_now;
+  const long long settled = stride == 1 ? 1 : 2LL * stride * stride;
   if (reusable && last_slot >= 0 && toml == previous_toml && unchanged_frames >= settled &&
       (previous_display || !options.display)) {
     FrameImages images = frame_images(last_slot, false);
@@ -440,11 +444,6 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   const auto start = std::chrono::steady_clock::now();
   const int slot = int(frames_recorded % gpu::kFramesInFlight);
   collect(slot);  // the host has waited for the frame recorded there before
-  // The seed's algorithm (baseline) is run as written: every pixel, every frame. A still image
-  // marches every pixel at full resolution.
-  const bool baseline = scene.quality.mode == MarchMode::Baseline;
-  const int downsample = baseline || still ? 1 : scene.quality.cloud_downsample;
-  const int stride = still || baseline ? 1 : scene.quality.march_stride;
   const int cloud_w = (scene.output.width + downsample - 1) / downsample;
   const int cloud_h = (scene.output.height + downsample - 1) / downsample;
   const std::string key = history_key(scene);
