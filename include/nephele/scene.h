@@ -39,6 +39,7 @@ struct CameraParams {
   // turns counter-clockwise: the horizon rises to the right. 0 keeps the image's up in the
   // vertical plane through view_dir (north when looking straight up or down).
   float roll_deg = 0.0f;
+  bool operator==(const CameraParams&) const = default;
 };
 
 struct SunParams {
@@ -51,6 +52,7 @@ struct SunParams {
   // Place the sun by the ephemeris for Scene::time and Scene::location instead of direction.
   // Set by a scene file or flags that give a time without a sun direction.
   bool from_time = false;
+  bool operator==(const SunParams&) const = default;
 };
 
 // What fills the sky (atmosphere.model).

@@ -430,13 +430,18 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   const bool baseline = scene.quality.mode == MarchMode::Baseline;
   const int downsample = baseline || still ? 1 : scene.quality.cloud_downsample;
   const int stride = still || baseline ? 1 : scene.quality.march_stride;
-  // A paused view (FrameOptions::reuse_settled): the last frame again, once settled.
+  const std::string key = history_key(scene);
+  // A paused view (FrameOptions::reuse_settled): the last frame again, once settled. The same
+  // scene: the same history key and what the key leaves out.
   const bool reusable =
       options.reuse_settled && !still && !options.host_scene && !options.lighting.enabled;
-  const std::string toml = reusable ? scene_to_toml(requested) : std::string();
+  const bool unchanged = reusable && previous_reusable && key == previous_key &&
+                         scene.camera == previous->camera && scene.sun == previous->sun &&
+                         scene.time_s == previous->time_s &&
+                         scene.output.ev100 == previous->output.ev100 &&
+                         scene.output.auto_exposure == previous->output.auto_exposure;
   const long long settled = stride == 1 ? 1 : 2LL * stride * stride;
-  if (reusable && last_slot >= 0 && toml == previous_toml && unchanged_frames >= settled &&
-      (previous_display || !options.display)) {
+  if (unchanged && unchanged_frames >= settled && (previous_display || !options.display)) {
     FrameImages images = frame_images(last_slot, false);
     images.reused = true;
     return images;
@@ -446,7 +451,6 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   collect(slot);  // the host has waited for the frame recorded there before
   const int cloud_w = (scene.output.width + downsample - 1) / downsample;
   const int cloud_h = (scene.output.height + downsample - 1) / downsample;
-  const std::string key = history_key(scene);
   const SkyLights lights = sky_lights(scene);  // the ephemeris and key light, once a frame
   const bool resized = state.width != scene.output.width || state.height != scene.output.height ||
                        clouds.width() != cloud_w || clouds.height() != cloud_h;
@@ -498,8 +502,8 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
 
   previous = scene;
   previous_key = key;
-  unchanged_frames = !toml.empty() && toml == previous_toml ? unchanged_frames + 1 : 1;
-  previous_toml = toml;
+  unchanged_frames = unchanged ? unchanged_frames + 1 : 1;
+  previous_reusable = reusable;
   previous_display = options.display;
   previous_light_dir = lights.key.direction;
   ++frame_counter;

@@ -47,10 +47,10 @@ struct FrameRenderer::Impl {
   ProgressCallback progress;
   std::optional<Scene> previous;             // the scene of the last frame recorded
   std::string previous_key;                  // its history_key()
-  // Its scene as TOML when it was recorded with FrameOptions::reuse_settled, else empty.
-  std::string previous_toml;
-  bool previous_display = false;             // it made the display image
-  long long unchanged_frames = 0;            // frames recorded since previous_toml changed
+  bool previous_reusable =
+      false;  // it was recorded with FrameOptions::reuse_settled (and may be reused)
+  bool previous_display = false;   // it made the display image
+  long long unchanged_frames = 0;  // frames recorded since the scene (or reuse_settled) changed
   glm::vec3 previous_light_dir{0.0f};        // its key light (sky_lights)
   long long frame_counter = 0;               // frames since the history (re)started
   long long frames_recorded = 0;             // record_frame() calls that recorded a frame
