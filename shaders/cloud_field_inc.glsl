@@ -9,6 +9,8 @@
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/clouds_inc.glsl"
+#include "common/phase_inc.glsl"
+#include "common/droplets_inc.glsl"
 #include "common/light_volume_inc.glsl"
 #ifndef CLOUD_FIELD_VARIANTS
 // An includer that compiles variants declares these specialization constants (and defines
@@ -20,6 +22,16 @@ const bool WITH_FLOW = true;
 #include "voxel_field_inc.glsl"
 #include "noise_density_inc.glsl"
 
+
+// The clouds' phase function (clouds.optics): the droplets' fitted Mie phase, or the seed's
+// two Henyey-Greenstein lobes; with every eccentricity scaled by c (1: the phase itself; the
+// octaves' c^i).
+float cloud_phase_function(float mu, float c) {
+  vec4 mie = frame.cloud_mie;
+  return frame.cloud_droplets.y > 0.5f
+             ? mie_phase(vec4(mie.x * c, mie.y * c, mie.z, mie.w), mu)
+             : dual_lobe_hg(frame.cloud_phase.x * c, frame.cloud_phase.y * c, frame.cloud_phase.z, mu);
+}
 
 const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 

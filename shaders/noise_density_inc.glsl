@@ -26,7 +26,8 @@ vec4 flowed_base_noise(vec2 ground_xy, float altitude_m, vec2 flow_m, vec2 phase
                                               frame.cloud_noise.x, 0.0f);
 }
 
-// The noise clouds' density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z.
+// The noise clouds' density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z
+// (with the droplets' optics the field carries its genus' share of cloud_shape.z).
 // Returns (x) the base shape alone, without detail erosion (what coarse steps test), and
 // (y) the full field. Every texture is read whatever the early outs: a CPU device (lavapipe)
 // executes both sides of a branch, so the reads cost the same either way.
@@ -74,6 +75,9 @@ vec2 noise_density_pair(vec3 pos) {
   vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, layer.shape.x),
                                          saturate(layer.shape.z + weather.b - 0.5f), cell.x);
   float type = coverage_type.y;
+  // The genus' extinction at field 1 as a share of cloud_shape.z (droplets_inc.glsl; 1 with the
+  // seed's optics).
+  float genus_sigma = cloud_genus_blend(type, frame.cloud_genus_sigma, frame.cloud_droplets.x);
   float cumulonimbus = cloud_cumulonimbus_share(type);
   float coverage = coverage_type.x;
   float anvil = cloud_anvil_coverage(h, cell.y);
@@ -95,7 +99,7 @@ vec2 noise_density_pair(vec3 pos) {
     // Seed: low-frequency noise 85% plus detail noise 15%, then coverage and height shape.
     float noise = base.r * 0.85f + d.r * 0.15f;
     float field = cloud_apply_coverage(noise * shape_gradient, coverage) * density_gradient;
-    return vec2(max(field, cloud_apply_coverage(noise, anvil) * anvil_density));
+    return vec2(max(field, cloud_apply_coverage(noise, anvil) * anvil_density) * genus_sigma);
   }
   // Schneider: Worley fBm (GBA) carves the Perlin-Worley (R), the type's height gradient
   // shapes it, coverage cuts, detail erodes.
@@ -106,7 +110,8 @@ vec2 noise_density_pair(vec3 pos) {
   float eroded = cloud_erode(shape, detail, h, frame.cloud_noise.w);
   // The anvil, smooth (not eroded): ice, spread thin by the wind.
   float anvil_shape = cloud_apply_coverage(noise, anvil) * anvil_density;
-  return max(vec2(shape, shape > 0.0f ? eroded : 0.0f) * density_gradient, vec2(anvil_shape));
+  return max(vec2(shape, shape > 0.0f ? eroded : 0.0f) * density_gradient, vec2(anvil_shape)) *
+         genus_sigma;
 }
 
 #endif

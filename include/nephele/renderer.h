@@ -172,6 +172,10 @@ struct ReferenceOptions {
   // Scatterings after the first, [0, kMaxReferenceBounces] (0: single scattering); -1: the
   // lab's lab.max_bounces, or all that matter on the planet (Russian roulette ends paths).
   int max_bounces = -1;
+  // How many invocations of each dispatch share a pixel's samples, [0, 64]; 0: enough for
+  // 2^18 invocations on a GPU at any image size (at most 16), 1 on a CPU device, whose cores
+  // an image's pixels already keep busy. Any value gives the same estimate.
+  int invocations_per_pixel = 0;
 };
 
 constexpr int kMaxReferenceBounces = 1024;

@@ -87,6 +87,15 @@ struct FrameParams {
                             // cloud_profile.comp); z sigma_t at density 1 (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
   vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w 1: two-stream light
+  // What the clouds are made of (clouds.optics; common/droplets_inc.glsl). cloud_genus_sigma:
+  // sigma_t at density field 1 of stratus, stratocumulus, altocumulus and cumulus as a share
+  // of cloud_shape.z (the largest genus'; all 1 with the seed's optics), blended by the local
+  // type (cloud_genus_blend); cloud_droplets: x cumulonimbus' share, y 1 for the droplets' Mie
+  // phase (cloud_mie: mie_fit of their diameter) instead of cloud_phase's lobes, z the phase's
+  // mean cosine, w unused.
+  vec4 cloud_genus_sigma;
+  vec4 cloud_droplets;
+  vec4 cloud_mie;
   CloudLayerGpu cloud_layers[CLOUD_LAYERS];
   // The wind (seed 002; common/clouds_inc.glsl, cloud_wind_offset): xy its growth from a
   // layer's bottom to its top (m/s), z skew (s), w the time the shear has acted

@@ -339,6 +339,33 @@ gpu::CloudLayerGpu cloud_layer(float planet_m, float bottom_m, float top_m, floa
 
 }  // namespace
 
+float CloudOptics::max_sigma_t_per_m() const {
+  return *std::max_element(std::begin(genus_sigma_t_per_m), std::end(genus_sigma_t_per_m));
+}
+
+CloudOptics cloud_optics(const Scene& scene) {
+  CloudOptics o;
+  const CloudParams& c = scene.clouds;
+  o.droplets = c.optics == "droplets";
+  if (!o.droplets) {
+    std::fill(std::begin(o.genus_sigma_t_per_m), std::end(o.genus_sigma_t_per_m),
+              c.extinction_per_m);
+    o.voxel_sigma_t_per_m = c.extinction_per_m;
+    return o;
+  }
+  const DropletParams& d = scene.droplets;
+  const float water[5] = {d.stratus_water_g_m3, d.stratocumulus_water_g_m3,
+                          d.altocumulus_water_g_m3, d.cumulus_water_g_m3,
+                          d.cumulonimbus_water_g_m3};
+  const float radius[5] = {d.stratus_radius_um, d.stratocumulus_radius_um, d.altocumulus_radius_um,
+                           d.cumulus_radius_um, d.cumulonimbus_radius_um};
+  for (int i = 0; i < 5; ++i)
+    o.genus_sigma_t_per_m[i] = glsl::droplet_extinction_per_m(water[i], radius[i]);
+  o.radius_um = glsl::cloud_genus_blend(
+      c.type, glm::vec4(radius[0], radius[1], radius[2], radius[3]), radius[4]);
+  o.voxel_sigma_t_per_m = o.genus_sigma_t_per_m[3];
+  return o;
+}
 
 void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
   const CloudParams& c = scene.clouds;
@@ -349,7 +376,19 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
   const glm::vec2 shell_m = cloud_shell_m(scene);
   f.radii_m.z = planet_m + shell_m.x;
   f.radii_m.w = planet_m + shell_m.y;
-  f.cloud_shape = glm::vec4(0.0f, 0.0f, c.extinction_per_m, c.albedo);
+  const CloudOptics optics = cloud_optics(scene);
+  const float sigma_max = optics.max_sigma_t_per_m();
+  const float* sigma = optics.genus_sigma_t_per_m;
+  f.cloud_shape = glm::vec4(0.0f, 0.0f, sigma_max,
+                            optics.droplets ? glsl::droplet_albedo(optics.radius_um) : c.albedo);
+  f.cloud_genus_sigma = glm::vec4(sigma[0], sigma[1], sigma[2], sigma[3]) / sigma_max;
+  const glm::vec4 mie = glsl::mie_fit(2.0f * std::max(optics.radius_um, 2.5f));
+  f.cloud_mie = optics.droplets ? mie : glm::vec4(0.0f);
+  f.cloud_droplets = glm::vec4(
+      sigma[4] / sigma_max, optics.droplets ? 1.0f : 0.0f,
+      optics.droplets ? glsl::mie_mean_cosine(mie)
+                      : glm::mix(c.phase_g_backward, c.phase_g_forward, c.phase_lobe_weight),
+      0.0f);
   f.cloud_layers[0] = cloud_layer(planet_m, c.bottom_altitude_m, c.top_altitude_m, c.coverage,
                                   c.density, c.type, c.precipitation, c.wind_mps, scene.time_s,
                                   glm::vec2(0.0f));

@@ -116,6 +116,20 @@ float cloud_relative_drift_m(const Scene& scene);
 // make_frame_params sets it, and the host's CPU queries (render/cloud_query.cpp) alone.
 void set_cloud_field(gpu::FrameParams& f, const Scene& scene);
 
+// The clouds' optics (clouds.optics, issue 42). For "droplets": each genus' sigma_t at density
+// field 1 (1/m; stratus, stratocumulus, altocumulus, cumulus, cumulonimbus) from its liquid
+// water and droplet radius, the droplets' effective radius at the main layer's type (um; the
+// phase function's and the albedo's, one for all clouds), and the voxel clouds' sigma_t at
+// density 1 (the cumulus'). For "seed": extinction_per_m for every genus and the voxel clouds.
+struct CloudOptics {
+  bool droplets = false;
+  float genus_sigma_t_per_m[5] = {};
+  float radius_um = 0.0f;
+  float voxel_sigma_t_per_m = 0.0f;
+  float max_sigma_t_per_m() const;
+};
+CloudOptics cloud_optics(const Scene& scene);
+
 // A window of a larger image: the scene's output.width x output.height pixels starting at
 // pixel (x, y) of a full_width x full_height image of the same camera (a tile of a still too
 // large for the device). Its pixels see exactly what the whole image's would.

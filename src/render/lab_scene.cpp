@@ -34,6 +34,8 @@ Scene lab_fast_scene(const Scene& scene, const voxel::VoxelGrid& grid) {
   s.sun.illuminance_lux = scene.lab.sun_irradiance;
   s.sun.disk_angular_radius_deg = 0.0f;  // a distant light, as the reference's: no disk in view
   // The grid's densities as the file has them: the import scales them into [0, 1].
+  // The lab's own medium (sigma_t, albedo, one lobe), as the seed's optics carry it.
+  s.clouds.optics = "seed";
   s.clouds.extinction_per_m = grid.file_density_scale * scene.lab.sigma_t_per_m;
   s.clouds.attenuation = 1.0f;
   s.clouds.light_attenuation = 1.0f;

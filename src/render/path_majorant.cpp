@@ -110,4 +110,26 @@ std::vector<float> noise_majorant_grid(const gpu::FrameParams& f, const NoiseBlo
   return grid;
 }
 
+std::vector<float> lab_brick_majorants(const std::vector<float>& density, glm::ivec3 dims,
+                                       float scale) {
+  const int b = gpu::VOXEL_BRICK;
+  const glm::ivec3 bricks = (dims + b - 1) / b;
+  std::vector<float> out(size_t(bricks.x) * bricks.y * bricks.z, 0.0f);
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i) {
+        const float v = density[(size_t(k) * dims.y + size_t(j)) * dims.x + size_t(i)];
+        if (!(v > 0.0f)) continue;
+        // Voxel i is read by brick i / b and, as its filter's last voxel, by brick i / b - 1.
+        for (int bk = std::max(k - 1, 0) / b; bk <= std::min(k / b, bricks.z - 1); ++bk)
+          for (int bj = std::max(j - 1, 0) / b; bj <= std::min(j / b, bricks.y - 1); ++bj)
+            for (int bi = std::max(i - 1, 0) / b; bi <= std::min(i / b, bricks.x - 1); ++bi) {
+              float& m = out[(size_t(bk) * bricks.y + size_t(bj)) * bricks.x + size_t(bi)];
+              m = std::max(m, v);
+            }
+      }
+  for (float& m : out) m *= scale * (1.0f + 1.0f / 1024.0f);
+  return out;
+}
+
 }  // namespace nephele

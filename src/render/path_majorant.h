@@ -46,4 +46,11 @@ NoiseBlockBounds noise_block_bounds(const std::vector<uint8_t>& rgba, int size);
 std::vector<float> noise_majorant_grid(const gpu::FrameParams& f, const NoiseBlockBounds& noise,
                                        glm::vec2 corner_m, float cell_m);
 
+// The lab's brick majorants: per brick of VOXEL_BRICK^3 voxels (x fastest, bricks per axis
+// ceil(dims / VOXEL_BRICK)), the largest density a trilinear sample inside it reads (brick b
+// spans grid coordinates [8 b + 1/2, 8 b + 8 1/2), so voxels 8 b to 8 b + 8) times `scale`,
+// raised by 2^-10 for the atlas' half floats, which round to within 2^-11.
+std::vector<float> lab_brick_majorants(const std::vector<float>& density, glm::ivec3 dims,
+                                       float scale);
+
 }  // namespace nephele

@@ -18,6 +18,10 @@ namespace nephele {
 
 namespace {
 
+// The invocations a dispatch of the path tracer should have to keep a GPU busy (an H200 holds
+// about 270,000 threads at once).
+constexpr int kBusyInvocations = 1 << 18;
+
 // The lab's grid as the voxel clouds module places clouds: its anchor where the file has it,
 // its densities as the file has them (sigma_t = density x sigma_t_per_m, path_medium.x).
 Scene lab_as_voxel_cloud(const Scene& scene) {
@@ -58,6 +62,11 @@ gpu::FrameParams FrameRenderer::Impl::lab_reference_params(const Scene& scene,
       (options.majorant_grid == MajorantGrid::kAuto && memory.stored_bricks < memory.total_bricks / 4);
   params.path_eye_m =
       glm::vec4(scene.camera.position_m - grid.file_anchor_m, brick_grid ? 1.0f : 0.0f);
+  if (brick_grid)
+    path_tracer.upload_majorant(
+        lab_brick_majorants(grid.density, grid.dims,
+                            grid.file_density_scale * scene.lab.sigma_t_per_m),
+        glm::ivec3(c.bricks));
   const float peak = *std::max_element(grid.density.begin(), grid.density.end());
   // Trilinear interpolation never exceeds the largest voxel: a majorant.
   const float majorant = std::max(peak * grid.file_density_scale * scene.lab.sigma_t_per_m, 1e-6f);
@@ -91,7 +100,8 @@ gpu::FrameParams FrameRenderer::Impl::planet_reference_params(const Scene& scene
     const voxel::VoxelGrid& g = voxel_clouds.grid(c);
     const float bottom_m = planet_m + c.position_m.z + g.origin_m.z * c.scale;
     const float top_m = bottom_m + g.extent_m().z * c.scale;
-    voxels.x += c.density * params.cloud_shape.z;  // the density field is at most 1 x density
+    // The density field is at most 1 x density (x the voxel clouds' share of cloud_shape.z).
+    voxels.x += params.voxel_clouds[i].anchor_m.w * params.cloud_shape.z;
     voxels.y = i == 0 ? bottom_m : std::min(voxels.y, bottom_m);
     voxels.z = std::max(voxels.z, top_m);
   }
@@ -116,7 +126,9 @@ gpu::FrameParams FrameRenderer::Impl::planet_reference_params(const Scene& scene
     }
     constexpr float kCellM = 500.0f;
     const glm::vec2 corner = glm::vec2(params.camera_pos_m) - 0.5f * kCellM * float(gpu::PATH_GRID_XY);
-    path_tracer.upload_majorant(noise_majorant_grid(params, noise_bounds, corner, kCellM));
+    path_tracer.upload_majorant(
+        noise_majorant_grid(params, noise_bounds, corner, kCellM),
+        glm::ivec3(gpu::PATH_GRID_XY, gpu::PATH_GRID_XY, gpu::CLOUD_LAYERS * gpu::PATH_GRID_BINS));
     params.path_grid = glm::vec4(corner, kCellM, 1.0f);
   }
   return params;
@@ -134,6 +146,10 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   if (options.max_bounces < -1 || options.max_bounces > kMaxReferenceBounces)
     throw InputError("ReferenceOptions::max_bounces " + std::to_string(options.max_bounces) +
                      ": must be in [0, " + std::to_string(kMaxReferenceBounces) + "] or -1 (auto)");
+  if (options.invocations_per_pixel < 0 || options.invocations_per_pixel > 64)
+    throw InputError("ReferenceOptions::invocations_per_pixel " +
+                     std::to_string(options.invocations_per_pixel) +
+                     ": must be in [0, 64] (0 = auto)");
   const auto start = std::chrono::steady_clock::now();
   const bool planet = scene.lab.grid.empty();
   gpu::FrameParams params =
@@ -145,7 +161,13 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   const int step = planet ? 3 : 1;
   const int spp = (options.spp + step - 1) / step * step;
   const int width = scene.output.width, height = scene.output.height;
-  path_tracer.resize(width, height);
+  int slots = options.invocations_per_pixel;
+  if (slots == 0 && !ctx.is_cpu()) {
+    slots = std::clamp((kBusyInvocations + width * height - 1) / (width * height), 1, 16);
+    if (slots > 1) slots = (slots + step - 1) / step * step;  // a pass gives each channel as many
+  }
+  slots = std::max(slots, 1);
+  path_tracer.resize(width, height, slots);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { path_tracer.clear(cmd); });
 
   // Passes of a few samples each, doubled while a pass takes under half a second, so a time
@@ -157,14 +179,16 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   plan.measure = FramePlan::Measure::kReference;
   plan.planet_reference = planet;
   const FrameGraph graph = frame_graph(scene, params, plan);
-  while (taken < spp) {
+  // Every channel gets as many samples: the planet's passes run on to a multiple of three.
+  while (taken < spp || taken % step != 0) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // (On the planet only after whole threes, so that every channel has as many samples.)
     if (taken > 0 && taken % step == 0 && options.time_limit_s > 0.0 &&
         elapsed >= options.time_limit_s)
       break;
-    const int n = std::min(per_pass, spp - taken);
+    // n a slot: the pass may end past spp by less than a slot's share.
+    const int n = std::max(std::min(per_pass, (spp - taken) / slots), 1);
     path_tracer.set_paths(int(options.seed), max_bounces);
     path_tracer.set_samples(taken, n);
     const auto pass_start = std::chrono::steady_clock::now();
@@ -175,15 +199,26 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     weather_built = true;
     const double pass_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
-    taken += n;
+    taken += n * slots;
     // The planet's paths one sample a pass: a device that limits an invocation's loops (see
     // ReferenceImage::lost_fraction) then drops only the paths that are long themselves.
     if (pass_s < 0.5 && !planet) per_pass = std::min(per_pass * 2, 64);
     if (options.progress) options.progress("reference", taken, spp);
   }
 
-  const Image sum = download(ctx, path_tracer.sum(), false);
-  const Image squares = download(ctx, path_tracer.squares(), false);
+  // Each pixel's sums over its slots.
+  const auto add_slots = [&](const Image& slotted) {
+    Image total(width, height);
+    for (size_t i = 0; i < total.pixels.size(); ++i) {
+      glm::dvec4 t(0.0);
+      for (int k = 0; k < slots; ++k)
+        t += glm::dvec4(slotted.pixels[size_t(k) * total.pixels.size() + i]);
+      total.pixels[i] = glm::vec4(t);
+    }
+    return total;
+  };
+  const Image sum = add_slots(download(ctx, path_tracer.sum(), false));
+  const Image squares = add_slots(download(ctx, path_tracer.squares(), false));
   ReferenceImage out;
   out.mean = Image(width, height);
   out.variance = Image(width, height);

@@ -349,16 +349,19 @@ const std::vector<Section>& scene_sections() {
           FIELD(clouds, precipitation, "grows cumulonimbus", closed(0, 1)),
           FIELD(clouds, density,
                 "scales the clouds' density (sigma_t = density x extinction_per_m)", closed(0, 1)),
-          FIELD(clouds, extinction_per_m, "sigma_t at density 1", left_open(0, 100)),
+          FIELD(clouds, extinction_per_m, "optics \"seed\": sigma_t at density 1",
+                left_open(0, 100)),
           FIELD(clouds, attenuation, "sigma_t multiplier along view rays", closed(0, 100)),
           FIELD(clouds, light_attenuation, "sigma_t multiplier along light rays", closed(0, 100)),
-          FIELD(clouds, albedo, "single-scattering albedo (water droplets: 0.99 and more)",
-                closed(0, 1)),
-          FIELD(clouds, phase_g_forward, "Henyey-Greenstein asymmetry of the forward lobe",
+          FIELD(clouds, albedo, "optics \"seed\": single-scattering albedo", closed(0, 1)),
+          FIELD(clouds, phase_g_forward,
+                "optics \"seed\": Henyey-Greenstein asymmetry of the forward lobe",
                 right_open(0, 1)),
-          FIELD(clouds, phase_g_backward, "Henyey-Greenstein asymmetry of the backward lobe",
+          FIELD(clouds, phase_g_backward,
+                "optics \"seed\": Henyey-Greenstein asymmetry of the backward lobe",
                 left_open(-1, 0)),
-          FIELD(clouds, phase_lobe_weight, "weight of the forward lobe", closed(0, 1)),
+          FIELD(clouds, phase_lobe_weight, "optics \"seed\": weight of the forward lobe",
+                closed(0, 1)),
           FIELD(clouds, powder_strength, "the powder term: dark edges facing the sun",
                 closed(0, 1)),
           FIELD(clouds, ambient_strength, "sky light on the clouds, times the sky's",
@@ -366,6 +369,12 @@ const std::vector<Section>& scene_sections() {
           FIELD(clouds, two_stream_light,
                 "false: Wrenninge's octaves, the powder term and a conservative diffuse term; true "
                 "(experimental): single scattering and the two-stream field along the sun's chord"),
+          FIELD(clouds, optics,
+                "what the clouds are made of: \"seed\" (sigma_t = density field x "
+                "extinction_per_m, albedo, two Henyey-Greenstein lobes) or \"droplets\" (water "
+                "droplets of [droplets]: sigma_t = 1.5 LWC / r_eff, their albedo and a fitted Mie "
+                "phase function)",
+                {}, {"seed", "droplets"}, "cloud-optics"),
           FIELD(clouds, wind_mps, "east, north (m/s), at the layer's bottom", closed(-200, 200)),
           FIELD(clouds, wind_shear_mps, "east, north (m/s): the wind's growth up to the top",
                 closed(-200, 200)),
@@ -392,6 +401,24 @@ const std::vector<Section>& scene_sections() {
                 "RGBA PNG path (R coverage, G storm cells, B type around clouds.type, A density x "
                 "2); row 0 north, columns west to east, centre at east 0, north 0 and moving with "
                 "the wind; empty = procedural")},
+         {}},
+        {"droplets",
+         {FIELD(droplets, stratus_water_g_m3,
+                "clouds.optics = \"droplets\": stratus liquid water content where the density "
+                "field is 1",
+                left_open(0, 10)),
+          FIELD(droplets, stratus_radius_um,
+                "stratus droplets' effective radius (the Mie fit's range: diameters 5-50 um)",
+                closed(2.5, 25)),
+          FIELD(droplets, stratocumulus_water_g_m3, "as stratus_water_g_m3", left_open(0, 10)),
+          FIELD(droplets, stratocumulus_radius_um, "", closed(2.5, 25)),
+          FIELD(droplets, altocumulus_water_g_m3, "", left_open(0, 10)),
+          FIELD(droplets, altocumulus_radius_um, "", closed(2.5, 25)),
+          FIELD(droplets, cumulus_water_g_m3, "also the voxel clouds' at density 1",
+                left_open(0, 10)),
+          FIELD(droplets, cumulus_radius_um, "also the voxel clouds'", closed(2.5, 25)),
+          FIELD(droplets, cumulonimbus_water_g_m3, "", left_open(0, 10)),
+          FIELD(droplets, cumulonimbus_radius_um, "", closed(2.5, 25))},
          {}},
         {"high_clouds",
          {FIELD(high_clouds, bottom_altitude_m,
@@ -845,10 +872,10 @@ std::string allowed_text(const Field& field) {
 std::string_view unit_of(std::string_view name) {
   // Longest suffixes first: "_ev_per_s" before "_s", "_per_m3" before "_m3".
   static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
-      {"_ev_per_s", "EV/s"}, {"_per_m3", "1/m^3"}, {"_per_m", "1/m"}, {"_cd_m2", "cd/m^2"},
-      {"_mps", "m/s"},       {"_lux", "lux"},      {"_deg", "deg"},   {"_rad", "rad"},
-      {"_km", "km"},         {"_mm", "mm"},        {"_sr", "sr"},     {"_ev", "EV"},
-      {"_m", "m"},           {"_s", "s"}};
+      {"_ev_per_s", "EV/s"}, {"_per_m3", "1/m^3"}, {"_g_m3", "g/m^3"}, {"_um", "um"},
+      {"_per_m", "1/m"},     {"_cd_m2", "cd/m^2"}, {"_mps", "m/s"},    {"_lux", "lux"},
+      {"_deg", "deg"},       {"_rad", "rad"},      {"_km", "km"},      {"_mm", "mm"},
+      {"_sr", "sr"},         {"_ev", "EV"},        {"_m", "m"},        {"_s", "s"}};
   for (const auto& [suffix, unit] : kSuffixes)
     if (name.size() > suffix.size() && name.ends_with(suffix)) return unit;
   return "";

@@ -279,6 +279,27 @@ void check_clouds(const Checker& check, const CloudParams& clouds) {
   check.below("clouds.bottom_altitude_m", clouds.bottom_altitude_m, "clouds.top_altitude_m",
               clouds.top_altitude_m);
   if (!clouds.weather_map.empty()) check.weather_map("clouds.weather_map", clouds.weather_map);
+  // With droplets the seed's optical keys mean nothing: one that was changed is refused,
+  // naming what replaced it.
+  if (clouds.optics == "droplets") {
+    const CloudParams seed;
+    const std::string why =
+        "with clouds.optics = \"droplets\" the clouds' extinction, albedo and phase come from "
+        "[droplets] (each genus' liquid water content and droplet radius); set clouds.optics = "
+        "\"seed\" to use this key";
+    struct Key {
+      const char* name;
+      float value, seed_default;
+    };
+    const Key keys[] = {
+        {"clouds.extinction_per_m", clouds.extinction_per_m, seed.extinction_per_m},
+        {"clouds.albedo", clouds.albedo, seed.albedo},
+        {"clouds.phase_g_forward", clouds.phase_g_forward, seed.phase_g_forward},
+        {"clouds.phase_g_backward", clouds.phase_g_backward, seed.phase_g_backward},
+        {"clouds.phase_lobe_weight", clouds.phase_lobe_weight, seed.phase_lobe_weight}};
+    for (const Key& k : keys)
+      if (k.value != k.seed_default) check.fail(k.name, format_float(k.value), why);
+  }
 }
 
 // The cloud layer must lie inside the atmosphere the sky is integrated over.

@@ -165,6 +165,53 @@ TEST_F(PlanetReferenceTest, TheNoiseCloudsMajorantGridIsNeverExceededAndChangesN
   }
 }
 
+// On the planet the samples take the colour channels in turn: spread over invocations they are
+// the same samples, and a pass that is not a multiple of three runs on until every channel has
+// as many.
+TEST_F(PlanetReferenceTest, SpreadingSamplesOverInvocationsKeepsTheChannelsEven) {
+  Scene s = nephele::load_preset("default");
+  s.output.width = 16;
+  s.output.height = 12;
+  s.camera.view_dir = {0.2f, 1.0f, 0.5f};
+  nephele::ReferenceOptions options;
+  options.spp = 6;
+  options.invocations_per_pixel = 1;
+  const nephele::ReferenceImage one = shared_renderer().render_reference(s, options);
+  options.invocations_per_pixel = 3;
+  const nephele::ReferenceImage three = shared_renderer().render_reference(s, options);
+  EXPECT_EQ(three.spp, 6);
+  for (size_t i = 0; i < one.mean.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(three.mean.pixels[i][c], one.mean.pixels[i][c],
+                  1e-5 * std::abs(one.mean.pixels[i][c]) + 1e-7)
+          << "pixel " << i;
+  options.invocations_per_pixel = 4;  // 4, 8, 12: the first multiple of 3 at or past 6
+  EXPECT_EQ(shared_renderer().render_reference(s, options).spp, 12);
+}
+
+// Clouds of droplets (clouds.optics = "droplets"): the genera's shares of cloud_shape.z and the
+// voxel clouds' keep every majorant a bound, and no path is lost on the way.
+TEST_F(PlanetReferenceTest, DropletCloudsStayUnderTheirMajorants) {
+  for (const char* preset : {"default", "voxel-cumulus"}) {
+    Scene s = nephele::load_preset(preset);
+    s.clouds.optics = "droplets";
+    s.clouds.phase_g_forward = Scene().clouds.phase_g_forward;
+    s.clouds.phase_g_backward = Scene().clouds.phase_g_backward;
+    s.clouds.phase_lobe_weight = Scene().clouds.phase_lobe_weight;
+    s.output.width = 16;
+    s.output.height = 12;
+    s.camera.view_dir = {0.2f, 1.0f, 0.5f};
+    nephele::ReferenceOptions options;
+    options.spp = 30;
+    const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
+    EXPECT_EQ(image.majorant_violations, 0) << preset;
+    EXPECT_EQ(image.lost_fraction, 0.0) << preset;
+    double sum = 0.0;
+    for (const glm::vec4& p : image.mean.pixels) sum += p.g;
+    EXPECT_GT(sum, 0.0) << preset;
+  }
+}
+
 // What the tracer cannot render is refused with one line naming the parameter.
 TEST_F(PlanetReferenceTest, ScenesItCannotTraceAreRefused) {
   Scene s = clear_sky({0.0f, 1.0f, 0.2f}, 60.0f, {0.0f, 0.6f, 0.8f});

@@ -186,6 +186,32 @@ TEST_F(ReferenceTest, VarianceFallsAsOneOverTheSamplesAndTheSeedFixesTheImage) {
   EXPECT_NE(other.mean.pixels[12 * 24 + 12], a.mean.pixels[12 * 24 + 12]);
 }
 
+// Spreading a pixel's samples over several invocations of each dispatch (as a GPU gets them for
+// a small image) traces the same samples: the image is the one of one invocation a pixel.
+TEST_F(ReferenceTest, SpreadingSamplesOverInvocationsTracesTheSameSamples) {
+  const Scene s = lab_scene(constant_grid_file());
+  nephele::ReferenceOptions options;
+  options.spp = 16;
+  options.invocations_per_pixel = 1;
+  const nephele::ReferenceImage one = shared_renderer().render_reference(s, options);
+  options.invocations_per_pixel = 4;
+  const nephele::ReferenceImage four = shared_renderer().render_reference(s, options);
+  EXPECT_EQ(four.spp, 16);
+  double largest = 0.0;
+  for (size_t i = 0; i < one.mean.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double a = one.mean.pixels[i][c], b = four.mean.pixels[i][c];
+      largest = std::max(largest, a);
+      EXPECT_NEAR(b, a, 1e-5 * std::abs(a) + 1e-7) << "pixel " << i;
+      EXPECT_NEAR(four.variance.pixels[i][c], one.variance.pixels[i][c],
+                  1e-3 * one.variance.pixels[i][c] + 1e-9)
+          << "pixel " << i;
+    }
+  EXPECT_GT(largest, 0.0);
+  options.invocations_per_pixel = 65;
+  EXPECT_THROW(shared_renderer().render_reference(s, options), nephele::InputError);
+}
+
 // A time limit stops the passes early (after at least one), with progress reported per pass.
 TEST_F(ReferenceTest, ATimeLimitStopsEarlyAndProgressIsReported) {
   const Scene s = lab_scene(constant_grid_file());

@@ -106,3 +106,52 @@ TEST(PathMajorant, TheGridBoundsTheBaseShapeEverywhere) {
 }
 
 }  // namespace
+
+namespace {
+
+// The lab's brick majorants (lab_brick_majorants): a trilinear sample of a sparse random grid
+// (clamped at its faces, as voxel_lookup reads it) never exceeds its brick's bound, which is
+// the largest voxel that brick reads (so 0 where it reads none), and bricks far from any
+// density are 0.
+TEST(PathMajorant, EachLabBrickBoundsTheSamplesInsideIt) {
+  const glm::ivec3 dims(21, 17, 12);
+  std::vector<float> density(size_t(dims.x) * dims.y * dims.z, 0.0f);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const auto at = [&](glm::ivec3 i) -> float& {
+    i = glm::clamp(i, glm::ivec3(0), dims - 1);
+    return density[(size_t(i.z) * dims.y + size_t(i.y)) * dims.x + size_t(i.x)];
+  };
+  // A blob in one corner, a hot voxel on a brick boundary (voxel 8: read by bricks 0 and 1).
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i) at({i, j, k}) = 0.5f * unit(rng);
+  at({8, 3, 3}) = 0.9f;
+  const float scale = 2.0f;
+  const std::vector<float> bound = nephele::lab_brick_majorants(density, dims, scale);
+  const glm::ivec3 bricks = (dims + 7) / 8;
+  ASSERT_EQ(bound.size(), size_t(bricks.x) * bricks.y * bricks.z);
+  const auto brick_bound = [&](glm::ivec3 b) {
+    return bound[(size_t(b.z) * bricks.y + size_t(b.y)) * bricks.x + size_t(b.x)];
+  };
+  EXPECT_NEAR(brick_bound({0, 0, 0}), 0.9f * scale, 0.01f);  // the hot voxel reaches brick 0
+  EXPECT_NEAR(brick_bound({1, 0, 0}), 0.9f * scale, 0.01f);  // and brick 1
+  EXPECT_EQ(brick_bound({2, 1, 1}), 0.0f);
+  EXPECT_EQ(brick_bound({0, 2, 0}), 0.0f);
+  for (int n = 0; n < 200000; ++n) {
+    const glm::vec3 u = glm::vec3(unit(rng), unit(rng), unit(rng)) * glm::vec3(dims);
+    const glm::vec3 t = glm::clamp(u, glm::vec3(0.5f), glm::vec3(dims) - 0.5f) - 0.5f;
+    const glm::ivec3 i0(glm::floor(t));
+    const glm::vec3 f = t - glm::floor(t);
+    float value = 0.0f;
+    for (int c = 0; c < 8; ++c) {
+      const glm::ivec3 o(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+      const glm::vec3 w = glm::mix(1.0f - f, f, glm::vec3(o));
+      value += w.x * w.y * w.z * at(i0 + o);
+    }
+    const glm::ivec3 b = glm::min(glm::ivec3(glm::floor(t / 8.0f)), bricks - 1);
+    ASSERT_LE(value * scale, brick_bound(b) * 1.0001f + 1e-7f) << u.x << " " << u.y << " " << u.z;
+  }
+}
+
+}  // namespace

@@ -1,8 +1,8 @@
 #version 450
 // Pass 3: clouds. Per pixel, march the view ray through the cloud shell between two spheres
 // (seed 000, 2.2) compositing front to back (formulas 1.5, 1.6) with Beer-Lambert attenuation,
-// a light march towards the sun, dual-lobe Henyey-Greenstein phase, the powder term and ambient
-// light (1.4, listings B.1-B.3). Writes one texel per marched pixel to march_a (rgb in-scattered
+// a light march towards the sun, the clouds' phase function (cloud_phase_function), the
+// powder term and ambient light (1.4, listings B.1-B.3). Writes one texel per marched pixel to march_a (rgb in-scattered
 // radiance attenuated by the air between the eye and each sample, a = cloud transmittance) and
 // march_b (x haze weight: the share of the cloud's light replaced by the air's in-scattering,
 // y ground shadow, z cloud distance (km), w 1 sample).
@@ -55,7 +55,7 @@ vec4 octave_phases(float mu) {
   vec4 phases;
   float c = 1.0f;
   for (int i = 0; i < 4; ++i) {
-    phases[i] = dual_lobe_hg(frame.cloud_phase.x * c, frame.cloud_phase.y * c, frame.cloud_phase.z, mu);
+    phases[i] = cloud_phase_function(mu, c);
     c *= 0.5f;
   }
   return phases;
@@ -145,13 +145,10 @@ void main() {
   // The ground light's share under the clouds, once per ray: where it enters the clouds.
   vec3 entry = eye + dir * segment.x;
   float below_share = WITH_VOXELS && frame.voxel_info.x > 0 ? -1.0f : below_light_share(entry, length(entry) - frame.radii_m.x);
-  float g_f = frame.cloud_phase.x;
-  float g_b = frame.cloud_phase.y;
-  float lobe = frame.cloud_phase.z;
   float thickness = frame.radii_m.w - frame.radii_m.z;
   vec4 phases = octave_phases(mu);
   bool two_stream = LIGHTING < 0 ? frame.cloud_phase.w > 0.5f : LIGHTING == 1;
-  float g1 = lobe * g_f + (1.0f - lobe) * g_b;  // the phase function's mean cosine
+  float g1 = frame.cloud_droplets.z;  // the phase function's mean cosine
 
   vec3 scattered = vec3(0.0f);
   vec3 transmittance = vec3(1.0f);
@@ -160,7 +157,7 @@ void main() {
   if (MARCH_MODE == 1) {
     // Seed listing B.3: fixed steps from the entry point, stop on leaving the layer.
     float step_m = thickness / 64.0f;
-    float phase = dual_lobe_hg(g_f, g_b, lobe, mu);
+    float phase = cloud_phase_function(mu, 1.0f);
     for (int i = 0; i < 128; ++i) {
       float t = segment.x + float(i) * step_m;
       if (t > segment.y) break;

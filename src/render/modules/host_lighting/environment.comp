@@ -51,7 +51,7 @@ void main() {
   segment.y = min(segment.y, ENVIRONMENT_REACH_M);
   float dt = max(segment.y - segment.x, 0.0f) / float(ENVIRONMENT_STEPS);
   vec3 sun = frame.sun_dir.xyz;
-  float phase = dual_lobe_hg(frame.cloud_phase.x, frame.cloud_phase.y, frame.cloud_phase.z, dot(dir, sun));
+  float phase = cloud_phase_function(dot(dir, sun), 1.0f);
   vec3 ambient_above = frame.ambient_at_clouds.rgb * frame.cloud_light.w;
   vec3 ambient_below = frame.ambient_below_clouds.rgb * frame.cloud_light.w;
   float below_share = texelFetch(ground_light, ivec2(0), 0).r;  // the ground's light under the clouds

@@ -3,13 +3,14 @@
 // tracking estimates each light's transmittance (next-event estimation at every collision),
 // the phase functions are sampled exactly or with their ratio to a sampled one as a weight
 // (common/path_inc.glsl). Each invocation adds dispatch.values.y paths to its pixel's sums in
-// path_sum and path_squares; the host dispatches until it has the samples or the time it was
-// asked for. Two scenes (PLANET, a specialization constant):
+// path_sum and path_squares (in its slot's rows, main below); the host dispatches until it has
+// the samples or the time it was asked for. Two scenes (PLANET, a specialization constant):
 //  0 the lab: voxel cloud 0's density grid in vacuum (no planet, no air, black background)
 //    with sigma_t = grid density x path_medium.x, lit by a distant sun of irradiance
 //    path_light.w;
 //  1 the planet: what the fast mode renders (the atmosphere's Rayleigh, Mie and ozone, the
-//    noise and voxel clouds' density field and phase function, a Lambertian ground), lit by
+//    noise and voxel clouds' density field and phase function (cloud_phase_function: the
+//    seed's lobes or the droplets' Mie fit), a Lambertian ground), lit by
 //    the key light and the second light (sun and moon, FrameParams::sun_dir, second_light),
 //    the sun's disk seen directly. One colour channel per path (sample index mod 3, so each
 //    gets a third of the samples, weighted by 3): the air's extinction differs per channel.
@@ -63,9 +64,10 @@ vec2 lab_bounds(vec3 o, vec3 d) {
 
 // The majorant grid: the grid's bricks (VOXEL_BRICK^3 voxels, as voxel_lookup cuts them: brick
 // b spans grid coordinates [8 b + 1/2, 8 b + 8 1/2)). An empty brick (not stored: no density
-// within it or its filter's reach) has majorant 0 and is crossed in one step; a stored one the
-// grid's largest extinction (path_medium.w). Along the line u(o) + t du, so that successive
-// calls agree on where a boundary is. Without the grid (path_eye_m.w = 0), one segment.
+// within it or its filter's reach) has majorant 0 and is crossed in one step; a stored one its
+// own largest extinction (path_majorant: lab_brick_majorants, render/path_majorant.h). Along
+// the line u(o) + t du, so that successive calls agree on where a boundary is. Without the
+// grid (path_eye_m.w = 0), one segment at the grid's largest extinction (path_medium.w).
 vec2 lab_majorant_segment(vec3 o, vec3 d, float t) {
   if (frame.path_eye_m.w == 0.0f) return vec2(frame.path_medium.w, 1e30f);
   VoxelCloudGpu c = frame.voxel_clouds[0];
@@ -81,7 +83,7 @@ vec2 lab_majorant_segment(vec3 o, vec3 d, float t) {
   // Boundaries behind (the outer bricks reach the box's faces) do not end the segment.
   to_boundary = mix(vec3(1e30f), to_boundary, greaterThan(to_boundary, vec3(0.0f)));
   float end = t + max(min(to_boundary.x, min(to_boundary.y, to_boundary.z)), 1e-3f * c.dims.w);
-  return vec2(page < 0.0f ? 0.0f : frame.path_medium.w, end);
+  return vec2(page < 0.0f ? 0.0f : texelFetch(path_majorant, b, 0).r, end);
 }
 
 // The planet's medium for one colour channel (pt_channel, per path): the air, plus the clouds
@@ -167,10 +169,23 @@ vec2 planet_bounds(vec3 o, vec3 d) {
   return vec2(max(top.x, 0.0f), ground.x > 0.0f ? min(ground.x, top.y) : top.y);
 }
 
-// The air's largest extinction in this channel: Rayleigh and Mie at sea level, ozone at its peak.
-float planet_air_majorant() {
-  return frame.rayleigh[pt_channel] + frame.mie.y + frame.ozone[pt_channel];
+// The air's largest extinction in this channel between altitudes h_lo and h_hi (m): Rayleigh
+// and Mie at h_lo (they fall with height), the ozone where nearest its peak.
+float planet_air_majorant(float h_lo, float h_hi) {
+  Atmosphere a = frame_atmosphere();
+  float h = max(h_lo, 0.0f);
+  float ozone = a.ozone_half_width_m > 0.0f
+                    ? max(1.0f - abs(clamp(a.ozone_center_m, h, max(h_hi, h)) - a.ozone_center_m) /
+                                     a.ozone_half_width_m, 0.0f)
+                    : 0.0f;
+  return (a.rayleigh_sigma_s[pt_channel] * exp(-h / a.rayleigh_height_m) +
+          a.mie_sigma_t * exp(-h / a.mie_height_m) + a.ozone_sigma_a[pt_channel] * ozone) * 1.0001f;
 }
+
+// The air's majorant is taken per band between these altitudes (m), where the segments end, so
+// a path high in the sky or crossing it is not tracked at the sea level's rate.
+const int AIR_BANDS = 6;
+const float AIR_BAND_M[AIR_BANDS] = float[](1000.0f, 2000.0f, 4000.0f, 8000.0f, 16000.0f, 32000.0f);
 
 // The next crossing of the sphere of radius `radius` by the ray from p along d, beyond `near`
 // (1e30: none).
@@ -181,8 +196,9 @@ float planet_next_sphere(vec3 p, vec3 d, float radius, float near) {
 
 // The majorant grid along the ray: spherical shells (each cloud layer's padded shell cut into
 // PATH_GRID_BINS, the voxel clouds'), and the grid's cells horizontally. From o + d t to the
-// next crossing of a shell's sphere or a cell's wall, the air's majorant plus the clouds'
-// bound (planet_cloud_bound) there, the larger of the segment's start and middle: a sphere
+// next crossing of a shell's sphere, an air band's (AIR_BAND_M) or a cell's wall, the air's
+// majorant over the segment's altitudes plus the clouds' bound (planet_cloud_bound) there, the
+// larger of the segment's start and middle: a sphere
 // closer than a metre is not ended at (the planet frame's floats are half a metre apart out
 // there), so a segment may begin just before one.
 vec2 planet_majorant_segment(vec3 o, vec3 d, float t) {
@@ -217,9 +233,18 @@ vec2 planet_majorant_segment(vec3 o, vec3 d, float t) {
       end = min(end, (frame.path_grid[a] + wall * frame.path_grid.z - p[a]) / d[a]);
     }
   }
+  // The air's bands: the next crossing of a band's sphere.
+  for (int b = 0; b < AIR_BANDS; ++b)
+    end = min(end, planet_next_sphere(p, d, frame.radii_m.x + AIR_BAND_M[b], 1.0f));
   end = t + clamp(end, 1e-3f, 1e7f);
   float bound = max(planet_cloud_bound(p + d * 1e-3f), planet_cloud_bound(o + d * (0.5f * (t + end))));
-  return vec2(planet_air_majorant() + bound, end);
+  // The air's over the segment's altitudes: lowest at its ends or where the line passes
+  // closest to the planet's centre, highest at an end.
+  float t_low = clamp(-dot(o, d), t, end);
+  float r_end = length(o + d * end);
+  float r_low = min(length(o + d * t_low), min(length(p), r_end));
+  float r_high = max(length(p), r_end);
+  return vec2(planet_air_majorant(r_low - frame.radii_m.x, r_high - frame.radii_m.x) + bound, end);
 }
 
 float pt_sigma_t(vec3 p) { return PLANET == 1 ? planet_sigma_t(p) : lab_sigma_t(p); }
@@ -301,7 +326,7 @@ float planet_path_radiance(vec3 eye, vec3 dir, int max_bounces, uint stream) {
       for (int i = 0; i < 2; ++i) {
         float mu = dot(d, planet_light(i).xyz);
         float phase = sigma_r * rayleigh_phase(mu) + sigma_m * cornette_shanks_phase(atmo.mie_g, mu) +
-                      sigma_c * dual_lobe_hg(frame.cloud_phase.x, frame.cloud_phase.y, frame.cloud_phase.z, mu);
+                      sigma_c * cloud_phase_function(mu, 1.0f);
         radiance += weight * phase / sigma_t * planet_light_at(x, i, pt_hash(s ^ (2u + uint(i))));
       }
       float sigma_s = sigma_r + sigma_m + sigma_c;
@@ -310,9 +335,19 @@ float planet_path_radiance(vec3 eye, vec3 dir, int max_bounces, uint stream) {
       float pick = pt_uniform(s, 5u) * sigma_s;
       vec3 next;
       if (pick < sigma_c) {
-        bool forward = pt_uniform(s, 6u) < frame.cloud_phase.z;
-        next = pt_sample_hg(d, forward ? frame.cloud_phase.x : frame.cloud_phase.y, pt_uniform(s, 3u),
-                            pt_uniform(s, 4u));
+        // The clouds' two lobes, each sampled as Henyey-Greenstein in proportion to its weight:
+        // exact for the seed's lobes; for the droplets' Mie fit the Draine lobe is drawn from
+        // the HG lobe of its g, and the ratio of the phase to that mixture (at most
+        // (1 + alpha) / (1 + alpha (1 + 2 g^2) / 3)) weights the path.
+        bool mie = frame.cloud_droplets.y > 0.5f;
+        vec3 lobes = mie ? vec3(frame.cloud_mie.x, frame.cloud_mie.y, 1.0f - frame.cloud_mie.w)
+                         : frame.cloud_phase.xyz;
+        bool first = pt_uniform(s, 6u) < lobes.z;
+        next = pt_sample_hg(d, first ? lobes.x : lobes.y, pt_uniform(s, 3u), pt_uniform(s, 4u));
+        float mu = dot(d, next);
+        if (mie)
+          weight *= cloud_phase_function(mu, 1.0f) /
+                    mix(henyey_greenstein(lobes.y, mu), henyey_greenstein(lobes.x, mu), lobes.z);
       } else if (pick < sigma_c + sigma_m) {
         next = pt_sample_hg(d, atmo.mie_g, pt_uniform(s, 3u), pt_uniform(s, 4u));
         float mu = dot(d, next);
@@ -331,16 +366,23 @@ float planet_path_radiance(vec3 eye, vec3 dir, int max_bounces, uint stream) {
   return radiance;
 }
 
+// A pixel's samples are spread over the dispatch's depth (PathTracerModule::resize): slot z
+// (gl_GlobalInvocationID.z) takes samples first + z n ... first + (z + 1) n - 1 of the n =
+// dispatch.values.y a slot takes, into its own rows of the sums, so a small image still gives
+// a GPU enough invocations, each running few samples.
 void main() {
-  ivec2 size = imageSize(path_sum);
+  int slots = int(gl_NumWorkGroups.z);
+  ivec2 size = ivec2(imageSize(path_sum).x, imageSize(path_sum).y / slots);
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= size.x || pixel.y >= size.y) return;
-  vec4 sum = imageLoad(path_sum, pixel);
-  vec4 squares = imageLoad(path_squares, pixel);
+  int slot = int(gl_GlobalInvocationID.z);
+  ivec2 texel = pixel + ivec2(0, slot * size.y);
+  vec4 sum = imageLoad(path_sum, texel);
+  vec4 squares = imageLoad(path_squares, texel);
   uint pixel_key = uint(pixel.y * size.x + pixel.x);
   vec3 eye = PLANET == 1 ? frame.camera_pos_m.xyz : frame.path_eye_m.xyz;
   for (int k = 0; k < dispatch.values.y; ++k) {
-    uint sample_index = uint(dispatch.values.x + k);
+    uint sample_index = uint(dispatch.values.x + slot * dispatch.values.y + k);
     uint stream = pt_stream(pixel_key, sample_index, uint(dispatch.values.z));
     // A random point in the pixel (box filter).
     float jx = pt_uniform(stream, 0u), jy = pt_uniform(stream, 1u);
@@ -366,7 +408,7 @@ void main() {
     // lanes of its batch) pass 65535 iterations is cut off with everything after it in this
     // invocation; the samples stored before it count, and the host counts what was lost
     // (path_sum's alpha is the samples a pixel got).
-    imageStore(path_sum, pixel, sum);
-    imageStore(path_squares, pixel, squares);
+    imageStore(path_sum, texel, sum);
+    imageStore(path_squares, texel, squares);
   }
 }

@@ -7,6 +7,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "nephele/error.h"
+#include "render/frame_params.h"
 #include "voxel/bricks.h"
 
 namespace nephele {
@@ -121,6 +122,9 @@ void VoxelCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) {
   params.voxel_light = glm::vec4(scene.quality.sdf_light_tangent, kNoiseFadeM, kSurfaceErosion,
                                  kSurfaceDetailFrequency);
   const float planet_m = params.radii_m.x;
+  // The voxel clouds' sigma_t at density 1 as a share of cloud_shape.z (the droplets' cumulus).
+  const CloudOptics optics = cloud_optics(scene);
+  const float sigma_share = optics.voxel_sigma_t_per_m / optics.max_sigma_t_per_m();
   for (int i = 0; i < n; ++i) {
     const VoxelCloudParams& c = scene.voxel_clouds[size_t(i)];
     const voxel::VoxelGrid& g = *grids[size_t(i)];
@@ -141,7 +145,7 @@ void VoxelCloudsModule::prepare(const Scene& scene, gpu::FrameParams& params) {
     const float voxel_m = g.voxel_m * c.scale;
     glm::vec4* rows[3] = {&out.to_grid_x, &out.to_grid_y, &out.to_grid_z};
     for (int k = 0; k < 3; ++k) *rows[k] = glm::vec4(axes[k] / voxel_m, -g.origin_m[k] / g.voxel_m);
-    out.anchor_m = glm::vec4(anchor, c.density);
+    out.anchor_m = glm::vec4(anchor, c.density * sigma_share);
     out.dims = glm::vec4(glm::vec3(g.dims), voxel_m);
     out.bricks = bricks_[size_t(i)];
     // The cloud shell reaches from the lowest cloud's base to the highest top.
