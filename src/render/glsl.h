@@ -40,24 +40,27 @@ inline vec4 textureLod(const sampler2D& s, vec2 uv, float /*lod*/) {
 }
 
 namespace {
+// In dependency order (clang-format would sort them).
+// clang-format off
+#include "common/math_inc.glsl"
+#include "common/phase_inc.glsl"
+#include "common/droplets_inc.glsl"
+#include "common/sun_disk_inc.glsl"
+#include "common/noise_inc.glsl"
+#include "common/weather_inc.glsl"
 #include "common/atmosphere_inc.glsl"
 #include "common/atmosphere_lut_inc.glsl"
-#include "common/classic_inc.glsl"
-#include "common/clouds_inc.glsl"
-#include "common/droplets_inc.glsl"
-#include "common/impostor_inc.glsl"
-#include "common/light_volume_inc.glsl"
-#include "common/math_inc.glsl"
-#include "common/noise_inc.glsl"
-#include "common/particle_inc.glsl"
-#include "common/phase_inc.glsl"
 #include "common/preetham_inc.glsl"
-#include "common/sh_inc.glsl"
 #include "common/sky_view_inc.glsl"
-#include "common/sun_disk_inc.glsl"
-#include "common/tonemap_inc.glsl"
+#include "common/clouds_inc.glsl"
+#include "common/light_volume_inc.glsl"
 #include "common/voxel_inc.glsl"
-#include "common/weather_inc.glsl"
+#include "common/particle_inc.glsl"
+#include "common/impostor_inc.glsl"
+#include "common/classic_inc.glsl"
+#include "common/tonemap_inc.glsl"
+#include "common/sh_inc.glsl"
+// clang-format on
 }  // namespace
 }  // namespace nephele::glsl
 #pragma GCC diagnostic pop
