@@ -61,6 +61,52 @@ vec2 pt_majorant_segment(vec3 o, vec3 d, float t) {
 #include "common/path_inc.glsl"
 }  // namespace gaps
 
+// A slab 0 <= z <= 100 m of three colour channels (path_spectral_inc.glsl): the first slab's
+// extinction times 0.5, 1 and 2, under one majorant that bounds them all.
+namespace colours {
+using namespace nephele::glsl;
+constexpr float kThickness = 100.0f;
+const vec3 kScale(0.5f, 1.0f, 2.0f);
+vec3 pt_sigma_t3(vec3 p) {
+  return kScale * (0.02f * (1.0f + 0.8f * std::sin(p.z / 7.0f)));
+}
+float pt_sigma_t(vec3 p) {
+  return pt_sigma_t3(p).y;
+}
+vec2 pt_bounds(vec3 o, vec3) {
+  return vec2(std::max(-o.z, 0.0f), kThickness - o.z);
+}
+vec2 pt_majorant_segment(vec3, vec3, float) {
+  return vec2(0.08f, 1e30f);
+}
+#include "common/path_inc.glsl"
+#include "common/path_spectral_inc.glsl"
+}  // namespace colours
+
+// Three channels on shared tentative collisions: each channel's ratio-tracked transmittance
+// is its own, and the hero's delta tracking, weighted by the balance heuristic over the three
+// heroes, lets each channel through with its own transmittance (no channel's estimate borrows
+// another's).
+TEST(PathTracer, ThreeChannelsOnOnePathKeepTheirOwnTransmittance) {
+  const vec3 d(0.0f, 0.0f, 1.0f);
+  const int n = 60000;
+  glm::dvec3 ratio_sum(0.0), escape_sum(0.0);
+  for (int i = 0; i < n; ++i) {
+    const uint stream = colours::pt_stream(3u, uint(i), 0u);
+    ratio_sum +=
+        glm::dvec3(colours::pt_ratio_tracking3(vec3(0.0f), d, colours::kThickness, stream));
+    const vec4 flight = colours::pt_hero_delta_tracking(vec3(0.0f), d, colours::kThickness,
+                                                        colours::pt_hash(stream), i % 3);
+    if (flight.x > colours::kThickness)
+      escape_sum += glm::dvec3(colours::pt_hero_weights(vec3(flight.y, flight.z, flight.w)));
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double exact = std::exp(-slab::optical_depth() * double(colours::kScale[c]));
+    EXPECT_NEAR(ratio_sum[c] / n, exact, 0.02 * exact + 0.002) << "channel " << c;
+    EXPECT_NEAR(escape_sum[c] / n, exact, 0.03 * exact + 0.003) << "channel " << c;
+  }
+}
+
 TEST(PathTracer, RatioTrackingMatchesTheSlabsTransmittance) {
   const double exact = std::exp(-slab::optical_depth());  // about 0.13
   double sum = 0.0;

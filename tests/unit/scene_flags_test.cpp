@@ -147,6 +147,11 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
       {{"--lobe-weight", "0.25"},
        [](const Scene& s) { return s.clouds.phase_lobe_weight == 0.25f; }},
       {{"--powder", "0"}, [](const Scene& s) { return s.clouds.powder_strength == 0.0f; }},
+      // A string field's flag takes the word as typed, or a quoted TOML string.
+      {{"--cloud-optics", "droplets"},
+       [](const Scene& s) { return s.clouds.optics == "droplets"; }},
+      {{"--cloud-optics", "\"droplets\""},
+       [](const Scene& s) { return s.clouds.optics == "droplets"; }},
       {{"--ambient", "2"}, [](const Scene& s) { return s.clouds.ambient_strength == 2.0f; }},
       {{"--wind-mps", "-3,4"},
        [](const Scene& s) { return s.clouds.wind_mps == glm::vec2(-3.0f, 4.0f); }},
@@ -196,7 +201,8 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
        [](const Scene& s) {
          return s.camera.focal_length_mm == 50.0f && s.camera.horizontal_fov_deg == 0.0f;
        }},
-      {{"--sensor-width-mm", "24"}, [](const Scene& s) { return s.camera.sensor_width_mm == 24.0f; }},
+      {{"--sensor-width-mm", "24"},
+       [](const Scene& s) { return s.camera.sensor_width_mm == 24.0f; }},
       {{"--voxel-march", "plain"},
        [](const Scene& s) { return s.quality.voxel_march == VoxelMarch::Plain; }},
       {{"--voxel-march", "three-phase"},
