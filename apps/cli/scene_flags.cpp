@@ -582,8 +582,12 @@ void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
     std::string type = p.unit.empty() ? "X" : p.unit == "m" ? "M" : "V";
     cmd.add_option_function<std::string>(
            "--" + p.flag,
-           [&flags, key = p.key](const std::string& value) {
-             flags.table_values.emplace_back(key, value);
+           [&flags, key = p.key, kind = p.kind](const std::string& value) {
+             // A string's or a choice's flag takes the word as typed (--cloud-optics droplets),
+             // or a quoted TOML string.
+             const bool word = (kind == SceneValueKind::kString || kind == SceneValueKind::kEnum) &&
+                               !value.empty() && value[0] != '"' && value[0] != '\'';
+             flags.table_values.emplace_back(key, word ? "\"" + value + "\"" : value);
            },
            help)
         ->type_name(type)

@@ -157,7 +157,7 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   const int max_bounces = options.max_bounces >= 0 ? options.max_bounces
                           : planet               ? kMaxReferenceBounces
                                                  : scene.lab.max_bounces;
-  // The planet's paths take one colour channel each, in turn: samples in threes.
+  // The planet's paths take their hero channel in turn (path_trace.comp): samples in threes.
   const int step = planet ? 3 : 1;
   const int spp = (options.spp + step - 1) / step * step;
   const int width = scene.output.width, height = scene.output.height;

@@ -630,14 +630,9 @@ void scene_detail::read_field_value(Scene& scene, const Field& field, const std:
   // One literal on one line: "0.9\nclouds.density = 1" is two assignments, not a value.
   if (text.find_first_of("\n\r") != std::string_view::npos)
     throw not_a_value("expected one TOML value on one line");
-  // A string field's flag takes the word as typed (--cloud-optics droplets), or a TOML string.
-  std::string literal(text);
-  if (value_shape(field.access) == ValueShape::kString && !literal.empty() && literal[0] != '"' &&
-      literal[0] != '\'')
-    literal = toml_quote(literal);
   toml::table root;
   try {
-    root = toml::parse("value = " + literal);
+    root = toml::parse("value = " + std::string(text));
   } catch (const toml::parse_error& error) {
     throw not_a_value("not a TOML value (" + one_line_for_message(error.description()) + ")");
   }

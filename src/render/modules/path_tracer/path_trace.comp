@@ -12,8 +12,9 @@
 //    noise and voxel clouds' density field and phase function (cloud_phase_function: the
 //    seed's lobes or the droplets' Mie fit), a Lambertian ground), lit by
 //    the key light and the second light (sun and moon, FrameParams::sun_dir, second_light),
-//    the sun's disk seen directly. One colour channel per path (sample index mod 3, so each
-//    gets a third of the samples, weighted by 3): the air's extinction differs per channel.
+//    the sun's disk seen directly. Each path carries the three colour channels, its events
+//    decided by one of them in turn (path_spectral_inc.glsl): the air's extinction differs per
+//    channel, the clouds' does not.
 #extension GL_GOOGLE_include_directive : require
 
 layout(constant_id = 0) const int PLANET = 0;
@@ -86,11 +87,8 @@ vec2 lab_majorant_segment(vec3 o, vec3 d, float t) {
   return vec2(page < 0.0f ? 0.0f : texelFetch(path_majorant, b, 0).r, end);
 }
 
-// The planet's medium for one colour channel (pt_channel, per path): the air, plus the clouds
-// inside their shells.
-int pt_channel = 0;
-// The clouds' extinction at the last point pt_sigma_t evaluated (1/m): where delta tracking
-// stops, the collision's, which the path then scatters by.
+// The clouds' extinction at the last point planet_sigma_t3 evaluated (1/m): where delta
+// tracking stops, the collision's, which the path then scatters by.
 float pt_cloud_sigma_t = 0.0f;
 // Tentative collisions where sigma_t exceeded its majorant in this sample (PT_NOTE_MAJORANT):
 // never, if the majorants are right; counted in path_squares' alpha.
@@ -148,7 +146,8 @@ float planet_cloud_bound(vec3 q) {
   return bound;
 }
 
-float planet_sigma_t(vec3 p) {
+// The planet's medium per colour channel: the air, plus the clouds inside their shells.
+vec3 planet_sigma_t3(vec3 p) {
   float r = length(p);
   vec3 air = atmosphere_sigma_t(frame_atmosphere(), r - frame.radii_m.x);
   float cloud = 0.0f;
@@ -157,7 +156,7 @@ float planet_sigma_t(vec3 p) {
   // 65535 iterations, and tracking through clouds runs thousands.
   if (planet_cloud_bound(p) > 0.0f) cloud = cloud_density(p, true) * frame.cloud_shape.z;
   pt_cloud_sigma_t = cloud;
-  return air[pt_channel] + cloud;
+  return air + cloud;
 }
 
 // Where the ray is in the air: from where it enters the atmosphere (or its origin) to where it
@@ -169,7 +168,7 @@ vec2 planet_bounds(vec3 o, vec3 d) {
   return vec2(max(top.x, 0.0f), ground.x > 0.0f ? min(ground.x, top.y) : top.y);
 }
 
-// The air's largest extinction in this channel between altitudes h_lo and h_hi (m): Rayleigh
+// The air's largest extinction in any channel between altitudes h_lo and h_hi (m): Rayleigh
 // and Mie at h_lo (they fall with height), the ozone where nearest its peak.
 float planet_air_majorant(float h_lo, float h_hi) {
   Atmosphere a = frame_atmosphere();
@@ -178,8 +177,9 @@ float planet_air_majorant(float h_lo, float h_hi) {
                     ? max(1.0f - abs(clamp(a.ozone_center_m, h, max(h_hi, h)) - a.ozone_center_m) /
                                      a.ozone_half_width_m, 0.0f)
                     : 0.0f;
-  return (a.rayleigh_sigma_s[pt_channel] * exp(-h / a.rayleigh_height_m) +
-          a.mie_sigma_t * exp(-h / a.mie_height_m) + a.ozone_sigma_a[pt_channel] * ozone) * 1.0001f;
+  vec3 air = a.rayleigh_sigma_s * exp(-h / a.rayleigh_height_m) +
+             a.mie_sigma_t * exp(-h / a.mie_height_m) + a.ozone_sigma_a * ozone;
+  return max(air.x, max(air.y, air.z)) * 1.0001f;
 }
 
 // The air's majorant is taken per band between these altitudes (m), where the segments end, so
@@ -247,13 +247,17 @@ vec2 planet_majorant_segment(vec3 o, vec3 d, float t) {
   return vec2(planet_air_majorant(r_low - frame.radii_m.x, r_high - frame.radii_m.x) + bound, end);
 }
 
-float pt_sigma_t(vec3 p) { return PLANET == 1 ? planet_sigma_t(p) : lab_sigma_t(p); }
+// (The planet's paths track their three channels with path_spectral_inc.glsl: pt_sigma_t is
+// the lab's.)
+float pt_sigma_t(vec3 p) { return lab_sigma_t(p); }
+vec3 pt_sigma_t3(vec3 p) { return planet_sigma_t3(p); }
 vec2 pt_bounds(vec3 o, vec3 d) { return PLANET == 1 ? planet_bounds(o, d) : lab_bounds(o, d); }
 vec2 pt_majorant_segment(vec3 o, vec3 d, float t) {
   return PLANET == 1 ? planet_majorant_segment(o, d, t) : lab_majorant_segment(o, d, t);
 }
 
 #include "common/path_inc.glsl"
+#include "common/path_spectral_inc.glsl"
 
 // A unit direction with density cos(angle to n) / pi (Malley's method).
 vec3 pt_sample_cosine(vec3 n, float u1, float u2) {
@@ -264,77 +268,85 @@ vec3 pt_sample_cosine(vec3 n, float u1, float u2) {
   return normalize(r * cos(phi) * t1 + r * sin(phi) * t2 + sqrt(max(1.0f - u1, 0.0f)) * n);
 }
 
-// The lights of the planet: xyz towards it, w its illuminance at the top of the atmosphere in
-// this channel (0: none).
-vec4 planet_light(int i) {
-  vec3 key = frame.sun_illuminance.rgb;
-  return i == 0 ? vec4(frame.sun_dir.xyz, key[pt_channel])
-                : vec4(frame.second_light.xyz, key[pt_channel] * frame.second_light.w);
+// The lights of the planet: towards it, and its illuminance at the top of the atmosphere per
+// channel (0: none).
+vec3 planet_light_dir(int i) { return i == 0 ? frame.sun_dir.xyz : frame.second_light.xyz; }
+vec3 planet_light_rgb(int i) {
+  return frame.sun_illuminance.rgb * (i == 0 ? 1.0f : frame.second_light.w);
 }
 
-// The light reaching p from light i: its illuminance times the transmittance (ratio tracking;
-// 0 where the planet is in the way).
-float planet_light_at(vec3 p, int i, uint stream) {
-  vec4 light = planet_light(i);
-  if (light.w <= 0.0f || ray_sphere(p, light.xyz, frame.radii_m.x).x > 0.0f) return 0.0f;
-  return light.w * pt_transmittance_to(p, light.xyz, stream);
+// The light reaching p from light i per channel: its illuminance times the transmittance
+// (ratio tracking; 0 where the planet is in the way).
+vec3 planet_light_at(vec3 p, int i, uint stream) {
+  vec3 rgb = planet_light_rgb(i);
+  vec3 dir = planet_light_dir(i);
+  if (pt_max3(rgb) <= 0.0f || ray_sphere(p, dir, frame.radii_m.x).x > 0.0f) return vec3(0.0f);
+  return rgb * pt_transmittance3_to(p, dir, stream);
 }
 
-// Radiance in channel pt_channel along the ray (eye, dir), one path of at most max_bounces
-// scatterings after the first (at the medium or the ground); `stream` seeds it. At a real
-// collision the path continues as one of the scatterers (Rayleigh, Mie, the clouds) chosen in
-// proportion to its sigma_s, with the albedo sigma_s / sigma_t as a weight; Rayleigh is
-// sampled uniformly and Mie (Cornette-Shanks) as Henyey-Greenstein, each weighted by its
-// phase's ratio to the density sampled (at most 1.5). The ground reflects as a Lambertian
-// surface of albedo sky_model.y. Russian roulette ends paths whose weight falls under 1.
-float planet_path_radiance(vec3 eye, vec3 dir, int max_bounces, uint stream) {
+// Radiance per channel along the ray (eye, dir), one path of at most max_bounces scatterings
+// after the first (at the medium or the ground) whose events the channel `hero` decides
+// (path_spectral_inc.glsl); `stream` seeds it. At a real collision the path continues as one
+// of the scatterers (Rayleigh, Mie, the clouds) chosen in proportion to the hero's sigma_s,
+// with each channel's albedo sigma_s / sigma_t as its weight; Rayleigh is sampled uniformly
+// and Mie (Cornette-Shanks) as Henyey-Greenstein, each weighted by its phase's ratio to the
+// density sampled (at most 1.5). The ground reflects as a Lambertian surface of albedo
+// sky_model.y. Each channel's estimate is its weight times the balance heuristic's share of
+// the path (pt_hero_weights). Russian roulette ends paths whose largest estimate falls under 1.
+vec3 planet_path_radiance(vec3 eye, vec3 dir, int max_bounces, uint stream, int hero) {
   Atmosphere atmo = frame_atmosphere();
-  float radiance = 0.0f;
-  float weight = 1.0f;
+  vec3 radiance = vec3(0.0f);
+  vec3 weight = vec3(1.0f);  // each channel's albedos and phase ratios so far
+  vec3 ratio = vec3(1.0f);   // each channel's probability of the path's events / the hero's
   vec3 x = eye;
   vec3 d = dir;
   for (int bounce = 0; bounce <= max_bounces; ++bounce) {
     uint s = pt_hash(stream ^ pt_hash(uint(bounce)));
     vec2 bounds = pt_bounds(x, d);
     bool in_air = bounds.y > bounds.x;
-    float t = in_air ? pt_delta_tracking(x + d * bounds.x, d, bounds.y - bounds.x, pt_hash(s ^ 1u))
-                     : 1.0f;
+    vec4 flight = in_air ? pt_hero_delta_tracking(x + d * bounds.x, d, bounds.y - bounds.x,
+                                                  pt_hash(s ^ 1u), hero)
+                         : vec4(1.0f, vec3(1.0f));
+    float t = flight.x;
+    ratio *= vec3(flight.y, flight.z, flight.w);
     bool collided = in_air && t <= bounds.y - bounds.x;
     bool ground = !collided && in_air && ray_sphere(x, d, frame.radii_m.x).x > 0.0f;
+    vec3 estimate = weight * pt_hero_weights(ratio);
     if (!collided && !ground) {  // left the atmosphere: space is black but for the sun
       if (bounce == 0 && frame.sun_illuminance.w == 0.0f)
-        radiance += weight * planet_light(0).w * sun_disk(d, frame.sun_dir.xyz, frame.sun_dir.w);
+        radiance += estimate * planet_light_rgb(0) * sun_disk(d, frame.sun_dir.xyz, frame.sun_dir.w);
       break;
     }
-    vec3 light_sum = vec3(0.0f);  // per light: its illuminance at x, times the phase or BRDF
     if (ground) {
       vec3 n = normalize(x + d * bounds.y);
       x = n * (frame.radii_m.x + 1.0f);  // lifted a metre, clear of its own sphere
       float albedo = frame.sky_model.y;
       for (int i = 0; i < 2; ++i)
-        radiance += weight * albedo / PI * max(dot(n, planet_light(i).xyz), 0.0f) *
+        radiance += estimate * albedo / PI * max(dot(n, planet_light_dir(i)), 0.0f) *
                     planet_light_at(x, i, pt_hash(s ^ (2u + uint(i))));
       weight *= albedo;
       d = pt_sample_cosine(n, pt_uniform(s, 3u), pt_uniform(s, 4u));
     } else {
       x += d * (bounds.x + t);
       AtmosphereMedium air = atmosphere_medium(atmo, length(x) - frame.radii_m.x);
-      float sigma_r = air.scattering_r[pt_channel];
+      vec3 sigma_r = air.scattering_r;
       float sigma_m = air.scattering_m;
       float sigma_c = pt_cloud_sigma_t * frame.cloud_shape.w;
-      float sigma_t = air.extinction[pt_channel] + pt_cloud_sigma_t;
+      vec3 sigma_t = air.extinction + pt_cloud_sigma_t;
       for (int i = 0; i < 2; ++i) {
-        float mu = dot(d, planet_light(i).xyz);
-        float phase = sigma_r * rayleigh_phase(mu) + sigma_m * cornette_shanks_phase(atmo.mie_g, mu) +
-                      sigma_c * cloud_phase_function(mu, 1.0f);
-        radiance += weight * phase / sigma_t * planet_light_at(x, i, pt_hash(s ^ (2u + uint(i))));
+        float mu = dot(d, planet_light_dir(i));
+        vec3 phase = sigma_r * rayleigh_phase(mu) + sigma_m * cornette_shanks_phase(atmo.mie_g, mu) +
+                     sigma_c * cloud_phase_function(mu, 1.0f);
+        radiance += estimate * phase / sigma_t * planet_light_at(x, i, pt_hash(s ^ (2u + uint(i))));
       }
-      float sigma_s = sigma_r + sigma_m + sigma_c;
+      vec3 sigma_s = sigma_r + sigma_m + sigma_c;
       weight *= sigma_s / sigma_t;
-      // Which scatterer, and its direction.
-      float pick = pt_uniform(s, 5u) * sigma_s;
+      // Which scatterer, by the hero's sigma_s; each channel's probability of that choice.
+      float pick = pt_uniform(s, 5u) * sigma_s[hero];
       vec3 next;
+      vec3 chosen;  // the chosen scatterer's sigma_s per channel
       if (pick < sigma_c) {
+        chosen = vec3(sigma_c);
         // The clouds' two lobes, each sampled as Henyey-Greenstein in proportion to its weight:
         // exact for the seed's lobes; for the droplets' Mie fit the Draine lobe is drawn from
         // the HG lobe of its g, and the ratio of the phase to that mixture (at most
@@ -349,18 +361,26 @@ float planet_path_radiance(vec3 eye, vec3 dir, int max_bounces, uint stream) {
           weight *= cloud_phase_function(mu, 1.0f) /
                     mix(henyey_greenstein(lobes.y, mu), henyey_greenstein(lobes.x, mu), lobes.z);
       } else if (pick < sigma_c + sigma_m) {
+        chosen = vec3(sigma_m);
         next = pt_sample_hg(d, atmo.mie_g, pt_uniform(s, 3u), pt_uniform(s, 4u));
         float mu = dot(d, next);
         weight *= cornette_shanks_phase(atmo.mie_g, mu) / henyey_greenstein(atmo.mie_g, mu);
       } else {
+        chosen = sigma_r;
         next = pt_sample_hg(d, 0.0f, pt_uniform(s, 3u), pt_uniform(s, 4u));
         weight *= rayleigh_phase(dot(d, next)) * (4.0f * PI);
       }
+      // Each channel's probability of this choice, chosen / sigma_s, joins its events'; its
+      // estimate keeps its albedo (f_k / p_k = sigma_s / sigma_t whatever the choice).
+      vec3 choice = chosen / max(sigma_s, vec3(1e-30f));
+      ratio *= choice / choice[hero];
       d = next;
     }
-    if (bounce >= 2 && weight < 1.0f) {  // Russian roulette
-      if (pt_uniform(s, 7u) >= weight) break;
-      weight = 1.0f;
+    estimate = weight * pt_hero_weights(ratio);
+    float most = pt_max3(estimate);
+    if (bounce >= 2 && most < 1.0f) {  // Russian roulette
+      if (pt_uniform(s, 7u) >= most) break;
+      weight /= most;
     }
   }
   return radiance;
@@ -392,10 +412,9 @@ void main() {
                         vec2(frame.camera_right.w, frame.camera_up.w));
     vec3 value;
     if (PLANET == 1) {
-      pt_channel = int(sample_index % 3u);
-      float radiance = planet_path_radiance(eye, dir, dispatch.values.w, pt_hash(stream ^ 0x68bc21ebu));
-      value = vec3(0.0f);
-      value[pt_channel] = 3.0f * radiance;
+      // The hero channel in turn, so every channel leads a third of the samples.
+      value = planet_path_radiance(eye, dir, dispatch.values.w, pt_hash(stream ^ 0x68bc21ebu),
+                                   int(sample_index % 3u));
     } else {
       value = vec3(pt_path_radiance(eye, dir, frame.path_light.xyz, frame.path_light.w, 0.0f,
                                     frame.path_medium.y, frame.path_medium.z, dispatch.values.w,
