@@ -596,11 +596,11 @@ int run_validate(const ValidateOptions& options) {
                   reference.spp, fast.stats.wall_ms, reference.seconds, pass ? "pass" : "**miss**");
     table << row;
     if (!options.quiet) std::fprintf(stderr, "%s", row);
-    if (reference.lost_fraction > 0.0)
+    if (reference.cut_loops > 0)
       std::fprintf(stderr,
-                   "nephele: warning: %s: the device dropped %.3g%% of the reference's paths "
-                   "(lavapipe's loop limit): it is biased; trace it on a GPU\n",
-                   view.name.c_str(), 100.0 * reference.lost_fraction);
+                   "nephele: warning: %s: the device's loop limit cut %lld of the reference's "
+                   "loops short: it is biased\n",
+                   view.name.c_str(), reference.cut_loops);
     results["views"][view.name] = {{"description", view.description},
                                    {"mean_error", e.mean_error},
                                    {"max_mean_error", view.max_mean_error},
@@ -609,7 +609,7 @@ int run_validate(const ValidateOptions& options) {
                                    {"max_block_error", e.max_error},
                                    {"reference_noise", e.reference_noise},
                                    {"reference_spp", reference.spp},
-                                   {"reference_lost_fraction", reference.lost_fraction},
+                                   {"reference_cut_loops", reference.cut_loops},
                                    {"reference_s", reference.seconds},
                                    {"fast_ms", fast.stats.wall_ms},
                                    {"pass", pass}};

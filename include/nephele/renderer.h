@@ -176,6 +176,12 @@ struct ReferenceOptions {
   // 2^18 invocations on a GPU at any image size (at most 16), 1 on a CPU device, whose cores
   // an image's pixels already keep busy. Any value gives the same estimate.
   int invocations_per_pixel = 0;
+  // Iterations an invocation runs a pass (paths carry over between passes; an iteration is a
+  // tentative collision and what follows it), [0, 65536]; 0: from 64, doubled while a pass
+  // takes under a quarter of a second, to 2048 on a CPU device (whose loop limit is 65535
+  // iterations a batch of lanes, in all its loops) or 16384 on a GPU. Any value gives the
+  // same image.
+  int iterations_per_pass = 0;
 };
 
 constexpr int kMaxReferenceBounces = 1024;
@@ -185,11 +191,11 @@ struct ReferenceImage {
   Image mean;      // radiance (W m^-2 sr^-1 for a sun irradiance in W/m^2); a = 1
   Image variance;  // rgb: the variance of each pixel's mean (the sample variance / spp)
   int spp = 0;     // samples per pixel taken
-  // The share of the samples the device dropped (0 on a GPU). Lavapipe ends all of an
-  // invocation's loops once they have run 65535 iterations together (its loop limiter), which
-  // long paths through thick clouds can reach; their samples are lost, so where this is not 0
-  // the image is biased (dark where the paths are long): trace it on a GPU.
-  double lost_fraction = 0.0;
+  // Loops a device's limit cut short: lavapipe ends all of an invocation's loops once they have
+  // run 65535 iterations together. The paths carry over from one pass to the next and each
+  // pass runs a bounded number of iterations, so this is 0; where it is not, the image is
+  // biased.
+  long long cut_loops = 0;
   // Tentative collisions where the medium's extinction exceeded its majorant: 0 when the
   // majorants are right (a test of them; any would bias the image).
   long long majorant_violations = 0;

@@ -284,6 +284,8 @@ const int LIGHT_SHAFTS_SCREEN = 2;      // seed 002's screen-space god rays (god
 const int PATH_GRID_XY = 256;
 const int PATH_GRID_BINS = 8;
 const float PATH_SHELL_PAD_M = 100.0f;
+// The texels (rgba32f) of one path in progress in path_state (path_trace.comp, PtPath).
+const int PATH_STATE_TEXELS = 12;
 
 // FrameParams::voxel_info.y, z (nephele::VoxelMarch, VoxelShadow).
 const int VOXEL_MARCH_PLAIN = 0;

@@ -21,6 +21,11 @@
 #ifndef PT_NOTE_MAJORANT
 #define PT_NOTE_MAJORANT(sigma, majorant)
 #endif
+// And PT_NOTE_CUT(), called where a tracking loop ends without reaching the end of its ray or
+// a collision (PT_MAX_COLLISIONS, or lavapipe's loop limit): its estimate is then biased.
+#ifndef PT_NOTE_CUT
+#define PT_NOTE_CUT()
+#endif
 
 // Pseudo-random numbers without state: a hash of (stream, index). PCG's output permutation as
 // a hash (Jarzynski and Olano 2020, "Hash Functions for GPU Rendering").
@@ -61,9 +66,11 @@ vec3 pt_sample_hg(vec3 d, float g, float u1, float u2) {
   return normalize(sin_theta * (cos(phi) * t1 + sin(phi) * t2) + cos_theta * d);
 }
 
-// Most tentative collisions a tracking loop takes: a bound on a loop, never reached with a
-// majorant within a few times the medium's extinction.
-const int PT_MAX_COLLISIONS = 65536;
+// Most tentative collisions a tracking walk takes: a guard against a walk that never ends (a
+// majorant of 0 where the medium is not, a NaN), never reached by a real one. The seed's storm
+// (sigma_t to 2/m, an anvil tens of kilometres across) passed 65536 on horizontal rays; 2^24
+// keeps the count exact in the float that path_trace.comp stores it in.
+const int PT_MAX_COLLISIONS = 16777216;
 
 // One draw of a walk from p along d through the majorant grid, from t in `segment`: the next
 // tentative collision at the segment's majorant rate, or, where the draw passes the segment's

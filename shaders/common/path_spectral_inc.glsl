@@ -17,49 +17,98 @@
 
 float pt_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
-// Delta tracking from p along d over [0, t_max] by the hero channel `hero`: (x) the distance to
-// a real collision (t_max + 1 when the path leaves unscattered), (yzw) each channel's
-// probability of the events on the way relative to the hero's: the product over null
-// collisions of (1 - sigma_k / majorant) / (1 - sigma_h / majorant), and at the real one
-// sigma_k / sigma_h.
-vec4 pt_hero_delta_tracking(vec3 p, vec3 d, float t_max, uint stream, int hero) {
-  vec3 ratio = vec3(1.0f);
-  vec4 walk = vec4(0.0f, 0.0f, pt_majorant_segment(p, d, 0.0f));
-  for (int i = 0; i < PT_MAX_COLLISIONS; ++i) {
-    float majorant = walk.z;
-    walk = pt_walk(p, d, walk.x, vec2(walk.z, walk.w), pt_uniform(stream, uint(2 * i)));
-    if (walk.x >= t_max) break;
-    if (walk.y == 0.0f) continue;
-    vec3 sigma = pt_sigma_t3(p + d * walk.x);
-    PT_NOTE_MAJORANT(pt_max3(sigma), majorant);
-    vec3 real = sigma / majorant;
-    if (pt_uniform(stream, uint(2 * i + 1)) < real[hero]) return vec4(walk.x, ratio * real / real[hero]);
-    vec3 null_event = max(1.0f - real, vec3(0.0f));
-    ratio *= null_event / null_event[hero];
-  }
-  return vec4(t_max + 1.0f, ratio);
+// One tracking walk in progress, advanced a tentative collision at a time (pt_track_step), so
+// that a path can stop anywhere and go on in a later dispatch (path_trace.comp: lavapipe ends
+// an invocation's loops after 65535 iterations in all, which a long path passes). Delta
+// tracking by the hero channel (hero >= 0) or ratio tracking of the three channels (hero < 0).
+struct PtTrack {
+  vec3 o;        // where the walk starts
+  float t_max;   // and its length (m)
+  vec3 d;        // its direction
+  int i;         // tentative collisions drawn so far
+  vec4 walk;     // pt_walk's (t, tentative, majorant, segment's end)
+  vec3 value;    // delta tracking: each channel's probability of the events relative to the
+                 // hero's; ratio tracking: each channel's transmittance
+  float t;       // when done: delta tracking's collision, t_max + 1 if it left unscattered
+  uint stream;
+  int hero;
+  bool done;
+};
+
+PtTrack pt_track_begin(vec3 o, vec3 d, float t_max, uint stream, int hero) {
+  PtTrack k;
+  k.o = o;
+  k.t_max = t_max;
+  k.d = d;
+  k.i = 0;
+  k.walk = vec4(0.0f, 0.0f, pt_majorant_segment(o, d, 0.0f));
+  k.value = vec3(1.0f);
+  k.t = t_max + 1.0f;
+  k.stream = stream;
+  k.hero = hero;
+  k.done = false;
+  return k;
 }
 
-// Ratio tracking of the three channels on shared tentative collisions: each channel's
-// transmittance estimate is the product of its (1 - sigma_k / majorant), unbiased for any
-// majorant that bounds it; Russian roulette once every channel's falls under 0.1.
-vec3 pt_ratio_tracking3(vec3 p, vec3 d, float t_max, uint stream) {
-  vec3 transmittance = vec3(1.0f);
-  vec4 walk = vec4(0.0f, 0.0f, pt_majorant_segment(p, d, 0.0f));
-  for (int i = 0; i < PT_MAX_COLLISIONS; ++i) {
-    float majorant = walk.z;
-    walk = pt_walk(p, d, walk.x, vec2(walk.z, walk.w), pt_uniform(stream, uint(2 * i)));
-    if (walk.x >= t_max) break;
-    if (walk.y == 0.0f) continue;
-    vec3 sigma = pt_sigma_t3(p + d * walk.x);
-    PT_NOTE_MAJORANT(pt_max3(sigma), majorant);
-    transmittance *= max(1.0f - sigma / majorant, vec3(0.0f));
-    if (pt_max3(transmittance) < 0.1f) {
-      if (pt_uniform(stream, uint(2 * i + 1)) < 0.5f) return vec3(0.0f);
-      transmittance *= 2.0f;
+// The walk's next draw. Delta tracking: a tentative collision is real with probability
+// sigma_h / majorant for the hero h; each channel's probability of the events relative to the
+// hero's is the product over null collisions of (1 - sigma_k / majorant) / (1 - sigma_h /
+// majorant) and at the real one sigma_k / sigma_h. Ratio tracking: each channel's estimate is
+// the product of its (1 - sigma_k / majorant), unbiased for any majorant that bounds it, with
+// Russian roulette once every channel's falls under 0.1.
+PtTrack pt_track_step(PtTrack k) {
+  float majorant = k.walk.z;
+  uint i = uint(k.i);
+  k.walk = pt_walk(k.o, k.d, k.walk.x, vec2(k.walk.z, k.walk.w), pt_uniform(k.stream, 2u * i));
+  k.i += 1;
+  if (k.walk.x >= k.t_max) {
+    k.done = true;
+    return k;
+  }
+  if (k.walk.y == 0.0f) return k;
+  vec3 sigma = pt_sigma_t3(k.o + k.d * k.walk.x);
+  PT_NOTE_MAJORANT(pt_max3(sigma), majorant);
+  float u = pt_uniform(k.stream, 2u * i + 1u);
+  if (k.hero >= 0) {
+    vec3 real = sigma / majorant;
+    if (u < real[k.hero]) {
+      k.value *= real / real[k.hero];
+      k.t = k.walk.x;
+      k.done = true;
+      return k;
+    }
+    vec3 null_event = max(1.0f - real, vec3(0.0f));
+    k.value *= null_event / null_event[k.hero];
+  } else {
+    k.value *= max(1.0f - sigma / majorant, vec3(0.0f));
+    if (pt_max3(k.value) < 0.1f) {
+      k.done = u < 0.5f;
+      k.value *= k.done ? 0.0f : 2.0f;
     }
   }
-  return transmittance;
+  if (k.i >= PT_MAX_COLLISIONS && !k.done) {
+    PT_NOTE_CUT();
+    k.done = true;
+  }
+  return k;
+}
+
+// The walks run to their end at once (the CPU tests; the GPU's paths step them).
+// Delta tracking from p along d over [0, t_max] by the hero channel: (x) the distance to a real
+// collision (t_max + 1 when the path leaves unscattered), (yzw) each channel's probability of
+// the events on the way relative to the hero's.
+vec4 pt_hero_delta_tracking(vec3 p, vec3 d, float t_max, uint stream, int hero) {
+  PtTrack k = pt_track_begin(p, d, t_max, stream, hero);
+  while (!k.done) k = pt_track_step(k);
+  return vec4(k.t, k.value);
+}
+
+// Ratio tracking of the three channels on shared tentative collisions: each one's
+// transmittance.
+vec3 pt_ratio_tracking3(vec3 p, vec3 d, float t_max, uint stream) {
+  PtTrack k = pt_track_begin(p, d, t_max, stream, -1);
+  while (!k.done) k = pt_track_step(k);
+  return k.value;
 }
 
 // What the medium lets through towards the light from p, per channel.

@@ -351,6 +351,7 @@ CloudOptics cloud_optics(const Scene& scene) {
     std::fill(std::begin(o.genus_sigma_t_per_m), std::end(o.genus_sigma_t_per_m),
               c.extinction_per_m);
     o.voxel_sigma_t_per_m = c.extinction_per_m;
+    o.albedo = c.albedo;
     return o;
   }
   const DropletParams& d = scene.droplets;
@@ -359,11 +360,17 @@ CloudOptics cloud_optics(const Scene& scene) {
                           d.cumulonimbus_water_g_m3};
   const float radius[5] = {d.stratus_radius_um, d.stratocumulus_radius_um, d.altocumulus_radius_um,
                            d.cumulus_radius_um, d.cumulonimbus_radius_um};
-  for (int i = 0; i < 5; ++i)
-    o.genus_sigma_t_per_m[i] = glsl::droplet_extinction_per_m(water[i], radius[i]);
   o.radius_um = glsl::cloud_genus_blend(
       c.type, glm::vec4(radius[0], radius[1], radius[2], radius[3]), radius[4]);
+  const glm::vec4 fit = glsl::mie_fit(2.0f * std::max(o.radius_um, 2.5f));
+  const float omega = glsl::droplet_albedo(o.radius_um);
+  o.peak_fraction = 1.0f - fit.w;
+  const float kept = 1.0f - omega * o.peak_fraction;
+  for (int i = 0; i < 5; ++i)
+    o.genus_sigma_t_per_m[i] = glsl::droplet_extinction_per_m(water[i], radius[i]) * kept;
   o.voxel_sigma_t_per_m = o.genus_sigma_t_per_m[3];
+  o.albedo = omega * (1.0f - o.peak_fraction) / kept;
+  o.mie = glm::vec4(fit.x, fit.y, fit.z, 1.0f);
   return o;
 }
 
@@ -379,14 +386,12 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
   const CloudOptics optics = cloud_optics(scene);
   const float sigma_max = optics.max_sigma_t_per_m();
   const float* sigma = optics.genus_sigma_t_per_m;
-  f.cloud_shape = glm::vec4(0.0f, 0.0f, sigma_max,
-                            optics.droplets ? glsl::droplet_albedo(optics.radius_um) : c.albedo);
+  f.cloud_shape = glm::vec4(0.0f, 0.0f, sigma_max, optics.albedo);
   f.cloud_genus_sigma = glm::vec4(sigma[0], sigma[1], sigma[2], sigma[3]) / sigma_max;
-  const glm::vec4 mie = glsl::mie_fit(2.0f * std::max(optics.radius_um, 2.5f));
-  f.cloud_mie = optics.droplets ? mie : glm::vec4(0.0f);
+  f.cloud_mie = optics.mie;
   f.cloud_droplets = glm::vec4(
       sigma[4] / sigma_max, optics.droplets ? 1.0f : 0.0f,
-      optics.droplets ? glsl::mie_mean_cosine(mie)
+      optics.droplets ? glsl::mie_mean_cosine(optics.mie)
                       : glm::mix(c.phase_g_backward, c.phase_g_forward, c.phase_lobe_weight),
       0.0f);
   f.cloud_layers[0] = cloud_layer(planet_m, c.bottom_altitude_m, c.top_altitude_m, c.coverage,

@@ -120,12 +120,23 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene);
 // field 1 (1/m; stratus, stratocumulus, altocumulus, cumulus, cumulonimbus) from its liquid
 // water and droplet radius, the droplets' effective radius at the main layer's type (um; the
 // phase function's and the albedo's, one for all clouds), and the voxel clouds' sigma_t at
-// density 1 (the cumulus'). For "seed": extinction_per_m for every genus and the voxel clouds.
+// density 1 (the cumulus'). The Mie fit's Henyey-Greenstein lobe is the diffraction peak
+// (g 0.97-0.995: within a degree or two forwards) and carries about half the scattering: light
+// scattered into it goes on as if unscattered, so the optics are delta-scaled (Joseph et al.
+// 1976; DISORT's delta-M): the peak's share f leaves sigma_t and the phase function, sigma_t'
+// = sigma_t (1 - omega f), albedo' = omega (1 - f) / (1 - omega f), the phase the Draine lobe.
+// The same radiative transfer but for sub-degree detail around the sun, and without the
+// peak's fireflies in the path tracer (next-event estimation towards the sun meets a phase
+// function 4000 times isotropic's there). For "seed": extinction_per_m for every genus and
+// the voxel clouds, the seed's albedo and lobes.
 struct CloudOptics {
   bool droplets = false;
   float genus_sigma_t_per_m[5] = {};
   float radius_um = 0.0f;
   float voxel_sigma_t_per_m = 0.0f;
+  float albedo = 1.0f;              // single-scattering albedo
+  glm::vec4 mie = glm::vec4(0.0f);  // droplets: mie_fit's lobes, the Draine lobe's weight 1
+  float peak_fraction = 0.0f;       // droplets: the share of scattering the peak took out
   float max_sigma_t_per_m() const;
 };
 CloudOptics cloud_optics(const Scene& scene);

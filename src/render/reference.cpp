@@ -5,14 +5,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
 #include "render/frame_params.h"
 #include "render/frame_renderer_impl.h"
 #include "render/lab_scene.h"
-#include "render/path_majorant.h"
 #include "render/passes.h"
+#include "render/path_majorant.h"
 
 namespace nephele {
 
@@ -146,6 +147,10 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   if (options.max_bounces < -1 || options.max_bounces > kMaxReferenceBounces)
     throw InputError("ReferenceOptions::max_bounces " + std::to_string(options.max_bounces) +
                      ": must be in [0, " + std::to_string(kMaxReferenceBounces) + "] or -1 (auto)");
+  if (options.iterations_per_pass < 0 || options.iterations_per_pass > 65536)
+    throw InputError("ReferenceOptions::iterations_per_pass " +
+                     std::to_string(options.iterations_per_pass) +
+                     ": must be in [0, 65536] (0 = auto)");
   if (options.invocations_per_pixel < 0 || options.invocations_per_pixel > 64)
     throw InputError("ReferenceOptions::invocations_per_pixel " +
                      std::to_string(options.invocations_per_pixel) +
@@ -155,42 +160,54 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   gpu::FrameParams params =
       planet ? planet_reference_params(scene, options) : lab_reference_params(scene, options);
   const int max_bounces = options.max_bounces >= 0 ? options.max_bounces
-                          : planet               ? kMaxReferenceBounces
-                                                 : scene.lab.max_bounces;
-  // The planet's paths take their hero channel in turn (path_trace.comp): samples in threes.
-  const int step = planet ? 3 : 1;
-  const int spp = (options.spp + step - 1) / step * step;
+                          : planet                 ? kMaxReferenceBounces
+                                                   : scene.lab.max_bounces;
   const int width = scene.output.width, height = scene.output.height;
   int slots = options.invocations_per_pixel;
   if (slots == 0 && !ctx.is_cpu()) {
     slots = std::clamp((kBusyInvocations + width * height - 1) / (width * height), 1, 16);
-    if (slots > 1) slots = (slots + step - 1) / step * step;  // a pass gives each channel as many
+    if (slots > 1 && planet) slots = (slots + 2) / 3 * 3;
   }
   slots = std::max(slots, 1);
+  // Slot k of S takes samples k, k + S, ... and the planet's paths take their hero channel in
+  // turn (path_trace.comp): the samples a pixel takes are a multiple of S and, on the planet,
+  // of three, so that every slot takes as many and every channel leads a third.
+  const int step = std::lcm(planet ? 3 : 1, slots);
+  const auto round_up = [step](long long n) { return int((n + step - 1) / step * step); };
+  int spp = round_up(options.spp);
+  const int asked = spp;
+  int reported = 0;
   path_tracer.resize(width, height, slots);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { path_tracer.clear(cmd); });
 
-  // Passes of a few samples each, doubled while a pass takes under half a second, so a time
-  // limit is kept to within about a pass and progress is reported often.
-  int taken = 0, per_pass = 1;
-  bool weather_built = false;
+  // Passes of a bounded number of iterations an invocation (path_trace.comp), grown while a
+  // pass takes under a quarter of a second, so that a time limit is kept to within about a
+  // pass and progress is reported often: until every pixel has its samples. At the time
+  // limit, the samples begun are finished (the target becomes the largest begun, rounded up
+  // to a whole step), so that every pixel still takes as many.
+  const long long pixels = (long long)(width)*height;
+  // A CPU device's loop limit (65535 iterations an invocation's batch, in all its loops): an
+  // iteration runs a few short loops of its own, and a pass the limit ends early lowers this.
+  int max_iterations = ctx.is_cpu() ? 2048 : 1 << 14;
+  int iterations = options.iterations_per_pass > 0 ? options.iterations_per_pass : 64;
+  bool weather_built = false, stopping = false;
   FramePlan plan;
   plan.volumetric = true;
   plan.measure = FramePlan::Measure::kReference;
   plan.planet_reference = planet;
   const FrameGraph graph = frame_graph(scene, params, plan);
-  // Every channel gets as many samples: the planet's passes run on to a multiple of three.
-  while (taken < spp || taken % step != 0) {
+  PathTracerModule::Counts counts;
+  while ((long long)(counts.finished) < (long long)(spp)*pixels) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    // (On the planet only after whole threes, so that every channel has as many samples.)
-    if (taken > 0 && taken % step == 0 && options.time_limit_s > 0.0 &&
-        elapsed >= options.time_limit_s)
-      break;
-    // n a slot: the pass may end past spp by less than a slot's share.
-    const int n = std::max(std::min(per_pass, (spp - taken) / slots), 1);
+    if (!stopping && counts.started > 0 && options.time_limit_s > 0.0 &&
+        elapsed >= options.time_limit_s) {
+      stopping = true;
+      spp = std::min(spp, round_up(counts.started));
+      continue;
+    }
     path_tracer.set_paths(int(options.seed), max_bounces);
-    path_tracer.set_samples(taken, n);
+    path_tracer.set_samples(spp, iterations);
     const auto pass_start = std::chrono::steady_clock::now();
     // The first pass after what the paths read (the planet's weather map), then alone.
     state.run_once(params, [&](VkCommandBuffer cmd) {
@@ -199,11 +216,17 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     weather_built = true;
     const double pass_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_start).count();
-    taken += n * slots;
-    // The planet's paths one sample a pass: a device that limits an invocation's loops (see
-    // ReferenceImage::lost_fraction) then drops only the paths that are long themselves.
-    if (pass_s < 0.5 && !planet) per_pass = std::min(per_pass * 2, 64);
-    if (options.progress) options.progress("reference", taken, spp);
+    const uint32_t limited = counts.limited;
+    counts = path_tracer.counts();
+    // A pass the loop limit ended early lost nothing (its last iteration is done again) but
+    // ran fewer iterations than asked: shorter ones.
+    if (counts.limited > limited && options.iterations_per_pass == 0)
+      iterations = max_iterations = std::max(iterations / 2, 16);
+    else if (pass_s < 0.25 && options.iterations_per_pass == 0)
+      iterations = std::min(iterations * 2, max_iterations);
+    const int done = int((long long)(counts.finished) / std::max(pixels, 1LL));
+    if (options.progress && done > reported) options.progress("reference", done, asked);
+    reported = done;
   }
 
   // Each pixel's sums over its slots.
@@ -222,11 +245,8 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   ReferenceImage out;
   out.mean = Image(width, height);
   out.variance = Image(width, height);
-  double completed = 0.0, violations = 0.0;
   for (size_t i = 0; i < sum.pixels.size(); ++i) {
     const double n = sum.pixels[i].a;
-    completed += n;
-    violations += squares.pixels[i].a;
     for (int c = 0; c < 3; ++c) {
       const double mean = n > 0.0 ? sum.pixels[i][c] / n : 0.0;
       // The sample variance (sum of squared deviations over n - 1) over n: the variance of
@@ -238,9 +258,9 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     out.mean.pixels[i].a = 1.0f;
     out.variance.pixels[i].a = 1.0f;
   }
-  out.spp = taken;
-  out.lost_fraction = 1.0 - completed / (double(taken) * double(sum.pixels.size()));
-  out.majorant_violations = (long long)(violations);
+  out.spp = spp;
+  out.cut_loops = counts.cut;
+  out.majorant_violations = counts.violations;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -77,7 +77,7 @@ TEST_F(PlanetReferenceTest, TheSunStraightUpIsDimmedByTheClosedFormTransmittance
   options.spp = 1500;
   options.max_bounces = 0;
   const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
-  ASSERT_EQ(image.lost_fraction, 0.0);
+  ASSERT_EQ(image.cut_loops, 0);
   const Mean got = image_mean(image);
 
   const nephele::AtmosphereParams& a = s.atmosphere;
@@ -112,7 +112,7 @@ TEST_F(PlanetReferenceTest, ClearSkySingleScatteringMatchesTheIntegral) {
     options.spp = 1500;
     options.max_bounces = 0;
     const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
-    ASSERT_EQ(image.lost_fraction, 0.0);
+    ASSERT_EQ(image.cut_loops, 0);
     const Mean got = image_mean(image);
     const nephele::gpu::FrameParams f = nephele::make_frame_params(s, 0);
     const nephele::glsl::Atmosphere atmosphere = frame_atmosphere(f);
@@ -153,7 +153,7 @@ TEST_F(PlanetReferenceTest, TheNoiseCloudsMajorantGridIsNeverExceededAndChangesN
   const nephele::ReferenceImage flat = shared_renderer().render_reference(s, options);
   std::printf("with the grid %.1f s, without %.1f s\n", grid.seconds, flat.seconds);
   for (const nephele::ReferenceImage* image : {&grid, &flat}) {
-    EXPECT_EQ(image->lost_fraction, 0.0);
+    EXPECT_EQ(image->cut_loops, 0);
     EXPECT_EQ(image->majorant_violations, 0);
   }
   const Mean a = image_mean(grid), b = image_mean(flat);
@@ -162,6 +162,42 @@ TEST_F(PlanetReferenceTest, TheNoiseCloudsMajorantGridIsNeverExceededAndChangesN
                 b.value[c], b.sigma[c]);
     EXPECT_NEAR(a.value[c], b.value[c],
                 3.0 * std::hypot(a.sigma[c], b.sigma[c]) + 0.01 * b.value[c]) << "channel " << c;
+  }
+}
+
+// Thick clouds of droplets (the default view, bounces to 6): the paths carry over from pass to
+// pass, so lavapipe's loop limit cuts nothing, the image does not depend on where the passes
+// cut the paths, and it does not depend on the majorant. With nested loops in one pass, 2.3%
+// of the samples had their tracking cut and the grid's image came out 5% darker than one
+// majorant per shell's, 5 standard errors apart.
+TEST_F(PlanetReferenceTest, ThickCloudsAreTracedWhereverThePassesEndAndWhateverTheMajorant) {
+  Scene s = nephele::load_preset("default");
+  s.output.width = 16;
+  s.output.height = 12;
+  s.clouds.optics = "droplets";
+  nephele::ReferenceOptions options;
+  options.spp = 30;
+  options.max_bounces = 6;
+  const nephele::ReferenceImage grid = shared_renderer().render_reference(s, options);
+  options.iterations_per_pass = 77;
+  const nephele::ReferenceImage short_passes = shared_renderer().render_reference(s, options);
+  options.iterations_per_pass = 0;
+  options.majorant_grid = nephele::MajorantGrid::kNone;
+  options.seed = 2;
+  const nephele::ReferenceImage flat = shared_renderer().render_reference(s, options);
+  for (const nephele::ReferenceImage* image : {&grid, &short_passes, &flat}) {
+    EXPECT_EQ(image->cut_loops, 0);
+    EXPECT_EQ(image->majorant_violations, 0);
+  }
+  for (size_t i = 0; i < grid.mean.pixels.size(); ++i)
+    ASSERT_EQ(short_passes.mean.pixels[i], grid.mean.pixels[i]) << "pixel " << i;
+  const Mean a = image_mean(grid), b = image_mean(flat);
+  for (int c = 0; c < 3; ++c) {
+    std::printf("channel %d: grid %.5g +- %.2g, flat %.5g +- %.2g\n", c, a.value[c], a.sigma[c],
+                b.value[c], b.sigma[c]);
+    EXPECT_NEAR(a.value[c], b.value[c],
+                3.0 * std::hypot(a.sigma[c], b.sigma[c]) + 0.01 * b.value[c])
+        << "channel " << c;
   }
 }
 
@@ -205,7 +241,7 @@ TEST_F(PlanetReferenceTest, DropletCloudsStayUnderTheirMajorants) {
     options.spp = 30;
     const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
     EXPECT_EQ(image.majorant_violations, 0) << preset;
-    EXPECT_EQ(image.lost_fraction, 0.0) << preset;
+    EXPECT_EQ(image.cut_loops, 0) << preset;
     double sum = 0.0;
     for (const glm::vec4& p : image.mean.pixels) sum += p.g;
     EXPECT_GT(sum, 0.0) << preset;

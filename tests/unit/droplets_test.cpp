@@ -122,16 +122,19 @@ TEST(Droplets, TheFrameCarriesEachGenusExtinctionAndTheDropletsPhase) {
   scene.clouds.type = 0.75f;
   const gpu::FrameParams f = make_frame_params(scene, 0);
   const DropletParams& d = scene.droplets;
-  const float cb = 1.5f * d.cumulonimbus_water_g_m3 / d.cumulonimbus_radius_um;
-  const float cu = 1.5f * d.cumulus_water_g_m3 / d.cumulus_radius_um;
+  const CloudOptics optics = cloud_optics(scene);
+  const float kept = 1.0f - glsl::droplet_albedo(d.cumulus_radius_um) * optics.peak_fraction;
+  const float cb = 1.5f * d.cumulonimbus_water_g_m3 / d.cumulonimbus_radius_um * kept;
+  const float cu = 1.5f * d.cumulus_water_g_m3 / d.cumulus_radius_um * kept;
   EXPECT_NEAR(f.cloud_shape.z, cb, 1e-6f);  // the largest of the defaults
   EXPECT_NEAR(f.cloud_genus_sigma.w * f.cloud_shape.z, cu, 1e-6f);
   EXPECT_NEAR(f.cloud_genus_sigma.x * f.cloud_shape.z,
-              1.5f * d.stratus_water_g_m3 / d.stratus_radius_um, 1e-6f);
+              1.5f * d.stratus_water_g_m3 / d.stratus_radius_um * kept, 1e-6f);
   EXPECT_FLOAT_EQ(f.cloud_droplets.x, 1.0f);
   EXPECT_EQ(f.cloud_droplets.y, 1.0f);
-  EXPECT_NEAR(f.cloud_shape.w, glsl::droplet_albedo(d.cumulus_radius_um), 1e-7f);
-  EXPECT_NEAR(f.cloud_mie.x, glsl::mie_fit(2.0f * d.cumulus_radius_um).x, 1e-6f);
+  EXPECT_NEAR(f.cloud_shape.w, optics.albedo, 1e-7f);
+  EXPECT_NEAR(f.cloud_mie.y, glsl::mie_fit(2.0f * d.cumulus_radius_um).y, 1e-6f);
+  EXPECT_EQ(f.cloud_mie.w, 1.0f);  // the Draine lobe alone: the peak is delta-scaled
   EXPECT_NEAR(f.cloud_droplets.z, glsl::mie_mean_cosine(f.cloud_mie), 1e-6f);
 
   Scene seed;
@@ -142,6 +145,42 @@ TEST(Droplets, TheFrameCarriesEachGenusExtinctionAndTheDropletsPhase) {
   EXPECT_EQ(s.cloud_droplets.x, 1.0f);
   EXPECT_EQ(s.cloud_droplets.y, 0.0f);
   EXPECT_FLOAT_EQ(s.cloud_droplets.z, 0.7f * 0.8f + 0.3f * -0.3f);
+}
+
+// Delta-scaling takes the diffraction peak (the fit's HG lobe, g above 0.97, about half the
+// scattering) out of extinction and phase function and changes nothing else: absorption
+// sigma_t (1 - albedo) and the scattering outside the peak are the droplets' own, and the
+// phase function left (the Draine lobe) is normalised, less forward than the whole.
+TEST(Droplets, TheDiffractionPeakGoesOnForwards) {
+  for (float radius : {2.5f, 5.0f, 9.0f, 15.0f, 25.0f}) {
+    Scene scene;
+    scene.clouds.optics = "droplets";
+    scene.clouds.type = 0.75f;  // cumulus
+    scene.droplets.cumulus_radius_um = radius;
+    const CloudOptics o = cloud_optics(scene);
+    const glm::vec4 fit = glsl::mie_fit(2.0f * radius);
+    EXPECT_GT(fit.x, 0.97f) << radius;
+    EXPECT_NEAR(o.peak_fraction, 1.0f - fit.w, 1e-6f) << radius;
+    EXPECT_GT(o.peak_fraction, 0.4f) << radius;
+    EXPECT_LT(o.peak_fraction, 0.6f) << radius;
+    const double sigma = glsl::droplet_extinction_per_m(scene.droplets.cumulus_water_g_m3, radius);
+    const double omega = glsl::droplet_albedo(radius);
+    const double sigma_d = o.genus_sigma_t_per_m[3];
+    // (The albedo is a float: 1 - albedo to within two of its steps, 1.2e-7.)
+    EXPECT_NEAR(sigma_d * (1.0 - double(o.albedo)), sigma * (1.0 - omega), 1.2e-7 * sigma);
+    EXPECT_NEAR(sigma_d * o.albedo, sigma * omega * (1.0 - o.peak_fraction), 1e-6 * sigma);
+    double integral = 0.0, first_moment = 0.0;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      const float mu = -1.0f + 2.0f * (float(i) + 0.5f) / float(n);
+      const double p = glsl::mie_phase(o.mie, mu) * 2.0 * glsl::PI * 2.0 / n;
+      integral += p;
+      first_moment += p * mu;
+    }
+    EXPECT_NEAR(integral, 1.0, 2e-3) << radius;
+    EXPECT_NEAR(first_moment, glsl::mie_mean_cosine(o.mie), 2e-3) << radius;
+    EXPECT_LT(glsl::mie_mean_cosine(o.mie), glsl::mie_mean_cosine(fit) - 0.1f) << radius;
+  }
 }
 
 TEST(Droplets, TheSeedsOpticalKeysAreRefusedWithDroplets) {

@@ -2,9 +2,10 @@
 // The reference path tracer (issue 21). Unbiased: delta tracking samples collisions, ratio
 // tracking estimates each light's transmittance (next-event estimation at every collision),
 // the phase functions are sampled exactly or with their ratio to a sampled one as a weight
-// (common/path_inc.glsl). Each invocation adds dispatch.values.y paths to its pixel's sums in
-// path_sum and path_squares (in its slot's rows, main below); the host dispatches until it has
-// the samples or the time it was asked for. Two scenes (PLANET, a specialization constant):
+// (common/path_inc.glsl). Each path carries the three colour channels, its events decided by
+// one of them in turn (path_spectral_inc.glsl). Paths advance an iteration at a time and carry
+// over from one dispatch to the next (PtPath, main below); each finished sample is added to its
+// pixel's sums in path_sum and path_squares. Two scenes (PLANET, a specialization constant):
 //  0 the lab: voxel cloud 0's density grid in vacuum (no planet, no air, black background)
 //    with sigma_t = grid density x path_medium.x, lit by a distant sun of irradiance
 //    path_light.w;
@@ -12,9 +13,7 @@
 //    noise and voxel clouds' density field and phase function (cloud_phase_function: the
 //    seed's lobes or the droplets' Mie fit), a Lambertian ground), lit by
 //    the key light and the second light (sun and moon, FrameParams::sun_dir, second_light),
-//    the sun's disk seen directly. Each path carries the three colour channels, its events
-//    decided by one of them in turn (path_spectral_inc.glsl): the air's extinction differs per
-//    channel, the clouds' does not.
+//    the sun's disk seen directly.
 #extension GL_GOOGLE_include_directive : require
 
 layout(constant_id = 0) const int PLANET = 0;
@@ -97,6 +96,9 @@ void pt_note_majorant(float sigma, float majorant) {
   if (sigma > majorant * 1.0001f + 1e-9f) pt_violations += 1.0f;
 }
 #define PT_NOTE_MAJORANT(sigma, majorant) pt_note_majorant(sigma, majorant)
+// Tracking loops cut at PT_MAX_COLLISIONS (PT_NOTE_CUT): counted in path_cut.
+float pt_cuts = 0.0f;
+#define PT_NOTE_CUT() pt_cuts += 1.0f
 
 // The shells (radii, m) where clouds can be, each padded by PATH_SHELL_PAD_M: x, y the main
 // layer's, z, w the high layer's (a layer that is off lies beyond the atmosphere); the voxel
@@ -247,10 +249,9 @@ vec2 planet_majorant_segment(vec3 o, vec3 d, float t) {
   return vec2(planet_air_majorant(r_low - frame.radii_m.x, r_high - frame.radii_m.x) + bound, end);
 }
 
-// (The planet's paths track their three channels with path_spectral_inc.glsl: pt_sigma_t is
-// the lab's.)
+// The paths track three channels (path_spectral_inc.glsl); the lab's medium is grey.
 float pt_sigma_t(vec3 p) { return lab_sigma_t(p); }
-vec3 pt_sigma_t3(vec3 p) { return planet_sigma_t3(p); }
+vec3 pt_sigma_t3(vec3 p) { return PLANET == 1 ? planet_sigma_t3(p) : vec3(lab_sigma_t(p)); }
 vec2 pt_bounds(vec3 o, vec3 d) { return PLANET == 1 ? planet_bounds(o, d) : lab_bounds(o, d); }
 vec2 pt_majorant_segment(vec3 o, vec3 d, float t) {
   return PLANET == 1 ? planet_majorant_segment(o, d, t) : lab_majorant_segment(o, d, t);
@@ -275,121 +276,327 @@ vec3 planet_light_rgb(int i) {
   return frame.sun_illuminance.rgb * (i == 0 ? 1.0f : frame.second_light.w);
 }
 
-// The light reaching p from light i per channel: its illuminance times the transmittance
-// (ratio tracking; 0 where the planet is in the way).
-vec3 planet_light_at(vec3 p, int i, uint stream) {
-  vec3 rgb = planet_light_rgb(i);
-  vec3 dir = planet_light_dir(i);
-  if (pt_max3(rgb) <= 0.0f || ray_sphere(p, dir, frame.radii_m.x).x > 0.0f) return vec3(0.0f);
-  return rgb * pt_transmittance3_to(p, dir, stream);
+// A path in progress: what it has gathered, where it is, and what it does next (stage). Paths
+// advance one tentative collision an iteration and carry over from one dispatch to the next in
+// path_state (PATH_STATE_TEXELS texels a path; path_state_load, path_state_store): lavapipe
+// ends an invocation's loops once all of them have run 65535 iterations, and cut that way a
+// path through thick cloud was biased, its tracking ended early. A dispatch runs at most
+// dispatch.values.y iterations an invocation, and where the limit ends it sooner, the
+// iteration it cut is undone and done again in the next (main).
+const int PT_IDLE = 0;     // between samples: the next one starts
+const int PT_FLIGHT = 1;   // delta tracking to the next collision (track)
+const int PT_SHADOW = 2;   // ratio tracking towards light `light` (track)
+const int PT_LIGHTS = 3;   // next-event estimation from light `light` on
+const int PT_SCATTER = 4;  // a new direction after the lights
+const int PT_BOUNCE = 5;   // the flight from x along d begins
+const int PT_DONE = 6;     // the sample's radiance is known
+
+struct PtPath {
+  vec3 x;             // where the path is
+  int bounce;
+  vec3 d;             // its direction (until PT_SCATTER: the one it came along)
+  int stage;
+  vec3 weight;        // each channel's albedos and phase ratios so far
+  int hero;           // the channel deciding its events
+  vec3 ratio;         // each channel's probability of the path's events / the hero's
+  int light;          // the light of PT_LIGHTS and PT_SHADOW
+  vec3 radiance;      // gathered so far
+  int started;        // samples this invocation's slot has begun
+  vec3 pending;       // PT_SHADOW: the light's contribution before its transmittance
+  float cloud_sigma;  // the clouds' sigma_t at the collision (1/m)
+  bool at_ground;     // the collision is the ground's
+  uint stream;        // the sample's random stream
+  PtTrack track;
+};
+
+// Floats keep integers exactly below 2^24: a stream in two halves.
+vec2 path_split(uint v) { return vec2(float(v & 0xffffu), float(v >> 16u)); }
+uint path_join(vec2 v) { return uint(v.x) | (uint(v.y) << 16u); }
+
+ivec2 path_state_texel(ivec2 texel, int k) {
+  return texel + ivec2(0, k * imageSize(path_sum).y);
 }
 
-// Radiance per channel along the ray (eye, dir), one path of at most max_bounces scatterings
-// after the first (at the medium or the ground) whose events the channel `hero` decides
-// (path_spectral_inc.glsl); `stream` seeds it. At a real collision the path continues as one
-// of the scatterers (Rayleigh, Mie, the clouds) chosen in proportion to the hero's sigma_s,
-// with each channel's albedo sigma_s / sigma_t as its weight; Rayleigh is sampled uniformly
-// and Mie (Cornette-Shanks) as Henyey-Greenstein, each weighted by its phase's ratio to the
-// density sampled (at most 1.5). The ground reflects as a Lambertian surface of albedo
-// sky_model.y. Each channel's estimate is its weight times the balance heuristic's share of
-// the path (pt_hero_weights). Russian roulette ends paths whose largest estimate falls under 1.
-vec3 planet_path_radiance(vec3 eye, vec3 dir, int max_bounces, uint stream, int hero) {
-  Atmosphere atmo = frame_atmosphere();
-  vec3 radiance = vec3(0.0f);
-  vec3 weight = vec3(1.0f);  // each channel's albedos and phase ratios so far
-  vec3 ratio = vec3(1.0f);   // each channel's probability of the path's events / the hero's
-  vec3 x = eye;
-  vec3 d = dir;
-  for (int bounce = 0; bounce <= max_bounces; ++bounce) {
-    uint s = pt_hash(stream ^ pt_hash(uint(bounce)));
-    vec2 bounds = pt_bounds(x, d);
-    bool in_air = bounds.y > bounds.x;
-    vec4 flight = in_air ? pt_hero_delta_tracking(x + d * bounds.x, d, bounds.y - bounds.x,
-                                                  pt_hash(s ^ 1u), hero)
-                         : vec4(1.0f, vec3(1.0f));
-    float t = flight.x;
-    ratio *= vec3(flight.y, flight.z, flight.w);
-    bool collided = in_air && t <= bounds.y - bounds.x;
-    bool ground = !collided && in_air && ray_sphere(x, d, frame.radii_m.x).x > 0.0f;
-    vec3 estimate = weight * pt_hero_weights(ratio);
-    if (!collided && !ground) {  // left the atmosphere: space is black but for the sun
-      if (bounce == 0 && frame.sun_illuminance.w == 0.0f)
-        radiance += estimate * planet_light_rgb(0) * sun_disk(d, frame.sun_dir.xyz, frame.sun_dir.w);
-      break;
+// (Written out, not looped: after lavapipe's loop limit has ended a pass early, a loop would
+// run once.)
+PtPath path_state_load(ivec2 texel) {
+  vec4 v0 = imageLoad(path_state, path_state_texel(texel, 0));
+  vec4 v1 = imageLoad(path_state, path_state_texel(texel, 1));
+  vec4 v2 = imageLoad(path_state, path_state_texel(texel, 2));
+  vec4 v3 = imageLoad(path_state, path_state_texel(texel, 3));
+  vec4 v4 = imageLoad(path_state, path_state_texel(texel, 4));
+  vec4 v5 = imageLoad(path_state, path_state_texel(texel, 5));
+  vec4 v6 = imageLoad(path_state, path_state_texel(texel, 6));
+  vec4 v7 = imageLoad(path_state, path_state_texel(texel, 7));
+  vec4 v8 = imageLoad(path_state, path_state_texel(texel, 8));
+  vec4 v9 = imageLoad(path_state, path_state_texel(texel, 9));
+  vec4 v10 = imageLoad(path_state, path_state_texel(texel, 10));
+  vec4 v11 = imageLoad(path_state, path_state_texel(texel, 11));
+  PtPath p;
+  p.x = v0.xyz;
+  p.bounce = int(v0.w);
+  p.d = v1.xyz;
+  p.stage = int(v1.w);
+  p.weight = v2.xyz;
+  p.hero = int(v2.w);
+  p.ratio = v3.xyz;
+  p.light = int(v3.w);
+  p.radiance = v4.xyz;
+  p.started = int(v4.w);
+  p.pending = v5.xyz;
+  p.cloud_sigma = v5.w;
+  p.track.o = v6.xyz;
+  p.track.t_max = v6.w;
+  p.track.d = v7.xyz;
+  p.track.i = int(v7.w);
+  p.track.walk = v8;
+  p.track.value = v9.xyz;
+  p.track.t = v9.w;
+  p.stream = path_join(v10.xy);
+  p.track.stream = path_join(v10.zw);
+  p.track.hero = int(v11.x);
+  p.track.done = v11.y > 0.5f;
+  p.at_ground = v11.z > 0.5f;
+  return p;
+}
+
+void path_state_store(ivec2 texel, PtPath p) {
+  vec4 v0 = vec4(p.x, float(p.bounce));
+  vec4 v1 = vec4(p.d, float(p.stage));
+  vec4 v2 = vec4(p.weight, float(p.hero));
+  vec4 v3 = vec4(p.ratio, float(p.light));
+  vec4 v4 = vec4(p.radiance, float(p.started));
+  vec4 v5 = vec4(p.pending, p.cloud_sigma);
+  vec4 v6 = vec4(p.track.o, p.track.t_max);
+  vec4 v7 = vec4(p.track.d, float(p.track.i));
+  vec4 v8 = p.track.walk;
+  vec4 v9 = vec4(p.track.value, p.track.t);
+  vec4 v10 = vec4(path_split(p.stream), path_split(p.track.stream));
+  vec4 v11 = vec4(float(p.track.hero), p.track.done ? 1.0f : 0.0f, p.at_ground ? 1.0f : 0.0f, 0.0f);
+  imageStore(path_state, path_state_texel(texel, 0), v0);
+  imageStore(path_state, path_state_texel(texel, 1), v1);
+  imageStore(path_state, path_state_texel(texel, 2), v2);
+  imageStore(path_state, path_state_texel(texel, 3), v3);
+  imageStore(path_state, path_state_texel(texel, 4), v4);
+  imageStore(path_state, path_state_texel(texel, 5), v5);
+  imageStore(path_state, path_state_texel(texel, 6), v6);
+  imageStore(path_state, path_state_texel(texel, 7), v7);
+  imageStore(path_state, path_state_texel(texel, 8), v8);
+  imageStore(path_state, path_state_texel(texel, 9), v9);
+  imageStore(path_state, path_state_texel(texel, 10), v10);
+  imageStore(path_state, path_state_texel(texel, 11), v11);
+}
+
+// The stream of the path's current bounce.
+uint path_bounce_stream(PtPath p) { return pt_hash(p.stream ^ pt_hash(uint(p.bounce))); }
+
+// Each channel's estimate of what reaches the eye by the path so far: its weight times the
+// balance heuristic's share of the path (pt_hero_weights).
+vec3 path_estimate(PtPath p) { return p.weight * pt_hero_weights(p.ratio); }
+
+// The sun's disk met by a path leaving the air along d, seen directly by the camera (a point
+// light for the paths that scatter, as for the fast mode).
+vec3 path_sun_met(PtPath p) {
+  if (PLANET == 0 || p.bounce > 0 || frame.sun_illuminance.w != 0.0f) return vec3(0.0f);
+  return path_estimate(p) * planet_light_rgb(0) * sun_disk(p.d, frame.sun_dir.xyz, frame.sun_dir.w);
+}
+
+// PT_BOUNCE: the flight from x along d through the medium, or, where the ray misses it, the
+// path's end (space is black but for the sun's disk seen directly; the lab's background black).
+PtPath path_begin_bounce(PtPath p) {
+  vec2 bounds = pt_bounds(p.x, p.d);
+  if (bounds.y > bounds.x) {
+    p.track = pt_track_begin(p.x + p.d * bounds.x, p.d, bounds.y - bounds.x,
+                             pt_hash(path_bounce_stream(p) ^ 1u), p.hero);
+    p.stage = PT_FLIGHT;
+    return p;
+  }
+  p.radiance += path_sun_met(p);
+  p.stage = PT_DONE;
+  return p;
+}
+
+// The flight ended: at a collision in the medium, at the ground (a Lambertian surface of albedo
+// sky_model.y), or out of the medium (as path_begin_bounce's miss).
+PtPath path_flight_ended(PtPath p) {
+  p.ratio *= p.track.value;
+  bool collided = p.track.t <= p.track.t_max;
+  if (PLANET == 0) {
+    if (!collided) {
+      p.stage = PT_DONE;
+      return p;
     }
-    if (ground) {
-      vec3 n = normalize(x + d * bounds.y);
-      x = n * (frame.radii_m.x + 1.0f);  // lifted a metre, clear of its own sphere
-      float albedo = frame.sky_model.y;
-      for (int i = 0; i < 2; ++i)
-        radiance += estimate * albedo / PI * max(dot(n, planet_light_dir(i)), 0.0f) *
-                    planet_light_at(x, i, pt_hash(s ^ (2u + uint(i))));
-      weight *= albedo;
-      d = pt_sample_cosine(n, pt_uniform(s, 3u), pt_uniform(s, 4u));
+    p.x = p.track.o + p.track.d * p.track.t;
+    p.weight *= frame.path_medium.y;  // sigma_s / sigma_t at a collision sampled by sigma_t T
+  } else {
+    bool ground = !collided && ray_sphere(p.x, p.d, frame.radii_m.x).x > 0.0f;
+    if (!collided && !ground) {
+      p.radiance += path_sun_met(p);
+      p.stage = PT_DONE;
+      return p;
+    }
+    p.at_ground = ground;
+    if (ground) {  // lifted a metre, clear of its own sphere
+      p.x = normalize(p.track.o + p.track.d * p.track.t_max) * (frame.radii_m.x + 1.0f);
     } else {
-      x += d * (bounds.x + t);
-      AtmosphereMedium air = atmosphere_medium(atmo, length(x) - frame.radii_m.x);
-      vec3 sigma_r = air.scattering_r;
-      float sigma_m = air.scattering_m;
-      float sigma_c = pt_cloud_sigma_t * frame.cloud_shape.w;
-      vec3 sigma_t = air.extinction + pt_cloud_sigma_t;
-      for (int i = 0; i < 2; ++i) {
-        float mu = dot(d, planet_light_dir(i));
-        vec3 phase = sigma_r * rayleigh_phase(mu) + sigma_m * cornette_shanks_phase(atmo.mie_g, mu) +
-                     sigma_c * cloud_phase_function(mu, 1.0f);
-        radiance += estimate * phase / sigma_t * planet_light_at(x, i, pt_hash(s ^ (2u + uint(i))));
-      }
-      vec3 sigma_s = sigma_r + sigma_m + sigma_c;
-      weight *= sigma_s / sigma_t;
-      // Which scatterer, by the hero's sigma_s; each channel's probability of that choice.
-      float pick = pt_uniform(s, 5u) * sigma_s[hero];
-      vec3 next;
-      vec3 chosen;  // the chosen scatterer's sigma_s per channel
-      if (pick < sigma_c) {
-        chosen = vec3(sigma_c);
-        // The clouds' two lobes, each sampled as Henyey-Greenstein in proportion to its weight:
-        // exact for the seed's lobes; for the droplets' Mie fit the Draine lobe is drawn from
-        // the HG lobe of its g, and the ratio of the phase to that mixture (at most
-        // (1 + alpha) / (1 + alpha (1 + 2 g^2) / 3)) weights the path.
-        bool mie = frame.cloud_droplets.y > 0.5f;
-        vec3 lobes = mie ? vec3(frame.cloud_mie.x, frame.cloud_mie.y, 1.0f - frame.cloud_mie.w)
-                         : frame.cloud_phase.xyz;
-        bool first = pt_uniform(s, 6u) < lobes.z;
-        next = pt_sample_hg(d, first ? lobes.x : lobes.y, pt_uniform(s, 3u), pt_uniform(s, 4u));
-        float mu = dot(d, next);
-        if (mie)
-          weight *= cloud_phase_function(mu, 1.0f) /
-                    mix(henyey_greenstein(lobes.y, mu), henyey_greenstein(lobes.x, mu), lobes.z);
-      } else if (pick < sigma_c + sigma_m) {
-        chosen = vec3(sigma_m);
-        next = pt_sample_hg(d, atmo.mie_g, pt_uniform(s, 3u), pt_uniform(s, 4u));
-        float mu = dot(d, next);
-        weight *= cornette_shanks_phase(atmo.mie_g, mu) / henyey_greenstein(atmo.mie_g, mu);
-      } else {
-        chosen = sigma_r;
-        next = pt_sample_hg(d, 0.0f, pt_uniform(s, 3u), pt_uniform(s, 4u));
-        weight *= rayleigh_phase(dot(d, next)) * (4.0f * PI);
-      }
-      // Each channel's probability of this choice, chosen / sigma_s, joins its events'; its
-      // estimate keeps its albedo (f_k / p_k = sigma_s / sigma_t whatever the choice).
-      vec3 choice = chosen / max(sigma_s, vec3(1e-30f));
-      ratio *= choice / choice[hero];
-      d = next;
-    }
-    estimate = weight * pt_hero_weights(ratio);
-    float most = pt_max3(estimate);
-    if (bounce >= 2 && most < 1.0f) {  // Russian roulette
-      if (pt_uniform(s, 7u) >= most) break;
-      weight /= most;
+      p.x = p.track.o + p.track.d * p.track.t;
+      p.cloud_sigma = pt_cloud_sigma_t;  // the collision's: the last point tracked
     }
   }
-  return radiance;
+  p.light = 0;
+  p.stage = PT_LIGHTS;
+  return p;
 }
 
-// A pixel's samples are spread over the dispatch's depth (PathTracerModule::resize): slot z
-// (gl_GlobalInvocationID.z) takes samples first + z n ... first + (z + 1) n - 1 of the n =
-// dispatch.values.y a slot takes, into its own rows of the sums, so a small image still gives
-// a GPU enough invocations, each running few samples.
+// PT_LIGHTS: light `light`'s contribution at the collision. Where the medium lies between,
+// its transmittance is tracked (PT_SHADOW) and the contribution waits in `pending`; else it is
+// added at once and the next light follows; after the last, PT_SCATTER. The planet's lights
+// are the sun and the moon (each channel's sigma_s-weighted phase over sigma_t at a collision,
+// Lambert's cosine over pi at the ground), the lab's its one light (albedo and
+// Henyey-Greenstein).
+PtPath path_next_light(PtPath p) {
+  if (p.light >= (PLANET == 1 ? 2 : 1)) {
+    p.stage = PT_SCATTER;
+    return p;
+  }
+  int i = p.light;
+  vec3 to_light;
+  vec3 contribution;
+  bool blocked = false;
+  if (PLANET == 1) {
+    to_light = planet_light_dir(i);
+    vec3 estimate = path_estimate(p) * planet_light_rgb(i);
+    if (p.at_ground) {
+      contribution = estimate * frame.sky_model.y / PI * max(dot(normalize(p.x), to_light), 0.0f);
+    } else {
+      Atmosphere atmo = frame_atmosphere();
+      AtmosphereMedium air = atmosphere_medium(atmo, length(p.x) - frame.radii_m.x);
+      float mu = dot(p.d, to_light);
+      vec3 phase = air.scattering_r * rayleigh_phase(mu) +
+                   air.scattering_m * cornette_shanks_phase(atmo.mie_g, mu) +
+                   p.cloud_sigma * frame.cloud_shape.w * cloud_phase_function(mu, 1.0f);
+      contribution = estimate * phase / (air.extinction + p.cloud_sigma);
+    }
+    blocked = ray_sphere(p.x, to_light, frame.radii_m.x).x > 0.0f;
+  } else {
+    to_light = frame.path_light.xyz;
+    contribution = vec3(p.weight.x * frame.path_light.w *
+                        henyey_greenstein(frame.path_medium.z, dot(p.d, to_light)));
+  }
+  p.light += 1;
+  if (pt_max3(contribution) <= 0.0f || blocked) return p;
+  vec2 bounds = pt_bounds(p.x, to_light);
+  if (bounds.y <= bounds.x) {
+    p.radiance += contribution;
+    return p;
+  }
+  p.light -= 1;
+  p.pending = contribution;
+  p.track = pt_track_begin(p.x + to_light * bounds.x, to_light, bounds.y - bounds.x,
+                           pt_hash(path_bounce_stream(p) ^ (2u + uint(i))), -1);
+  p.stage = PT_SHADOW;
+  return p;
+}
+
+// PT_SCATTER: the path's new direction. On the planet, at a collision in the medium, one of the
+// scatterers (Rayleigh, Mie, the clouds) chosen in proportion to the hero's sigma_s, with each
+// channel's albedo sigma_s / sigma_t as its weight; Rayleigh sampled uniformly and Mie
+// (Cornette-Shanks) as Henyey-Greenstein, each weighted by its phase's ratio to the density
+// sampled (at most 1.5); at the ground, Lambert's cosine. Russian roulette then ends paths whose
+// largest estimate falls under 1. In the lab, Henyey-Greenstein. After max_bounces, the end.
+PtPath path_scatter(PtPath p, int max_bounces) {
+  uint s = path_bounce_stream(p);
+  if (PLANET == 0) {
+    p.d = pt_sample_hg(p.d, frame.path_medium.z, pt_uniform(s, 3u), pt_uniform(s, 4u));
+  } else if (p.at_ground) {
+    p.weight *= frame.sky_model.y;
+    p.d = pt_sample_cosine(normalize(p.x), pt_uniform(s, 3u), pt_uniform(s, 4u));
+  } else {
+    Atmosphere atmo = frame_atmosphere();
+    AtmosphereMedium air = atmosphere_medium(atmo, length(p.x) - frame.radii_m.x);
+    vec3 sigma_r = air.scattering_r;
+    float sigma_m = air.scattering_m;
+    float sigma_c = p.cloud_sigma * frame.cloud_shape.w;
+    vec3 sigma_s = sigma_r + sigma_m + sigma_c;
+    p.weight *= sigma_s / (air.extinction + p.cloud_sigma);
+    float pick = pt_uniform(s, 5u) * sigma_s[p.hero];
+    vec3 next;
+    vec3 chosen;  // the chosen scatterer's sigma_s per channel
+    if (pick < sigma_c) {
+      chosen = vec3(sigma_c);
+      // The clouds' two lobes, each sampled as Henyey-Greenstein in proportion to its weight:
+      // exact for the seed's lobes; for the droplets' Mie fit the Draine lobe is drawn from
+      // the HG lobe of its g, and the ratio of the phase to that mixture (at most
+      // (1 + alpha) / (1 + alpha (1 + 2 g^2) / 3)) weights the path.
+      bool mie = frame.cloud_droplets.y > 0.5f;
+      vec3 lobes = mie ? vec3(frame.cloud_mie.x, frame.cloud_mie.y, 1.0f - frame.cloud_mie.w)
+                       : frame.cloud_phase.xyz;
+      bool first = pt_uniform(s, 6u) < lobes.z;
+      next = pt_sample_hg(p.d, first ? lobes.x : lobes.y, pt_uniform(s, 3u), pt_uniform(s, 4u));
+      float mu = dot(p.d, next);
+      if (mie)
+        p.weight *= cloud_phase_function(mu, 1.0f) /
+                    mix(henyey_greenstein(lobes.y, mu), henyey_greenstein(lobes.x, mu), lobes.z);
+    } else if (pick < sigma_c + sigma_m) {
+      chosen = vec3(sigma_m);
+      next = pt_sample_hg(p.d, atmo.mie_g, pt_uniform(s, 3u), pt_uniform(s, 4u));
+      float mu = dot(p.d, next);
+      p.weight *= cornette_shanks_phase(atmo.mie_g, mu) / henyey_greenstein(atmo.mie_g, mu);
+    } else {
+      chosen = sigma_r;
+      next = pt_sample_hg(p.d, 0.0f, pt_uniform(s, 3u), pt_uniform(s, 4u));
+      p.weight *= rayleigh_phase(dot(p.d, next)) * (4.0f * PI);
+    }
+    // Each channel's probability of this choice, chosen / sigma_s, joins its events'; its
+    // estimate keeps its albedo (f_k / p_k = sigma_s / sigma_t whatever the choice).
+    vec3 choice = chosen / max(sigma_s, vec3(1e-30f));
+    p.ratio *= choice / choice[p.hero];
+    p.d = next;
+  }
+  if (PLANET == 1) {
+    float most = pt_max3(path_estimate(p));
+    if (p.bounce >= 2 && most < 1.0f) {  // Russian roulette
+      if (pt_uniform(s, 7u) >= most) {
+        p.stage = PT_DONE;
+        return p;
+      }
+      p.weight /= most;
+    }
+  }
+  p.bounce += 1;
+  p.stage = p.bounce > max_bounces ? PT_DONE : PT_BOUNCE;
+  return p;
+}
+
+// PT_IDLE: the slot's next sample, through a random point of the pixel (box filter). Slot z of
+// S takes samples z, z + S, z + 2 S, ...; the hero channel is the sample's number modulo 3,
+// so every channel leads a third of a pixel's samples when each slot takes as many.
+PtPath path_start_sample(PtPath p, ivec2 pixel, ivec2 size, uint index) {
+  uint stream = pt_stream(uint(pixel.y * size.x + pixel.x), index, uint(dispatch.values.z));
+  float jx = pt_uniform(stream, 0u), jy = pt_uniform(stream, 1u);
+  p.d = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
+                   frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x) + jx - 0.5f,
+                   float(pixel.y) + jy - 0.5f, float(size.x), float(size.y),
+                   vec2(frame.camera_right.w, frame.camera_up.w));
+  p.x = PLANET == 1 ? frame.camera_pos_m.xyz : frame.path_eye_m.xyz;
+  p.stream = pt_hash(stream ^ 0x68bc21ebu);
+  p.hero = PLANET == 1 ? int(index % 3u) : 0;
+  p.weight = vec3(1.0f);
+  p.ratio = vec3(1.0f);
+  p.radiance = vec3(0.0f);
+  p.bounce = 0;
+  p.started += 1;
+  p.stage = PT_BOUNCE;
+  return p;
+}
+
+// Each invocation runs one path at a time of its pixel's slot (gl_GlobalInvocationID.z of
+// gl_NumWorkGroups.z, PathTracerModule::resize), for dispatch.values.y iterations or until the
+// slot has begun every sample numbered under dispatch.values.x and finished them, adding each
+// finished sample to its rows of path_sum and path_squares (sum a: the samples) and to
+// path_counts. Iterations: one tentative collision of a flight or of a light's shadow, and the
+// events that follow it (a collision's lights without medium between, its scattering, the
+// next flight's start), so that lanes of one SIMD batch stay in step whatever their paths do.
 void main() {
   int slots = int(gl_NumWorkGroups.z);
   ivec2 size = ivec2(imageSize(path_sum).x, imageSize(path_sum).y / slots);
@@ -397,37 +604,69 @@ void main() {
   if (pixel.x >= size.x || pixel.y >= size.y) return;
   int slot = int(gl_GlobalInvocationID.z);
   ivec2 texel = pixel + ivec2(0, slot * size.y);
+  PtPath p = path_state_load(texel);
   vec4 sum = imageLoad(path_sum, texel);
   vec4 squares = imageLoad(path_squares, texel);
-  uint pixel_key = uint(pixel.y * size.x + pixel.x);
-  vec3 eye = PLANET == 1 ? frame.camera_pos_m.xyz : frame.path_eye_m.xyz;
-  for (int k = 0; k < dispatch.values.y; ++k) {
-    uint sample_index = uint(dispatch.values.x + slot * dispatch.values.y + k);
-    uint stream = pt_stream(pixel_key, sample_index, uint(dispatch.values.z));
-    // A random point in the pixel (box filter).
-    float jx = pt_uniform(stream, 0u), jy = pt_uniform(stream, 1u);
-    vec3 dir = camera_ray(frame.camera_forward.xyz, frame.camera_right.xyz, frame.camera_up.xyz,
-                          frame.camera_pos_m.w, frame.camera_forward.w, float(pixel.x) + jx - 0.5f,
-                          float(pixel.y) + jy - 0.5f, float(size.x), float(size.y),
-                        vec2(frame.camera_right.w, frame.camera_up.w));
-    vec3 value;
-    if (PLANET == 1) {
-      // The hero channel in turn, so every channel leads a third of the samples.
-      value = planet_path_radiance(eye, dir, dispatch.values.w, pt_hash(stream ^ 0x68bc21ebu),
-                                   int(sample_index % 3u));
-    } else {
-      value = vec3(pt_path_radiance(eye, dir, frame.path_light.xyz, frame.path_light.w, 0.0f,
-                                    frame.path_medium.y, frame.path_medium.z, dispatch.values.w,
-                                    pt_hash(stream ^ 0x68bc21ebu)));
+  uint target = uint(dispatch.values.x);
+  uint finished = 0u;
+  bool slot_done = false;
+  // The state before this iteration, kept in case lavapipe's loop limit cuts it short.
+  PtPath before = p;
+  vec4 sum_before = sum, squares_before = squares;
+  uint finished_before = finished;
+  int it = 0;
+  for (; it < dispatch.values.y; ++it) {
+    before = p;
+    sum_before = sum;
+    squares_before = squares;
+    finished_before = finished;
+    if (p.stage == PT_IDLE) {
+      uint index = uint(slot + p.started * slots);
+      if (index >= target) {
+        slot_done = true;
+        break;
+      }
+      p = path_start_sample(p, pixel, size, index);
+      atomicMax(path_started, index + 1u);
+    } else if (p.stage == PT_FLIGHT || p.stage == PT_SHADOW) {
+      p.track = pt_track_step(p.track);
+      if (!p.track.done) continue;
+      if (p.stage == PT_FLIGHT) {
+        p = path_flight_ended(p);
+      } else {
+        p.radiance += p.pending * p.track.value;
+        p.light += 1;
+        p.stage = PT_LIGHTS;
+      }
     }
-    sum += vec4(value, 1.0f);
-    squares += vec4(value * value, pt_violations);
-    pt_violations = 0.0f;
-    // Stored after every sample: on lavapipe, a path whose loops (with those of the other
-    // lanes of its batch) pass 65535 iterations is cut off with everything after it in this
-    // invocation; the samples stored before it count, and the host counts what was lost
-    // (path_sum's alpha is the samples a pixel got).
-    imageStore(path_sum, texel, sum);
-    imageStore(path_squares, texel, squares);
+    // Up to two lights and the end of the lights, without a loop (whose iterations lavapipe
+    // would count against every path's).
+    if (p.stage == PT_LIGHTS) p = path_next_light(p);
+    if (p.stage == PT_LIGHTS) p = path_next_light(p);
+    if (p.stage == PT_LIGHTS) p = path_next_light(p);
+    if (p.stage == PT_SCATTER) p = path_scatter(p, dispatch.values.w);
+    if (p.stage == PT_BOUNCE) p = path_begin_bounce(p);
+    if (p.stage == PT_DONE) {
+      sum += vec4(p.radiance, 1.0f);
+      squares += vec4(p.radiance * p.radiance, 0.0f);
+      finished += 1u;
+      p.stage = PT_IDLE;
+    }
   }
+  // The loop ended early, neither at its count nor with the slot's samples done: lavapipe's loop
+  // limit ended it, and may have cut short what the last iteration did (every loop after the
+  // limit runs once), so that iteration is undone. The host then runs shorter passes.
+  if (it < dispatch.values.y && !slot_done) {
+    p = before;
+    sum = sum_before;
+    squares = squares_before;
+    finished = finished_before;
+    atomicAdd(path_limited, 1u);
+  }
+  if (pt_cuts > 0.0f) atomicAdd(path_cut, uint(pt_cuts));
+  if (pt_violations > 0.0f) atomicAdd(path_violations, uint(pt_violations));
+  if (finished > 0u) atomicAdd(path_finished, finished);
+  path_state_store(texel, p);
+  imageStore(path_sum, texel, sum);
+  imageStore(path_squares, texel, squares);
 }

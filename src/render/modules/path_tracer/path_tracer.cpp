@@ -11,8 +11,16 @@ PathTracerModule::PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     : ctx_(ctx),
       set_(set),
       // Depth 2: a texture of depth 1 is a 2D image, and the shader reads a 3D one.
+      counts_(ctx, sizeof(Counts), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
       majorant_(ctx, 1, 1, 2, VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set_.bind_sampled_image(gpu::kPathMajorant, majorant_);
+  set_.bind_buffer(gpu::kPathCounts, counts_, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+}
+
+PathTracerModule::Counts PathTracerModule::counts() const {
+  Counts c;
+  std::memcpy(&c, counts_.data(), sizeof(c));
+  return c;
 }
 
 void PathTracerModule::upload_majorant(const std::vector<float>& grid, glm::ivec3 size) {
@@ -39,13 +47,18 @@ void PathTracerModule::resize(int width, int height, int slots) {
   for (gpu::Texture* t : {&sum_, &squares_})
     *t = gpu::Texture(ctx_, uint32_t(width), uint32_t(height * slots), 1,
                       VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  state_ = gpu::Texture(ctx_, uint32_t(width), uint32_t(height * slots * gpu::PATH_STATE_TEXELS), 1,
+                        VK_FORMAT_R32G32B32A32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   set_.bind_storage_image(gpu::kPathSum, sum_);
   set_.bind_storage_image(gpu::kPathSquares, squares_);
+  set_.bind_storage_image(gpu::kPathState, state_);
 }
 
 void PathTracerModule::clear(VkCommandBuffer cmd) const {
   sum_.record_clear(cmd);
   squares_.record_clear(cmd);
+  state_.record_clear(cmd);
+  std::memset(counts_.data(), 0, sizeof(Counts));
 }
 
 void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet,
@@ -57,7 +70,13 @@ void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool p
         ctx_, set_, "path_trace.comp.spv", std::vector<int32_t>{planet ? 1 : 0, baseline});
   gpu::dispatch(cmd, *kernels_[variant], timer, "path_trace", sum_.width(),
                 sum_.height() / uint32_t(slots_), uint32_t(slots_), 8, 8, 1,
-                gpu::DispatchConstants{glm::ivec4(first_sample_, samples_, seed_, max_bounces_)});
+                gpu::DispatchConstants{glm::ivec4(target_, iterations_, seed_, max_bounces_)});
+  // The counts, for the host once the pass has ended.
+  VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                       &to_host, 0, nullptr, 0, nullptr);
 }
 
 void PathTracerModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

@@ -15,22 +15,32 @@ class PathTracerModule : public RenderModule {
  public:
   PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set);
 
-  // Sizes the accumulation images for width x height pixels whose samples `slots` invocations
-  // of each dispatch share (slot k's sums in rows [k height, (k + 1) height)) and binds them
-  // (before the work that uses them starts recording); clear() records setting them to zero.
+  // Sizes the accumulation images and the paths in progress for width x height pixels whose
+  // samples `slots` invocations of each dispatch share (slot k's in rows [k height, (k + 1)
+  // height)) and binds them (before the work that uses them starts recording); clear() records
+  // setting them to zero, and zeroes the counts.
   void resize(int width, int height, int slots);
   int slots() const { return slots_; }
   void clear(VkCommandBuffer cmd) const;
-  // Adds the samples set_samples gave to every pixel in every slot, with the paths set_paths gave:
+  // Runs every invocation's paths on for set_samples' iterations, with the paths set_paths gave:
   // of the lab (`planet` false), or of the planet's scene with the noise clouds' field of `mode`.
   // All four numbers travel as the dispatch's push constants.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode) const;
-  // The samples the next path_trace pass of the graph adds: `samples` a pixel in each slot
-  // (slots x samples in all), the first numbered `first_sample`.
-  void set_samples(int first_sample, int samples) {
-    first_sample_ = first_sample;
-    samples_ = samples;
+  // The next path_trace pass: each pixel's samples numbered under `target` (slot k of S takes k,
+  // k + S, ...), at most `iterations` iterations an invocation (path_trace.comp).
+  void set_samples(int target, int iterations) {
+    target_ = target;
+    iterations_ = iterations;
   }
+  // What the passes so far have done (path_trace.comp's path_counts), once they have ended.
+  struct Counts {
+    uint32_t finished = 0;    // samples finished, over all pixels and slots
+    uint32_t started = 0;     // the largest sample number begun plus one
+    uint32_t cut = 0;         // walks cut at PT_MAX_COLLISIONS: the image is biased if any
+    uint32_t violations = 0;  // tentative collisions above their majorant
+    uint32_t limited = 0;     // invocations whose pass the device's loop limit ended early
+  };
+  Counts counts() const;
   // The random streams' seed and the paths' largest number of bounces.
   void set_paths(int seed, int max_bounces) {
     seed_ = seed;
@@ -53,9 +63,10 @@ class PathTracerModule : public RenderModule {
   // Built on first use (a pipeline costs a CPU device its compilation at creation): the lab,
   // the planet with the default and with the baseline field.
   mutable std::unique_ptr<gpu::Kernel> kernels_[3];
-  gpu::Texture sum_, squares_;
+  gpu::Texture sum_, squares_, state_;
+  gpu::Buffer counts_;
   gpu::Texture majorant_;  // 1 x 1 x 2 texels until a grid is uploaded
-  int first_sample_ = 0, samples_ = 1, slots_ = 1;
+  int target_ = 0, iterations_ = 1, slots_ = 1;
   int seed_ = 0, max_bounces_ = 0;
 };
 
