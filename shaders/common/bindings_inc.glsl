@@ -155,13 +155,14 @@ layout(set = 0, binding = 72, r32f) uniform writeonly image2D cloud_shadow_map_o
 // +Z -Z of ENU, radiance (cd/m^2).
 layout(set = 0, binding = 73, rgba16f) uniform writeonly image2D environment_out;
 // The reference path tracer's paths in progress (path_trace.comp, PATH_STATE_TEXELS texels a
-// path, in blocks of path_sum's height) and its counts, read by the host: samples finished, the
-// largest sample number begun plus one, walks cut at PT_MAX_COLLISIONS, tentative collisions
-// above their majorant, invocations whose pass lavapipe's loop limit ended early.
+// path, in blocks of path_sum's height) and its counts, read by the host: samples finished,
+// invocations with samples still to take after the last pass (the host zeroes it before each),
+// walks cut at PT_MAX_COLLISIONS, tentative collisions above their majorant, invocations whose
+// pass lavapipe's loop limit ended early.
 layout(set = 0, binding = 74, rgba32f) uniform image2D path_state;
 layout(std430, set = 0, binding = 75) buffer PathCountsBlock {
   uint path_finished;
-  uint path_started;
+  uint path_running;
   uint path_cut;
   uint path_violations;
   uint path_limited;

@@ -118,6 +118,16 @@ vec3 pt_transmittance3_to(vec3 p, vec3 d, uint stream) {
   return pt_ratio_tracking3(p + d * bounds.x, d, bounds.y - bounds.x, stream);
 }
 
+// The hero channel of sample `index`: the sum of its base-3 digits, modulo 3. Any three samples
+// 3j, 3j + 1, 3j + 2 take the three channels, so a pixel's first 3n samples are even whatever
+// its slots; and slot z of S = 3^k takes samples z + m S whose digit k is m's last, so any
+// three consecutive samples of one slot are even too (a pass stopped early: path_trace.comp).
+int path_hero(uint index) {
+  uint sum = 0u;
+  for (uint v = index; v > 0u; v /= 3u) sum += v % 3u;
+  return int(sum % 3u);
+}
+
 // The balance heuristic's weight of each channel's estimate, from the ratios p_k / p_h of the
 // path's events: p_k / mean_j p_j.
 vec3 pt_hero_weights(vec3 ratio) { return ratio * (3.0f / (ratio.x + ratio.y + ratio.z)); }

@@ -164,9 +164,12 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
                                                    : scene.lab.max_bounces;
   const int width = scene.output.width, height = scene.output.height;
   int slots = options.invocations_per_pixel;
+  // On a GPU, enough for kBusyInvocations: 1, 3, 9 or 27 (a power of three, so that a pass
+  // stopped early leaves every channel as many samples: path_hero).
   if (slots == 0 && !ctx.is_cpu()) {
-    slots = std::clamp((kBusyInvocations + width * height - 1) / (width * height), 1, 16);
-    if (slots > 1 && planet) slots = (slots + 2) / 3 * 3;
+    const int wanted = (kBusyInvocations + width * height - 1) / (width * height);
+    slots = 1;
+    while (slots < wanted && slots < 27) slots *= 3;
   }
   slots = std::max(slots, 1);
   // Slot k of S takes samples k, k + S, ... and the planet's paths take their hero channel in
@@ -174,17 +177,16 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   // of three, so that every slot takes as many and every channel leads a third.
   const int step = std::lcm(planet ? 3 : 1, slots);
   const auto round_up = [step](long long n) { return int((n + step - 1) / step * step); };
-  int spp = round_up(options.spp);
-  const int asked = spp;
+  const int spp = round_up(options.spp);
   int reported = 0;
   path_tracer.resize(width, height, slots);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { path_tracer.clear(cmd); });
 
   // Passes of a bounded number of iterations an invocation (path_trace.comp), grown while a
   // pass takes under a quarter of a second, so that a time limit is kept to within about a
-  // pass and progress is reported often: until every pixel has its samples. At the time
-  // limit, the samples begun are finished (the target becomes the largest begun, rounded up
-  // to a whole step), so that every pixel still takes as many.
+  // pass and progress is reported often: until no invocation has samples to take. At the time
+  // limit, each finishes the sample it is on and takes its samples to a multiple of three, so
+  // that every channel has as many; pixels then differ in their samples.
   const long long pixels = (long long)(width)*height;
   // A CPU device's loop limit (65535 iterations an invocation's batch, in all its loops): an
   // iteration runs a few short loops of its own, and a pass the limit ends early lowers this.
@@ -197,17 +199,15 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   plan.planet_reference = planet;
   const FrameGraph graph = frame_graph(scene, params, plan);
   PathTracerModule::Counts counts;
-  while ((long long)(counts.finished) < (long long)(spp)*pixels) {
+  for (bool first = true; first || counts.running > 0; first = false) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!stopping && counts.started > 0 && options.time_limit_s > 0.0 &&
-        elapsed >= options.time_limit_s) {
+    if (!stopping && counts.finished > 0 && options.time_limit_s > 0.0 &&
+        elapsed >= options.time_limit_s)
       stopping = true;
-      spp = std::min(spp, round_up(counts.started));
-      continue;
-    }
     path_tracer.set_paths(int(options.seed), max_bounces);
-    path_tracer.set_samples(spp, iterations);
+    path_tracer.set_samples(stopping ? 0 : spp, iterations);
+    path_tracer.reset_running();
     const auto pass_start = std::chrono::steady_clock::now();
     // The first pass after what the paths read (the planet's weather map), then alone.
     state.run_once(params, [&](VkCommandBuffer cmd) {
@@ -225,7 +225,7 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     else if (pass_s < 0.25 && options.iterations_per_pass == 0)
       iterations = std::min(iterations * 2, max_iterations);
     const int done = int((long long)(counts.finished) / std::max(pixels, 1LL));
-    if (options.progress && done > reported) options.progress("reference", done, asked);
+    if (options.progress && done > reported) options.progress("reference", done, spp);
     reported = done;
   }
 
@@ -258,7 +258,8 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     out.mean.pixels[i].a = 1.0f;
     out.variance.pixels[i].a = 1.0f;
   }
-  out.spp = spp;
+  // The mean over the pixels (all alike unless a time limit stopped the passes).
+  out.spp = int((long long)(counts.finished) / std::max(pixels, 1LL));
   out.cut_loops = counts.cut;
   out.majorant_violations = counts.violations;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -107,6 +107,25 @@ TEST(PathTracer, ThreeChannelsOnOnePathKeepTheirOwnTransmittance) {
   }
 }
 
+// The hero channels: every three samples 3j..3j+2 of a pixel take the three, and so do any
+// three consecutive samples of one slot when the slots are a power of three (a pass stopped
+// early leaves each slot a multiple of three).
+TEST(PathTracer, HeroChannelsComeInThreesInEverySlot) {
+  for (uint first = 0; first < 3000; first += 3) {
+    int seen[3] = {};
+    for (uint k = 0; k < 3; ++k) ++seen[colours::path_hero(first + k)];
+    ASSERT_TRUE(seen[0] == 1 && seen[1] == 1 && seen[2] == 1) << first;
+  }
+  for (uint slots : {1u, 3u, 9u, 27u})
+    for (uint slot = 0; slot < slots; ++slot)
+      for (uint m = 0; m < 300; m += 3) {
+        int seen[3] = {};
+        for (uint k = 0; k < 3; ++k) ++seen[colours::path_hero(slot + (m + k) * slots)];
+        ASSERT_TRUE(seen[0] == 1 && seen[1] == 1 && seen[2] == 1)
+            << "slots " << slots << " slot " << slot << " m " << m;
+      }
+}
+
 TEST(PathTracer, RatioTrackingMatchesTheSlabsTransmittance) {
   const double exact = std::exp(-slab::optical_depth());  // about 0.13
   double sum = 0.0;

@@ -569,8 +569,7 @@ PtPath path_scatter(PtPath p, int max_bounces) {
 }
 
 // PT_IDLE: the slot's next sample, through a random point of the pixel (box filter). Slot z of
-// S takes samples z, z + S, z + 2 S, ...; the hero channel is the sample's number modulo 3,
-// so every channel leads a third of a pixel's samples when each slot takes as many.
+// S takes samples z, z + S, z + 2 S, ...
 PtPath path_start_sample(PtPath p, ivec2 pixel, ivec2 size, uint index) {
   uint stream = pt_stream(uint(pixel.y * size.x + pixel.x), index, uint(dispatch.values.z));
   float jx = pt_uniform(stream, 0u), jy = pt_uniform(stream, 1u);
@@ -580,7 +579,7 @@ PtPath path_start_sample(PtPath p, ivec2 pixel, ivec2 size, uint index) {
                    vec2(frame.camera_right.w, frame.camera_up.w));
   p.x = PLANET == 1 ? frame.camera_pos_m.xyz : frame.path_eye_m.xyz;
   p.stream = pt_hash(stream ^ 0x68bc21ebu);
-  p.hero = PLANET == 1 ? int(index % 3u) : 0;
+  p.hero = PLANET == 1 ? path_hero(index) : 0;
   p.weight = vec3(1.0f);
   p.ratio = vec3(1.0f);
   p.radiance = vec3(0.0f);
@@ -592,9 +591,10 @@ PtPath path_start_sample(PtPath p, ivec2 pixel, ivec2 size, uint index) {
 
 // Each invocation runs one path at a time of its pixel's slot (gl_GlobalInvocationID.z of
 // gl_NumWorkGroups.z, PathTracerModule::resize), for dispatch.values.y iterations or until the
-// slot has begun every sample numbered under dispatch.values.x and finished them, adding each
+// slot has begun every sample numbered under dispatch.values.x and finished them (0: stopping
+// early, until it has finished the sample it is on and taken a multiple of three), adding each
 // finished sample to its rows of path_sum and path_squares (sum a: the samples) and to
-// path_counts. Iterations: one tentative collision of a flight or of a light's shadow, and the
+// path_finished; one that has not is counted in path_running. Iterations: one tentative collision of a flight or of a light's shadow, and the
 // events that follow it (a collision's lights without medium between, its scattering, the
 // next flight's start), so that lanes of one SIMD batch stay in step whatever their paths do.
 void main() {
@@ -622,12 +622,11 @@ void main() {
     finished_before = finished;
     if (p.stage == PT_IDLE) {
       uint index = uint(slot + p.started * slots);
-      if (index >= target) {
+      if (target == 0u ? p.started % 3 == 0 : index >= target) {
         slot_done = true;
         break;
       }
       p = path_start_sample(p, pixel, size, index);
-      atomicMax(path_started, index + 1u);
     } else if (p.stage == PT_FLIGHT || p.stage == PT_SHADOW) {
       p.track = pt_track_step(p.track);
       if (!p.track.done) continue;
@@ -663,6 +662,7 @@ void main() {
     finished = finished_before;
     atomicAdd(path_limited, 1u);
   }
+  if (!slot_done) atomicAdd(path_running, 1u);
   if (pt_cuts > 0.0f) atomicAdd(path_cut, uint(pt_cuts));
   if (pt_violations > 0.0f) atomicAdd(path_violations, uint(pt_violations));
   if (finished > 0u) atomicAdd(path_finished, finished);

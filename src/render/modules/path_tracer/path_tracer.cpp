@@ -17,6 +17,10 @@ PathTracerModule::PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set)
   set_.bind_buffer(gpu::kPathCounts, counts_, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 }
 
+void PathTracerModule::reset_running() {
+  static_cast<Counts*>(counts_.data())->running = 0;
+}
+
 PathTracerModule::Counts PathTracerModule::counts() const {
   Counts c;
   std::memcpy(&c, counts_.data(), sizeof(c));

@@ -27,7 +27,8 @@ class PathTracerModule : public RenderModule {
   // All four numbers travel as the dispatch's push constants.
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet, MarchMode mode) const;
   // The next path_trace pass: each pixel's samples numbered under `target` (slot k of S takes k,
-  // k + S, ...), at most `iterations` iterations an invocation (path_trace.comp).
+  // k + S, ...; 0: each slot finishes the sample it is on and a multiple of three), at most
+  // `iterations` iterations an invocation (path_trace.comp).
   void set_samples(int target, int iterations) {
     target_ = target;
     iterations_ = iterations;
@@ -35,12 +36,14 @@ class PathTracerModule : public RenderModule {
   // What the passes so far have done (path_trace.comp's path_counts), once they have ended.
   struct Counts {
     uint32_t finished = 0;    // samples finished, over all pixels and slots
-    uint32_t started = 0;     // the largest sample number begun plus one
+    uint32_t running = 0;     // invocations with samples still to take after the last pass
     uint32_t cut = 0;         // walks cut at PT_MAX_COLLISIONS: the image is biased if any
     uint32_t violations = 0;  // tentative collisions above their majorant
     uint32_t limited = 0;     // invocations whose pass the device's loop limit ended early
   };
   Counts counts() const;
+  // Zeroes the count of running invocations, before a pass.
+  void reset_running();
   // The random streams' seed and the paths' largest number of bounces.
   void set_paths(int seed, int max_bounces) {
     seed_ = seed;
