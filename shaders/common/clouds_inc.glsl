@@ -180,8 +180,8 @@ float two_stream_spread(float k, float x) {
 // The diffuse fluxes at a point of a cloud, per unit of the sun's irradiance, in the Eddington
 // two-stream model of a homogeneous slab across the sun's chord through the point (Meador &
 // Weaver 1980): optical depth tau_sun towards the sun, tau_behind onwards to where the chord
-// leaves the cloud, droplets of single-scattering albedo `albedo` and asymmetry
-// CLOUD_DROPLET_G. gamma1 = (7 - w (4 + 3g)) / 4, gamma2 = -(1 - w (4 - 3g)) / 4,
+// leaves the cloud, droplets of single-scattering albedo `albedo` and asymmetry g (the phase
+// function's mean cosine). gamma1 = (7 - w (4 + 3g)) / 4, gamma2 = -(1 - w (4 - 3g)) / 4,
 // k = sqrt(gamma1^2 - gamma2^2), r = gamma2 / (gamma1 + k) (a deep cloud's reflectance); with
 // the light entering at the sunlit end (F_on = 1 there) and none entering at the far end
 // (F_back = 0 there), F_on = a e^(-k tau)(1 - r^2 e^(-2k tau_b)), F_back = a r e^(-k tau)(1 -
@@ -189,11 +189,10 @@ float two_stream_spread(float k, float x) {
 // F_on = (1 + gamma1 tau_b) / (1 + gamma1 T), F_back = gamma1 tau_b / (1 + gamma1 T), T the
 // whole chord. x: the light going on away from the sun (the direct beam included), y: the
 // light scattered back towards the sun.
-vec2 cloud_two_stream_fluxes(float tau_sun, float tau_behind, float albedo) {
+vec2 cloud_two_stream_fluxes(float tau_sun, float tau_behind, float albedo, float g) {
   tau_sun = max(tau_sun, 0.0f);
   tau_behind = max(tau_behind, 0.0f);
   float w = clamp(albedo, 0.0f, 1.0f);
-  float g = CLOUD_DROPLET_G;
   float gamma1 = (7.0f - w * (4.0f + 3.0f * g)) * 0.25f;
   float gamma2 = -(1.0f - w * (4.0f - 3.0f * g)) * 0.25f;
   float k = sqrt(max(gamma1 * gamma1 - gamma2 * gamma2, 0.0f));
@@ -205,6 +204,11 @@ vec2 cloud_two_stream_fluxes(float tau_sun, float tau_behind, float albedo) {
   float on = decay * (behind + exp(-2.0f * k * tau_behind) * edge) / d;
   float back = gamma2 * edge * decay * behind / d;
   return vec2(on, back);
+}
+
+// With the seed's droplets' asymmetry, CLOUD_DROPLET_G.
+vec2 cloud_two_stream_fluxes(float tau_sun, float tau_behind, float albedo) {
+  return cloud_two_stream_fluxes(tau_sun, tau_behind, albedo, CLOUD_DROPLET_G);
 }
 
 // The light a cloud sample scatters from the two-stream field (cloud_two_stream_fluxes) towards

@@ -322,6 +322,12 @@ TEST(CloudModel, TwoStreamFluxesSolveTheTwoStreamEquations) {
     EXPECT_NEAR(f.x - f.y, 1.0f / (1.0f + 0.1125f * 100.0f), 1e-4f) << "tau " << tau;
   }
   EXPECT_GT(g::cloud_two_stream_fluxes(0.0f, 100.0f, 1.0f).y, 0.9f);
+  // With the phase function's own asymmetry (the droplets': 0.76 at 9 um, delta-scaled), the
+  // same law with gamma1 = 3/4 (1 - g): less forward scattering passes less.
+  for (float asymmetry : {0.0f, 0.5f, 0.76f}) {
+    const glm::vec2 f = g::cloud_two_stream_fluxes(40.0f, 60.0f, 1.0f, asymmetry);
+    EXPECT_NEAR(f.x - f.y, 1.0f / (1.0f + 0.75f * (1.0f - asymmetry) * 100.0f), 1e-4f) << asymmetry;
+  }
   // Droplets absorbing 1% (albedo 0.99) send back a deep cloud's r = gamma2 / (gamma1 + k).
   EXPECT_NEAR(g::cloud_two_stream_fluxes(0.0f, 1000.0f, 0.99f).y, 0.5506f, 1e-3f);
 }

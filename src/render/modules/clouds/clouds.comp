@@ -356,7 +356,10 @@ void main() {
         // sunlit faces; per unit of a horizontal deck's flux (mu_sun), as the octaves' diffuse
         // term below.
         float tau_behind = depth_behind(lit_pos, sun) * sigma_scale * light_atten;
-        vec2 fluxes = cloud_two_stream_fluxes(tau_light, tau_behind, albedo);
+        // The asymmetry of the droplets' phase function (Mie, delta-scaled: 0.76 at 9 um), or
+        // the seed's fixed one.
+        vec2 fluxes = cloud_two_stream_fluxes(tau_light, tau_behind, albedo,
+                                              frame.cloud_droplets.y > 0.5f ? g1 : CLOUD_DROPLET_G);
         diffuse = cloud_two_stream_radiance(fluxes, tau_light, mu, g1) * mu_sun;
         t_d = fluxes.x;
       } else {
