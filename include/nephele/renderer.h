@@ -173,7 +173,7 @@ struct ReferenceOptions {
   // lab's lab.max_bounces, or all that matter on the planet (Russian roulette ends paths).
   int max_bounces = -1;
   // How many invocations of each dispatch share a pixel's samples, [0, 64]; 0: enough for
-  // 2^18 invocations on a GPU at any image size (at most 16), 1 on a CPU device, whose cores
+  // 2^18 invocations on a GPU at any image size (1, 3, 9 or 27), 1 on a CPU device, whose cores
   // an image's pixels already keep busy. Any value gives the same estimate.
   int invocations_per_pixel = 0;
   // Iterations an invocation runs a pass (paths carry over between passes; an iteration is a
@@ -191,10 +191,11 @@ struct ReferenceImage {
   Image mean;      // radiance (W m^-2 sr^-1 for a sun irradiance in W/m^2); a = 1
   Image variance;  // rgb: the variance of each pixel's mean (the sample variance / spp)
   int spp = 0;     // samples per pixel taken
-  // Loops a device's limit cut short: lavapipe ends all of an invocation's loops once they have
-  // run 65535 iterations together. The paths carry over from one pass to the next and each
-  // pass runs a bounded number of iterations, so this is 0; where it is not, the image is
-  // biased.
+  // Tracking walks cut at 2^24 tentative collisions (a guard against a walk that never ends):
+  // 0 in every test; where it is not, the image is biased. (Lavapipe's loop limit, 65535
+  // iterations an invocation's batch in all its loops, cuts nothing: the paths carry over from
+  // one pass to the next, and a pass the limit ends early keeps its work up to the iteration
+  // it cut.)
   long long cut_loops = 0;
   // Tentative collisions where the medium's extinction exceeded its majorant: 0 when the
   // majorants are right (a test of them; any would bias the image).

@@ -21,8 +21,8 @@
 #ifndef PT_NOTE_MAJORANT
 #define PT_NOTE_MAJORANT(sigma, majorant)
 #endif
-// And PT_NOTE_CUT(), called where a tracking loop ends without reaching the end of its ray or
-// a collision (PT_MAX_COLLISIONS, or lavapipe's loop limit): its estimate is then biased.
+// And PT_NOTE_CUT(), called where a tracking walk (path_spectral_inc.glsl) ends at
+// PT_MAX_COLLISIONS, short of the end of its ray or a collision: its estimate is then biased.
 #ifndef PT_NOTE_CUT
 #define PT_NOTE_CUT()
 #endif
