@@ -111,13 +111,6 @@ vec3 pt_ratio_tracking3(vec3 p, vec3 d, float t_max, uint stream) {
   return k.value;
 }
 
-// What the medium lets through towards the light from p, per channel.
-vec3 pt_transmittance3_to(vec3 p, vec3 d, uint stream) {
-  vec2 bounds = pt_bounds(p, d);
-  if (bounds.y <= bounds.x) return vec3(1.0f);
-  return pt_ratio_tracking3(p + d * bounds.x, d, bounds.y - bounds.x, stream);
-}
-
 // The hero channel of sample `index`: the sum of its base-3 digits, modulo 3. Any three samples
 // 3j, 3j + 1, 3j + 2 take the three channels, so a pixel's first 3n samples are even whatever
 // its slots; and slot z of S = 3^k takes samples z + m S whose digit k is m's last, so any

@@ -133,11 +133,25 @@ TEST_F(PlanetReferenceTest, ClearSkySingleScatteringMatchesTheIntegral) {
   }
 }
 
+// The majorant grid's image and one majorant per shell's (another seed) agree: their means per
+// channel within 3 standard errors and 1%.
+void expect_same_mean(const nephele::ReferenceImage& grid, const nephele::ReferenceImage& flat) {
+  const Mean a = image_mean(grid), b = image_mean(flat);
+  for (int c = 0; c < 3; ++c) {
+    std::printf("channel %d: grid %.5g +- %.2g, flat %.5g +- %.2g\n", c, a.value[c], a.sigma[c],
+                b.value[c], b.sigma[c]);
+    EXPECT_NEAR(a.value[c], b.value[c],
+                3.0 * std::hypot(a.sigma[c], b.sigma[c]) + 0.01 * b.value[c])
+        << "channel " << c;
+  }
+}
+
 // Thin cumulus: with the noise clouds' majorant grid and without it the same image within the
 // noise, and no tentative collision ever finds the extinction above the grid's bound. (Thin,
 // because on lavapipe a path's null collisions must stay few: with thicker clouds the flat
-// majorant's image comes out darker the more null collisions it makes, lavapipe's loop limit
-// cutting the tracking short; docs/path-tracer.md, "Lavapipe's loop limit".)
+// majorant's image came out darker the more null collisions it made, lavapipe's loop limit
+// cutting the tracking short, until the paths carried over between passes; docs/path-tracer.md,
+// "Paths that carry over between passes", and the thick clouds' test below.)
 TEST_F(PlanetReferenceTest, TheNoiseCloudsMajorantGridIsNeverExceededAndChangesNothing) {
   Scene s = nephele::load_preset("default");
   s.output.width = 16;
@@ -156,13 +170,7 @@ TEST_F(PlanetReferenceTest, TheNoiseCloudsMajorantGridIsNeverExceededAndChangesN
     EXPECT_EQ(image->cut_loops, 0);
     EXPECT_EQ(image->majorant_violations, 0);
   }
-  const Mean a = image_mean(grid), b = image_mean(flat);
-  for (int c = 0; c < 3; ++c) {
-    std::printf("channel %d: grid %.5g +- %.2g, flat %.5g +- %.2g\n", c, a.value[c], a.sigma[c],
-                b.value[c], b.sigma[c]);
-    EXPECT_NEAR(a.value[c], b.value[c],
-                3.0 * std::hypot(a.sigma[c], b.sigma[c]) + 0.01 * b.value[c]) << "channel " << c;
-  }
+  expect_same_mean(grid, flat);
 }
 
 // Thick clouds of droplets (the default view, bounces to 6): the paths carry over from pass to
@@ -191,14 +199,7 @@ TEST_F(PlanetReferenceTest, ThickCloudsAreTracedWhereverThePassesEndAndWhateverT
   }
   for (size_t i = 0; i < grid.mean.pixels.size(); ++i)
     ASSERT_EQ(short_passes.mean.pixels[i], grid.mean.pixels[i]) << "pixel " << i;
-  const Mean a = image_mean(grid), b = image_mean(flat);
-  for (int c = 0; c < 3; ++c) {
-    std::printf("channel %d: grid %.5g +- %.2g, flat %.5g +- %.2g\n", c, a.value[c], a.sigma[c],
-                b.value[c], b.sigma[c]);
-    EXPECT_NEAR(a.value[c], b.value[c],
-                3.0 * std::hypot(a.sigma[c], b.sigma[c]) + 0.01 * b.value[c])
-        << "channel " << c;
-  }
+  expect_same_mean(grid, flat);
 }
 
 // On the planet the samples take the colour channels in turn: spread over invocations they are
