@@ -33,6 +33,65 @@ float cloud_phase_function(float mu, float c) {
              : dual_lobe_hg(frame.cloud_phase.x * c, frame.cloud_phase.y * c, frame.cloud_phase.z, mu);
 }
 
+// The asymmetry the clouds' diffuse light is carried with: the droplets' phase function's mean
+// cosine (delta-scaled: 0.76 at 9 um, for the optical depths of their sigma_t without the
+// diffraction peak), or the seed's fixed one.
+float cloud_transport_g() {
+  return frame.cloud_droplets.y > 0.5f ? frame.cloud_droplets.z : CLOUD_DROPLET_G;
+}
+
+// Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):
+// octave i scatters with contribution a^i, extinction b^i and eccentricity c^i. b < 1 lets
+// light reach deep into the cloud as repeated forward scattering does, so thick clouds keep
+// their brightness instead of turning grey. a = 0.6, b = 0.4, c = 0.5, four octaves.
+// The octaves' phase functions depend only on the view ray: evaluated once per ray.
+vec4 octave_phases(float mu) {
+  vec4 phases;
+  float c = 1.0f;
+  for (int i = 0; i < 4; ++i) {
+    phases[i] = cloud_phase_function(mu, c);
+    c *= 0.5f;
+  }
+  return phases;
+}
+
+float multiple_scattering(float tau_light, float mu, float powder, vec4 phases) {
+  float energy = 0.0f;
+  float a = 1.0f, b = 1.0f;
+  for (int i = 0; i < 4; ++i) {
+    energy += a * cloud_beer_powder(b * tau_light, mu, powder) * phases[i];
+    a *= 0.6f;
+    b *= 0.4f;
+  }
+  return energy;
+}
+
+// The sunlight a cloud sample scatters towards a viewer, per unit of the sun's irradiance and
+// of albedo, as the fast mode lights it (clouds.comp and the ground's cloud light,
+// ground_light.comp): x the light that reaches it from the sun's direction (single scattering
+// with the two-stream light, else the seed's octaves and powder), y the diffuse light the
+// cloud between it and the sun passes on to it, per unit of a horizontal deck's flux
+// (mu_sun), z the cloud's diffuse transmittance towards the sun (which the sky's light shares).
+// tau_light and tau_behind: optical depths towards the sun and onwards along its chord (only
+// the two-stream light reads tau_behind); mu: the cosine between the viewer's ray and the sun;
+// g1: the phase function's mean cosine.
+vec3 cloud_sun_light(float tau_light, float tau_behind, float mu, float mu_sun, bool two_stream,
+                     vec4 phases, float powder, float albedo, float g1) {
+  if (two_stream) {
+    // Single scattering and the two-stream field along the sun's chord (clouds_inc.glsl):
+    // the light going on and the light scattered back towards the sun, which lights the
+    // sunlit faces.
+    vec2 fluxes = cloud_two_stream_fluxes(tau_light, tau_behind, albedo, cloud_transport_g());
+    return vec3(exp(-tau_light) * phases[0],
+                cloud_two_stream_radiance(fluxes, tau_light, mu, g1) * mu_sun, fluxes.x);
+  }
+  // The light thick cloud passes on by scattering it forward: a diffuse flux (radiance = flux
+  // / pi, the flux through a horizontal deck mu_sun times the sun's).
+  float t_d = cloud_diffuse_transmittance(tau_light, cloud_transport_g());
+  return vec3(multiple_scattering(tau_light, mu, powder, phases),
+              (t_d - exp(-tau_light)) * mu_sun / PI, t_d);
+}
+
 const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 
 // The point at radius r (m) above horizontal position xy (planet frame).
@@ -125,7 +184,8 @@ float march_light(vec3 pos, vec3 sun, float t0, float t1, int n) {
 // The clouds' diffuse transmittance (cloud_diffuse_transmittance) for an optical depth of the
 // density field (density x m) along the light.
 float light_transmittance(float depth) {
-  return cloud_diffuse_transmittance(depth * frame.cloud_shape.z * frame.cloud_light.y);
+  return cloud_diffuse_transmittance(depth * frame.cloud_shape.z * frame.cloud_light.y,
+                                     cloud_transport_g());
 }
 
 // How far along the sun the light is traced: to the top of the layer, at most two layer

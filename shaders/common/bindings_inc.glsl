@@ -71,9 +71,9 @@ layout(set = 0, binding = 35) uniform sampler2D reference_sky;
 // Curl noise (noise_curl.comp): RG a divergence-free 2D field, tiling, 128^2.
 layout(set = 0, binding = 36, rgba32f) uniform writeonly image2D curl_noise_out;
 layout(set = 0, binding = 37) uniform sampler2D curl_noise;
-// The clouds' mean diffuse transmittance over the ground around the camera, one texel
-// (ground_light.comp; read by compose.comp).
-layout(set = 0, binding = 38, r32f) uniform writeonly image2D ground_light_out;
+// The ground's light under the clouds around the camera, one texel (ground_light.comp; read
+// by compose.comp and terrain.comp): r the share of the sky's light, gba the clouds' light.
+layout(set = 0, binding = 38, rgba32f) uniform writeonly image2D ground_light_out;
 layout(set = 0, binding = 39) uniform sampler2D ground_light;
 // The display image (tonemap.comp): exposed, tone-mapped, sRGB code values, 8 bits.
 layout(set = 0, binding = 40, rgba8) uniform writeonly image2D display_out;

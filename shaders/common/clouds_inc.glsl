@@ -167,8 +167,34 @@ const float CLOUD_DROPLET_G = 0.85f;
 // tau: the two-stream result for a conservatively scattering slab, 1 / (1 + 3/4 (1 - g) tau)
 // (Bohren 1987). Thick cloud passes on far more than the direct beam's exp(-tau): forward
 // scattering carries light through (the grey light under an overcast).
-float cloud_diffuse_transmittance(float tau) {
-  return 1.0f / (1.0f + 0.75f * (1.0f - CLOUD_DROPLET_G) * max(tau, 0.0f));
+float cloud_diffuse_transmittance(float tau, float g) {
+  return 1.0f / (1.0f + 0.75f * (1.0f - g) * max(tau, 0.0f));
+}
+
+// With the seed's droplets' asymmetry, CLOUD_DROPLET_G.
+float cloud_diffuse_transmittance(float tau) { return cloud_diffuse_transmittance(tau, CLOUD_DROPLET_G); }
+
+// The direct beam's share exp(-tau) through a cloud whose diffuse transmittance
+// (cloud_diffuse_transmittance with asymmetry g) is t_d: tau = (1 / t_d - 1) / (3/4 (1 - g)).
+float cloud_direct_transmittance(float t_d, float g) {
+  return exp(-(1.0f / max(t_d, 1e-6f) - 1.0f) / (0.75f * (1.0f - g)));
+}
+
+// The ground's light under a cloud of diffuse transmittance t_d towards the sun (asymmetry g),
+// given the sunlight the clouds around scatter down (`cloud_light`, ground_light.comp: a
+// cosine-weighted mean over the sky): x the share of the sun's light on the ground, y the
+// weight of the clouds' light. Half a horizontal surface's diffuse light comes from within
+// 45 deg of the zenith, where the cloud towards the sun, as far as it is cloud (w = 1 -
+// exp(-tau)), stands for the cloud overhead (as cloud_ground_sky_share does for the sky's
+// light): its diffuse transmittance lights that half, the clouds around the rest. So the sunlit
+// ground (w = 0) gets the direct beam and all the clouds' light, a closed deck's ground its
+// diffuse transmittance. Without the clouds' light measured (no volumetric clouds), the sun's
+// share is the direct and diffuse light together.
+vec2 cloud_ground_light_shares(float t_d, float g, vec3 cloud_light) {
+  if (max(cloud_light.r, max(cloud_light.g, cloud_light.b)) <= 0.0f) return vec2(t_d, 0.0f);
+  float t_direct = cloud_direct_transmittance(t_d, g);
+  float w = 1.0f - t_direct;
+  return vec2(t_direct + 0.5f * w * (t_d - t_direct), 1.0f - 0.5f * w);
 }
 
 // (1 - e^(-2 k x)) / (2 k), which tends to x as k goes to 0 (a conservative medium).

@@ -235,6 +235,29 @@ TEST_F(RenderTest, TwoStreamLightDarkensTheNoonCumulusTowardsThePathTracer) {
   EXPECT_LT(ratio, 0.8);
 }
 
+// The sunlit ground under a fair-weather cumulus field is brighter than under a clear sky: the
+// clouds' sunlit sides and bases are brighter than the blue sky they hide. The path tracer's
+// 80 x 50 reference of a view like this one (noon, ground albedo 0.1, droplets): the ground 14%
+// brighter than the clear day's; the fast mode's 13% there with the clouds' light
+// (ground_light.comp), 0% without it; 10.7% in this 48 x 30 view.
+TEST_F(RenderTest, SunlitGroundUnderCumulusGetsTheCloudsLight) {
+  Scene s = nephele::load_preset("default");
+  s.sun.direction = {0.2113f, -0.3660f, 0.9063f};  // 65 degrees up, in the south-south-east
+  s.clouds.optics = "droplets";
+  s.clouds.two_stream_light = true;
+  s.output.width = 48;
+  s.output.height = 30;
+  s.camera.position_m = {0.0f, 0.0f, 300.0f};
+  s.camera.view_dir = {0.0f, 1.0f, -1.0f};  // sunlit ground, with no cloud shadow in view
+  const Frame cumulus = render(s);
+  s.clouds.coverage = 0.0f;
+  const Frame clear = render(s);
+  const double ratio = cumulus.stats.mean_luminance / clear.stats.mean_luminance;
+  std::printf("sunlit ground under cumulus / under a clear sky: %.3f\n", ratio);
+  EXPECT_GT(ratio, 1.06);
+  EXPECT_LT(ratio, 1.25);
+}
+
 // Under a closed deck the ground is lit by what comes through the cloud, sunlight and skylight
 // alike: dim and neutral, not the clear sky's blue (which the deck hides).
 TEST_F(RenderTest, GroundUnderAClosedDeckIsDimAndGreyNotSkyBlue) {
@@ -267,10 +290,15 @@ TEST_F(RenderTest, GroundUnderAClosedDeckIsDimAndGreyNotSkyBlue) {
 TEST_F(RenderTest, ShadowsOfABrokenFieldKeepTheGapsBlueSkyLight) {
   // The ground in a fair-weather cumulus's shadow is lit by the sky through the gaps around,
   // so it is bluer than the sunlit ground; under a closed deck it would be as grey as the
-  // light through the deck (GroundUnderAClosedDeckIsDimAndGreyNotSkyBlue). Lighting the
-  // shadows' sky part by the cloud towards the sun alone, as for a deck, gave 1.29x (the
-  // 300 m of air's blue alone); the gaps' light gives 1.53x.
+  // light through the deck (GroundUnderAClosedDeckIsDimAndGreyNotSkyBlue). Clouds of droplets
+  // with the two-stream light, as the path tracer judges them: its 64 x 40 reference of this
+  // view has the darkest quarter of the pixels 0.52 times as bright as the brightest and 1.20
+  // times as blue (blue/red); the fast mode 0.61 and 1.10 (the clouds' own light on the ground,
+  // ground_light.comp, as white as the sun, softens the shadows and their blue; without it the
+  // shadows were 23% too dark).
   Scene s = nephele::load_preset("broken");
+  s.clouds.optics = "droplets";
+  s.clouds.two_stream_light = true;
   s.output.width = 64;
   s.output.height = 40;
   s.camera.position_m.z = 300.0f;  // looking down on 1.0 x 0.7 km of ground
@@ -288,10 +316,10 @@ TEST_F(RenderTest, ShadowsOfABrokenFieldKeepTheGapsBlueSkyLight) {
     sunlit += glm::dvec3(ground[ground.size() - 1 - i]);
   }
   ASSERT_GT(nephele::luminance(glm::vec4(glm::vec3(sunlit), 1.0f)),
-            2.0f * nephele::luminance(glm::vec4(glm::vec3(shadow), 1.0f)))
+            1.4f * nephele::luminance(glm::vec4(glm::vec3(shadow), 1.0f)))
       << "the view should hold both shadowed and sunlit ground";
   const double shadow_blue = shadow.b / shadow.r, sunlit_blue = sunlit.b / sunlit.r;
-  EXPECT_GT(shadow_blue, 1.4 * sunlit_blue)
+  EXPECT_GT(shadow_blue, 1.05 * sunlit_blue)
       << "blue/red in the shadows " << shadow_blue << ", in the sun " << sunlit_blue;
 }
 

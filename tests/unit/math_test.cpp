@@ -275,6 +275,34 @@ TEST(CloudModel, DiffuseTransmittanceFollowsTheTwoStreamSlab) {
   EXPECT_GT(g::cloud_diffuse_transmittance(3.0f), 10.0f * std::exp(-3.0f));
 }
 
+// The ground's sun and cloud light under a cloud (cloud_ground_light_shares): the direct beam
+// recovered from the diffuse transmittance, the sunlit ground getting the sun and all the
+// clouds' light, a closed deck's its diffuse transmittance's half and half the clouds' light.
+TEST(CloudModel, GroundLightSharesTheCloudOverheadWithTheCloudsAround) {
+  for (float g : {0.76f, 0.85f})
+    for (float tau : {0.1f, 1.0f, 5.0f, 20.0f})
+      EXPECT_NEAR(g::cloud_direct_transmittance(g::cloud_diffuse_transmittance(tau, g), g),
+                  std::exp(-tau), 1e-4f * std::exp(-tau) + 1e-7f)
+          << "g " << g << ", tau " << tau;
+  const glm::vec3 light(0.1f);
+  const glm::vec2 sunlit = g::cloud_ground_light_shares(1.0f, 0.76f, light);
+  EXPECT_FLOAT_EQ(sunlit.x, 1.0f);
+  EXPECT_FLOAT_EQ(sunlit.y, 1.0f);
+  const float t_d = g::cloud_diffuse_transmittance(60.0f, 0.76f);  // a thick cloud: no beam
+  const glm::vec2 deck = g::cloud_ground_light_shares(t_d, 0.76f, light);
+  EXPECT_NEAR(deck.x, 0.5f * t_d, 1e-6f);
+  EXPECT_NEAR(deck.y, 0.5f, 1e-6f);
+  // A cloud of optical depth 1 passes e^-1 directly; half of the rest is cloud overhead.
+  const float t_d1 = g::cloud_diffuse_transmittance(1.0f, 0.76f);
+  const float w = 1.0f - std::exp(-1.0f);
+  const glm::vec2 thin = g::cloud_ground_light_shares(t_d1, 0.76f, light);
+  EXPECT_NEAR(thin.x, std::exp(-1.0f) + 0.5f * w * (t_d1 - std::exp(-1.0f)), 1e-5f);
+  EXPECT_NEAR(thin.y, 1.0f - 0.5f * w, 1e-5f);
+  // No clouds' light measured (no volumetric clouds): the sun's share is the direct and
+  // diffuse light together, as before the clouds' light was known.
+  EXPECT_EQ(g::cloud_ground_light_shares(t_d, 0.76f, glm::vec3(0.0f)), glm::vec2(t_d, 0.0f));
+}
+
 // The two-stream fluxes along a sun chord (cloud_two_stream_fluxes) against the two-stream
 // equations integrated numerically: dF_on/dtau = -gamma1 F_on + gamma2 F_back,
 // dF_back/dtau = gamma1 F_back - gamma2 F_on, with F_on(0) = 1 and F_back(T) = 0, by RK4 and

@@ -46,33 +46,6 @@ float ground_shadow(vec3 eye, vec3 dir, vec3 sun, vec2 ground) {
   return cloud_shadow_at(normalize(eye + dir * ground.x) * (frame.radii_m.x + 1.0f), sun, ground.x, 16);
 }
 
-// Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):
-// octave i scatters with contribution a^i, extinction b^i and eccentricity c^i. b < 1 lets
-// light reach deep into the cloud as repeated forward scattering does, so thick clouds keep
-// their brightness instead of turning grey. a = 0.6, b = 0.4, c = 0.5, four octaves.
-// The octaves' phase functions depend only on the view ray: evaluated once per ray.
-vec4 octave_phases(float mu) {
-  vec4 phases;
-  float c = 1.0f;
-  for (int i = 0; i < 4; ++i) {
-    phases[i] = cloud_phase_function(mu, c);
-    c *= 0.5f;
-  }
-  return phases;
-}
-
-float multiple_scattering(float tau_light, float mu, float powder, vec4 phases) {
-  float energy = 0.0f;
-  float a = 1.0f, b = 1.0f;
-  for (int i = 0; i < 4; ++i) {
-    energy += a * cloud_beer_powder(b * tau_light, mu, powder) * phases[i];
-    a *= 0.6f;
-    b *= 0.4f;
-  }
-  return energy;
-}
-
-
 // Writes the marched sample of `block` (see bindings_inc.glsl).
 void write_sample(ivec2 block, vec3 scattered, float transmittance, float haze, float shadow,
                   float distance_m) {
@@ -335,37 +308,22 @@ void main() {
       light_k = 0;
       float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
       float tau_light = depth * sigma_scale * light_atten;
-      float energy = (two_stream ? exp(-tau_light) * phases[0]
-                                 : multiple_scattering(tau_light, mu, powder, phases)) *
-                     lit_visibility;
+      // The sun's light the sample scatters towards the eye (cloud_sun_light).
+      float tau_behind = two_stream ? depth_behind(lit_pos, sun) * sigma_scale * light_atten : 0.0f;
+      float mu_sun = max(dot(sun, normalize(lit_pos)), 0.0f);
+      vec3 sunlit = cloud_sun_light(tau_light, tau_behind, mu, mu_sun, two_stream, phases, powder,
+                                    albedo, g1);
+      float energy = sunlit.x * lit_visibility;
       // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
       float h = saturate(layer_fraction(lit_pos));
       // With voxel clouds, where the ray first meets cloud: the shell's entry may lie far
       // from a voxel cloud, and the light volume's voxels there would draw facets on it.
       if (below_share < 0.0f) below_share = below_light_share(lit_pos, length(lit_pos) - frame.radii_m.x);
       // What the cloud between the sample and the light lets through: the sunlight it has
-      // scattered forward, no longer a beam but a diffuse flux (radiance = flux / pi, the
-      // flux through a horizontal deck mu_sun times the sun's), and the sky's light through
+      // scattered forward, no longer a beam but a diffuse flux, and the sky's light through
       // the same cloud; from below, the light of the ground around, itself under the
       // clouds' shadow, less the higher the sample is in the layer.
-      float mu_sun = max(dot(sun, normalize(lit_pos)), 0.0f);
-      float t_d, diffuse;
-      if (two_stream) {
-        // Single scattering and the two-stream field along the sun's chord (clouds_inc.glsl):
-        // the light going on and the light scattered back towards the sun, which lights the
-        // sunlit faces; per unit of a horizontal deck's flux (mu_sun), as the octaves' diffuse
-        // term below.
-        float tau_behind = depth_behind(lit_pos, sun) * sigma_scale * light_atten;
-        // The asymmetry of the droplets' phase function (Mie, delta-scaled: 0.76 at 9 um), or
-        // the seed's fixed one.
-        vec2 fluxes = cloud_two_stream_fluxes(tau_light, tau_behind, albedo,
-                                              frame.cloud_droplets.y > 0.5f ? g1 : CLOUD_DROPLET_G);
-        diffuse = cloud_two_stream_radiance(fluxes, tau_light, mu, g1) * mu_sun;
-        t_d = fluxes.x;
-      } else {
-        t_d = cloud_diffuse_transmittance(tau_light);
-        diffuse = (t_d - exp(-tau_light)) * mu_sun / PI;
-      }
+      float diffuse = sunlit.y, t_d = sunlit.z;
       vec3 luminance = albedo * (sun_light * (energy + diffuse) +
                                  ambient_above * t_d + ambient_below * ((1.0f - h) * below_share));
       float step_t = exp(-lit_sigma_t * lit_step_m);

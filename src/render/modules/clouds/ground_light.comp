@@ -1,10 +1,17 @@
 #version 450
-// Pass: ground light. The clouds' mean diffuse transmittance straight down over the ground
-// around the camera (GROUND_LIGHT_HALF_M each way): the share of the sky's light that the
-// gaps and the clouds together pass to the ground there. Compose lights the ground's sky-lit
-// part by it and by the cloud towards the sun (cloud_ground_sky_share), so a broken field's
-// shadows keep the light of its gaps while a closed deck's ground is grey. One workgroup:
-// each invocation marches 2 x 2 of the GRID^2 columns, then they sum in shared memory.
+// Pass: ground light, over the ground around the camera (GROUND_LIGHT_HALF_M each way).
+// r: the clouds' mean diffuse transmittance straight down: the share of the sky's light that
+// the gaps and the clouds together pass to the ground there. Compose lights the ground's
+// sky-lit part by it and by the cloud towards the sun (cloud_ground_sky_share), so a broken
+// field's shadows keep the light of its gaps while a closed deck's ground is grey.
+// gba: the sunlight the clouds scatter down onto the ground, as the radiance a white ground
+// reflects (the irradiance / pi, per unit of the key light's illuminance): the mean over
+// cosine-weighted directions of the clouds' radiance seen from the ground, lit as the fast
+// mode lights them (cloud_sun_light). Under a fair-weather cumulus field the path tracer's
+// sunlit ground is 14% brighter than under a clear sky (noon, ground albedo 0.1): the clouds'
+// sunlit sides and bases are brighter than the blue sky they hide. One workgroup: each
+// invocation marches 2 x 2 of the GRID^2 columns and as many slanted rays, then they sum in
+// shared memory.
 #extension GL_GOOGLE_include_directive : require
 
 layout(constant_id = 0) const int MARCH_MODE = 0;
@@ -15,10 +22,12 @@ const float GROUND_LIGHT_HALF_M = 16000.0f;  // the region's half extent
 const int GROUP_SIZE = 16;                   // invocations per side of the workgroup
 const int GRID = 2 * GROUP_SIZE;             // columns per side: 2 x 2 per invocation
 const int COLUMN_SAMPLES = 16;               // density samples up each column
+const int RAY_SAMPLES = 16;                  // samples along each slanted ray
+const float RAY_MAX_M = 60000.0f;            // the slanted rays' reach through the layer
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
-shared float partial[GROUP_SIZE * GROUP_SIZE];
+shared vec4 partial[GROUP_SIZE * GROUP_SIZE];
 
 // Diffuse transmittance of the clouds straight up from the shell's bottom at horizontal
 // position xy (planet frame).
@@ -33,14 +42,74 @@ float column_transmittance(vec2 xy) {
   return light_transmittance(depth);
 }
 
+// The sunlight the clouds scatter towards a ground point `base` (planet frame, on the ground)
+// along direction `dir` (upwards), per unit of the key light's illuminance (as the sky-view
+// table's radiance): RAY_SAMPLES midpoint
+// samples of the cloud shell's part of the ray, lit as the fast mode lights them.
+vec3 cloud_light_along(vec3 base, vec3 dir) {
+  vec2 inner = ray_sphere(base, dir, frame.radii_m.z);
+  vec2 outer = ray_sphere(base, dir, frame.radii_m.w);
+  float t0 = max(inner.y, 0.0f), t1 = min(outer.y, t0 + RAY_MAX_M);
+  if (t1 <= t0) return vec3(0.0f);
+  vec3 sun = frame.sun_dir.xyz;
+  float sigma_scale = frame.cloud_shape.z * frame.cloud_light.x;
+  float light_scale = frame.cloud_shape.z * frame.cloud_light.y;
+  float albedo = frame.cloud_shape.w, g1 = frame.cloud_droplets.z;
+  float mu = dot(dir, sun);
+  bool two_stream = frame.cloud_phase.w > 0.5f;
+  vec4 phases = octave_phases(mu);
+  float ds = (t1 - t0) / float(RAY_SAMPLES);
+  // The ground's light that the clouds reflect back down (as clouds.comp lights their bases):
+  // the ground around where the ray enters them, itself under their shadow.
+  vec3 entry = base + dir * t0;
+  vec3 below = frame.ambient_below_clouds.rgb * frame.cloud_light.w *
+               below_light_share(entry, length(entry) - frame.radii_m.x);
+  vec3 sun_light = frame.sun_at_clouds.rgb;
+  float transmittance = 1.0f;
+  vec3 light = vec3(0.0f);
+  for (int i = 0; i < RAY_SAMPLES; ++i) {
+    vec3 pos = base + dir * (t0 + (float(i) + 0.5f) * ds);
+    float density = cloud_density(pos, true);
+    if (density <= 0.0f) continue;
+    bool covered = light_volume_covers(pos);
+    float tau_light = depth_towards_sun(pos, sun, covered, 4) * light_scale;
+    float tau_behind = two_stream ? depth_behind(pos, sun) * light_scale : 0.0f;
+    float mu_sun = max(dot(sun, normalize(pos)), 0.0f);
+    vec3 sunlit = cloud_sun_light(tau_light, tau_behind, mu, mu_sun, two_stream, phases,
+                                  frame.cloud_light.z, albedo, g1);
+    float step_t = exp(-density * sigma_scale * ds);
+    float h = saturate(layer_fraction(pos));
+    light += transmittance * albedo * (sun_light * (sunlit.x + sunlit.y) + below * (1.0f - h)) *
+             (1.0f - step_t);
+    transmittance *= step_t;
+  }
+  return light / max(frame.sun_illuminance.rgb, vec3(1e-30f));
+}
+
+// The k-th of n directions (n a power of two), cosine-weighted about the local vertical `up`:
+// a Hammersley set.
+vec3 cosine_direction(int k, int n, vec3 up) {
+  float u = (float(k) + 0.5f) / float(n);
+  float v = float(bitfieldReverse(uint(k))) * 2.3283064e-10f;
+  vec3 east = normalize(vec3(up.z, 0.0f, -up.x));
+  vec3 north = cross(up, east);
+  float s = sqrt(u), phi = 2.0f * PI * v;
+  return normalize(s * cos(phi) * east + s * sin(phi) * north + sqrt(max(1.0f - u, 0.0f)) * up);
+}
+
 void main() {
   uint id = gl_LocalInvocationIndex;
   const float cell_m = 2.0f * GROUND_LIGHT_HALF_M / float(GRID);
-  float sum = 0.0f;
+  vec4 sum = vec4(0.0f);
   for (int k = 0; k < 4; ++k) {
     ivec2 cell = 2 * ivec2(gl_LocalInvocationID.xy) + ivec2(k & 1, k >> 1);
     vec2 xy = frame.camera_pos_m.xy + (vec2(cell) + 0.5f) * cell_m - GROUND_LIGHT_HALF_M;
-    sum += column_transmittance(xy);
+    sum.x += column_transmittance(xy);
+    vec3 ground = point_at_radius(xy, frame.radii_m.x);
+    // The directions shuffled over the cells (617 is odd: a permutation of 0 .. GRID^2 - 1),
+    // so that a direction's elevation does not follow the cell's row.
+    int index = ((cell.y * GRID + cell.x) * 617) & (GRID * GRID - 1);
+    sum.yzw += cloud_light_along(ground, cosine_direction(index, GRID * GRID, normalize(ground)));
   }
   partial[id] = sum;
   barrier();
@@ -48,5 +117,5 @@ void main() {
     if (id < n) partial[id] += partial[id + n];
     barrier();
   }
-  if (id == 0u) imageStore(ground_light_out, ivec2(0), vec4(partial[0] / float(GRID * GRID)));
+  if (id == 0u) imageStore(ground_light_out, ivec2(0), partial[0] / float(GRID * GRID));
 }

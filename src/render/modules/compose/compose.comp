@@ -185,6 +185,13 @@ void main() {
                           : vec2(1.0f);
   sky = max(sky - (1.0f - sky_share * ground_media.y) * ground_sun.a * albedo * frame_ground_sky(),
             0.0f);
+  // And the sunlight the clouds around scatter down onto it (ground_light.comp), shared with the
+  // diffuse light of the cloud towards the sun (cloud_ground_light_shares).
+  vec3 clouds_down = texelFetch(ground_light, ivec2(0), 0).gba;
+  vec2 shares = cloud_ground_light_shares(
+      ground_shadow, frame.cloud_droplets.y > 0.5f ? frame.cloud_droplets.z : CLOUD_DROPLET_G,
+      clouds_down);
+  sky += ground_sun.a * ground_media.y * albedo * clouds_down * shares.y;
   ground_sun.rgb *= ground_media.x;
   // The planet hides the part of the sun's disk below the horizon.
   vec3 sun_light = above_horizon
@@ -195,7 +202,7 @@ void main() {
   if (conditions != 0 && max(discs.r, max(discs.g, discs.b)) > 0.0f)  // dissolve into the sky
     discs = mix(discs, frame.conditions_disk_fog.rgb,
                 fog_ramp(elevation_deg, frame.conditions_fog_deg.z, frame.conditions_fog_deg.w));
-  vec3 background = sky + ground_sun.rgb * ground_shadow + discs;
+  vec3 background = sky + ground_sun.rgb * shares.x + discs;
   // Volumetric light shafts (light_shafts.comp, a quarter of the resolution): the air's light
   // dimmed by the share of its sunlight the clouds' shadows take, along the whole ray behind
   // the clouds (the sky seen through them; the ground's sky-lit part keeps its own shadowing)

@@ -79,15 +79,19 @@ void main() {
   vec3 albedo = mix(bare, vec3(SNOW_ALBEDO), snow);
   float cos_sun = dot(n, sun);
   float clouds = cloud_shadow_at(p, sun, t, 8);  // half the flat ground's samples: 40 ms less at 640 x 400 on lavapipe
+  // The sunlight the clouds scatter down (ground_light.comp), as on flat ground, shared with the
+  // diffuse light of the cloud towards the sun (cloud_ground_light_shares).
+  vec3 cloud_light = texelFetch(ground_light, ivec2(0), 0).gba;
+  vec2 shares = cloud_ground_light_shares(clouds, cloud_transport_g(), cloud_light);
   vec3 direct = vec3(0.0f);
   for (int i = 0; i < (cos_sun > 0.0f ? 1 : 0); ++i) {  // a loop, not a branch: see compose
     // Lifted 5 m off the surface: altitudes |p| - R are floats good to half a metre.
     float self = terrain_ray(p + n * 5.0f, sun, 1.0e9f, true) > 0.0f ? 0.0f : 1.0f;
     direct = transmittance_to_light(frame_atmosphere(), transmittance_lut, false, p, sun) *
-             (cos_sun * clouds * self / PI);
+             (cos_sun * shares.x * self / PI);
   }
   float sky_share = cloud_ground_sky_share(clouds, texelFetch(ground_light, ivec2(0), 0).r);
   vec2 media = media_surface_light(p);  // what a fog above lets through, of the sun's and the sky's
-  vec3 radiance = albedo * (direct * media.x + hemisphere_radiance(n) * sky_share * media.y);
+  vec3 radiance = albedo * (direct * media.x + (hemisphere_radiance(n) * sky_share + cloud_light * shares.y) * media.y);
   imageStore(layers_out, ivec3(pixel, LAYER_SURFACES), vec4(radiance, t));
 }
