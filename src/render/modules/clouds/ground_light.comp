@@ -10,7 +10,7 @@
 // mode lights them (cloud_sun_light). Under a fair-weather cumulus field the path tracer's
 // sunlit ground is 14% brighter than under a clear sky (noon, ground albedo 0.1): the clouds'
 // sunlit sides and bases are brighter than the blue sky they hide. One workgroup: each
-// invocation marches 2 x 2 of the GRID^2 columns and as many slanted rays, then they sum in
+// invocation marches 2 x 2 of the GRID^2 columns and two slanted rays, then they sum in
 // shared memory.
 #extension GL_GOOGLE_include_directive : require
 
@@ -22,6 +22,7 @@ const float GROUND_LIGHT_HALF_M = 16000.0f;  // the region's half extent
 const int GROUP_SIZE = 16;                   // invocations per side of the workgroup
 const int GRID = 2 * GROUP_SIZE;             // columns per side: 2 x 2 per invocation
 const int COLUMN_SAMPLES = 16;               // density samples up each column
+const int RAYS = GRID * GRID / 2;            // slanted rays
 const int RAY_SAMPLES = 16;                  // samples along each slanted ray
 const float RAY_MAX_M = 60000.0f;            // the slanted rays' reach through the layer
 
@@ -105,11 +106,13 @@ void main() {
     ivec2 cell = 2 * ivec2(gl_LocalInvocationID.xy) + ivec2(k & 1, k >> 1);
     vec2 xy = frame.camera_pos_m.xy + (vec2(cell) + 0.5f) * cell_m - GROUND_LIGHT_HALF_M;
     sum.x += column_transmittance(xy);
+    // A slanted ray from two of the four cells (k = 0, 3: a chequerboard), their directions
+    // shuffled over the cells (617 is odd: a permutation), so that a direction's elevation
+    // does not follow the cell's row. 512 rays: 25 ms on lavapipe with a ray from every cell.
+    if (k == 1 || k == 2) continue;
     vec3 ground = point_at_radius(xy, frame.radii_m.x);
-    // The directions shuffled over the cells (617 is odd: a permutation of 0 .. GRID^2 - 1),
-    // so that a direction's elevation does not follow the cell's row.
     int index = ((cell.y * GRID + cell.x) * 617) & (GRID * GRID - 1);
-    sum.yzw += cloud_light_along(ground, cosine_direction(index, GRID * GRID, normalize(ground)));
+    sum.yzw += cloud_light_along(ground, cosine_direction(index >> 1, RAYS, normalize(ground)));
   }
   partial[id] = sum;
   barrier();
@@ -117,5 +120,7 @@ void main() {
     if (id < n) partial[id] += partial[id + n];
     barrier();
   }
-  if (id == 0u) imageStore(ground_light_out, ivec2(0), partial[0] / float(GRID * GRID));
+  if (id == 0u)
+    imageStore(ground_light_out, ivec2(0),
+               partial[0] / vec4(float(GRID * GRID), vec3(float(RAYS))));
 }
