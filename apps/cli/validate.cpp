@@ -543,10 +543,13 @@ int run_validate(const ValidateOptions& options) {
       views.push_back(*it);
     }
   }
-  // Every scene parsed and checked before anything is rendered.
+  // Every scene parsed and checked before anything is rendered; a file a view names (a lab's
+  // grid, a weather map) relative to the suite's file.
+  const std::string suite_dir =
+      options.suite.empty() ? std::string() : fs::path(options.suite).parent_path().string();
   std::vector<Scene> scenes;
   for (const ValidationView& v : views) {
-    scenes.push_back(parse_scene_toml(v.scene_toml, "view " + v.name));
+    scenes.push_back(parse_scene_toml(v.scene_toml, "view " + v.name, suite_dir));
     scenes.back().output.width = suite.width;
     scenes.back().output.height = suite.height;
     validate_scene(scenes.back());

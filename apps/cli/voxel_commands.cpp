@@ -45,7 +45,10 @@ std::string voxel_summary(const std::string& output, const voxel::VoxelGrid& gri
 }
 
 void add_make_cloud_flags(CLI::App& cmd, MakeCloudOptions& options) {
-  cmd.add_option("--type", options.type, "cumulus, cumulus-congestus, cumulonimbus or cumulus-mesh (the shipped mesh, baked)")->required();
+  cmd.add_option("--type", options.type,
+                 "cumulus, cumulus-congestus, cumulonimbus, cumulus-mesh (the shipped mesh, baked) "
+                 "or cube (1 km, density 1: the lab's test body)")
+      ->required();
   cmd.add_option("--seed", options.seed, "the same seed gives the same cloud")
       ->capture_default_str();
   cmd.add_option("-o,--output", options.output, "OpenVDB file to write (.vdb)")->required();

@@ -688,8 +688,8 @@ const std::vector<VoxelField>& voxel_cloud_fields() {
   static const std::vector<VoxelField> fields = {
       VOXEL_FIELD(file, ".vdb (OpenVDB) or .nvdb (NanoVDB) path; exactly one of file and preset"),
       VOXEL_FIELD(preset,
-                  "generated: cumulus, cumulus-congestus, cumulonimbus; or cumulus-mesh, baked "
-                  "from data/meshes/cumulus.obj"),
+                  "generated: cumulus, cumulus-congestus, cumulonimbus; cumulus-mesh, baked "
+                  "from data/meshes/cumulus.obj; or cube (1 km, density 1: the lab's test body)"),
       VOXEL_FIELD(seed, "the generated cloud's seed"),
       VOXEL_FIELD(position_m,
                   "east, north, up (m) of the base's centre; east and north in [-1e7, 1e7], up "

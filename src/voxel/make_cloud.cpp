@@ -194,8 +194,28 @@ const char* cloud_preset_name(CloudPreset preset) {
   return kCloudPresetNames[size_t(preset)].data();
 }
 
+// A cube of kCubeM, density 1, in max_dim voxels a side with kPad empty ones around it: its
+// faces lie on voxel boundaries.
+VoxelGrid make_cube(int max_dim) {
+  constexpr float kCubeM = 1000.0f;
+  constexpr int kPad = 2;
+  const int inner = max_dim - 2 * kPad;
+  VoxelGrid grid;
+  grid.dims = glm::ivec3(max_dim);
+  grid.voxel_m = kCubeM / float(inner);
+  grid.origin_m =
+      glm::vec3(-0.5f * float(max_dim), -0.5f * float(max_dim), -float(kPad)) * grid.voxel_m;
+  grid.density.assign(size_t(max_dim) * max_dim * max_dim, 0.0f);
+  for (int k = kPad; k < kPad + inner; ++k)
+    for (int j = kPad; j < kPad + inner; ++j)
+      for (int i = kPad; i < kPad + inner; ++i) grid.density[grid.index(i, j, k)] = 1.0f;
+  compute_sdf_from_density(grid);
+  return grid;
+}
+
 VoxelGrid make_cloud(CloudPreset preset, uint32_t seed, int max_dim) {
   check_max_dim(max_dim);
+  if (preset == CloudPreset::Cube) return make_cube(max_dim);
   if (preset == CloudPreset::CumulusMesh) {
     const EmbeddedFile* mesh =
         find_embedded(nephele_data::kFiles, nephele_data::kFileCount, "cumulus.obj");

@@ -53,9 +53,9 @@ void write_vdb(const VoxelGrid& grid, const std::string& path);
 
 // The presets of `nephele make-cloud` and of scenes' voxel clouds: three generated, and one
 // baked from the mesh shipped in data/meshes/cumulus.obj (embedded), as an artist's would be.
-enum class CloudPreset { Cumulus, CumulusCongestus, Cumulonimbus, CumulusMesh };
+enum class CloudPreset { Cumulus, CumulusCongestus, Cumulonimbus, CumulusMesh, Cube };
 inline constexpr std::string_view kCloudPresetNames[] = {"cumulus", "cumulus-congestus",
-                                                         "cumulonimbus", "cumulus-mesh"};
+                                                         "cumulonimbus", "cumulus-mesh", "cube"};
 // One of kCloudPresetNames; InputError names the allowed values.
 CloudPreset parse_cloud_preset(const std::string& name, const std::string& parameter);
 const char* cloud_preset_name(CloudPreset preset);
@@ -64,6 +64,8 @@ const char* cloud_preset_name(CloudPreset preset);
 // noise), the same for the same seed. About the size of a real cloud of its kind (cumulus
 // ~1 km wide, congestus ~2-3 km tall, cumulonimbus ~8-10 km tall with an anvil).
 // CumulusMesh: the shipped mesh baked by voxelize_mesh_text (the seed is not used).
+// Cube: a cube of 1 km, density 1 throughout, its base at z = 0 (the lab's test body, whose
+// multiple scattering a model must match; the seed is not used).
 VoxelGrid make_cloud(CloudPreset preset, uint32_t seed, int max_dim = 128);
 
 // Bakes a closed (watertight) triangle mesh (OBJ, metres, z up unless told otherwise) into a

@@ -109,6 +109,19 @@ TEST_F(ValidateCliTest, WritesTheTableTheJsonAndTheImagesAndReadsReferencesBack)
   EXPECT_NEAR(k["views"]["up"]["mean_error"].get<double>(), j["views"]["up"]["mean_error"].get<double>(), 1e-6);
 }
 
+// The lab suite nephele ships (data/lab.toml) runs from anywhere: its views' grids are found
+// beside the suite's file, not in the working directory. One view, small and short.
+TEST_F(ValidateCliTest, TheLabSuiteFindsItsGridsBesideItself) {
+  const std::string suite = std::string(NEPHELE_SOURCE_DIR) + "/data/lab.toml";
+  const auto r =
+      run_cli("validate --suite " + suite + " --views cube-side --width 16 --height 10 " +
+              "--spp 3 --validation -q --out " + path("out"));
+  ASSERT_TRUE(r.status == 0 || r.status == 1) << r.output;  // it ran (3 samples miss or pass)
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/results.json"));
+  EXPECT_GT(j["views"]["cube-side"]["mean_error"].get<double>(), 0.0) << j.dump(1);
+  EXPECT_EQ(j["views"]["cube-side"]["reference_spp"].get<int>(), 3);
+}
+
 // The sun's disk is left out of a view's comparison: at this size it is a fraction of a pixel,
 // which the reference integrates and the fast mode samples at the pixel's centre, and its pixel
 // alone would outweigh the whole sky. Looking at the sun, a few pixels around it are left out

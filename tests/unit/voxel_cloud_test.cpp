@@ -77,6 +77,28 @@ TEST(VoxelNoise, CurlyAlligatorIsDeterministicInRangeAndVaries) {
   EXPECT_GE(curly_alligator(glm::vec3(1e30f), 1.0f), 0.0f);
 }
 
+// The lab's cube (data/lab.toml): 1 km of density 1 from its base at z = 0, centred, its
+// faces on voxel boundaries, nothing outside.
+TEST(VoxelMakeCloud, TheCubeIsOneKilometreOfDensityOne) {
+  const VoxelGrid cube = make_cloud(parse_cloud_preset("cube", "--type"), 0, 36);
+  EXPECT_EQ(cube.dims, glm::ivec3(36));
+  EXPECT_FLOAT_EQ(cube.voxel_m, 1000.0f / 32.0f);
+  const Extent e = density_extent(cube);  // voxel centres: half a voxel inside each face
+  const float half = 0.5f * cube.voxel_m;
+  EXPECT_NEAR(e.lo.x, -500.0f + half, 1e-3f);
+  EXPECT_NEAR(e.hi.x, 500.0f - half, 1e-3f);
+  EXPECT_NEAR(e.lo.y, -500.0f + half, 1e-3f);
+  EXPECT_NEAR(e.lo.z, half, 1e-3f);
+  EXPECT_NEAR(e.hi.z, 1000.0f - half, 1e-3f);
+  size_t ones = 0;
+  for (float d : cube.density) {
+    ASSERT_TRUE(d == 0.0f || d == 1.0f) << d;
+    ones += d == 1.0f;
+  }
+  EXPECT_EQ(ones, size_t(32 * 32 * 32));
+  expect_sdf_bounds_density(cube);
+}
+
 TEST(VoxelMakeCloud, PresetsAreDeterministicSizedLikeTheirKindAndBoundedBySdf) {
   const VoxelGrid a = make_cloud(CloudPreset::Cumulus, 7, 32);
   const VoxelGrid b = make_cloud(CloudPreset::Cumulus, 7, 32);
