@@ -168,6 +168,9 @@ Shape make_shape(CloudPreset preset, uint32_t seed) {
       s.skin_m = 300.0f;
       break;
     }
+    case CloudPreset::CumulusMesh:  // baked from the mesh, made in make_cloud
+    case CloudPreset::Cube:
+      break;
   }
   // Billows about as wide as the skin is deep.
   s.noise_frequency_per_m = 1.0f / (1.3f * s.skin_m);
