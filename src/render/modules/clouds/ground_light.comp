@@ -45,8 +45,8 @@ float column_transmittance(vec2 xy) {
 
 // The sunlight the clouds scatter towards a ground point `base` (planet frame, on the ground)
 // along direction `dir` (upwards), per unit of the key light's illuminance (as the sky-view
-// table's radiance): RAY_SAMPLES midpoint
-// samples of the cloud shell's part of the ray, lit as the fast mode lights them.
+// table's radiance): RAY_SAMPLES midpoint samples of the cloud shell's part of the ray, lit as
+// the fast mode lights them. The air between is left out.
 vec3 cloud_light_along(vec3 base, vec3 dir) {
   vec2 inner = ray_sphere(base, dir, frame.radii_m.z);
   vec2 outer = ray_sphere(base, dir, frame.radii_m.w);
@@ -106,13 +106,14 @@ void main() {
     ivec2 cell = 2 * ivec2(gl_LocalInvocationID.xy) + ivec2(k & 1, k >> 1);
     vec2 xy = frame.camera_pos_m.xy + (vec2(cell) + 0.5f) * cell_m - GROUND_LIGHT_HALF_M;
     sum.x += column_transmittance(xy);
-    // A slanted ray from two of the four cells (k = 0, 3: a chequerboard), their directions
-    // shuffled over the cells (617 is odd: a permutation), so that a direction's elevation
-    // does not follow the cell's row. 512 rays: 25 ms on lavapipe with a ray from every cell.
+    // A slanted ray from two of the four cells (k = 0, 3: a chequerboard), the directions
+    // shuffled over them (617 is odd: a permutation of 0 .. RAYS - 1), so that a direction's
+    // elevation does not follow the cell's row. 512 rays: 25 ms on lavapipe with a ray from
+    // every cell.
     if (k == 1 || k == 2) continue;
     vec3 ground = point_at_radius(xy, frame.radii_m.x);
-    int index = ((cell.y * GRID + cell.x) * 617) & (GRID * GRID - 1);
-    sum.yzw += cloud_light_along(ground, cosine_direction(index >> 1, RAYS, normalize(ground)));
+    int ray = ((int(id) * 2 + (k == 3 ? 1 : 0)) * 617) & (RAYS - 1);
+    sum.yzw += cloud_light_along(ground, cosine_direction(ray, RAYS, normalize(ground)));
   }
   partial[id] = sum;
   barrier();
