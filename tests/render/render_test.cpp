@@ -239,7 +239,7 @@ TEST_F(RenderTest, TwoStreamLightDarkensTheNoonCumulusTowardsThePathTracer) {
 // clouds' sunlit sides and bases are brighter than the blue sky they hide. The path tracer's
 // 80 x 50 reference of a view like this one (noon, ground albedo 0.1, droplets): the ground 14%
 // brighter than the clear day's; the fast mode's 13% there with the clouds' light
-// (ground_light.comp), 0% without it; 9% in this 48 x 30 view.
+// (ground_light.comp), 0% without it; 9.6% in this 48 x 30 view.
 TEST_F(RenderTest, SunlitGroundUnderCumulusGetsTheCloudsLight) {
   Scene s = nephele::load_preset("default");
   s.sun.direction = {0.2113f, -0.3660f, 0.9063f};  // 65 degrees up, in the south-south-east
