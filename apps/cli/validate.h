@@ -17,6 +17,7 @@ struct ValidationView {
   std::string description;
   std::string scene_toml;
   double max_mean_error = 0.05;  // of BlockLuminanceError::mean_error
+  double max_block_error = 0.0;  // of BlockLuminanceError::max_lit_error; 0: none
 };
 
 // The clear sky's targets (`validate --sky`; the [sky] table of data/validation.toml).

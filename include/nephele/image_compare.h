@@ -61,6 +61,9 @@ struct BlockLuminanceError {
   double mean_error = 0.0;  // sum over blocks of |L_image - L_reference| / sum of L_reference
   double p95_error = 0.0;   // the 95th percentile of the blocks' |L_image / L_reference - 1|
   double max_error = 0.0;   // the largest block's
+  // The largest among the blocks with light: those whose reference is at least 1% of the mean
+  // block's (a black background, where any light counts as 100%, left out).
+  double max_lit_error = 0.0;
   // The reference's own noise in the same measure (its standard error summed over blocks, over
   // the sum of its luminance) when the variance of its pixels' means is given, else 0.
   double reference_noise = 0.0;

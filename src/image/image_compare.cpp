@@ -177,7 +177,7 @@ BlockLuminanceError block_luminance_error(const Image& image, const Image& refer
   const int bw = (image.width + block - 1) / block, bh = (image.height + block - 1) / block;
   BlockLuminanceError out;
   out.map = Image(bw, bh);
-  std::vector<double> relative;
+  std::vector<double> relative, reference_blocks;
   double sum_image = 0.0, sum_reference = 0.0, sum_abs = 0.0, sum_noise = 0.0;
   for (int by = 0; by < bh; ++by)
     for (int bx = 0; bx < bw; ++bx) {
@@ -202,11 +202,16 @@ BlockLuminanceError block_luminance_error(const Image& image, const Image& refer
       sum_noise += std::sqrt(variance) / n;
       const double r = l_reference > 0.0 ? std::abs(l_image / l_reference - 1.0) : (l_image > 0.0 ? 1.0 : 0.0);
       relative.push_back(r);
+      reference_blocks.push_back(l_reference);
       out.map.at(bx, by) = glm::vec4(float(r), float(r), float(r), 1.0f);
     }
   out.mean_bias = sum_reference > 0.0 ? sum_image / sum_reference - 1.0 : 0.0;
   out.mean_error = sum_reference > 0.0 ? sum_abs / sum_reference : (sum_abs > 0.0 ? 1.0 : 0.0);
   out.reference_noise = sum_reference > 0.0 ? sum_noise / sum_reference : 0.0;
+  const double lit = 0.01 * sum_reference / double(reference_blocks.size());
+  for (size_t i = 0; i < relative.size(); ++i)
+    if (reference_blocks[i] > 0.0 && reference_blocks[i] >= lit)
+      out.max_lit_error = std::max(out.max_lit_error, relative[i]);
   std::sort(relative.begin(), relative.end());
   out.p95_error = relative[std::min(relative.size() - 1, size_t(0.95 * double(relative.size())))];
   out.max_error = relative.back();

@@ -120,6 +120,35 @@ TEST_F(ValidateCliTest, TheLabSuiteFindsItsGridsBesideItself) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/results.json"));
   EXPECT_GT(j["views"]["cube-side"]["mean_error"].get<double>(), 0.0) << j.dump(1);
   EXPECT_EQ(j["views"]["cube-side"]["reference_spp"].get<int>(), 3);
+  EXPECT_EQ(j["views"]["cube-side"]["max_lit_block_tolerance"].get<double>(), 0.10);
+}
+
+// A view's block tolerance (max_block_error): a view within its mean tolerance still fails
+// when a block with light is further off than its own, and the summary says it was a block.
+TEST_F(ValidateCliTest, ABlockOverItsToleranceFailsTheView) {
+  std::ofstream(path("suite.toml")) << R"(width = 24
+height = 16
+block = 8
+[[view]]
+name = "up"
+max_mean_error = 0.9
+max_block_error = 0.0001
+scene = """
+preset = "clear"
+[camera]
+view_dir = [0.0, 0.3, 1.0]
+"""
+)";
+  const auto r = run_cli("validate --suite " + path("suite.toml") +
+                         " --spp 3 --validation -q --out " + path("out"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/results.json"));
+  EXPECT_LT(j["views"]["up"]["mean_error"].get<double>(), 0.9) << j.dump(1);
+  EXPECT_GT(j["views"]["up"]["max_lit_block_error"].get<double>(), 0.0001) << j.dump(1);
+  EXPECT_FALSE(j["views"]["up"]["pass"].get<bool>());
+  EXPECT_TRUE(last_line(r.output).starts_with(
+      "nephele validate: FAILED: 1 of 1 views over their tolerances (worst: up block "))
+      << r.output;
 }
 
 // The sun's disk is left out of a view's comparison: at this size it is a fraction of a pixel,

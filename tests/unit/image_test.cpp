@@ -426,6 +426,7 @@ TEST(BlockLuminanceError, MeasuresTheBlocksMeansAgainstTheReference) {
   EXPECT_NEAR(e.mean_error, 0.1, 1e-6);
   EXPECT_NEAR(e.mean_bias, -0.1, 1e-6);
   EXPECT_NEAR(e.max_error, 0.4, 1e-6);
+  EXPECT_NEAR(e.max_lit_error, 0.4, 1e-6);
   EXPECT_NEAR(e.map.at(0, 1).r, 0.4f, 1e-6f);
   EXPECT_NEAR(e.map.at(1, 0).r, 0.0f, 1e-6f);
 
@@ -435,6 +436,19 @@ TEST(BlockLuminanceError, MeasuresTheBlocksMeansAgainstTheReference) {
               1e-6);
   e = nephele::block_luminance_error(reference, filled(16, 16, glm::vec4(0.0f)), {}, 8);
   EXPECT_EQ(e.mean_error, 1.0);
+  // A block of the reference under 1% of the mean block's (a black background, where the image
+  // has a glimmer) counts in the largest error but not in the largest lit one.
+  nephele::Image background = reference, glimmer = reference;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 8; x < 16; ++x) {
+      background.at(x, y) = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+      glimmer.at(x, y) = glm::vec4(0.001f, 0.001f, 0.001f, 1.0f);
+    }
+  glimmer.at(0, 0) =
+      glm::vec4(1.0f + 64.0f * 0.05f, 1.0f + 64.0f * 0.05f, 1.0f + 64.0f * 0.05f, 1.0f);
+  e = nephele::block_luminance_error(glimmer, background, {}, 8);
+  EXPECT_EQ(e.max_error, 1.0);
+  EXPECT_NEAR(e.max_lit_error, 0.05, 1e-5);
   EXPECT_THROW(nephele::block_luminance_error(reference, filled(8, 8, glm::vec4(1.0f)), {}, 8),
                nephele::InputError);
 }

@@ -57,6 +57,8 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLine) {
   expect_refused(view + "max_mean_error = 0.05\n[sky]\nsun_elevations_deg = [5.0]\n"
                  "max_colour_ratio = 2.0\n", "max_colour_ratio");
   expect_refused("width = [", "suite.toml:1");
+  expect_refused(view + "max_mean_error = 0.05\nmax_block_error = 0\n", "max_block_error");
+  expect_refused(view + "max_mean_error = 0.05\nmax_block_error = \"10%\"\n", "max_block_error");
 }
 
 }  // namespace
