@@ -30,6 +30,11 @@ class ValidateCliTest : public ::testing::Test {
   fs::path dir_;
 };
 
+// A JSON file validate wrote.
+nlohmann::json read_json(const std::string& file) {
+  return nlohmann::json::parse(std::ifstream(file));
+}
+
 // The last line a run printed (the summary after the table).
 std::string last_line(const std::string& output) {
   std::string text = output;
@@ -67,7 +72,7 @@ TEST_F(ValidateCliTest, WritesTheTableTheJsonAndTheImagesAndReadsReferencesBack)
                            out + " --references " + refs;
   const auto r = run_cli(args);
   EXPECT_EQ(r.status, 1) << r.output;  // "strict" misses
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + "/results.json"));
+  const nlohmann::json j = read_json(out + "/results.json");
   EXPECT_TRUE(j["views"]["up"]["pass"].get<bool>()) << j.dump(1);
   EXPECT_FALSE(j["views"]["strict"]["pass"].get<bool>()) << j.dump(1);
   EXPECT_LT(j["views"]["up"]["mean_error"].get<double>(), 0.5);
@@ -104,7 +109,7 @@ TEST_F(ValidateCliTest, WritesTheTableTheJsonAndTheImagesAndReadsReferencesBack)
                              path("out2") + " --references " + refs);
   EXPECT_EQ(again.status, 0) << again.output;
   EXPECT_EQ(last_line(again.output), "nephele validate: passed: 1 view within 50%") << again.output;
-  const nlohmann::json k = nlohmann::json::parse(std::ifstream(path("out2") + "/results.json"));
+  const nlohmann::json k = read_json(path("out2") + "/results.json");
   EXPECT_EQ(k["views"]["up"]["reference_s"].get<double>(), 0.0);
   EXPECT_NEAR(k["views"]["up"]["mean_error"].get<double>(), j["views"]["up"]["mean_error"].get<double>(), 1e-6);
 }
@@ -117,7 +122,7 @@ TEST_F(ValidateCliTest, TheLabSuiteFindsItsGridsBesideItself) {
       run_cli("validate --suite " + suite + " --views cube-side --width 16 --height 10 " +
               "--spp 3 --validation -q --out " + path("out"));
   ASSERT_TRUE(r.status == 0 || r.status == 1) << r.output;  // it ran (3 samples miss or pass)
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/results.json"));
+  const nlohmann::json j = read_json(path("out") + "/results.json");
   EXPECT_GT(j["views"]["cube-side"]["mean_error"].get<double>(), 0.0) << j.dump(1);
   EXPECT_EQ(j["views"]["cube-side"]["reference_spp"].get<int>(), 3);
   EXPECT_EQ(j["views"]["cube-side"]["max_lit_block_tolerance"].get<double>(), 0.10);
@@ -142,7 +147,7 @@ view_dir = [0.0, 0.3, 1.0]
   const auto r = run_cli("validate --suite " + path("suite.toml") +
                          " --spp 3 --validation -q --out " + path("out"));
   EXPECT_EQ(r.status, 1) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/results.json"));
+  const nlohmann::json j = read_json(path("out") + "/results.json");
   EXPECT_LT(j["views"]["up"]["mean_error"].get<double>(), 0.9) << j.dump(1);
   EXPECT_GT(j["views"]["up"]["max_lit_block_error"].get<double>(), 0.0001) << j.dump(1);
   EXPECT_FALSE(j["views"]["up"]["pass"].get<bool>());
@@ -185,7 +190,7 @@ view_dir = [0.0, 0.94, 0.34]
   const auto r = run_cli("validate --suite " + path("suite.toml") +
                          " --spp 30 --validation -q --out " + path("out"));
   EXPECT_EQ(r.status, 0) << r.output;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/results.json"));
+  const nlohmann::json j = read_json(path("out") + "/results.json");
   const int sunward = j["views"]["sunward"]["sun_pixels_excluded"].get<int>();
   EXPECT_GE(sunward, 1) << j.dump(1);
   EXPECT_LE(sunward, 16) << j.dump(1);
@@ -202,7 +207,7 @@ TEST_F(ValidateCliTest, TheSkyModeMeasuresThePatternAgainstTheReference) {
       r.status == 0 ? "nephele validate --sky: passed: 1 sun elevation within the targets"
                     : "nephele validate --sky: FAILED: 1 of 1 sun elevations miss a target: 30 deg ("))
       << r.output;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/sky.json"));
+  const nlohmann::json j = read_json(path("out") + "/sky.json");
   const nlohmann::json& e = j["sun_elevations"]["30.0"];
   for (const char* v : {"zenith", "horizon-away", "horizon-side", "horizon-near", "towards-sun"})
     EXPECT_TRUE(e["views"].contains(v)) << v;
@@ -226,7 +231,7 @@ TEST_F(ValidateCliTest, TheClearSkyMeetsItsTargetsAgainstTheShippedReferences) {
             "nephele validate --sky: passed: all 8 sun elevations within the targets (pattern 2%, "
             "at 1 deg 5%, colour 3%, zenith jump 1%)")
       << r.output;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("out") + "/sky.json"));
+  const nlohmann::json j = read_json(path("out") + "/sky.json");
   ASSERT_EQ(j["sun_elevations"].size(), 8u) << j.dump(1);
   for (const auto& [elevation, e] : j["sun_elevations"].items()) {
     EXPECT_TRUE(e["pass"].get<bool>()) << elevation << ": " << e.dump(1);
