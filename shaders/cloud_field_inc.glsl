@@ -66,32 +66,6 @@ float multiple_scattering(float tau_light, float mu, float powder, vec4 phases) 
   return energy;
 }
 
-// The sunlight a cloud sample scatters towards a viewer, per unit of the sun's irradiance and
-// of albedo, as the fast mode lights it (clouds.comp and the ground's cloud light,
-// ground_light.comp): x the light that reaches it from the sun's direction (single scattering
-// with the two-stream light, else the seed's octaves and powder), y the diffuse light the
-// cloud between it and the sun passes on to it, per unit of a horizontal deck's flux
-// (mu_sun), z the cloud's diffuse transmittance towards the sun (which the sky's light shares).
-// tau_light and tau_behind: optical depths towards the sun and onwards along its chord (only
-// the two-stream light reads tau_behind); mu: the cosine between the viewer's ray and the sun;
-// g1: the phase function's mean cosine.
-vec3 cloud_sun_light(float tau_light, float tau_behind, float mu, float mu_sun, bool two_stream,
-                     vec4 phases, float powder, float albedo, float g1) {
-  if (two_stream) {
-    // Single scattering and the two-stream field along the sun's chord (clouds_inc.glsl):
-    // the light going on and the light scattered back towards the sun, which lights the
-    // sunlit faces.
-    vec2 fluxes = cloud_two_stream_fluxes(tau_light, tau_behind, albedo, cloud_transport_g());
-    return vec3(exp(-tau_light) * phases[0],
-                cloud_two_stream_radiance(fluxes, tau_light, mu, g1) * mu_sun, fluxes.x);
-  }
-  // The light thick cloud passes on by scattering it forward: a diffuse flux (radiance = flux
-  // / pi, the flux through a horizontal deck mu_sun times the sun's).
-  float t_d = cloud_diffuse_transmittance(tau_light, cloud_transport_g());
-  return vec3(multiple_scattering(tau_light, mu, powder, phases),
-              (t_d - exp(-tau_light)) * mu_sun / PI, t_d);
-}
-
 const vec3 SEED_EXTINCTION_MULT = vec3(0.8f, 0.8f, 1.0f);  // listing B.3
 
 // The point at radius r (m) above horizontal position xy (planet frame).
@@ -228,6 +202,35 @@ float depth_behind(vec3 pos, vec3 sun) {
   if (light_volume_covers(pos) && light_volume_covers(far_end))
     return max(light_volume_lookup(far_end) - light_volume_lookup(pos), 0.0f);
   return march_light(pos, -sun, 0.0f, length_m, max(frame.steps.y, 12));
+}
+
+// The sunlight a cloud sample scatters towards a viewer, per unit of the sun's irradiance and
+// of albedo, as the fast mode lights it (clouds.comp and the ground's cloud light,
+// ground_light.comp): x the light that reaches it from the sun's direction (single scattering
+// with the two-stream light, else the seed's octaves and powder), y the diffuse light the
+// cloud between it and the sun passes on to it, per unit of a horizontal deck's flux
+// (mu_sun), z the cloud's diffuse transmittance towards the sun (which the sky's light shares).
+// pos: the sample; tau_light: the optical depth towards the sun, light_scale the optical depth
+// per unit of the density field x m along the light (the two-stream light marches or looks up
+// the depth behind the sample along the sun's chord, depth_behind); mu: the cosine between the
+// viewer's ray and the sun; g1: the phase function's mean cosine.
+vec3 cloud_sun_light(vec3 pos, vec3 sun, float tau_light, float light_scale, float mu,
+                     bool two_stream, vec4 phases, float powder, float albedo, float g1) {
+  float mu_sun = max(dot(sun, normalize(pos)), 0.0f);
+  if (two_stream) {
+    float tau_behind = depth_behind(pos, sun) * light_scale;
+    // Single scattering and the two-stream field along the sun's chord (clouds_inc.glsl):
+    // the light going on and the light scattered back towards the sun, which lights the
+    // sunlit faces.
+    vec2 fluxes = cloud_two_stream_fluxes(tau_light, tau_behind, albedo, cloud_transport_g());
+    return vec3(exp(-tau_light) * phases[0],
+                cloud_two_stream_radiance(fluxes, tau_light, mu, g1) * mu_sun, fluxes.x);
+  }
+  // The light thick cloud passes on by scattering it forward: a diffuse flux (radiance = flux
+  // / pi, the flux through a horizontal deck mu_sun times the sun's).
+  float t_d = cloud_diffuse_transmittance(tau_light, cloud_transport_g());
+  return vec3(multiple_scattering(tau_light, mu, powder, phases),
+              (t_d - exp(-tau_light)) * mu_sun / PI, t_d);
 }
 
 // Optical depth (density field x m) of the clouds towards the sun from `base`, a point at the

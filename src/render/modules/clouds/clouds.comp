@@ -309,10 +309,8 @@ void main() {
       float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
       float tau_light = depth * sigma_scale * light_atten;
       // The sun's light the sample scatters towards the eye (cloud_sun_light).
-      float tau_behind = two_stream ? depth_behind(lit_pos, sun) * sigma_scale * light_atten : 0.0f;
-      float mu_sun = max(dot(sun, normalize(lit_pos)), 0.0f);
-      vec3 sunlit = cloud_sun_light(tau_light, tau_behind, mu, mu_sun, two_stream, phases, powder,
-                                    albedo, g1);
+      vec3 sunlit = cloud_sun_light(lit_pos, sun, tau_light, sigma_scale * light_atten, mu,
+                                    two_stream, phases, powder, albedo, g1);
       float energy = sunlit.x * lit_visibility;
       // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
       float h = saturate(layer_fraction(lit_pos));

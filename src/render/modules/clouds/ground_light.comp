@@ -74,9 +74,7 @@ vec3 cloud_light_along(vec3 base, vec3 dir) {
     if (density <= 0.0f) continue;
     bool covered = light_volume_covers(pos);
     float tau_light = depth_towards_sun(pos, sun, covered, 4) * light_scale;
-    float tau_behind = two_stream ? depth_behind(pos, sun) * light_scale : 0.0f;
-    float mu_sun = max(dot(sun, normalize(pos)), 0.0f);
-    vec3 sunlit = cloud_sun_light(tau_light, tau_behind, mu, mu_sun, two_stream, phases,
+    vec3 sunlit = cloud_sun_light(pos, sun, tau_light, light_scale, mu, two_stream, phases,
                                   frame.cloud_light.z, albedo, g1);
     float step_t = exp(-density * sigma_scale * ds);
     float h = saturate(layer_fraction(pos));
