@@ -33,12 +33,11 @@ float cloud_phase_function(float mu, float c) {
              : dual_lobe_hg(frame.cloud_phase.x * c, frame.cloud_phase.y * c, frame.cloud_phase.z, mu);
 }
 
-// The asymmetry the clouds' diffuse light is carried with: the droplets' phase function's mean
-// cosine (delta-scaled: 0.76 at 9 um, for the optical depths of their sigma_t without the
-// diffraction peak), or the seed's fixed one.
-float cloud_transport_g() {
-  return frame.cloud_droplets.y > 0.5f ? frame.cloud_droplets.z : CLOUD_DROPLET_G;
-}
+// The asymmetry the clouds' diffuse light is carried with (frame.cloud_droplets.w): the phase
+// function's mean cosine (the droplets' delta-scaled one: 0.76 at 9 um, for the optical depths
+// of their sigma_t without the diffraction peak), or with the seed's lighting the seed's fixed
+// one.
+float cloud_transport_g() { return frame.cloud_droplets.w; }
 
 // Multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and volumetric"):
 // octave i scatters with contribution a^i, extinction b^i and eccentricity c^i. b < 1 lets

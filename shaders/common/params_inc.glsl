@@ -92,7 +92,7 @@ struct FrameParams {
   // of cloud_shape.z (the largest genus'; all 1 with the seed's optics), blended by the local
   // type (cloud_genus_blend); cloud_droplets: x cumulonimbus' share, y 1 for the droplets' Mie
   // phase (cloud_mie: mie_fit of their diameter) instead of cloud_phase's lobes, z the phase's
-  // mean cosine, w unused.
+  // mean cosine, w the asymmetry the diffuse light is carried with (cloud_transport_g).
   vec4 cloud_genus_sigma;
   vec4 cloud_droplets;
   vec4 cloud_mie;

@@ -389,11 +389,14 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
   f.cloud_shape = glm::vec4(0.0f, 0.0f, sigma_max, optics.albedo);
   f.cloud_genus_sigma = glm::vec4(sigma[0], sigma[1], sigma[2], sigma[3]) / sigma_max;
   f.cloud_mie = optics.mie;
-  f.cloud_droplets = glm::vec4(
-      sigma[4] / sigma_max, optics.droplets ? 1.0f : 0.0f,
-      optics.droplets ? glsl::mie_mean_cosine(optics.mie)
-                      : glm::mix(c.phase_g_backward, c.phase_g_forward, c.phase_lobe_weight),
-      0.0f);
+  const float g1 = optics.droplets
+                       ? glsl::mie_mean_cosine(optics.mie)
+                       : glm::mix(c.phase_g_backward, c.phase_g_forward, c.phase_lobe_weight);
+  // The diffuse light is carried with the phase function's own mean cosine, except by the seed's
+  // lighting with the seed's lobes, which keeps the seed's fixed droplet asymmetry.
+  const bool own_g = optics.droplets || c.two_stream_light;
+  f.cloud_droplets = glm::vec4(sigma[4] / sigma_max, optics.droplets ? 1.0f : 0.0f, g1,
+                               own_g ? g1 : glsl::CLOUD_DROPLET_G);
   f.cloud_layers[0] = cloud_layer(planet_m, c.bottom_altitude_m, c.top_altitude_m, c.coverage,
                                   c.density, c.type, c.precipitation, c.wind_mps, scene.time_s,
                                   glm::vec2(0.0f));

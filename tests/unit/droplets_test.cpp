@@ -136,6 +136,7 @@ TEST(Droplets, TheFrameCarriesEachGenusExtinctionAndTheDropletsPhase) {
   EXPECT_NEAR(f.cloud_mie.y, glsl::mie_fit(2.0f * d.cumulus_radius_um).y, 1e-6f);
   EXPECT_EQ(f.cloud_mie.w, 1.0f);  // the Draine lobe alone: the peak is delta-scaled
   EXPECT_NEAR(f.cloud_droplets.z, glsl::mie_mean_cosine(f.cloud_mie), 1e-6f);
+  EXPECT_EQ(f.cloud_droplets.w, f.cloud_droplets.z);  // the diffuse light's asymmetry
 
   Scene seed;
   seed.clouds.extinction_per_m = 0.7f;
@@ -145,6 +146,11 @@ TEST(Droplets, TheFrameCarriesEachGenusExtinctionAndTheDropletsPhase) {
   EXPECT_EQ(s.cloud_droplets.x, 1.0f);
   EXPECT_EQ(s.cloud_droplets.y, 0.0f);
   EXPECT_FLOAT_EQ(s.cloud_droplets.z, 0.7f * 0.8f + 0.3f * -0.3f);
+  // The seed's lighting carries its diffuse light with the seed's droplet asymmetry; the
+  // two-stream light with the lobes' own mean cosine (the lab's medium).
+  EXPECT_FLOAT_EQ(s.cloud_droplets.w, glsl::CLOUD_DROPLET_G);
+  seed.clouds.two_stream_light = true;
+  EXPECT_FLOAT_EQ(make_frame_params(seed, 0).cloud_droplets.w, s.cloud_droplets.z);
 }
 
 // Delta-scaling takes the diffraction peak (the fit's HG lobe, g above 0.97, about half the

@@ -189,7 +189,7 @@ void main() {
   // diffuse light of the cloud towards the sun (cloud_ground_light_shares).
   vec3 clouds_down = texelFetch(ground_light, ivec2(0), 0).gba;
   vec2 shares = cloud_ground_light_shares(
-      ground_shadow, frame.cloud_droplets.y > 0.5f ? frame.cloud_droplets.z : CLOUD_DROPLET_G,
+      ground_shadow, frame.cloud_droplets.w,
       clouds_down);
   sky += ground_sun.a * ground_media.y * albedo * clouds_down * shares.y;
   ground_sun.rgb *= ground_media.x;
