@@ -339,4 +339,39 @@ void Texture::record_mipmaps(VkCommandBuffer cmd) const {
   }
 }
 
+void Texture::record_blit_to(VkCommandBuffer cmd, const Texture& to) const {
+  // Both images from the general layout to the transfer's and back.
+  const auto transition = [&](VkImageLayout from_src, VkImageLayout to_src, VkImageLayout from_dst,
+                              VkImageLayout to_dst) {
+    VkImageMemoryBarrier barriers[2];
+    const VkImage images[2] = {image_, to.image_};
+    const VkImageLayout from[2] = {from_src, from_dst}, next[2] = {to_src, to_dst};
+    for (int i = 0; i < 2; ++i) {
+      barriers[i] = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+      barriers[i].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+      barriers[i].dstAccessMask =
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+      barriers[i].oldLayout = from[i];
+      barriers[i].newLayout = next[i];
+      barriers[i].srcQueueFamilyIndex = barriers[i].dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      barriers[i].image = images[i];
+      barriers[i].subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    }
+    const VkPipelineStageFlags stages =
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    vkCmdPipelineBarrier(cmd, stages, stages, 0, 0, nullptr, 0, nullptr, 2, barriers);
+  };
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {int32_t(width_), int32_t(height_), 1};
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.dstOffsets[1] = {int32_t(to.width_), int32_t(to.height_), 1};
+  transition(VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+             VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  vkCmdBlitImage(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.image_,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+  transition(VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+}
+
 }  // namespace nephele::gpu

@@ -126,6 +126,9 @@ class Texture {
   void record_clear_layer(VkCommandBuffer cmd, uint32_t layer) const;
   // Box-filters each mip level from the one above it (recorded into `cmd`).
   void record_mipmaps(VkCommandBuffer cmd) const;
+  // Scales level 0 of this 2D image into level 0 of `to`'s with linear filtering (a 2:1
+  // reduction is a 2 x 2 box filter; recorded into `cmd`).
+  void record_blit_to(VkCommandBuffer cmd, const Texture& to) const;
 
  private:
   // Both constructors': `layers` 0 makes a 2D or 3D image, else a 2D array.

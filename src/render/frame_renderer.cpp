@@ -452,17 +452,22 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   const int cloud_w = (scene.output.width + downsample - 1) / downsample;
   const int cloud_h = (scene.output.height + downsample - 1) / downsample;
   const SkyLights lights = sky_lights(scene);  // the ephemeris and key light, once a frame
-  const bool resized = state.width != scene.output.width || state.height != scene.output.height ||
-                       clouds.width() != cloud_w || clouds.height() != cloud_h;
-  const bool history = !still && stride > 1 && !resized && previous && key == previous_key &&
-                       history_usable(scene, *previous, lights.key.direction, previous_light_dir);
+  const bool image_resized =
+      state.width != scene.output.width || state.height != scene.output.height;
+  const bool resized = image_resized || clouds.width() != cloud_w || clouds.height() != cloud_h;
+  const bool continues = !still && stride > 1 && previous && key == previous_key &&
+                         history_usable(scene, *previous, lights.key.direction, previous_light_dir);
+  // An animation after a still of the same image continues from the still: its cloud buffer,
+  // box-filtered down to the animation's, is the history (CloudsModule::resize).
+  const bool from_still = continues && resized && !image_resized && previous_still;
+  const bool history = continues && (!resized || from_still);
   if (!history) frame_counter = 0;
   update_atmosphere_luts(scene);
 
   GpuState& s = state;
   if (resized) ctx.wait_queue_idle();  // the frames in flight use the images replaced
   s.resize(scene.output.width, scene.output.height);
-  clouds.resize(cloud_w, cloud_h);
+  clouds.resize(cloud_w, cloud_h, from_still);
   clouds.set_stride(stride);
   gpu::FrameParams params = make_frame_params(scene, int(frame_counter), lights,
                                               atmosphere.tables(), window ? &*window : nullptr);
@@ -505,6 +510,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   unchanged_frames = unchanged ? unchanged_frames + 1 : 1;
   previous_reusable = reusable;
   previous_display = options.display;
+  previous_still = still;
   previous_light_dir = lights.key.direction;
   ++frame_counter;
   last_params = params;

@@ -19,8 +19,10 @@ CloudsModule::CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
   resize(1, 1);
 }
 
-bool CloudsModule::resize(int w, int h) {
+bool CloudsModule::resize(int w, int h, bool carry_history) {
   if (w == width_ && h == height_) return false;
+  // The last frame's buffer (the one written last: current_).
+  gpu::Texture last_a = std::move(clouds_a_[current_]), last_b = std::move(clouds_b_[current_]);
   const auto cloud_image = [&] {
     return gpu::Texture(ctx_, uint32_t(w), uint32_t(h), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                         VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
@@ -42,6 +44,11 @@ bool CloudsModule::resize(int w, int h) {
     for (const gpu::Texture* t : {&march_a_, &march_b_, &range_lo_, &range_hi_, &clouds_a_[0],
                                   &clouds_a_[1], &clouds_b_[0], &clouds_b_[1]})
       t->record_clear(cmd);
+    // The next frame's history is clouds_*[0] (prepare() swaps once more).
+    if (carry_history && last_a.width() > 0) {
+      last_a.record_blit_to(cmd, clouds_a_[0]);
+      last_b.record_blit_to(cmd, clouds_b_[0]);
+    }
   });
   current_ = 1;
   swap_history();

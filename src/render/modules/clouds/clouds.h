@@ -26,8 +26,10 @@ class CloudsModule : public RenderModule {
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // (Re)allocates the cloud buffer and the marched samples at `width` x `height`; true when
-  // they were (the history is lost).
-  bool resize(int width, int height);
+  // they were. The history is lost, unless `carry_history`: then the last frame's cloud buffer
+  // (a still's, at the image's resolution) is box-filtered down into the next frame's history,
+  // so that an animation continues from the still instead of starting afresh.
+  bool resize(int width, int height, bool carry_history = false);
   // The cloud buffer just written becomes the history of the next frame.
   void swap_history();
   // The contract's (render_module.h): swaps the history.
