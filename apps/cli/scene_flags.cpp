@@ -281,6 +281,18 @@ float to_float(const std::string& flag, const std::string& text, std::string_vie
   return static_cast<float>(*value);
 }
 
+// Digits, with an optional sign.
+bool is_integer_text(std::string_view text) {
+  if (text.starts_with('+') || text.starts_with('-')) text.remove_prefix(1);
+  return !text.empty() &&
+         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// " in [1, 16384]" for a range, ": 1, 2 or 4" for choices (as the scene files' messages).
+std::string allowed_phrase(const std::string& allowed) {
+  return (allowed[0] == '[' || allowed[0] == '(' ? " in " : ": ") + allowed;
+}
+
 int64_t to_integer(const std::string& flag, const std::string& text, int64_t min, int64_t max) {
   std::string_view digits = text;
   if (digits.starts_with('+')) digits.remove_prefix(1);
@@ -615,8 +627,15 @@ Scene resolve_scene(const SceneFlags& flags) {
     if (!text) continue;
     std::visit(
         [&](auto target) {
-          if constexpr (!std::is_same_v<decltype(target), std::monostate>)
+          if constexpr (!std::is_same_v<decltype(target), std::monostate>) {
+            using Value = std::decay_t<decltype(target(scene))>;
+            // Not an integer: the values the key allows, not its type's range.
+            if constexpr (std::is_same_v<Value, int> || std::is_same_v<Value, uint32_t>)
+              if (const SceneParameter* p = find_scene_parameter(spec.key);
+                  p && !p->allowed_values.empty() && !is_integer_text(*text))
+                fail(spec.flag, *text, "expected an integer" + allowed_phrase(p->allowed_values));
             parse_into(spec.flag, *text, target(scene));
+          }
         },
         spec.target);
   }

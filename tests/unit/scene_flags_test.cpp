@@ -311,7 +311,9 @@ TEST(SceneFlags, MalformedValuesNameTheFlag) {
   EXPECT_EQ(resolve_error({"--wind-mps", "a,b"}),
             "--wind-mps a,b: expected 2 comma-separated numbers E,N");
   EXPECT_EQ(resolve_error({"--width", "12.5"}),
-            "--width 12.5: expected an integer in [-2147483648, 2147483647]");
+            "--width 12.5: expected an integer in [1, 16384]");  // the key's range, not int's
+  EXPECT_EQ(resolve_error({"--march-stride", "2.5"}),
+            "--march-stride 2.5: expected an integer: 1, 2 or 4");
   EXPECT_EQ(resolve_error({"--seed", "-1"}), "--seed -1: expected an integer in [0, 4294967295]");
   EXPECT_EQ(resolve_error({"--mode", "fast"}), "--mode fast: expected default or baseline");
   EXPECT_EQ(resolve_error({"--voxel-march", "three_phase"}),

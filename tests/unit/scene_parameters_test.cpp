@@ -183,7 +183,9 @@ TEST(SceneParameters, WrongTypesNameTheKeyAndLeaveTheSceneAlone) {
   EXPECT_EQ(input_error([&] { set_scene_value(scene, "clouds.coverage", "\"x\""); }),
             "clouds.coverage = \"x\": expected a number");
   EXPECT_EQ(input_error([&] { set_scene_value(scene, "quality.primary_steps", "2.5"); }),
-            "quality.primary_steps = 2.5: expected an integer in [-2147483648, 2147483647]");
+            "quality.primary_steps = 2.5: expected an integer in [1, 1024]");  // the key's range
+  EXPECT_EQ(input_error([&] { set_scene_value(scene, "quality.march_stride", "2.5"); }),
+            "quality.march_stride = 2.5: expected an integer: 1, 2 or 4");
   EXPECT_EQ(input_error([&] { set_scene_value(scene, "noise_seed", "-1"); }),
             "noise_seed = -1: expected an integer in [0, 4294967295]");
   EXPECT_EQ(input_error([&] { set_scene_value(scene, "clouds.wind_mps", "[1, 2, 3]"); }),
