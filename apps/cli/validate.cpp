@@ -74,11 +74,16 @@ glm::vec4 error_colour(float e) {
   return glm::vec4(c * 2.0f, 1.0f);
 }
 
-// The blocks' relative errors as colours (error_colour).
+// Blocks without light in the reference (a black background, where any light counts 100%):
+// dark grey, off the error scale.
+constexpr glm::vec4 kUnlitBlock(0.12f, 0.12f, 0.12f, 1.0f);
+
+// The blocks' relative errors as colours (error_colour); those without light kUnlitBlock.
 Image error_colours(const Image& map, double tolerance) {
   Image out(map.width, map.height);
   for (size_t i = 0; i < map.pixels.size(); ++i)
-    out.pixels[i] = error_colour(float(map.pixels[i].r / tolerance));
+    out.pixels[i] =
+        map.pixels[i].a > 0.5f ? error_colour(float(map.pixels[i].r / tolerance)) : kUnlitBlock;
   return out;
 }
 

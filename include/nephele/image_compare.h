@@ -59,7 +59,8 @@ double luminance_error(const Image& image, const Image& reference);
 struct BlockLuminanceError {
   double mean_bias = 0.0;   // mean luminance of the image over the reference's, minus 1
   double mean_error = 0.0;  // sum over blocks of |L_image - L_reference| / sum of L_reference
-  double p95_error = 0.0;   // the 95th percentile of the blocks' |L_image / L_reference - 1|
+  // The 95th percentile of |L_image / L_reference - 1| over the blocks with light (below).
+  double p95_error = 0.0;
   double max_error = 0.0;   // the largest block's
   // The largest among the blocks with light: those whose reference is at least 1% of the mean
   // block's (a black background, where any light counts as 100%, left out).
@@ -67,7 +68,9 @@ struct BlockLuminanceError {
   // The reference's own noise in the same measure (its standard error summed over blocks, over
   // the sum of its luminance) when the variance of its pixels' means is given, else 0.
   double reference_noise = 0.0;
-  Image map;  // one pixel per block: |L_image / L_reference - 1| in r, g and b; a 1
+  // One pixel per block: |L_image / L_reference - 1| in r, g and b; a 1 for a block with light,
+  // 0 for one without.
+  Image map;
 };
 
 // Blocks of block x block pixels (the last row and column of blocks may be smaller). Same

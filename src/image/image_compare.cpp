@@ -209,12 +209,20 @@ BlockLuminanceError block_luminance_error(const Image& image, const Image& refer
   out.mean_error = sum_reference > 0.0 ? sum_abs / sum_reference : (sum_abs > 0.0 ? 1.0 : 0.0);
   out.reference_noise = sum_reference > 0.0 ? sum_noise / sum_reference : 0.0;
   const double lit = 0.01 * sum_reference / double(reference_blocks.size());
-  for (size_t i = 0; i < relative.size(); ++i)
+  std::vector<double> lit_relative;
+  for (size_t i = 0; i < relative.size(); ++i) {
     if (reference_blocks[i] > 0.0 && reference_blocks[i] >= lit)
-      out.max_lit_error = std::max(out.max_lit_error, relative[i]);
-  std::sort(relative.begin(), relative.end());
-  out.p95_error = relative[std::min(relative.size() - 1, size_t(0.95 * double(relative.size())))];
-  out.max_error = relative.back();
+      lit_relative.push_back(relative[i]);
+    else
+      out.map.pixels[i].a = 0.0f;
+  }
+  if (!lit_relative.empty()) {
+    std::sort(lit_relative.begin(), lit_relative.end());
+    out.max_lit_error = lit_relative.back();
+    out.p95_error =
+        lit_relative[std::min(lit_relative.size() - 1, size_t(0.95 * double(lit_relative.size())))];
+  }
+  out.max_error = *std::max_element(relative.begin(), relative.end());
   return out;
 }
 

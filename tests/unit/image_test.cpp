@@ -449,6 +449,10 @@ TEST(BlockLuminanceError, MeasuresTheBlocksMeansAgainstTheReference) {
   e = nephele::block_luminance_error(glimmer, background, {}, 8);
   EXPECT_EQ(e.max_error, 1.0);
   EXPECT_NEAR(e.max_lit_error, 0.05, 1e-5);
+  EXPECT_NEAR(e.p95_error, 0.05, 1e-5);  // over the lit blocks too
+  // The map marks the unlit block (a = 0), which the validation's error map draws grey.
+  EXPECT_EQ(e.map.at(1, 0).a, 0.0f);
+  EXPECT_EQ(e.map.at(0, 0).a, 1.0f);
   EXPECT_THROW(nephele::block_luminance_error(reference, filled(8, 8, glm::vec4(1.0f)), {}, 8),
                nephele::InputError);
 }
