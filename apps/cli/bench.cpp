@@ -189,6 +189,15 @@ void print_realtime(const nlohmann::json& r) {
               r["flight"]["speed_mps"].get<double>(), r["flight"]["turn_deg_s"].get<double>(),
               r["baseline_ms"].get<double>(), r["baseline_fps"].get<double>(),
               r["speedup_vs_baseline"].get<double>());
+  if (r.contains("flight_from_still")) {
+    const std::vector<double> e = r["flight_from_still"].get<std::vector<double>>();
+    const size_t worst = size_t(std::max_element(e.begin(), e.end()) - e.begin());
+    std::printf(
+        "  flight from a still, against stills of its frames: frame 1 %.2f%%, frame %zu "
+        "%.2f%%, worst %.2f%% (frame %zu): %.2fx the last ten's mean (target <= 2)\n",
+        100.0 * e.front(), e.size(), 100.0 * e.back(), 100.0 * e[worst], worst + 1,
+        r["flight_from_still_ratio"].get<double>());
+  }
   std::printf("  passes, still (ms):  %s\n  passes, flying (ms): %s\n",
               pass_list(r["static_passes_ms"]).c_str(), pass_list(r["moving_passes_ms"]).c_str());
   std::fflush(stdout);
@@ -303,6 +312,7 @@ int run_bench(const BenchOptions& options) {
   if (options.quick) {
     settings.static_frames = settings.moving_frames = 8;
     settings.error_frames = 1;
+    settings.still_flight_frames = 3;
   }
   // One step a measured frame of the real-time part (its error frames print a line each: the
   // bar makes way for them) and one a configuration of the sweeps.

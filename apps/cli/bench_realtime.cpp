@@ -87,6 +87,24 @@ double error_against_reference(Renderer& reference, const Scene& scene, const Im
 
 }  // namespace
 
+FlightFromStill flight_from_still(const RendererOptions& options, const Scene& start,
+                                  const RealtimeSettings& f) {
+  Renderer flight(options);
+  Renderer stills(options);
+  FlightFromStill out;
+  flight.render(start);
+  for (int i = 1; i <= f.still_flight_frames; ++i) {
+    const Scene s = flight_at(start, f, float(i) * f.frame_dt_s);
+    out.errors.push_back(luminance_error(flight.render_next(s).color, stills.render(s).color));
+  }
+  if (out.errors.empty()) return out;
+  const size_t last = std::min<size_t>(10, out.errors.size());
+  const double settled =
+      std::accumulate(out.errors.end() - long(last), out.errors.end(), 0.0) / double(last);
+  out.ratio = *std::max_element(out.errors.begin(), out.errors.end()) / std::max(settled, 1e-12);
+  return out;
+}
+
 Scene reference_scene(const Scene& scene) {
   Scene r = scene;
   r.quality.march_stride = 1;
@@ -174,6 +192,11 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
     }
   }
 
+  if (f.errors && f.still_flight_frames > 0) {
+    const FlightFromStill c = flight_from_still(options, start, f);
+    out["flight_from_still"] = c.errors;
+    out["flight_from_still_ratio"] = c.ratio;
+  }
   out["device"] = renderer.device_name();
   out["width"] = base.output.width;
   out["height"] = base.output.height;

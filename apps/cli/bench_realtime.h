@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "nephele/renderer.h"
 
@@ -17,6 +18,9 @@ struct RealtimeSettings {
   int static_frames = 200;
   int moving_frames = 200;
   int error_frames = 3;      // flight frames compared with a reference
+  // Frames of a flight from a still, each compared with a still of its moment (the issue's
+  // target: none further from its still than twice the mean of the last ten); 0: none.
+  int still_flight_frames = 20;
   bool errors = true;        // false: no comparison with the reference (errors are null)
   float speed_mps = 100.0f;  // flight speed along the view's heading
   float turn_deg_s = 20.0f;  // yaw rate
@@ -32,8 +36,19 @@ Scene reference_scene(const Scene& scene);
 
 // Runs the measurements on `renderer` (a second renderer draws the references) and returns
 // static_fps, moving_fps, static_error, moving_error, speedup_vs_baseline, the underlying
-// milliseconds and the device.
+// milliseconds and the device; with errors, also flight_from_still (each frame's
+// luminance_error against a still of its moment, from frame 1) and flight_from_still_ratio
+// (the largest over the mean of the last ten).
 nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& options,
                                 const Scene& scene, const RealtimeSettings& settings);
+
+// A flight of settings.still_flight_frames frames from a still of `start`, each frame against
+// a still of its moment (another renderer's).
+struct FlightFromStill {
+  std::vector<double> errors;  // frames 1 ... n
+  double ratio = 0.0;          // the largest over the mean of the last ten (or all, if fewer)
+};
+FlightFromStill flight_from_still(const RendererOptions& options, const Scene& start,
+                                  const RealtimeSettings& settings);
 
 }  // namespace nephele::cli

@@ -448,6 +448,16 @@ TEST_F(CliTest, BenchQuickWritesCsvJsonAndPlot) {
     EXPECT_GT(j[key].get<double>(), 0.0) << key;
     EXPECT_LT(j[key].get<double>(), 0.5) << key;
   }
+  // A flight from a still against stills of its frames (3 with --quick): the target,
+  // no frame further than twice the last frames' mean.
+  ASSERT_EQ(j["flight_from_still"].size(), 3u);
+  for (const nlohmann::json& e : j["flight_from_still"]) {
+    EXPECT_GT(e.get<double>(), 0.0);
+    EXPECT_LT(e.get<double>(), 0.5);
+  }
+  EXPECT_GE(j["flight_from_still_ratio"].get<double>(), 1.0);
+  EXPECT_LE(j["flight_from_still_ratio"].get<double>(), 2.0);
+  EXPECT_NE(r.output.find("flight from a still"), std::string::npos) << r.output;
   EXPECT_FALSE(j["device"].get<std::string>().empty());
   ASSERT_EQ(j["sweeps"].size(), size_t(rows));
   for (const nlohmann::json& row : j["sweeps"])
@@ -481,6 +491,7 @@ TEST_F(CliTest, BenchRealtimeOnlyWritesTheJsonFile) {
     EXPECT_TRUE(j.contains(key)) << key;
   for (const char* key : {"static_error", "moving_error"})
     EXPECT_TRUE(j.contains(key) && j[key].is_null()) << key;
+  EXPECT_FALSE(j.contains("flight_from_still"));
   EXPECT_FALSE(j["feature_variants"].get<bool>());
   EXPECT_NE(r.output.find("still camera"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("flight frame"), std::string::npos) << r.output;  // no error frames
