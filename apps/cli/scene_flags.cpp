@@ -55,10 +55,8 @@ const std::vector<FlagSpec>& flag_specs() {
        "FILE",
        "scene file (TOML); relative paths inside it are relative to its folder"},
       {"--preset", &F::preset, "", {}, "NAME", "built-in scene to start from (default: default)"},
-      {"--width", &F::width, "output.width", TO(output.width), "N",
-       "image width (pixels)"},
-      {"--height", &F::height, "output.height", TO(output.height), "N",
-       "image height (pixels)"},
+      {"--width", &F::width, "output.width", TO(output.width), "N", "image width (pixels)"},
+      {"--height", &F::height, "output.height", TO(output.height), "N", "image height (pixels)"},
       {"--camera-pos", &F::camera_pos, "camera.position_m", TO(camera.position_m), "E,N,U",
        "camera position (m): east, north, up"},
       {"--camera-altitude-m", &F::camera_altitude_m, "camera.altitude_m", TO(camera.position_m.z),
@@ -94,17 +92,19 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--sun-illuminance-lux", &F::sun_illuminance_lux, "sun.illuminance_lux",
        TO(sun.illuminance_lux), "LUX",
        "sunlight at the top of the atmosphere (lux); 128000 the solar constant"},
-      {"--sun-illuminance", &F::sun_illuminance, "", {}, "X",
+      {"--sun-illuminance",
+       &F::sun_illuminance,
+       "",
+       {},
+       "X",
        "the old radiance scale (20 the sun): X x 6400 lux; use --sun-illuminance-lux"},
-      {"--coverage", &F::coverage, "clouds.coverage", TO(clouds.coverage), "C",
-       "cloud coverage"},
+      {"--coverage", &F::coverage, "clouds.coverage", TO(clouds.coverage), "C", "cloud coverage"},
       {"--cloud-type", &F::cloud_type, "clouds.type", TO(clouds.type), "T",
        "cloud type: 0 stratus, 0.25 stratocumulus, 0.5 altocumulus, 0.75 cumulus, 1 "
        "cumulonimbus"},
-      {"--precipitation", &F::precipitation, "clouds.precipitation", TO(clouds.precipitation),
-       "P", "precipitation: grows cumulonimbus"},
-      {"--density", &F::density, "clouds.density", TO(clouds.density), "D",
-       "cloud density scale"},
+      {"--precipitation", &F::precipitation, "clouds.precipitation", TO(clouds.precipitation), "P",
+       "precipitation: grows cumulonimbus"},
+      {"--density", &F::density, "clouds.density", TO(clouds.density), "D", "cloud density scale"},
       {"--cloud-bottom-m", &F::cloud_bottom_m, "clouds.bottom_altitude_m",
        TO(clouds.bottom_altitude_m), "M", "cloud layer bottom above the ground (m)"},
       {"--cloud-top-m", &F::cloud_top_m, "clouds.top_altitude_m", TO(clouds.top_altitude_m), "M",
@@ -127,16 +127,19 @@ const std::vector<FlagSpec>& flag_specs() {
        "powder effect strength"},
       {"--ambient", &F::ambient, "clouds.ambient_strength", TO(clouds.ambient_strength), "X",
        "sky ambient light on clouds"},
-      {"--two-stream-light", &F::two_stream_light, "clouds.two_stream_light",
-       TO(clouds.two_stream_light), "true|false",
-       "false: Wrenninge's octaves, powder and a conservative diffuse term (default); true "
-       "(experimental): single scattering and the two-stream field along the sun's chord"},
+      {"--two-stream-light",
+       &F::two_stream_light,
+       "",
+       {},
+       "true|false",
+       "the old switch: true is --cloud-lighting two-stream, false seed; use --cloud-lighting"},
       {"--wind-mps", &F::wind_mps, "clouds.wind_mps", TO(clouds.wind_mps), "E,N",
        "wind velocity (m/s): east, north"},
       {"--wind-shear-mps", &F::wind_shear_mps, "clouds.wind_shear_mps", TO(clouds.wind_shear_mps),
        "E,N", "the wind's growth from the cloud layer's bottom to its top (m/s)"},
       {"--detail-drift-mps", &F::detail_drift_mps, "clouds.detail_drift_mps",
-       TO(clouds.detail_drift_mps), "E,N,U", "the detail noise's motion over the clouds (m/s): east, north, up"},
+       TO(clouds.detail_drift_mps), "E,N,U",
+       "the detail noise's motion over the clouds (m/s): east, north, up"},
       {"--flow-speed-mps", &F::flow_speed_mps, "clouds.flow_speed_mps", TO(clouds.flow_speed_mps),
        "V", "flow map swirls' speed (m/s); 0 = none"},
       {"--high-coverage", &F::high_coverage, "high_clouds.coverage", TO(high_clouds.coverage), "C",
@@ -145,8 +148,8 @@ const std::vector<FlagSpec>& flag_specs() {
        "high layer's cloud type, [0, 1] (as --cloud-type)"},
       {"--high-bottom-m", &F::high_bottom_m, "high_clouds.bottom_altitude_m",
        TO(high_clouds.bottom_altitude_m), "M", "high layer's bottom above the ground (m)"},
-      {"--high-top-m", &F::high_top_m, "high_clouds.top_altitude_m",
-       TO(high_clouds.top_altitude_m), "M", "high layer's top above the ground (m)"},
+      {"--high-top-m", &F::high_top_m, "high_clouds.top_altitude_m", TO(high_clouds.top_altitude_m),
+       "M", "high layer's top above the ground (m)"},
       {"--high-wind-mps", &F::high_wind_mps, "high_clouds.wind_mps", TO(high_clouds.wind_mps),
        "E,N", "high layer's wind (m/s): east, north"},
       {"--weather-map", &F::weather_map, "clouds.weather_map", TO(clouds.weather_map), "FILE",
@@ -188,13 +191,14 @@ const std::vector<FlagSpec>& flag_specs() {
       {"--terrain", &F::terrain, "terrain.file", TO(terrain.file), "FILE|mountains",
        "a terrain under the clouds: a heightfield (.png 16-bit grey, .exr, .tif GeoTIFF placed "
        "by its coordinates, .obj mesh) or mountains (procedural)"},
-      {"--terrain-extent-m", &F::terrain_extent_m, "terrain.extent_m", TO(terrain.extent_m),
-       "W,H", "the terrain's size east-west, north-south (m; PNG, EXR, mountains)"},
-      {"--terrain-center-m", &F::terrain_center_m, "terrain.center_m", TO(terrain.center_m),
-       "E,N", "the terrain's centre (m; default the origin; not GeoTIFF)"},
+      {"--terrain-extent-m", &F::terrain_extent_m, "terrain.extent_m", TO(terrain.extent_m), "W,H",
+       "the terrain's size east-west, north-south (m; PNG, EXR, mountains)"},
+      {"--terrain-center-m", &F::terrain_center_m, "terrain.center_m", TO(terrain.center_m), "E,N",
+       "the terrain's centre (m; default the origin; not GeoTIFF)"},
       {"--terrain-height-m", &F::terrain_height_m, "terrain.height_m", TO(terrain.height_m), "H",
        "the height of the file's largest value (PNG, EXR) or of the highest peak (mountains), m"},
-      {"--terrain-method", &F::terrain_method, "terrain.method", TO(terrain.method), "raycast|raster",
+      {"--terrain-method", &F::terrain_method, "terrain.method", TO(terrain.method),
+       "raycast|raster",
        "how the terrain is found: raycast (default; rays walk a pyramid of maxima) or raster "
        "(seed 002's mesh drawn with depth)"},
       {"--mode", &F::mode, "quality.mode", TO(quality.mode), "default|baseline",
@@ -204,7 +208,8 @@ const std::vector<FlagSpec>& flag_specs() {
        "the model drawing the [clouds] layer: nephele (default) or a classical one of seed 004: "
        "blinn (Blinn 1982: a layer of small particles, single scattering), gardner (Gardner "
        "1985: textured ellipsoids, sky plane or cirrus), gardner-quadrics (his impressionistic "
-       "scenes: convex objects of a quadric and planes, ray cast), kajiya (Kajiya and Von Herzen 1984: a light "
+       "scenes: convex objects of a quadric and planes, ray cast), kajiya (Kajiya and Von Herzen "
+       "1984: a light "
        "array, then Romberg integration along each eye ray, on nephele's density) or nishita "
        "(Nishita and Nakamae 1996: metaball cumulus, second-order scattering and sky light); "
        "see [classic]"},
@@ -221,8 +226,7 @@ const std::vector<FlagSpec>& flag_specs() {
        "force, slow)"},
       {"--turbidity", &F::turbidity, "atmosphere.turbidity", TO(atmosphere.turbidity), "T",
        "Preetham sky's turbidity"},
-      {"--conditions", &F::conditions, "conditions.mode", TO(conditions.mode),
-       "off|artist|overlay",
+      {"--conditions", &F::conditions, "conditions.mode", TO(conditions.mode), "off|artist|overlay",
        "time-of-day keyframes (seed 003): artist = instead of the physical sky, overlay = their "
        "fog and stars on top of it"},
       {"--weather", &F::weather, "conditions.weather", TO(conditions.weather), "W",
@@ -251,7 +255,11 @@ const std::vector<FlagSpec>& flag_specs() {
        TO(output.adaptation_ev_per_s), "R",
        "auto exposure's adaptation between the frames of a sequence (EV per second of scene "
        "time); 0 = at once"},
-      {"--exposure", &F::exposure, "", {}, "X",
+      {"--exposure",
+       &F::exposure,
+       "",
+       {},
+       "X",
        "the old linear exposure: --ev100 log2(5333 / X), manual; use --ev100"},
   };
   return specs;
@@ -412,6 +420,12 @@ void check_conflicts(const SceneFlags& flags) {
     throw InputError(
         "--sun-illuminance cannot be combined with --sun-illuminance-lux (the old scale is "
         "lux / 6400)");
+  if (flags.two_stream_light)
+    for (const auto& [key, value] : flags.table_values)
+      if (key == "clouds.lighting")
+        throw InputError(
+            "--two-stream-light cannot be combined with --cloud-lighting (true is two-stream, "
+            "false seed)");
   if (flags.exposure && flags.ev100)
     throw InputError("--exposure cannot be combined with --ev100 (the old exposure X is EV100 "
                      "log2(5333 / X))");
@@ -422,7 +436,8 @@ void check_conflicts(const SceneFlags& flags) {
         "--fov-deg, --hfov and --focal-length-mm each set the field of view; give one of them");
 }
 
-// --sun-illuminance and --exposure, the old scales, read as scene files read their keys.
+// --sun-illuminance and --exposure, the old scales, and --two-stream-light, the old lighting
+// switch, read as scene files read their keys.
 void apply_legacy_light(const SceneFlags& flags, Scene& scene) {
   if (flags.sun_illuminance) {
     const std::string& text = *flags.sun_illuminance;
@@ -441,6 +456,11 @@ void apply_legacy_light(const SceneFlags& flags, Scene& scene) {
            "must be in [5e-06, 1e+06] (the old linear exposure, read as --ev100 log2(5333 / X) "
            "in [-7.55, 30])");
     scene.output.ev100 = float(ev100_from_legacy_exposure(value));
+  }
+  if (flags.two_stream_light) {
+    bool two_stream = false;
+    parse_into("--two-stream-light", *flags.two_stream_light, two_stream);
+    scene.clouds.lighting = two_stream ? "two-stream" : "seed";
   }
   // A manual exposure turns the meter off unless --auto-exposure says otherwise.
   if ((flags.exposure || flags.ev100) && !flags.auto_exposure) scene.output.auto_exposure = false;

@@ -183,14 +183,16 @@ struct CloudParams {
   // clouds lean. high_clouds, moving with its own wind, reads at each point the map 0.37 tiles
   // east and 0.61 tiles north of it, so its clouds do not stack over the low ones.
   std::string weather_map;
-  // How the clouds' multiple scattering is approximated: false (the default), Wrenninge's four
-  // octaves with the powder term and a conservative diffuse term; true (experimental, stop 33),
-  // single scattering plus the two-stream field along the sun's chord through each sample
-  // (common/clouds_inc.glsl, cloud_two_stream_fluxes: the light going on and the light
-  // scattered back towards the sun, with absorption), closer to the path tracer on six of the
-  // eight validation views but not yet consistent between the light volume and a light march
-  // (docs/validation.md).
-  bool two_stream_light = false;
+  // How the clouds scatter the sun's light (issue 42). "seed" (the default): Wrenninge's four
+  // octaves with the powder term and a conservative diffuse term, as seed 002 lights them.
+  // "two-stream" (experimental, stop 33): single scattering plus the two-stream field along
+  // the sun's chord through each sample (common/clouds_inc.glsl, cloud_two_stream_fluxes: the
+  // light going on and the light scattered back towards the sun, with absorption), nothing
+  // counted twice; closer to the path tracer on seven of the eight validation views with
+  // droplets, not yet within the issue's 5% (docs/validation.md). The old key
+  // clouds.two_stream_light = true / false reads as "two-stream" / "seed".
+  std::string lighting = "seed";
+  bool two_stream() const { return lighting == "two-stream"; }
   // What the clouds are made of (issue 42). "seed": the seed's optics, sigma_t = density field
   // x extinction_per_m, `albedo`, and two Henyey-Greenstein lobes (phase_g_*). "droplets":
   // water droplets, each genus with its liquid water content and droplet effective radius

@@ -366,9 +366,12 @@ const std::vector<Section>& scene_sections() {
                 closed(0, 1)),
           FIELD(clouds, ambient_strength, "sky light on the clouds, times the sky's",
                 closed(0, 100)),
-          FIELD(clouds, two_stream_light,
-                "false: Wrenninge's octaves, the powder term and a conservative diffuse term; true "
-                "(experimental): single scattering and the two-stream field along the sun's chord"),
+          FIELD(clouds, lighting,
+                "how the clouds scatter sunlight: \"seed\" (Wrenninge's octaves, the powder term "
+                "and a conservative diffuse term) or \"two-stream\" (experimental: single "
+                "scattering and the two-stream field along the sun's chord); the old "
+                "two_stream_light = true / false reads as \"two-stream\" / \"seed\"",
+                {}, {"seed", "two-stream"}, "cloud-lighting"),
           FIELD(clouds, optics,
                 "what the clouds are made of: \"seed\" (sigma_t = density field x "
                 "extinction_per_m, albedo, two Henyey-Greenstein lobes) or \"droplets\" (water "
@@ -401,7 +404,7 @@ const std::vector<Section>& scene_sections() {
                 "RGBA PNG path (R coverage, G storm cells, B type around clouds.type, A density x "
                 "2); row 0 north, columns west to east, centre at east 0, north 0 and moving with "
                 "the wind; empty = procedural")},
-         {}},
+         {"two_stream_light"}},
         {"droplets",
          {FIELD(droplets, stratus_water_g_m3,
                 "clouds.optics = \"droplets\": stratus liquid water content where the density "

@@ -360,6 +360,23 @@ class SceneReader {
     if (section.name == "sun") read_sun_angles(table, scene);
     if (section.name == "sun") read_legacy_illuminance(table, scene);
     if (section.name == "output") read_legacy_exposure(table, scene);
+    if (section.name == "clouds") read_legacy_lighting(table, scene);
+  }
+
+  // clouds.two_stream_light, the old switch: true is lighting = "two-stream", false "seed".
+  void read_legacy_lighting(const toml::table& table, Scene& scene) const {
+    const toml::node* old = table.get("two_stream_light");
+    if (!old) return;
+    if (table.contains("lighting"))
+      fail(old->source(),
+           "clouds.two_stream_light and clouds.lighting are both given; give lighting "
+           "(two_stream_light = true is lighting = \"two-stream\", false is \"seed\")");
+    const auto* value = old->as_boolean();
+    if (!value)
+      fail_value(*old, "clouds.two_stream_light",
+                 "expected true or false (the old switch; clouds.lighting = \"two-stream\" or "
+                 "\"seed\" replaces it)");
+    scene.clouds.lighting = value->get() ? "two-stream" : "seed";
   }
 
   // The field of view's form: at most one of fov_deg, horizontal_fov_deg and focal_length_mm

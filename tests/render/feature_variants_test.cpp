@@ -35,7 +35,7 @@ class FeatureVariantsTest : public RenderTest {};
 
 TEST_F(FeatureVariantsTest, EachSceneDrawsWhatTheFullShadersDraw) {
   Scene voxels = small("voxel-cumulus");  // voxel clouds, lit by the two-stream light
-  voxels.clouds.two_stream_light = true;
+  voxels.clouds.lighting = "two-stream";
   Scene artist = small("mountains");  // terrain and shafts, under the keyframes' sky and fog
   artist.conditions.mode = nephele::ConditionsMode::Artist;
   artist.conditions.hour = 18.5f;

@@ -217,8 +217,8 @@ TEST_F(RenderTest, AboveTheLayerLookingDownSeesCloudTopsBrighterThanTheGround) {
   EXPECT_GT(cloud / n_cloud, 1.5 * ground / n_ground);
 }
 
-// The experimental two-stream light (clouds.two_stream_light) is selectable and does what the
-// path tracer asked for under the noon cumulus: the octave model's clouds there were 2.2x the
+// The experimental two-stream light (clouds.lighting = "two-stream") is selectable and does what
+// the path tracer asked for under the noon cumulus: the octave model's clouds there were 2.2x the
 // reference, its whole image +74% (docs/validation.md); the two-stream one's +12%. Measured
 // (80 x 50): the image 0.70x the octave model's.
 TEST_F(RenderTest, TwoStreamLightDarkensTheNoonCumulusTowardsThePathTracer) {
@@ -227,7 +227,7 @@ TEST_F(RenderTest, TwoStreamLightDarkensTheNoonCumulusTowardsThePathTracer) {
   s.output.width = 80;
   s.output.height = 50;
   const Frame octaves = render(s);
-  s.clouds.two_stream_light = true;
+  s.clouds.lighting = "two-stream";
   const Frame two_stream = render(s);
   const double ratio = two_stream.stats.mean_luminance / octaves.stats.mean_luminance;
   std::printf("two-stream / octaves: mean luminance %.3f\n", ratio);
@@ -244,7 +244,7 @@ TEST_F(RenderTest, SunlitGroundUnderCumulusGetsTheCloudsLight) {
   Scene s = nephele::load_preset("default");
   s.sun.direction = {0.2113f, -0.3660f, 0.9063f};  // 65 degrees up, in the south-south-east
   s.clouds.optics = "droplets";
-  s.clouds.two_stream_light = true;
+  s.clouds.lighting = "two-stream";
   s.output.width = 48;
   s.output.height = 30;
   s.camera.position_m = {0.0f, 0.0f, 300.0f};
@@ -298,7 +298,7 @@ TEST_F(RenderTest, ShadowsOfABrokenFieldKeepTheGapsBlueSkyLight) {
   // shadows were 23% too dark).
   Scene s = nephele::load_preset("broken");
   s.clouds.optics = "droplets";
-  s.clouds.two_stream_light = true;
+  s.clouds.lighting = "two-stream";
   s.output.width = 64;
   s.output.height = 40;
   s.camera.position_m.z = 300.0f;  // looking down on 1.0 x 0.7 km of ground

@@ -149,7 +149,7 @@ TEST(Droplets, TheFrameCarriesEachGenusExtinctionAndTheDropletsPhase) {
   // The seed's lighting carries its diffuse light with the seed's droplet asymmetry; the
   // two-stream light with the lobes' own mean cosine (the lab's medium).
   EXPECT_FLOAT_EQ(s.cloud_droplets.w, glsl::CLOUD_DROPLET_G);
-  seed.clouds.two_stream_light = true;
+  seed.clouds.lighting = "two-stream";
   EXPECT_FLOAT_EQ(make_frame_params(seed, 0).cloud_droplets.w, s.cloud_droplets.z);
 }
 

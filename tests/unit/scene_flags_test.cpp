@@ -130,6 +130,10 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
        [](const Scene& s) { return s.sun.illuminance_lux == 30.0f * 6400.0f; }},
       {{"--sun-illuminance-lux", "1e5"},
        [](const Scene& s) { return s.sun.illuminance_lux == 1e5f; }},
+      {{"--cloud-lighting", "two-stream"},
+       [](const Scene& s) { return s.clouds.lighting == "two-stream"; }},
+      {{"--two-stream-light", "true"},  // the old switch
+       [](const Scene& s) { return s.clouds.lighting == "two-stream"; }},
       {{"--coverage", "0.9"}, [](const Scene& s) { return s.clouds.coverage == 0.9f; }},
       {{"--density", "0.1"}, [](const Scene& s) { return s.clouds.density == 0.1f; }},
       {{"--cloud-bottom-m", "900"},
@@ -315,6 +319,11 @@ TEST(SceneFlags, MalformedValuesNameTheFlag) {
   EXPECT_EQ(resolve_error({"--march-stride", "2.5"}),
             "--march-stride 2.5: expected an integer: 1, 2 or 4");
   EXPECT_EQ(resolve_error({"--seed", "-1"}), "--seed -1: expected an integer in [0, 4294967295]");
+  EXPECT_EQ(resolve_error({"--two-stream-light", "yes"}),
+            "--two-stream-light yes: expected true or false");
+  EXPECT_EQ(resolve_error({"--two-stream-light", "true", "--cloud-lighting", "seed"}),
+            "--two-stream-light cannot be combined with --cloud-lighting (true is two-stream, "
+            "false seed)");
   EXPECT_EQ(resolve_error({"--mode", "fast"}), "--mode fast: expected default or baseline");
   EXPECT_EQ(resolve_error({"--voxel-march", "three_phase"}),
             "--voxel-march three_phase: expected plain or three-phase");

@@ -368,7 +368,7 @@ TEST(SceneToml, UnknownKeyListsAllowedKeys) {
                           0),
             0u)
       << message;
-  EXPECT_NE(message.find("weather_map)"), std::string::npos) << message;
+  EXPECT_NE(message.find("weather_map, two_stream_light)"), std::string::npos) << message;
 }
 
 TEST(SceneToml, UnknownTopLevelKeyAndTable) {
@@ -466,6 +466,36 @@ TEST(SceneToml, SunAnglesReplaceDirection) {
   SunAngles angles = sun_angles_from_direction(scene.sun.direction);
   EXPECT_NEAR(angles.elevation_deg, default_elevation, 1e-4);
   EXPECT_NEAR(angles.azimuth_deg, 90.0, 1e-4);
+}
+
+// clouds.lighting chooses the clouds' lighting; the old switch two_stream_light reads as it,
+// and both together, or a switch that is not true or false, are refused naming the new key.
+TEST(SceneToml, LightingReplacesTheOldTwoStreamSwitch) {
+  EXPECT_EQ(Scene{}.clouds.lighting, "seed");
+  EXPECT_EQ(parse_scene_toml("[clouds]\nlighting = \"two-stream\"\n", "s.toml").clouds.lighting,
+            "two-stream");
+  EXPECT_EQ(parse_scene_toml("[clouds]\ntwo_stream_light = true\n", "s.toml").clouds.lighting,
+            "two-stream");
+  EXPECT_EQ(parse_scene_toml("[clouds]\ntwo_stream_light = false\n", "s.toml").clouds.lighting,
+            "seed");
+  EXPECT_NE(parse_error("[clouds]\ntwo_stream_light = true\nlighting = \"seed\"\n")
+                .find("clouds.two_stream_light and clouds.lighting are both given; give lighting"),
+            std::string::npos);
+  EXPECT_NE(parse_error("[clouds]\ntwo_stream_light = 1\n")
+                .find("clouds.two_stream_light = 1: expected true or false (the old switch; "
+                      "clouds.lighting"),
+            std::string::npos);
+  EXPECT_NE(validate_error([](Scene& s) {
+              s.clouds.lighting = "octaves";
+            }).find("clouds.lighting = \"octaves\": must be \"seed\" or \"two-stream\""),
+            std::string::npos);
+  // Written back as the new key only.
+  Scene s;
+  s.clouds.lighting = "two-stream";
+  const std::string text = scene_to_toml(s);
+  EXPECT_NE(text.find("lighting = \"two-stream\""), std::string::npos);
+  EXPECT_EQ(text.find("\ntwo_stream_light"), std::string::npos);
+  EXPECT_EQ(parse_scene_toml(text, "s.toml").clouds.lighting, "two-stream");
 }
 
 TEST(SceneToml, SunFormsConflictAndAnglesAreChecked) {
