@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <optional>
 #include <map>
 #include <numeric>
 #include <vector>
@@ -176,16 +174,6 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
       const Frame frame = flight.render_next(s, compare);
       if (!compare) continue;
       const double e = error_against_reference(reference, s, frame.color);
-      if (const char* dump = std::getenv("NEPHELE_BENCH_DUMP")) {
-        const std::string d = dump;
-        write_image(frame.color, d + "/frame" + std::to_string(flight_frame) + ".exr", std::nullopt);
-        write_image(reference.render(reference_scene(s)).color, d + "/ref" + std::to_string(flight_frame) + ".exr", std::nullopt);
-        Renderer fresh(options);
-        write_image(fresh.render(s).color, d + "/still" + std::to_string(flight_frame) + ".exr", std::nullopt);
-        Scene s4 = s; s4.quality.light_volume_km = 0;
-        Renderer fresh2(options);
-        write_image(fresh2.render(s4).color, d + "/stillnolv" + std::to_string(flight_frame) + ".exr", std::nullopt);
-      }
       if (f.on_step) f.on_step();
       std::printf("  flight frame %d: error %.4f\n", flight_frame, e);
       moving_error = std::max(moving_error, e);
