@@ -1,6 +1,5 @@
 // nephele CLI — scene flags: registration, parsing, application to a Scene.
 #include "scene_flags.h"
-#include "voxel/voxel_grid.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -16,6 +15,8 @@
 #include "nephele/error.h"
 #include "nephele/exposure.h"
 #include "nephele/scene_io.h"
+#include "scene/scene_fields.h"
+#include "voxel/voxel_grid.h"
 
 namespace nephele::cli {
 namespace {
@@ -294,11 +295,6 @@ bool is_integer_text(std::string_view text) {
   if (text.starts_with('+') || text.starts_with('-')) text.remove_prefix(1);
   return !text.empty() &&
          std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
-// " in [1, 16384]" for a range, ": 1, 2 or 4" for choices (as the scene files' messages).
-std::string allowed_phrase(const std::string& allowed) {
-  return (allowed[0] == '[' || allowed[0] == '(' ? " in " : ": ") + allowed;
 }
 
 int64_t to_integer(const std::string& flag, const std::string& text, int64_t min, int64_t max) {
@@ -653,7 +649,7 @@ Scene resolve_scene(const SceneFlags& flags) {
             if constexpr (std::is_same_v<Value, int> || std::is_same_v<Value, uint32_t>)
               if (const SceneParameter* p = find_scene_parameter(spec.key);
                   p && !p->allowed_values.empty() && !is_integer_text(*text))
-                fail(spec.flag, *text, "expected an integer" + allowed_phrase(p->allowed_values));
+                fail(spec.flag, *text, nephele::scene_detail::expected_integer(p->allowed_values));
             parse_into(spec.flag, *text, target(scene));
           }
         },

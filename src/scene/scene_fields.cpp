@@ -868,6 +868,12 @@ std::string allowed_text(const Range& range, const std::vector<std::string_view>
   return text;
 }
 
+std::string expected_integer(const std::string& allowed) {
+  if (allowed.empty()) return "expected an integer";
+  return std::string("expected an integer") +
+         (allowed[0] == '[' || allowed[0] == '(' ? " in " : ": ") + allowed;
+}
+
 std::string allowed_text(const Field& field) {
   return allowed_text(field.range, field.choices, value_shape(field.access));
 }

@@ -73,6 +73,9 @@ std::string allowed_text(const Range& range, const std::vector<std::string_view>
 // "[0, 1]", "(0, 100]", "0 or [1, 1e+07]", "[-200, 200] each" (a vector), "1, 2 or 4",
 // "\"off\", \"direct\" or \"tiles\"" (quoted for strings); "" when anything goes.
 std::string allowed_text(const Field& field);
+// "expected an integer in [1, 16384]", "expected an integer: 1, 2 or 4", "expected an integer"
+// for `allowed` (allowed_text's) "[1, 16384]", "1, 2 or 4", "".
+std::string expected_integer(const std::string& allowed);
 // The unit the key's name ends with (its suffix, by the project's naming): "m", "km", "deg",
 // "m/s", "s", "1/m", "lux", "mm", "cd/m^2", "sr", "EV", "EV/s", "1/m^3"; "" for none.
 std::string_view unit_of(std::string_view name);

@@ -440,14 +440,8 @@ class SceneReader {
               Scene& scene) const {
     // Not an integer where one is expected: the key's own range, not its type's.
     if (scene_detail::value_shape(field.access) == scene_detail::ValueShape::kInteger &&
-        !node.is_integer()) {
-      const std::string allowed = scene_detail::allowed_text(field);
-      fail_value(node, key,
-                 "expected an integer" +
-                     (allowed.empty()
-                          ? std::string()
-                          : (allowed[0] == '[' || allowed[0] == '(' ? " in " : ": ") + allowed));
-    }
+        !node.is_integer())
+      fail_value(node, key, scene_detail::expected_integer(scene_detail::allowed_text(field)));
     std::visit([&](auto access) { read_value(node, key, access(scene)); }, field.access);
     if (key == "clouds.weather_map")
       scene.clouds.weather_map = resolve_path(scene.clouds.weather_map);
