@@ -62,7 +62,23 @@ void main() {
   ivec2 pixel = block * stride + frame.march_offset.xy;
   int width = frame.cloud_grid.x;
   int height = frame.cloud_grid.y;
-  if (block.x >= blocks_x || pixel.x >= width || pixel.y >= height) return;
+  if (dispatch.values.y == 1) {
+    // The columns the previous frame did not see (frame.march_entering), every other pixel
+    // across and down, stored right of the blocks' samples (resolve.comp,
+    // entering_interpolated).
+    // The samples in a row of 8 invocations after another, so that a narrow strip fills the
+    // workgroups.
+    int columns = (frame.march_entering.z + 1) / 2;
+    int n = int(gl_GlobalInvocationID.y) * 8 + int(gl_GlobalInvocationID.x);
+    ivec2 i = ivec2(n % columns, n / columns);
+    if (gl_GlobalInvocationID.x >= 8u || any(greaterThanEqual(2 * i, frame.march_entering.zw)))
+      return;
+    pixel = frame.march_entering.xy + 2 * i;
+    block = ivec2(blocks_x, 0) + i;
+    if (pixel.x >= width || pixel.y >= height) return;
+  } else if (block.x >= blocks_x || pixel.x >= width || pixel.y >= height) {
+    return;
+  }
 
   vec3 eye = frame.camera_pos_m.xyz;
   vec3 dir = frame.steps.w == PROJECTION_SKY_DOME

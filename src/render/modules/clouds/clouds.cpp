@@ -1,6 +1,36 @@
 #include "render/modules/clouds/clouds.h"
 
+#include "render/glsl.h"
+
 namespace nephele {
+
+glm::ivec4 entering_region(const gpu::FrameParams& f) {
+  const int w = f.cloud_grid.x, h = f.cloud_grid.y;
+  if (f.cloud_grid.w != 1 || w < 4 || h < 4) return glm::ivec4(0);
+  int lo = w, hi = -1;
+  for (int y = 0; y < h; y += 2)
+    for (int x = 0; x < w; x += 2) {
+      const glm::vec3 dir = glsl::camera_ray(glm::vec3(f.camera_forward), glm::vec3(f.camera_right),
+                                             glm::vec3(f.camera_up), f.camera_pos_m.w,
+                                             f.camera_forward.w, float(x), float(y), float(w),
+                                             float(h), glm::vec2(f.camera_right.w, f.camera_up.w));
+      const glm::vec2 q = glsl::camera_pixel(
+          glm::vec3(f.prev_camera_forward), glm::vec3(f.prev_camera_right),
+          glm::vec3(f.prev_camera_up), f.prev_camera_pos_m.w, f.prev_camera_forward.w, dir,
+          float(w), float(h), glm::vec2(f.prev_camera_right.w, f.prev_camera_up.w));
+      // Beyond the previous image's outermost pixel centres, left or right. Its top and bottom
+      // edges are left to the interpolated samples: a turn about the vertical tilts them by a
+      // pixel or so.
+      if (q.x >= -0.01f && q.x <= float(w - 1) + 0.01f) continue;
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+  if (hi < 0) return glm::ivec4(0);
+  lo = std::max(lo - 1, 0);  // the columns between the samples
+  hi = std::min(hi + 1, w - 1);
+  if (4 * (hi - lo + 1) > w) return glm::ivec4(0);
+  return glm::ivec4(lo, 0, hi - lo + 1, h);
+}
 
 CloudsModule::CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
     : ctx_(ctx),
@@ -83,6 +113,13 @@ void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, Marc
   gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "clouds", blocks(width_),
                 rows < 0 ? blocks(height_) : uint32_t(rows), 1, 8, 8, 1,
                 gpu::DispatchConstants{glm::ivec4(first_row, 0, 0, 0)});
+  // The columns the previous frame did not see: every other pixel, 8 samples a row of the
+  // dispatch (clouds.comp).
+  const glm::ivec4& entering = params.march_entering;
+  const uint32_t samples = uint32_t((entering.z + 1) / 2 * ((entering.w + 1) / 2));
+  if (rows < 0 && entering.z > 0)
+    gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "clouds_entering", 8,
+                  (samples + 7) / 8, 1, 8, 8, 1, gpu::DispatchConstants{glm::ivec4(0, 1, 0, 0)});
 }
 
 void CloudsModule::record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer) {
@@ -166,8 +203,9 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   }
 }
 
-void CloudsModule::prepare(const FramePrepare&, FramePlan&) {
+void CloudsModule::prepare(const FramePrepare& frame, FramePlan&) {
   swap_history();
+  frame.params.march_entering = stride_ > 1 ? entering_region(frame.params) : glm::ivec4(0);
 }
 
 }  // namespace nephele

@@ -20,6 +20,13 @@ constexpr uint32_t kSkyDomeSize = 64;
 // writes the sky dome's image, so the two are one size.
 constexpr uint32_t kCloudProfileSize = kSkyDomeSize;
 
+// The cloud buffer's pixels (x, y from; z, w wide and high) that a frame reprojecting its
+// history (params.cloud_grid.w) marches whole: the columns, a pixel or two wider, where the
+// previous frame's camera did not see beyond its sides (the edge a turning camera brings in),
+// where the history has nothing and interpolating this frame's samples draws blocks; none (z =
+// 0) without history or when they are over a quarter of the buffer. Sampled every 2 pixels.
+glm::ivec4 entering_region(const gpu::FrameParams& params);
+
 class CloudsModule : public RenderModule {
  public:
   CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set);

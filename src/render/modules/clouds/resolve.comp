@@ -47,6 +47,27 @@ CloudSample interpolated(ivec2 p) {
   return r;
 }
 
+// The columns the previous frame did not see (frame.march_entering), which this frame marched
+// every other pixel across and down (clouds.comp's second dispatch), their samples right of the
+// blocks' in march_a/b.
+bool entering_covers(ivec2 p) {
+  ivec2 i = p - frame.march_entering.xy;
+  return all(greaterThanEqual(i, ivec2(0))) && all(lessThan(i, frame.march_entering.zw));
+}
+
+// Those samples around p, interpolated bilinearly: two pixels apart where the blocks' are four
+// (stride 4) when the history has nothing there.
+CloudSample entering_interpolated(ivec2 p) {
+  vec2 last = vec2((frame.march_entering.zw - 1) / 2);
+  vec2 u = clamp(vec2(p - frame.march_entering.xy) * 0.5f, vec2(0.0f), last);
+  vec2 uv = (vec2((frame.cloud_grid.x + stride() - 1) / stride(), 0) + u + 0.5f) /
+            vec2(textureSize(march_a, 0));
+  CloudSample r;
+  r.a = textureLod(march_a, uv, 0.0f);
+  r.b = vec4(textureLod(march_b, uv, 0.0f).xyz, 0.0f);
+  return r;
+}
+
 vec2 history_uv(vec2 q) { return (q + 0.5f) / vec2(frame.cloud_grid.xy); }
 
 // The history's radiance and transmittance at continuous pixel position q, filtered with
@@ -112,7 +133,9 @@ void main() {
     // Two fixed-point steps: distance from this frame's samples, then from the history there.
     vec2 q = previous_pixel(dir, result.b.z);
     if (inside_image(q)) q = previous_pixel(dir, textureLod(history_b, history_uv(q), 0.0f).z);
-    if (inside_image(q)) {
+    if (!inside_image(q) && !is_marched && entering_covers(p)) {
+      result = entering_interpolated(p);
+    } else if (inside_image(q)) {
       float moved_px = length(q - vec2(p));
       // Filtered wherever q falls, also when it moved by a fraction of a pixel: snapping a
       // nearly still pixel to its texel kept slowly drifting clouds where they had been
