@@ -132,10 +132,9 @@ struct FrameParams {
                             // each s x s block is marched per frame); w 1 if the history is valid
   ivec4 march_offset;       // xy the pixel of each block marched this frame; z jitter index;
                             // w image pixels per cloud pixel (per axis)
-  ivec4 march_entering;     // the cloud buffer's columns (x, y from; z, w wide and high) that
-                            // the previous frame did not see, marched every other pixel this
-                            // frame (clouds.comp with dispatch.values.y = 1, its samples in
-                            // march_a/b right of the blocks'); z = 0: none
+  ivec4 march_entering;     // what the previous frame did not see, marched this frame
+                            // (entering_inc.glsl): x, y the columns (from, how many), z, w the
+                            // rows; 0 wide: none
   vec4 moon_dir;            // xyz unit vector towards the moon; w cos(moon angular radius),
                             // 2 when the scene has no moon (no date)
   vec4 moon_sun_dir;        // xyz unit vector from the moon towards the sun (its phase); w the

@@ -68,13 +68,14 @@ TEST(LightVolume, CoordinateMapRoundTripsAndIsFineNearTheCentre) {
 namespace {
 
 // A frame's parameters for a camera looking along `heading_deg` (about the vertical, 0 north,
-// 90 east) 8 deg up, 60 deg vertically over a 160 x 100 cloud buffer with history, whose
-// previous frame looked along `previous_deg`.
-nephele::gpu::FrameParams turning(float heading_deg, float previous_deg) {
+// 90 east) and `pitch_deg` up, 60 deg vertically over a 160 x 100 cloud buffer with history,
+// whose previous frame looked along `previous_deg` and `previous_pitch_deg`.
+nephele::gpu::FrameParams turning(float heading_deg, float previous_deg, float pitch_deg = 8.0f,
+                                  float previous_pitch_deg = 8.0f) {
   nephele::gpu::FrameParams f{};
-  const auto basis = [](float deg, glm::vec4& forward, glm::vec4& right, glm::vec4& up,
-                        glm::vec4& pos) {
-    const float a = glm::radians(deg), p = glm::radians(8.0f);
+  const auto basis = [](float deg, float pitch_deg, glm::vec4& forward, glm::vec4& right,
+                        glm::vec4& up, glm::vec4& pos) {
+    const float a = glm::radians(deg), p = glm::radians(pitch_deg);
     const vec3 fw(std::sin(a) * std::cos(p), std::cos(a) * std::cos(p), std::sin(p));
     const vec3 r = glm::normalize(glm::cross(fw, vec3(0, 0, 1)));
     forward = glm::vec4(fw, 1.6f);  // w the aspect
@@ -82,33 +83,40 @@ nephele::gpu::FrameParams turning(float heading_deg, float previous_deg) {
     up = glm::vec4(glm::cross(r, fw), 0.0f);
     pos = glm::vec4(0.0f, 0.0f, 0.0f, std::tan(glm::radians(30.0f)));  // w tan(half fov)
   };
-  basis(heading_deg, f.camera_forward, f.camera_right, f.camera_up, f.camera_pos_m);
-  basis(previous_deg, f.prev_camera_forward, f.prev_camera_right, f.prev_camera_up,
-        f.prev_camera_pos_m);
+  basis(heading_deg, pitch_deg, f.camera_forward, f.camera_right, f.camera_up, f.camera_pos_m);
+  basis(previous_deg, previous_pitch_deg, f.prev_camera_forward, f.prev_camera_right,
+        f.prev_camera_up, f.prev_camera_pos_m);
   f.cloud_grid = glm::ivec4(160, 100, 4, 1);
   return f;
 }
 
 }  // namespace
 
-// The columns a turning camera brings in, which the frame marches whole: at the side it turns
-// to, as wide as the turn, full height; none without a turn, without history, or for a turn
-// of more than a quarter of the image.
-TEST(EnteringRegion, IsTheStripATurnBringsIn) {
+// What a turning or pitching camera brings in, which the frame marches itself: the columns at
+// the side it turns to, as many as the turn, or the rows at the top or bottom it pitches to;
+// nothing without a move, without history, or for a move of more than a quarter of the image.
+TEST(EnteringRegion, IsWhatATurnOrAPitchBringsIn) {
   // 2 deg of a 60 x 96 deg view (aspect 1.6: tan 48 deg = 1.6 tan 30 deg): about 3.5 columns
-  // of 160 at the centre.
+  // of 160 at the centre, more at the sides.
   const glm::ivec4 right = nephele::entering_region(turning(12.0f, 10.0f));
-  EXPECT_EQ(right.y, 0);
-  EXPECT_EQ(right.w, 100);
-  EXPECT_EQ(right.x + right.z, 160);
-  EXPECT_GE(right.z, 4);
-  EXPECT_LE(right.z, 8);
+  EXPECT_EQ(right.x + right.y, 160);
+  EXPECT_GE(right.y, 4);
+  EXPECT_LE(right.y, 8);
+  EXPECT_LE(right.w, 4);  // the turn about the vertical tilts the top and bottom a little
   const glm::ivec4 left = nephele::entering_region(turning(8.0f, 10.0f));
   EXPECT_EQ(left.x, 0);
-  EXPECT_NEAR(left.z, right.z, 1);  // sampled every 2 columns
-  EXPECT_EQ(nephele::entering_region(turning(10.0f, 10.0f)).z, 0);
-  EXPECT_EQ(nephele::entering_region(turning(40.0f, 10.0f)).z, 0);  // over a quarter
+  EXPECT_NEAR(left.y, right.y, 1);  // sampled every 2 columns
+  // Pitching up 2 deg: about 3.5 rows of 100 at the top, no columns.
+  const glm::ivec4 up = nephele::entering_region(turning(10.0f, 10.0f, 10.0f, 8.0f));
+  EXPECT_EQ(up.y, 0);
+  EXPECT_EQ(up.z, 0);
+  EXPECT_GE(up.w, 3);
+  EXPECT_LE(up.w, 7);
+  const glm::ivec4 down = nephele::entering_region(turning(10.0f, 10.0f, 6.0f, 8.0f));
+  EXPECT_EQ(down.z + down.w, 100);
+  EXPECT_EQ(nephele::entering_region(turning(10.0f, 10.0f)), glm::ivec4(0));
+  EXPECT_EQ(nephele::entering_region(turning(40.0f, 10.0f)).y, 0);  // over a quarter
   nephele::gpu::FrameParams no_history = turning(12.0f, 10.0f);
   no_history.cloud_grid.w = 0;
-  EXPECT_EQ(nephele::entering_region(no_history).z, 0);
+  EXPECT_EQ(nephele::entering_region(no_history), glm::ivec4(0));
 }

@@ -30,6 +30,7 @@ layout(constant_id = 3) const bool WITH_FLOW = true;
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"
+#include "entering_inc.glsl"
 #include "dispatch_inc.glsl"
 #include "cirrus_inc.glsl"
 #include "air_inc.glsl"
@@ -62,19 +63,18 @@ void main() {
   ivec2 pixel = block * stride + frame.march_offset.xy;
   int width = frame.cloud_grid.x;
   int height = frame.cloud_grid.y;
-  if (dispatch.values.y == 1) {
-    // The columns the previous frame did not see (frame.march_entering), every other pixel
-    // across and down, stored right of the blocks' samples (resolve.comp,
-    // entering_interpolated).
-    // The samples in a row of 8 invocations after another, so that a narrow strip fills the
+  if (dispatch.values.y > 0) {
+    // A strip the previous frame did not see (entering_inc.glsl), every other pixel, the
+    // samples in a row of 8 invocations after another so that a narrow strip fills the
     // workgroups.
-    int columns = (frame.march_entering.z + 1) / 2;
+    int k = dispatch.values.y - 1;
+    ivec4 strip = entering_strip(k);
+    int columns = (strip.z + 1) / 2;
     int n = int(gl_GlobalInvocationID.y) * 8 + int(gl_GlobalInvocationID.x);
-    ivec2 i = ivec2(n % columns, n / columns);
-    if (gl_GlobalInvocationID.x >= 8u || any(greaterThanEqual(2 * i, frame.march_entering.zw)))
-      return;
-    pixel = frame.march_entering.xy + 2 * i;
-    block = ivec2(blocks_x, 0) + i;
+    ivec2 i = ivec2(n % max(columns, 1), n / max(columns, 1));
+    if (gl_GlobalInvocationID.x >= 8u || any(greaterThanEqual(2 * i, strip.zw))) return;
+    pixel = strip.xy + 2 * i;
+    block = entering_storage(k) + i;
     if (pixel.x >= width || pixel.y >= height) return;
   } else if (block.x >= blocks_x || pixel.x >= width || pixel.y >= height) {
     return;

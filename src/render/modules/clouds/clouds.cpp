@@ -6,8 +6,8 @@ namespace nephele {
 
 glm::ivec4 entering_region(const gpu::FrameParams& f) {
   const int w = f.cloud_grid.x, h = f.cloud_grid.y;
-  if (f.cloud_grid.w != 1 || w < 4 || h < 4) return glm::ivec4(0);
-  int lo = w, hi = -1;
+  if (f.cloud_grid.w != 1 || w < 8 || h < 8) return glm::ivec4(0);
+  glm::ivec2 lo(w, h), hi(-1, -1);  // the columns (x) and rows (y) sampled outside
   for (int y = 0; y < h; y += 2)
     for (int x = 0; x < w; x += 2) {
       const glm::vec3 dir = glsl::camera_ray(glm::vec3(f.camera_forward), glm::vec3(f.camera_right),
@@ -18,18 +18,29 @@ glm::ivec4 entering_region(const gpu::FrameParams& f) {
           glm::vec3(f.prev_camera_forward), glm::vec3(f.prev_camera_right),
           glm::vec3(f.prev_camera_up), f.prev_camera_pos_m.w, f.prev_camera_forward.w, dir,
           float(w), float(h), glm::vec2(f.prev_camera_right.w, f.prev_camera_up.w));
-      // Beyond the previous image's outermost pixel centres, left or right. Its top and bottom
-      // edges are left to the interpolated samples: a turn about the vertical tilts them by a
-      // pixel or so.
-      if (q.x >= -0.01f && q.x <= float(w - 1) + 0.01f) continue;
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
+      // Beyond the previous image's outermost pixel centres: at its sides, or its top or
+      // bottom (behind the previous camera counts as both).
+      const glm::vec2 last(float(w - 1), float(h - 1));
+      const glm::bvec2 out =
+          glm::lessThan(q, glm::vec2(-0.01f)) || glm::greaterThan(q, last + 0.01f);
+      const glm::ivec2 at(x, y);
+      for (int axis = 0; axis < 2; ++axis)
+        if (out[axis]) {
+          lo[axis] = std::min(lo[axis], at[axis]);
+          hi[axis] = std::max(hi[axis], at[axis]);
+        }
     }
-  if (hi < 0) return glm::ivec4(0);
-  lo = std::max(lo - 1, 0);  // the columns between the samples
-  hi = std::min(hi + 1, w - 1);
-  if (4 * (hi - lo + 1) > w) return glm::ivec4(0);
-  return glm::ivec4(lo, 0, hi - lo + 1, h);
+  // The pixels between the samples too; none where over a quarter.
+  glm::ivec4 region(0);
+  for (int axis = 0; axis < 2; ++axis) {
+    const int size = axis == 0 ? w : h;
+    if (hi[axis] < 0) continue;
+    const int from = std::max(lo[axis] - 1, 0), to = std::min(hi[axis] + 1, size - 1);
+    if (4 * (to - from + 1) > size) continue;
+    region[2 * axis] = from;
+    region[2 * axis + 1] = to - from + 1;
+  }
+  return region;
 }
 
 CloudsModule::CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
@@ -113,13 +124,17 @@ void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, Marc
   gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "clouds", blocks(width_),
                 rows < 0 ? blocks(height_) : uint32_t(rows), 1, 8, 8, 1,
                 gpu::DispatchConstants{glm::ivec4(first_row, 0, 0, 0)});
-  // The columns the previous frame did not see: every other pixel, 8 samples a row of the
-  // dispatch (clouds.comp).
-  const glm::ivec4& entering = params.march_entering;
-  const uint32_t samples = uint32_t((entering.z + 1) / 2 * ((entering.w + 1) / 2));
-  if (rows < 0 && entering.z > 0)
-    gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer, "clouds_entering", 8,
-                  (samples + 7) / 8, 1, 8, 8, 1, gpu::DispatchConstants{glm::ivec4(0, 1, 0, 0)});
+  // What the previous frame did not see, the columns and the rows: every other pixel, 8
+  // samples a row of the dispatch (clouds.comp, entering_inc.glsl).
+  const glm::ivec4& e = params.march_entering;
+  const glm::ivec2 strips[2] = {{e.y, height_}, {width_, e.w}};
+  for (int k = 0; k < 2; ++k) {
+    const uint32_t samples = uint32_t((strips[k].x + 1) / 2 * ((strips[k].y + 1) / 2));
+    if (rows < 0 && strips[k].x > 0 && strips[k].y > 0)
+      gpu::dispatch(cmd, march_.get(march_variant(mode, params)), timer,
+                    k == 0 ? "clouds_entering" : "clouds_entering_rows", 8, (samples + 7) / 8, 1, 8,
+                    8, 1, gpu::DispatchConstants{glm::ivec4(0, 1 + k, 0, 0)});
+  }
 }
 
 void CloudsModule::record_reconstruction(VkCommandBuffer cmd, gpu::PassTimer& timer) {

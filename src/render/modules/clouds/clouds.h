@@ -20,11 +20,11 @@ constexpr uint32_t kSkyDomeSize = 64;
 // writes the sky dome's image, so the two are one size.
 constexpr uint32_t kCloudProfileSize = kSkyDomeSize;
 
-// The cloud buffer's pixels (x, y from; z, w wide and high) that a frame reprojecting its
-// history (params.cloud_grid.w) marches whole: the columns, a pixel or two wider, where the
-// previous frame's camera did not see beyond its sides (the edge a turning camera brings in),
-// where the history has nothing and interpolating this frame's samples draws blocks; none (z =
-// 0) without history or when they are over a quarter of the buffer. Sampled every 2 pixels.
+// What a frame reprojecting its history (params.cloud_grid.w) marches itself: x, y the columns
+// (from, how many) and z, w the rows where the previous frame's camera did not see beyond its
+// sides or its top and bottom (what a turning or pitching camera brings in: the history has
+// nothing there, and interpolating this frame's samples draws blocks), a pixel wider each
+// side; none (0) without history, or over a quarter of the buffer. Sampled every 2 pixels.
 glm::ivec4 entering_region(const gpu::FrameParams& params);
 
 class CloudsModule : public RenderModule {

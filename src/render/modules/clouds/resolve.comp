@@ -15,6 +15,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
+#include "entering_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -47,21 +48,19 @@ CloudSample interpolated(ivec2 p) {
   return r;
 }
 
-// The columns the previous frame did not see (frame.march_entering), which this frame marched
-// every other pixel across and down (clouds.comp's second dispatch), their samples right of the
-// blocks' in march_a/b.
-bool entering_covers(ivec2 p) {
-  ivec2 i = p - frame.march_entering.xy;
-  return all(greaterThanEqual(i, ivec2(0))) && all(lessThan(i, frame.march_entering.zw));
+// The strip k (entering_inc.glsl) holds p.
+bool entering_covers(int k, ivec2 p) {
+  ivec4 strip = entering_strip(k);
+  ivec2 i = p - strip.xy;
+  return all(greaterThanEqual(i, ivec2(0))) && all(lessThan(i, strip.zw));
 }
 
-// Those samples around p, interpolated bilinearly: two pixels apart where the blocks' are four
-// (stride 4) when the history has nothing there.
-CloudSample entering_interpolated(ivec2 p) {
-  vec2 last = vec2((frame.march_entering.zw - 1) / 2);
-  vec2 u = clamp(vec2(p - frame.march_entering.xy) * 0.5f, vec2(0.0f), last);
-  vec2 uv = (vec2((frame.cloud_grid.x + stride() - 1) / stride(), 0) + u + 0.5f) /
-            vec2(textureSize(march_a, 0));
+// The strip's samples around p, interpolated bilinearly: two pixels apart where the blocks'
+// are four (stride 4), for where the history has nothing.
+CloudSample entering_interpolated(int k, ivec2 p) {
+  ivec4 strip = entering_strip(k);
+  vec2 u = clamp(vec2(p - strip.xy) * 0.5f, vec2(0.0f), vec2((strip.zw - 1) / 2));
+  vec2 uv = (vec2(entering_storage(k)) + u + 0.5f) / vec2(textureSize(march_a, 0));
   CloudSample r;
   r.a = textureLod(march_a, uv, 0.0f);
   r.b = vec4(textureLod(march_b, uv, 0.0f).xyz, 0.0f);
@@ -133,8 +132,10 @@ void main() {
     // Two fixed-point steps: distance from this frame's samples, then from the history there.
     vec2 q = previous_pixel(dir, result.b.z);
     if (inside_image(q)) q = previous_pixel(dir, textureLod(history_b, history_uv(q), 0.0f).z);
-    if (!inside_image(q) && !is_marched && entering_covers(p)) {
-      result = entering_interpolated(p);
+    if (!inside_image(q) && !is_marched && entering_covers(0, p)) {
+      result = entering_interpolated(0, p);
+    } else if (!inside_image(q) && !is_marched && entering_covers(1, p)) {
+      result = entering_interpolated(1, p);
     } else if (inside_image(q)) {
       float moved_px = length(q - vec2(p));
       // Filtered wherever q falls, also when it moved by a fraction of a pixel: snapping a
