@@ -621,7 +621,10 @@ int run_validate(const ValidateOptions& options) {
     for (glm::vec4& p : side.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     paste(side, fast.color, 0, 0, s, exposure);
     paste(side, reference.mean, w + gap, 0, s, exposure);
-    const Image colours = error_colours(e.map, view.max_mean_error);
+    // Red at the tolerance each block is held to: the view's block tolerance where it has one.
+    const double map_tolerance =
+        view.max_block_error > 0.0 ? view.max_block_error : view.max_mean_error;
+    const Image colours = error_colours(e.map, map_tolerance);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
         side.at(2 * (w + gap) + x, y) =
@@ -633,12 +636,12 @@ int run_validate(const ValidateOptions& options) {
     std::snprintf(label, sizeof label, "reference, %d spp", reference.spp);
     draw_label(side, w + gap, 0, label, 1);
     std::snprintf(label, sizeof label, "%dx%d error %.1f%% (red: %s)", suite.block, suite.block,
-                  100.0 * e.mean_error, percent(view.max_mean_error).c_str());
+                  100.0 * e.mean_error, percent(map_tolerance).c_str());
     draw_label(side, 2 * (w + gap), 0, label, 1);
     // The map's scale under it (at least 120 pixels long, room for its labels).
     const int legend_x1 = 3 * w + 2 * gap;
     draw_error_legend(side, std::max(0, std::min(2 * (w + gap), legend_x1 - 120)), legend_x1, h + 2,
-                      view.max_mean_error);
+                      map_tolerance);
     write_image(side, (fs::path(options.out_dir) / (view.name + ".png")).string(), 1.0f);
     write_image(fast.color, (fs::path(options.out_dir) / (view.name + "_fast.exr")).string(), 1.0f,
                 ExrPixels::kFloat);
@@ -696,7 +699,8 @@ int run_validate(const ValidateOptions& options) {
   const std::string notes =
       "Error maps (right in " + (fs::path(options.out_dir) / "NAME.png").string() + "): each " +
       block + " block's luminance error against the reference, black 0, red at the view's " +
-      "tolerance, white at 4 times it or more (the scale under the map).\n";
+      "block tolerance (its mean's where it has none), white at 4 times it or more (the scale " +
+      "under the map); dark grey where the reference has no light.\n";
   return finish(options, renderer, "results", table.str(), notes, summary, results, all_pass);
 }
 
