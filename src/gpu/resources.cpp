@@ -302,76 +302,58 @@ void frame_end_barrier(VkCommandBuffer cmd, bool graphics) {
                        0, nullptr);
 }
 
-void Texture::record_mipmaps(VkCommandBuffer cmd) const {
-  // Levels `level - 1` and `level` from `from` to `to` (the source first, then the target).
-  const auto transition = [&](uint32_t level, const VkImageLayout(&from)[2],
-                              const VkImageLayout(&to)[2]) {
-    VkImageMemoryBarrier barriers[2];
-    for (uint32_t i = 0; i < 2; ++i) {
-      barriers[i] = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-      barriers[i].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-      barriers[i].dstAccessMask =
-          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-      barriers[i].oldLayout = from[i];
-      barriers[i].newLayout = to[i];
-      barriers[i].srcQueueFamilyIndex = barriers[i].dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      barriers[i].image = image_;
-      barriers[i].subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1 + i, 1, 0, 1};
-    }
-    const VkPipelineStageFlags stages =
-        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-    vkCmdPipelineBarrier(cmd, stages, stages, 0, 0, nullptr, 0, nullptr, 2, barriers);
-  };
-  const VkImageLayout general[2] = {VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL};
+namespace {
+
+// Blits level `from_level` of `from` (`from_size` texels) into level `to_level` of `to`
+// (`to_size`) with linear filtering. Both are kept in the general layout: moved to the
+// transfer's layouts for the blit and back.
+void blit_level(VkCommandBuffer cmd, VkImage from, uint32_t from_level, VkOffset3D from_size,
+                VkImage to, uint32_t to_level, VkOffset3D to_size) {
+  const VkImage images[2] = {from, to};
+  const uint32_t levels[2] = {from_level, to_level};
   const VkImageLayout transfer[2] = {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
-  const auto size = [](uint32_t n, uint32_t level) { return int32_t(std::max(n >> level, 1u)); };
-  for (uint32_t level = 1; level < levels_; ++level) {
-    VkImageBlit blit{};
-    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 1};
-    blit.srcOffsets[1] = {size(width_, level - 1), size(height_, level - 1),
-                          size(depth_, level - 1)};
-    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
-    blit.dstOffsets[1] = {size(width_, level), size(height_, level), size(depth_, level)};
-    transition(level, general, transfer);
-    vkCmdBlitImage(cmd, image_, transfer[0], image_, transfer[1], 1, &blit, VK_FILTER_LINEAR);
-    transition(level, transfer, general);
-  }
-}
-
-void Texture::record_blit_to(VkCommandBuffer cmd, const Texture& to) const {
-  // Both images from the general layout to the transfer's and back.
-  const auto transition = [&](VkImageLayout from_src, VkImageLayout to_src, VkImageLayout from_dst,
-                              VkImageLayout to_dst) {
+  const auto transition = [&](bool to_transfer) {
     VkImageMemoryBarrier barriers[2];
-    const VkImage images[2] = {image_, to.image_};
-    const VkImageLayout from[2] = {from_src, from_dst}, next[2] = {to_src, to_dst};
     for (int i = 0; i < 2; ++i) {
       barriers[i] = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
       barriers[i].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
       barriers[i].dstAccessMask =
           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-      barriers[i].oldLayout = from[i];
-      barriers[i].newLayout = next[i];
+      barriers[i].oldLayout = to_transfer ? VK_IMAGE_LAYOUT_GENERAL : transfer[i];
+      barriers[i].newLayout = to_transfer ? transfer[i] : VK_IMAGE_LAYOUT_GENERAL;
       barriers[i].srcQueueFamilyIndex = barriers[i].dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
       barriers[i].image = images[i];
-      barriers[i].subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      barriers[i].subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, levels[i], 1, 0, 1};
     }
     const VkPipelineStageFlags stages =
         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
     vkCmdPipelineBarrier(cmd, stages, stages, 0, 0, nullptr, 0, nullptr, 2, barriers);
   };
   VkImageBlit blit{};
-  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  blit.srcOffsets[1] = {int32_t(width_), int32_t(height_), 1};
-  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  blit.dstOffsets[1] = {int32_t(to.width_), int32_t(to.height_), 1};
-  transition(VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-             VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-  vkCmdBlitImage(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.image_,
-                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-  transition(VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, from_level, 0, 1};
+  blit.srcOffsets[1] = from_size;
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, to_level, 0, 1};
+  blit.dstOffsets[1] = to_size;
+  transition(true);
+  vkCmdBlitImage(cmd, from, transfer[0], to, transfer[1], 1, &blit, VK_FILTER_LINEAR);
+  transition(false);
+}
+
+}  // namespace
+
+void Texture::record_mipmaps(VkCommandBuffer cmd) const {
+  const auto size = [&](uint32_t level) {
+    const auto at = [level](uint32_t n) { return int32_t(std::max(n >> level, 1u)); };
+    return VkOffset3D{at(width_), at(height_), at(depth_)};
+  };
+  for (uint32_t level = 1; level < levels_; ++level)
+    blit_level(cmd, image_, level - 1, size(level - 1), image_, level, size(level));
+}
+
+void Texture::record_blit_to(VkCommandBuffer cmd, const Texture& to) const {
+  blit_level(cmd, image_, 0, {int32_t(width_), int32_t(height_), 1}, to.image_, 0,
+             {int32_t(to.width_), int32_t(to.height_), 1});
 }
 
 }  // namespace nephele::gpu
