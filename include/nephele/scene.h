@@ -190,7 +190,12 @@ struct CloudParams {
   // light going on and the light scattered back towards the sun, with absorption), nothing
   // counted twice; closer to the path tracer on seven of the eight validation views with
   // droplets, not yet within the issue's 5% (docs/validation.md). The old key
-  // clouds.two_stream_light = true / false reads as "two-stream" / "seed".
+  // clouds.two_stream_light = true / false reads as "two-stream" / "seed". "diffusion"
+  // (experimental, stop 56): single scattering plus the multiple-scattered light solved on a
+  // regular grid around the camera (render/modules/cloud_diffusion: the diffusion equation with
+  // van de Hulst's similarity scaling, the sun's beam through each cell's faces as its source);
+  // the two-stream light past the grid. Closer than the two-stream light in the lab and on the
+  // noon, sunset and voxel views, further on the decks (docs/cloud-lighting.md).
   std::string lighting = "seed";
   bool two_stream() const { return lighting == "two-stream"; }
   // What the clouds are made of (issue 42). "seed": the seed's optics, sigma_t = density field

@@ -86,7 +86,7 @@ struct FrameParams {
                             // finest level everywhere), y the cloud profile's half extent (m;
                             // cloud_profile.comp); z sigma_t at density 1 (1/m), w albedo
   vec4 cloud_light;         // x view attenuation, y light attenuation, z powder strength, w ambient
-  vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w 1: two-stream light
+  vec4 cloud_phase;         // x g forward, y g backward, z forward lobe weight, w the lighting: 0 seed, 1 two-stream, 2 diffusion
   // What the clouds are made of (clouds.optics; common/droplets_inc.glsl). cloud_genus_sigma:
   // sigma_t at density field 1 of stratus, stratocumulus, altocumulus and cumulus as a share
   // of cloud_shape.z (the largest genus'; all 1 with the seed's optics), blended by the local

@@ -325,4 +325,21 @@ void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const
   dispatch(cmd, kernel, timer, name, size_x, size_y, size_z, local_x, local_y, local_z);
 }
 
+void dispatch_repeated(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer,
+                       const std::string& name, int count, glm::uvec3 size, glm::uvec3 local,
+                       const std::function<DispatchConstants(int)>& constants) {
+  timer.begin(cmd, name);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
+  kernel.interface().bind(cmd, VK_PIPELINE_BIND_POINT_COMPUTE);
+  const glm::uvec3 groups = (size + local - 1u) / local;
+  for (int k = 0; k < count; ++k) {
+    const DispatchConstants values = constants(k);
+    vkCmdPushConstants(cmd, kernel.interface().pipeline_layout(), kDrawConstantStages, 0,
+                       sizeof(values), &values);
+    vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
+    compute_barrier(cmd);
+  }
+  timer.end(cmd);
+}
+
 }  // namespace nephele::gpu

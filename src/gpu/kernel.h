@@ -5,6 +5,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <functional>
 #include <map>
 #include <span>
 #include <string>
@@ -201,5 +202,11 @@ void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const
 void dispatch(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer, const std::string& name,
               uint32_t size_x, uint32_t size_y, uint32_t size_z, uint32_t local_x, uint32_t local_y,
               uint32_t local_z, const DispatchConstants& constants);
+// `count` dispatches of one kernel, each after the last (a barrier between them) and timed
+// together as one pass, dispatch k with constants(k) pushed first (an iterative solve's
+// sweeps).
+void dispatch_repeated(VkCommandBuffer cmd, const Kernel& kernel, PassTimer& timer,
+                       const std::string& name, int count, glm::uvec3 size, glm::uvec3 local,
+                       const std::function<DispatchConstants(int)>& constants);
 
 }  // namespace nephele::gpu

@@ -394,7 +394,7 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
                        : glm::mix(c.phase_g_backward, c.phase_g_forward, c.phase_lobe_weight);
   // The diffuse light is carried with the phase function's own mean cosine, except by the seed's
   // lighting with the seed's lobes, which keeps the seed's fixed droplet asymmetry.
-  const bool own_g = optics.droplets || c.two_stream();
+  const bool own_g = optics.droplets || c.lighting != "seed";
   f.cloud_droplets = glm::vec4(sigma[4] / sigma_max, optics.droplets ? 1.0f : 0.0f, g1,
                                own_g ? g1 : glsl::CLOUD_DROPLET_G);
   f.cloud_layers[0] = cloud_layer(planet_m, c.bottom_altitude_m, c.top_altitude_m, c.coverage,
@@ -419,7 +419,9 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
   f.cloud_light = glm::vec4(c.attenuation, c.light_attenuation, c.powder_strength,
                             c.ambient_strength);
   f.cloud_phase = glm::vec4(c.phase_g_forward, c.phase_g_backward, c.phase_lobe_weight,
-                            c.two_stream() ? 1.0f : 0.0f);
+                            c.two_stream()              ? 1.0f
+                            : c.lighting == "diffusion" ? 2.0f
+                                                        : 0.0f);
   f.cloud_noise = glm::vec4(1.0f / c.base_noise_period_m, 1.0f / c.detail_noise_period_m,
                             1.0f / c.weather_period_m, c.detail_erosion);
   f.wind_offset_m = glm::vec4(c.wind_mps * scene.time_s, 0.0f, 0.0f);

@@ -368,10 +368,12 @@ const std::vector<Section>& scene_sections() {
                 closed(0, 100)),
           FIELD(clouds, lighting,
                 "how the clouds scatter sunlight: \"seed\" (Wrenninge's octaves, the powder term "
-                "and a conservative diffuse term) or \"two-stream\" (experimental: single "
-                "scattering and the two-stream field along the sun's chord); the old "
+                "and a conservative diffuse term), \"two-stream\" (experimental: single "
+                "scattering and the two-stream field along the sun's chord) or \"diffusion\" "
+                "(experimental: the multiple-scattered light solved on a grid around the "
+                "camera, the diffusion equation with similarity scaling); the old "
                 "two_stream_light = true / false reads as \"two-stream\" / \"seed\"",
-                {}, {"seed", "two-stream"}, "cloud-lighting"),
+                {}, {"seed", "two-stream", "diffusion"}, "cloud-lighting"),
           FIELD(clouds, optics,
                 "what the clouds are made of: \"seed\" (sigma_t = density field x "
                 "extinction_per_m, albedo, two Henyey-Greenstein lobes) or \"droplets\" (water "

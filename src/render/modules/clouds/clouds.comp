@@ -22,7 +22,8 @@
 layout(constant_id = 0) const int MARCH_MODE = 0;
 // The scene's features (CloudsModule::march_variant): WITH_VOXELS false compiles the voxel
 // clouds' code out (lavapipe runs both sides of every branch); LIGHTING 0 the octaves, 1 the
-// two-stream light, -1 as frame.cloud_phase.w says; WITH_FLOW false the flow map's reads.
+// two-stream light, 2 the diffusion field (cloud_diffusion_inc.glsl), -1 as frame.cloud_phase.w
+// says; WITH_FLOW false the flow map's reads.
 layout(constant_id = 1) const bool WITH_VOXELS = true;
 layout(constant_id = 2) const int LIGHTING = -1;
 layout(constant_id = 3) const bool WITH_FLOW = true;
@@ -30,6 +31,7 @@ layout(constant_id = 3) const bool WITH_FLOW = true;
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"
+#include "render/modules/cloud_diffusion/cloud_diffusion_inc.glsl"
 #include "entering_inc.glsl"
 #include "dispatch_inc.glsl"
 #include "cirrus_inc.glsl"
@@ -136,7 +138,8 @@ void main() {
   float below_share = WITH_VOXELS && frame.voxel_info.x > 0 ? -1.0f : below_light_share(entry, length(entry) - frame.radii_m.x);
   float thickness = frame.radii_m.w - frame.radii_m.z;
   vec4 phases = octave_phases(mu);
-  bool two_stream = LIGHTING < 0 ? frame.cloud_phase.w > 0.5f : LIGHTING == 1;
+  int light_model = LIGHTING < 0 ? int(frame.cloud_phase.w + 0.5f) : LIGHTING;
+  bool two_stream = light_model >= 1;  // the diffusion field's, where it does not cover a sample
   float g1 = frame.cloud_droplets.z;  // the phase function's mean cosine
 
   vec3 scattered = vec3(0.0f);
@@ -325,8 +328,14 @@ void main() {
       float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
       float tau_light = depth * sigma_scale * light_atten;
       // The sun's light the sample scatters towards the eye (cloud_sun_light).
-      vec3 sunlit = cloud_sun_light(lit_pos, sun, tau_light, sigma_scale * light_atten, mu,
-                                    two_stream, phases, powder, albedo, g1);
+      vec3 sunlit;
+      if (light_model == 2 && diffusion_covers(lit_pos))
+        sunlit = vec3(exp(-tau_light * (1.0f - albedo * cloud_transport_g())) * phases[0],
+                      diffusion_radiance(lit_pos, dir, g1),
+                      cloud_diffuse_transmittance(tau_light, cloud_transport_g()));
+      else
+        sunlit = cloud_sun_light(lit_pos, sun, tau_light, sigma_scale * light_atten, mu,
+                                 two_stream, phases, powder, albedo, g1);
       float energy = sunlit.x * lit_visibility;
       // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
       float h = saturate(layer_fraction(lit_pos));

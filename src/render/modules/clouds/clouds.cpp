@@ -115,7 +115,7 @@ std::vector<int32_t> CloudsModule::march_variant(MarchMode mode, const gpu::Fram
   // Each feature where clouds.comp would find it in the parameters, so that a variant draws
   // what the full shader draws.
   return {mode == MarchMode::Baseline ? 1 : 0, params.voxel_info.x > 0 ? 1 : 0,
-          params.cloud_phase.w > 0.5f ? 1 : 0, params.cloud_flow.x > 0.0f ? 1 : 0};
+          int(params.cloud_phase.w + 0.5f), params.cloud_flow.x > 0.0f ? 1 : 0};
 }
 
 void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
@@ -186,7 +186,7 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   }
   if (frame.plan.measure == FramePlan::Measure::kSkyDome) {
     std::vector<std::string> reads = cloud_field_resources();
-    reads.push_back("atmosphere");
+    reads.insert(reads.end(), {"atmosphere", "cloud_diffusion"});
     graph.output("sky_dome");
     graph.add_pass("sky_dome", reads, {"sky_dome"},
                    [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
@@ -204,7 +204,7 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   if (frame.plan.classic) return;  // a classical model draws the cloud layer
   if (frame.plan.volumetric) {
     std::vector<std::string> march_reads = cloud_field_resources();
-    march_reads.insert(march_reads.end(), {"terrain", FrameGraph::kView});
+    march_reads.insert(march_reads.end(), {"terrain", "cloud_diffusion", FrameGraph::kView});
     graph.add_pass("march", march_reads, {"cloud_march"},
                    [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
                      record_march(cmd, timer(), mode, *params);

@@ -125,6 +125,7 @@ void LightVolumeModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   prepare(frame.scene, density_key(frame.scene), WeatherModule::weather_time(frame.scene),
           frame.still, plan.volumetric || frame.scene.clouds.model == CloudModel::Kajiya,
           frame.params);
+  plan.light_volume_built = completed_;
 }
 
 }  // namespace nephele

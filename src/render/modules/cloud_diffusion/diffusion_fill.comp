@@ -1,0 +1,88 @@
+#version 450
+// Pass: cloud diffusion, the medium. For each cell of the grid (diffusion_grid_inc.glsl), the
+// clouds' mean extinction over 2 x 2 x 2 points, and the sunlight the cell scatters: what of
+// the sun's beam flows in through its faces and not out, exp(-tau) at each face's centre (a
+// short march, then the light volume: sun_transmittance) times the beam's share across it.
+// A cell is often optically thick, its centre's exp(-tau) a poor mean; the faces' balance
+// conserves the beam, each face being counted with the same value by its two cells. The
+// fluence starts at zero.
+#extension GL_GOOGLE_include_directive : require
+
+const int MARCH_MODE = 0;
+layout(constant_id = 0) const bool WITH_VOXELS = true;
+layout(constant_id = 1) const bool WITH_FLOW = true;
+#define CLOUD_FIELD_VARIANTS
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "cloud_field_inc.glsl"
+#include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
+
+layout(set = 1, binding = 2, rgba32f) uniform writeonly image3D cloud_diffusion_medium_out;
+layout(set = 1, binding = 3, r32f) uniform writeonly image3D cloud_diffusion_phi_out;
+
+const float CLEAR_TAU = 0.5f;
+
+// A point of the planet frame at grid coordinates g (cells, continuous).
+vec3 diffusion_point(vec3 g) {
+  vec2 offset = (g.xy / float(DIFFUSION_XY) * 2.0f - 1.0f) * diffusion.grid.z;
+  vec2 xy = diffusion.grid.xy + offset + frame.wind_offset_m.xy;
+  return point_at_radius(xy, mix(frame.radii_m.z, frame.radii_m.w, g.z / float(DIFFUSION_Z)));
+}
+
+// The sun's beam's transmittance to pos: a march over the first of the light volume's voxels
+// (or the whole way where the volume does not reach), the volume's depth beyond.
+float sun_transmittance(vec3 pos, vec3 sun, float scale) {
+  float length_m = light_ray_length(pos, sun);
+  float depth;
+  if (light_volume_covers(pos)) {
+    float near_m = min(light_volume_voxel_at(pos), length_m);
+    depth = march_light(pos, sun, 0.0f, near_m, 6);
+    if (near_m < length_m) depth += light_volume_lookup(pos + sun * near_m);
+  } else {
+    depth = march_light(pos, sun, 0.0f, length_m, 16);
+  }
+  return exp(-depth * frame.cloud_shape.z * frame.cloud_light.y * scale);
+}
+
+void main() {
+  ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy);
+  if (!diffusion_in_grid(c)) return;
+  float density = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    vec3 sub = vec3(k & 1, (k >> 1) & 1, k >> 2) * 0.5f + 0.25f;
+    density += cloud_density(diffusion_point(vec3(c) + sub), true);
+  }
+  float sigma_t = density / 8.0f * frame.cloud_shape.z * frame.cloud_light.y;
+  vec3 h = diffusion_cell_m();
+  imageStore(cloud_diffusion_phi_out, c, vec4(0.0f));
+  float albedo = frame.cloud_shape.w;
+  float g = cloud_transport_g();
+  vec3 sun = frame.sun_dir.xyz;
+  // Similarity (van de Hulst): the forward share g of scattering as no scattering.
+  float reduced = 1.0f - albedo * g;
+  // The beam's net inflow per unit volume: over each axis, (T at the face it enters by - T at
+  // the face it leaves by) x its component / the side.
+  // Bounded by what the cell's cloud can scatter of the brightest face's beam (the faces'
+  // transmittances are point values: clear air would otherwise catch a difference).
+  float inflow = 0.0f, brightest = 0.0f;
+  for (int axis = 0; axis < 3 && sigma_t > 0.0f; ++axis) {
+    vec3 lo = vec3(c) + 0.5f, hi = lo;
+    lo[axis] -= 0.5f;
+    hi[axis] += 0.5f;
+    float t_lo = sun_transmittance(diffusion_point(lo), sun, reduced);
+    float t_hi = sun_transmittance(diffusion_point(hi), sun, reduced);
+    inflow += (t_lo - t_hi) * -sun[axis] / h[axis];
+    brightest = max(brightest, max(t_lo, t_hi));
+  }
+  float q = albedo * (1.0f - g) * min(max(inflow, 0.0f) / reduced, sigma_t * brightest);
+  // Clear air: light crosses a cell as if D were its side, and what reaches open sky leaves,
+  // as an absorption 1 / (4 h) makes it (a semi-infinite stretch of such cells takes a flux
+  // phi / 2 from its face, the Marshak condition's), so that the light that leaves a cloud
+  // into a small gap reaches the cloud across it. Both fade out by a cell's optical depth of
+  // CLEAR_TAU.
+  float side_m = min(h.x, h.z);
+  float clear = max(1.0f - sigma_t * side_m / CLEAR_TAU, 0.0f);
+  float d = min(1.0f / (3.0f * sigma_t * reduced), side_m);
+  float sigma_a = (1.0f - albedo) * sigma_t + clear * clear / (4.0f * side_m);
+  imageStore(cloud_diffusion_medium_out, c, vec4(d, sigma_a, q, 0.0f));
+}

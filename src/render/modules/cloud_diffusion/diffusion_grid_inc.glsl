@@ -1,0 +1,42 @@
+// The cloud diffusion's grid as its passes see it (diffusion_fill.comp, diffusion_solve.comp,
+// diffusion_field.comp): the medium of each cell, x its diffusion coefficient D = 1 / (3
+// sigma_tr) (m; 0 for a cell the solve leaves out, as clear air), y its absorption sigma_a
+// (1/m), z the sunlight it scatters Q (per unit volume and of the sun's irradiance, 1/m), w
+// the collimated source's flux 3 D g Q (along the sun's beam); the fluence phi, solved in
+// place. Cells are indexed (x, y, z) with x east and z up; a dispatch row is y + z
+// DIFFUSION_XY.
+#ifndef NEPHELE_DIFFUSION_GRID_INC
+#define NEPHELE_DIFFUSION_GRID_INC
+
+#include "render/modules/cloud_diffusion/cloud_diffusion_gpu_inc.glsl"
+
+layout(std140, set = 1, binding = 0) uniform CloudDiffusionBlock { CloudDiffusionGpu diffusion; };
+
+// A cell's sides (m): x, y horizontal, z vertical.
+vec3 diffusion_cell_m() { return diffusion.cell.xxy; }
+
+bool diffusion_in_grid(ivec3 c) {
+  return all(greaterThanEqual(c, ivec3(0))) &&
+         all(lessThan(c, ivec3(DIFFUSION_XY, DIFFUSION_XY, DIFFUSION_Z)));
+}
+
+// The cell of a dispatch's invocation (x the column, y the row y + z DIFFUSION_XY).
+ivec3 diffusion_cell(uvec2 id) {
+  return ivec3(int(id.x), int(id.y) % DIFFUSION_XY, int(id.y) / DIFFUSION_XY);
+}
+
+// The diffuse flux (per unit area, in units of phi) out of cell i through its face towards
+// neighbour j, along the axis direction n: the two half cells' resistances h / 2D in series,
+// and the collimated source's flux across the face (the mean of the two cells'); s_n the
+// sun beam's component along n. Towards a cell left out (clear air, or past the grid), the
+// Marshak condition that no diffuse light comes back in: the flux is the face's fluence / 2,
+// (phi_i + a c_i s_n) / (a + 2) with a = h / 2D_i, never negative.
+float diffusion_face_flux(float phi_i, vec4 m_i, float phi_j, vec4 m_j, bool open, float h,
+                          float s_n) {
+  float a = 0.5f * h / m_i.x;
+  if (open) return max(phi_i + a * m_i.w * s_n, 0.0f) / (a + 2.0f);
+  float g = 1.0f / (a + 0.5f * h / m_j.x);
+  return g * (phi_i - phi_j) + 0.5f * (m_i.w + m_j.w) * s_n;
+}
+
+#endif

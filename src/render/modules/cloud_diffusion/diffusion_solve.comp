@@ -1,0 +1,51 @@
+#version 450
+// Pass: cloud diffusion, one half of a red-black successive over-relaxation sweep of the P1
+// (diffusion) equation for the clouds' multiple-scattered light, -div(D grad phi) + sigma_a phi
+// = Q - div(3 D g Q s) (s the sun's beam), in finite volumes on the grid
+// (diffusion_grid_inc.glsl): each cell of one colour (dispatch.values.x: (x + y + z) % 2) from
+// its six neighbours, which are of the other colour, in place. Faces towards clear air or past
+// the grid take the Marshak condition (diffusion_face_flux).
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "common/bindings_inc.glsl"
+#include "dispatch_inc.glsl"
+#include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
+
+layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_medium;
+layout(set = 1, binding = 3, r32f) uniform image3D cloud_diffusion_phi;
+
+void main() {
+  ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy);
+  c.x = 2 * c.x + ((c.y + c.z + dispatch.values.x) & 1);
+  if (!diffusion_in_grid(c)) return;
+  vec4 m = imageLoad(cloud_diffusion_medium, c);
+  if (m.x <= 0.0f) return;
+  vec3 h = diffusion_cell_m();
+  vec3 beam = -frame.sun_dir.xyz;
+  float phi = imageLoad(cloud_diffusion_phi, c).r;
+  // The balance Q = sigma_a phi + sum over faces of flux / h is linear in phi: the flux
+  // through each face at phi and at phi + 1 give its slope and its constant.
+  float constant = 0.0f, slope = m.y;
+  for (int k = 0; k < 6; ++k) {
+    int axis = k >> 1;
+    ivec3 step = ivec3(0);
+    step[axis] = (k & 1) == 0 ? 1 : -1;
+    ivec3 n = c + step;
+    bool inside = diffusion_in_grid(n);
+    // Past the grid's sides the clouds go on: no flux through them (a deck cut there would
+    // lose its light sideways).
+    if (!inside && axis < 2) continue;
+    vec4 m_n = inside ? imageLoad(cloud_diffusion_medium, n) : vec4(0.0f);
+    float phi_n = inside ? imageLoad(cloud_diffusion_phi, n).r : 0.0f;
+    bool open = m_n.x <= 0.0f;
+    float s_n = beam[axis] * float(step[axis]);
+    float f0 = diffusion_face_flux(phi, m, phi_n, m_n, open, h[axis], s_n);
+    float f1 = diffusion_face_flux(phi + 1.0f, m, phi_n, m_n, open, h[axis], s_n);
+    slope += (f1 - f0) / h[axis];
+    constant += (f0 - (f1 - f0) * phi) / h[axis];
+  }
+  float solved = (m.z - constant) / max(slope, 1e-12f);
+  imageStore(cloud_diffusion_phi, c, vec4(max(mix(phi, solved, diffusion.cell.z), 0.0f)));
+}
