@@ -353,11 +353,12 @@ TEST_F(ReferenceTest, TheFastModeDrawsTheLabsGridOnBlack) {
 // The diffusion light (clouds.lighting = "diffusion", docs/cloud-lighting.md) against the path
 // tracer on the lab's cube (data/lab.toml: 1 km, optical depth 50 across, albedo 0.99999,
 // g 0.76) lit from behind the camera and from behind the cube, at 64 x 40 with 64 samples a
-// pixel: validate's mean block error under 25% in both, and under 3/4 of the two-stream
-// light's (against the lab's 1024-sample references, 11.9 and 17.9% against the two-stream's
-// 23.5 and 57.3%).
+// pixel: validate's mean block error under 6% lit from the front and 20% from behind, and
+// under 3/4 of the two-stream light's (here 3.0 and 14.8% against 24.3 and 57.2%; against the
+// lab's 1024-sample references 3.2 and 12.5%).
 TEST_F(ReferenceTest, TheDiffusionLightIsCloserToTheLabCubeThanTheTwoStream) {
-  for (const float azimuth_deg : {180.0f, 0.0f}) {
+  const struct { float azimuth_deg, bound; } views[] = {{180.0f, 0.06f}, {0.0f, 0.2f}};
+  for (const auto [azimuth_deg, bound] : views) {
     Scene s;
     s.lab.grid = std::string(NEPHELE_SOURCE_DIR) + "/data/lab/cube.vdb";
     s.lab.sigma_t_per_m = 0.05f;
@@ -397,7 +398,7 @@ TEST_F(ReferenceTest, TheDiffusionLightIsCloserToTheLabCubeThanTheTwoStream) {
     const double two_stream = block_error(render(s).color);
     std::printf("sun azimuth %.0f deg: mean block error, diffusion %.3f, two-stream %.3f\n",
                 azimuth_deg, diffusion, two_stream);
-    EXPECT_LT(diffusion, 0.25) << "sun azimuth " << azimuth_deg;
+    EXPECT_LT(diffusion, bound) << "sun azimuth " << azimuth_deg;
     EXPECT_LT(diffusion, 0.75 * two_stream) << "sun azimuth " << azimuth_deg;
   }
 }

@@ -20,7 +20,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 1, binding = 2, rgba32f) uniform writeonly image3D cloud_diffusion_medium_out;
 layout(set = 1, binding = 3, r32f) uniform writeonly image3D cloud_diffusion_phi_out;
 
-const float CLEAR_TAU = 0.5f;
+// Below this optical depth across its thinnest side a cell is clear air.
+const float CLEAR_TAU = 1e-3f;
 
 // A point of the planet frame at grid coordinates g (cells, continuous).
 vec3 diffusion_point(vec3 g) {
@@ -75,14 +76,10 @@ void main() {
     brightest = max(brightest, max(t_lo, t_hi));
   }
   float q = albedo * (1.0f - g) * min(max(inflow, 0.0f) / reduced, sigma_t * brightest);
-  // Clear air: light crosses a cell as if D were its side, and what reaches open sky leaves,
-  // as an absorption 1 / (4 h) makes it (a semi-infinite stretch of such cells takes a flux
-  // phi / 2 from its face, the Marshak condition's), so that the light that leaves a cloud
-  // into a small gap reaches the cloud across it. Both fade out by a cell's optical depth of
-  // CLEAR_TAU.
+  // Thin cloud: light crosses a cell as if D were at most its side (the diffusion
+  // coefficient's flux limit). Clear air is left out of the solve, its faces open.
   float side_m = min(h.x, h.z);
-  float clear = max(1.0f - sigma_t * side_m / CLEAR_TAU, 0.0f);
-  float d = min(1.0f / (3.0f * sigma_t * reduced), side_m);
-  float sigma_a = (1.0f - albedo) * sigma_t + clear * clear / (4.0f * side_m);
+  float d = sigma_t * side_m < CLEAR_TAU ? 0.0f : 1.0f / (3.0f * sigma_t * reduced);
+  float sigma_a = (1.0f - albedo) * sigma_t;
   imageStore(cloud_diffusion_medium_out, c, vec4(d, sigma_a, q, 0.0f));
 }

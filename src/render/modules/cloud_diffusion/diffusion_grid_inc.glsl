@@ -25,17 +25,26 @@ ivec3 diffusion_cell(uvec2 id) {
   return ivec3(int(id.x), int(id.y) % DIFFUSION_XY, int(id.y) / DIFFUSION_XY);
 }
 
+// The flux limiter's term (Wilson's): |grad phi| / phi across the face between cells of
+// fluence phi_i and phi_j, h apart. D = 1 / (3 sigma_tr + it) keeps the flux from exceeding
+// the fluence where the light streams through thin cloud, instead of carrying it around a
+// cloud's halo as if it were diffusing.
+float diffusion_limiter(float phi_i, float phi_j, float h) {
+  return abs(phi_i - phi_j) / (h * max(0.5f * (phi_i + phi_j), 1e-12f));
+}
+
 // The diffuse flux (per unit area, in units of phi) out of cell i through its face towards
-// neighbour j, along the axis direction n: the two half cells' resistances h / 2D in series,
-// and the collimated source's flux across the face (the mean of the two cells'); s_n the
-// sun beam's component along n. Towards a cell left out (clear air, or past the grid), the
-// Marshak condition that no diffuse light comes back in: the flux is the face's fluence / 2,
-// (phi_i + a c_i s_n) / (a + 2) with a = h / 2D_i, never negative.
+// neighbour j, along the axis direction n: the two half cells' resistances h / 2D in series
+// (each D limited by `limiter`, diffusion_limiter), and the collimated source's flux across
+// the face (the mean of the two cells'); s_n the sun beam's component along n. Towards a cell
+// left out (clear air, or past the grid), the Marshak condition that no diffuse light comes
+// back in: the flux is the face's fluence / 2, (phi_i + a c_i s_n) / (a + 2) with a = h / 2D_i,
+// never negative.
 float diffusion_face_flux(float phi_i, vec4 m_i, float phi_j, vec4 m_j, bool open, float h,
-                          float s_n) {
-  float a = 0.5f * h / m_i.x;
+                          float s_n, float limiter) {
+  float a = 0.5f * h * (1.0f / m_i.x + limiter);
   if (open) return max(phi_i + a * m_i.w * s_n, 0.0f) / (a + 2.0f);
-  float g = 1.0f / (a + 0.5f * h / m_j.x);
+  float g = 1.0f / (a + 0.5f * h * (1.0f / m_j.x + limiter));
   return g * (phi_i - phi_j) + 0.5f * (m_i.w + m_j.w) * s_n;
 }
 

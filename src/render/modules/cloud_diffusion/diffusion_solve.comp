@@ -39,10 +39,12 @@ void main() {
     if (!inside && axis < 2) continue;
     vec4 m_n = inside ? imageLoad(cloud_diffusion_medium, n) : vec4(0.0f);
     float phi_n = inside ? imageLoad(cloud_diffusion_phi, n).r : 0.0f;
-    bool open = m_n.x <= 0.0f;
+    bool open = m_n.x <= 0.0f;  // clear air, or above or below the grid
     float s_n = beam[axis] * float(step[axis]);
-    float f0 = diffusion_face_flux(phi, m, phi_n, m_n, open, h[axis], s_n);
-    float f1 = diffusion_face_flux(phi + 1.0f, m, phi_n, m_n, open, h[axis], s_n);
+    // The limiter from the fluence as it is (lagged: the balance stays linear in phi).
+    float limiter = open ? 0.0f : diffusion_limiter(phi, phi_n, h[axis]);
+    float f0 = diffusion_face_flux(phi, m, phi_n, m_n, open, h[axis], s_n, limiter);
+    float f1 = diffusion_face_flux(phi + 1.0f, m, phi_n, m_n, open, h[axis], s_n, limiter);
     slope += (f1 - f0) / h[axis];
     constant += (f0 - (f1 - f0) * phi) / h[axis];
   }
