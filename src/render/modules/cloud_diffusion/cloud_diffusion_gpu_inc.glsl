@@ -15,10 +15,11 @@ const int DIFFUSION_XY = 128;
 const int DIFFUSION_Z = 32;
 
 struct CloudDiffusionGpu {
-  vec4 grid;  // xy the grid's centre in cloud space (m), z its horizontal half extent (m), w 1
-              // when the clouds read the field, 0 when not
-  vec4 cell;  // x a cell's horizontal side (m), y its vertical side (m), z the solve's
-              // over-relaxation factor, w unused
+  vec4 grid;   // the field the clouds read: xy its grid's centre in cloud space (m), z its
+               // horizontal half extent (m), w 1 when the clouds read it, 0 when not
+  vec4 build;  // the grid being built (its passes'): xy its centre, z its half extent
+  vec4 cell;   // the grid being built: x a cell's horizontal side (m), y its vertical side
+               // (m), z the solve's over-relaxation factor, w unused
 };
 
 #ifdef __cplusplus

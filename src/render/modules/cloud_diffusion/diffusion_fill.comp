@@ -5,7 +5,8 @@
 // short march, then the light volume: sun_transmittance) times the beam's share across it.
 // A cell is often optically thick, its centre's exp(-tau) a poor mean; the faces' balance
 // conserves the beam, each face being counted with the same value by its two cells. The
-// fluence starts at zero.
+// fluence starts at zero, or where the last build's left it when the grid has not moved
+// (dispatch.values: x the first row, y the rows, z 1 to start the fluence at zero).
 #extension GL_GOOGLE_include_directive : require
 
 const int MARCH_MODE = 0;
@@ -15,6 +16,7 @@ layout(constant_id = 1) const bool WITH_FLOW = true;
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"
+#include "dispatch_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
 
 layout(set = 1, binding = 2, rgba32f) uniform writeonly image3D cloud_diffusion_medium_out;
@@ -25,8 +27,8 @@ const float CLEAR_TAU = 1e-3f;
 
 // A point of the planet frame at grid coordinates g (cells, continuous).
 vec3 diffusion_point(vec3 g) {
-  vec2 offset = (g.xy / float(DIFFUSION_XY) * 2.0f - 1.0f) * diffusion.grid.z;
-  vec2 xy = diffusion.grid.xy + offset + frame.wind_offset_m.xy;
+  vec2 offset = (g.xy / float(DIFFUSION_XY) * 2.0f - 1.0f) * diffusion.build.z;
+  vec2 xy = diffusion.build.xy + offset + frame.wind_offset_m.xy;
   return point_at_radius(xy, mix(frame.radii_m.z, frame.radii_m.w, g.z / float(DIFFUSION_Z)));
 }
 
@@ -46,8 +48,8 @@ float sun_transmittance(vec3 pos, vec3 sun, float scale) {
 }
 
 void main() {
-  ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy);
-  if (!diffusion_in_grid(c)) return;
+  ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy + uvec2(0, dispatch.values.x));
+  if (!diffusion_in_grid(c) || int(gl_GlobalInvocationID.y) >= dispatch.values.y) return;
   float density = 0.0f;
   for (int k = 0; k < 8; ++k) {
     vec3 sub = vec3(k & 1, (k >> 1) & 1, k >> 2) * 0.5f + 0.25f;
@@ -55,7 +57,7 @@ void main() {
   }
   float sigma_t = density / 8.0f * frame.cloud_shape.z * frame.cloud_light.y;
   vec3 h = diffusion_cell_m();
-  imageStore(cloud_diffusion_phi_out, c, vec4(0.0f));
+  if (dispatch.values.z != 0) imageStore(cloud_diffusion_phi_out, c, vec4(0.0f));
   float albedo = frame.cloud_shape.w;
   float g = cloud_transport_g();
   vec3 sun = frame.sun_dir.xyz;
