@@ -487,7 +487,8 @@ TEST(SceneToml, LightingReplacesTheOldTwoStreamSwitch) {
             std::string::npos);
   EXPECT_NE(validate_error([](Scene& s) {
               s.clouds.lighting = "octaves";
-            }).find("clouds.lighting = \"octaves\": must be \"seed\" or \"two-stream\""),
+            }).find("clouds.lighting = \"octaves\": must be \"seed\", \"two-stream\" or "
+                    "\"diffusion\""),
             std::string::npos);
   // Written back as the new key only.
   Scene s;
