@@ -24,6 +24,8 @@ layout(set = 1, binding = 3, r32f) uniform writeonly image3D cloud_diffusion_phi
 
 // Below this optical depth across its thinnest side a cell is clear air.
 const float CLEAR_TAU = 1e-3f;
+// The largest diffusion coefficient, in cell sides (below).
+const float THIN_CAP = 3.0f;
 
 // A point of the planet frame at grid coordinates g (cells, continuous).
 vec3 diffusion_point(vec3 g) {
@@ -78,10 +80,14 @@ void main() {
     brightest = max(brightest, max(t_lo, t_hi));
   }
   float q = albedo * (1.0f - g) * min(max(inflow, 0.0f) / reduced, sigma_t * brightest);
-  // Thin cloud: light crosses a cell as if D were at most its side (the diffusion
-  // coefficient's flux limit). Clear air is left out of the solve, its faces open.
+  // D is at most THIN_CAP cell sides: where a cell is optically thin the light crosses it in a
+  // flight or a few, and diffusion's D = 1 / (3 sigma_tr), unbounded as sigma_tr goes to 0,
+  // would pipe it through thin cloud to open sky at once (an eroded deck 3 times too dark
+  // inside; capped at one side, 1.9 times too bright). Clear air is left out of the solve, its
+  // faces open.
   float side_m = min(h.x, h.z);
-  float d = sigma_t * side_m < CLEAR_TAU ? 0.0f : 1.0f / (3.0f * sigma_t * reduced);
+  float d = sigma_t * side_m < CLEAR_TAU ? 0.0f
+                                         : min(1.0f / (3.0f * sigma_t * reduced), THIN_CAP * side_m);
   float sigma_a = (1.0f - albedo) * sigma_t;
   imageStore(cloud_diffusion_medium_out, c, vec4(d, sigma_a, q, 0.0f));
 }
