@@ -11,13 +11,16 @@ namespace nephele {
 
 namespace {
 constexpr const char* kBlockName = "CloudDiffusionBlock";
-// The grid's horizontal half extent: 70 m cells at 128 a side (the lab's cube, 1 km, 14 across).
+// The finest grid's horizontal half extent: 70 m cells at 128 a side (the lab's cube, 1 km, 14
+// across); each further cascade's 4 times as wide (280 m cells to 18 km: the clouds a view
+// above the layer or of a storm sees).
 constexpr float kHalfExtentM = 4500.0f;
+constexpr float kCascadeScale = 4.0f;
 // Successive over-relaxation: near the optimum 2 / (1 + sin(pi / N)) for decks N = 100 cells
 // across (1.8 left the suite's overcast deck 14% darker than converged after 64 sweeps).
 constexpr float kOverRelaxation = 1.93f;
 
-constexpr int kRows = gpu::DIFFUSION_XY * gpu::DIFFUSION_Z;
+constexpr int kRows = gpu::DIFFUSION_XY * gpu::DIFFUSION_Z * gpu::DIFFUSION_CASCADES;
 uint32_t rows() {
   return uint32_t(kRows);
 }
@@ -29,7 +32,8 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
       solve_(context.ctx, context.set, "diffusion_solve.comp.spv"),
       gather_kernel_(context.ctx, context.set, "diffusion_field.comp.spv") {
   const auto volume = [&](VkFormat format) {
-    return gpu::Texture(context.ctx, gpu::DIFFUSION_XY, gpu::DIFFUSION_XY, gpu::DIFFUSION_Z, format,
+    return gpu::Texture(context.ctx, gpu::DIFFUSION_XY, gpu::DIFFUSION_XY,
+                        gpu::DIFFUSION_Z * gpu::DIFFUSION_CASCADES, format,
                         VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   };
   medium_ = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
@@ -64,13 +68,18 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
     if (!have_field_ || plan.light_volume_built) {
       // A new build, centred where the light volume is (the camera, when it was built), in
       // cloud space; from the last build's fluence where the grid has not moved.
-      const glm::vec4 grid(params.light_volume.x, params.light_volume.y, kHalfExtentM, 0.0f);
       const float thickness_m = params.radii_m.w - params.radii_m.z;
-      const glm::vec4 cell(2.0f * kHalfExtentM / float(gpu::DIFFUSION_XY),
-                           thickness_m / float(gpu::DIFFUSION_Z), kOverRelaxation, 0.0f);
-      zero_phi_ = !have_field_ || grid != build_grid_ || cell != cell_;
-      build_grid_ = grid;
-      cell_ = cell;
+      bool moved = !have_field_;
+      float half_m = kHalfExtentM;
+      for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k, half_m *= kCascadeScale) {
+        const glm::vec4 grid(params.light_volume.x, params.light_volume.y, half_m, 0.0f);
+        const glm::vec4 cell(2.0f * half_m / float(gpu::DIFFUSION_XY),
+                             thickness_m / float(gpu::DIFFUSION_Z), kOverRelaxation, 0.0f);
+        moved = moved || grid != build_grid_[k] || cell != cell_[k];
+        build_grid_[k] = grid;
+        cell_[k] = cell;
+      }
+      zero_phi_ = moved;
       building_ = true;
       next_row_ = 0;
       sweeps_left_ = kDiffusionSweeps;
@@ -98,15 +107,18 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
         building_ = false;
         read_ = 1 - read_;
         have_field_ = true;
-        read_grid_ = glm::vec4(glm::vec3(build_grid_), 1.0f);
+        for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k)
+          read_grid_[k] = glm::vec4(glm::vec3(build_grid_[k]), 1.0f);
       }
     }
   }
   gpu::CloudDiffusionGpu block{};
   if (on) {
-    block.grid = read_grid_;
-    block.build = build_grid_;
-    block.cell = cell_;
+    for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k) {
+      block.grid[k] = read_grid_[k];
+      block.build[k] = build_grid_[k];
+      block.cell[k] = cell_[k];
+    }
   }
   std::memcpy(blocks_[frame.slot].data(), &block, sizeof(block));
   set_.bind_module_buffer(kBlockName, blocks_[frame.slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);

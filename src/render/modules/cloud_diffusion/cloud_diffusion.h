@@ -1,6 +1,7 @@
 // The cloud diffusion module (docs/cloud-lighting.md): the clouds' multiple-scattered light
-// solved on a regular grid in cloud space around the camera, as the diffusion (P1) equation
-// with the sun's beam as its source, for `clouds.lighting = "diffusion"`. Three passes:
+// solved on regular grids in cloud space around the camera (two cascades: 70 m cells to 4.5 km,
+// 280 m cells to 18 km), as the diffusion equation with similarity scaling and the sun's
+// reduced beam as its source, for `clouds.lighting = "diffusion"`. Three passes:
 // the medium of each cell (diffusion_fill.comp), red-black sweeps of the solve
 // (diffusion_solve.comp) and the field the march reads (diffusion_field.comp,
 // cloud_diffusion_inc.glsl). Rebuilt with the light volume, whose optical depths towards the
@@ -17,6 +18,9 @@
 #include "gpu/kernel_variants.h"
 #include "nephele/scene.h"
 #include "render/render_module.h"
+// DIFFUSION_CASCADES, CloudDiffusionGpu
+#include "render/gpu_params.h"
+#include "render/modules/cloud_diffusion/cloud_diffusion_gpu_inc.glsl"
 
 namespace nephele {
 
@@ -25,9 +29,10 @@ namespace nephele {
 // moved).
 constexpr int kDiffusionSweeps = 128;
 // An animation's build: the medium over kDiffusionFillFrames frames, then kDiffusionFrameSweeps
-// sweeps a frame.
-constexpr int kDiffusionFillFrames = 32;
-constexpr int kDiffusionFrameSweeps = 2;
+// sweeps a frame (on lavapipe 9 and 8 ms a frame; a build takes 192 frames, the light volume's
+// 256).
+constexpr int kDiffusionFillFrames = 64;
+constexpr int kDiffusionFrameSweeps = 1;
 
 class CloudDiffusionModule : public RenderModule {
  public:
@@ -48,7 +53,9 @@ class CloudDiffusionModule : public RenderModule {
   int read_ = 0;
   gpu::Buffer blocks_[gpu::kFramesInFlight + 1];  // one a slot: a frame in flight reads its own
   bool have_field_ = false;                       // fields_[read_] holds a solve
-  glm::vec4 read_grid_{0.0f}, build_grid_{0.0f}, cell_{0.0f};
+  // Per cascade: the grids read and built, the built one's cells (CloudDiffusionGpu).
+  glm::vec4 read_grid_[gpu::DIFFUSION_CASCADES]{}, build_grid_[gpu::DIFFUSION_CASCADES]{};
+  glm::vec4 cell_[gpu::DIFFUSION_CASCADES]{};
   // The build in progress: the medium's next row (kRows when filled), the sweeps left.
   bool building_ = false;
   int next_row_ = 0, sweeps_left_ = 0;

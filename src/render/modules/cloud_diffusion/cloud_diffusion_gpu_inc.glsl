@@ -9,17 +9,22 @@ namespace nephele::gpu {
 using glm::vec4;
 #endif
 
-// Cells of the regular grid: DIFFUSION_XY per horizontal axis, DIFFUSION_Z across the cloud
-// shell.
+// Cells of each regular grid: DIFFUSION_XY per horizontal axis, DIFFUSION_Z across the cloud
+// shell; DIFFUSION_CASCADES grids about one centre, each 4 times as wide as the one before,
+// stacked in one volume (cascade k's cells at z in [k DIFFUSION_Z, (k + 1) DIFFUSION_Z)).
 const int DIFFUSION_XY = 128;
 const int DIFFUSION_Z = 32;
+const int DIFFUSION_CASCADES = 2;
 
 struct CloudDiffusionGpu {
-  vec4 grid;   // the field the clouds read: xy its grid's centre in cloud space (m), z its
-               // horizontal half extent (m), w 1 when the clouds read it, 0 when not
-  vec4 build;  // the grid being built (its passes'): xy its centre, z its half extent
-  vec4 cell;   // the grid being built: x a cell's horizontal side (m), y its vertical side
-               // (m), z the solve's over-relaxation factor, w unused
+  // Per cascade. grid: the field the clouds read, xy its grid's centre in cloud space (m), z
+  // its horizontal half extent (m), w 1 when the clouds read it, 0 when not; build: the grid
+  // being built (its passes'), xy its centre, z its half extent; cell: the grid being built, x
+  // a cell's horizontal side (m), y its vertical side (m), z the solve's over-relaxation
+  // factor, w unused.
+  vec4 grid[DIFFUSION_CASCADES];
+  vec4 build[DIFFUSION_CASCADES];
+  vec4 cell[DIFFUSION_CASCADES];
 };
 
 #ifdef __cplusplus

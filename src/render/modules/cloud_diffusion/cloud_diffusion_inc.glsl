@@ -12,27 +12,33 @@
 layout(std140, set = 1, binding = 0) uniform CloudDiffusionBlock { CloudDiffusionGpu diffusion; };
 layout(set = 1, binding = 1) uniform sampler3D cloud_diffusion_field;
 
-// The grid coordinates ([0, 1]^3) of a point of the planet frame.
-vec3 diffusion_coord(vec3 pos) {
-  vec2 offset = pos.xy - frame.wind_offset_m.xy - diffusion.grid.xy;
-  return vec3(0.5f + 0.5f * offset / diffusion.grid.z, altitude_fraction(pos));
-}
-
-// Whether the field covers pos: in use, and two cells or more inside the grid's sides (the
-// cells at its sides lose their light through them).
-bool diffusion_covers(vec3 pos) {
-  if (diffusion.grid.w < 0.5f) return false;
-  vec2 c = diffusion_coord(pos).xy;
-  float margin = 2.0f / float(DIFFUSION_XY);
-  return all(greaterThan(c, vec2(margin))) && all(lessThan(c, vec2(1.0f - margin)));
+// The coordinates ([0, 1]^3) in cascade k's grid of a point of the planet frame.
+vec3 diffusion_coord(vec3 pos, int k) {
+  vec2 offset = pos.xy - frame.wind_offset_m.xy - diffusion.grid[k].xy;
+  return vec3(0.5f + 0.5f * offset / diffusion.grid[k].z, altitude_fraction(pos));
 }
 
 // The multiple-scattered light a cloud sample at pos scatters towards a viewer looking along
-// `dir`, per unit of the sun's irradiance and of albedo (as cloud_sun_light's y).
-float diffusion_radiance(vec3 pos, vec3 dir, float g1) {
-  vec4 f = textureLod(cloud_diffusion_field, diffusion_coord(pos), 0.0f);
-  // The light propagating towards the viewer travels along -dir.
-  return max(f.x - 3.0f * g1 * dot(f.yzw, dir), 0.0f) / (4.0f * PI);
+// `dir`, per unit of the sun's irradiance and of albedo (as cloud_sun_light's y), from the
+// finest cascade that covers pos: in use, and two cells or more inside its grid's sides (the
+// cells at its sides lose their light through them). False where none does.
+bool diffusion_light(vec3 pos, vec3 dir, float g1, out float radiance) {
+  radiance = 0.0f;
+  float margin = 2.0f / float(DIFFUSION_XY);
+  for (int k = 0; k < DIFFUSION_CASCADES; ++k) {
+    vec3 c = diffusion_coord(pos, k);
+    if (diffusion.grid[k].w < 0.5f || any(lessThan(c.xy, vec2(margin))) ||
+        any(greaterThan(c.xy, vec2(1.0f - margin))))
+      continue;
+    // Within the cascade's own slices of the stacked volume (no blend with the next one's).
+    float z = float(k * DIFFUSION_Z) + clamp(c.z * float(DIFFUSION_Z), 0.5f, float(DIFFUSION_Z) - 0.5f);
+    vec4 f = textureLod(cloud_diffusion_field,
+                        vec3(c.xy, z / float(DIFFUSION_Z * DIFFUSION_CASCADES)), 0.0f);
+    // The light propagating towards the viewer travels along -dir.
+    radiance = max(f.x - 3.0f * g1 * dot(f.yzw, dir), 0.0f) / (4.0f * PI);
+    return true;
+  }
+  return false;
 }
 
 #endif

@@ -17,10 +17,11 @@ layout(set = 1, binding = 4, rgba32f) uniform writeonly image3D cloud_diffusion_
 
 void main() {
   ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy);
-  if (!diffusion_in_grid(c)) return;
+  int cascade = diffusion_cascade(c);
+  if (!diffusion_in_grid(c, cascade)) return;
   vec4 m = imageLoad(cloud_diffusion_medium, c);
   float phi = imageLoad(cloud_diffusion_phi, c).r;
-  vec3 h = diffusion_cell_m();
+  vec3 h = diffusion_cell_m(cascade);
   vec3 beam = -frame.sun_dir.xyz;
   vec3 flux = vec3(0.0f);
   float surface = 0.0f;
@@ -30,7 +31,7 @@ void main() {
     ivec3 step = ivec3(0);
     step[axis] = (k & 1) == 0 ? 1 : -1;
     ivec3 n = c + step;
-    bool inside = diffusion_in_grid(n);
+    bool inside = diffusion_in_grid(n, cascade);
     // Past the grid's sides the clouds go on: no flux through them (a deck cut there would
     // lose its light sideways).
     if (!inside && axis < 2) continue;

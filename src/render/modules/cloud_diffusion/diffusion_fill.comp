@@ -27,11 +27,12 @@ const float CLEAR_TAU = 1e-3f;
 // The largest diffusion coefficient, in cell sides (below).
 const float THIN_CAP = 3.0f;
 
-// A point of the planet frame at grid coordinates g (cells, continuous).
-vec3 diffusion_point(vec3 g) {
-  vec2 offset = (g.xy / float(DIFFUSION_XY) * 2.0f - 1.0f) * diffusion.build.z;
-  vec2 xy = diffusion.build.xy + offset + frame.wind_offset_m.xy;
-  return point_at_radius(xy, mix(frame.radii_m.z, frame.radii_m.w, g.z / float(DIFFUSION_Z)));
+// A point of the planet frame at coordinates g (cells, continuous) of cascade k's grid.
+vec3 diffusion_point(vec3 g, int k) {
+  vec2 offset = (g.xy / float(DIFFUSION_XY) * 2.0f - 1.0f) * diffusion.build[k].z;
+  vec2 xy = diffusion.build[k].xy + offset + frame.wind_offset_m.xy;
+  float h = (g.z - float(k * DIFFUSION_Z)) / float(DIFFUSION_Z);
+  return point_at_radius(xy, mix(frame.radii_m.z, frame.radii_m.w, h));
 }
 
 // The sun's beam's transmittance to pos: a march over the first of the light volume's voxels
@@ -51,14 +52,15 @@ float sun_transmittance(vec3 pos, vec3 sun, float scale) {
 
 void main() {
   ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy + uvec2(0, dispatch.values.x));
-  if (!diffusion_in_grid(c) || int(gl_GlobalInvocationID.y) >= dispatch.values.y) return;
+  int cascade = diffusion_cascade(c);
+  if (!diffusion_in_grid(c, cascade) || int(gl_GlobalInvocationID.y) >= dispatch.values.y) return;
   float density = 0.0f;
   for (int k = 0; k < 8; ++k) {
     vec3 sub = vec3(k & 1, (k >> 1) & 1, k >> 2) * 0.5f + 0.25f;
-    density += cloud_density(diffusion_point(vec3(c) + sub), true);
+    density += cloud_density(diffusion_point(vec3(c) + sub, cascade), true);
   }
   float sigma_t = density / 8.0f * frame.cloud_shape.z * frame.cloud_light.y;
-  vec3 h = diffusion_cell_m();
+  vec3 h = diffusion_cell_m(cascade);
   if (dispatch.values.z != 0) imageStore(cloud_diffusion_phi_out, c, vec4(0.0f));
   float albedo = frame.cloud_shape.w;
   float g = cloud_transport_g();
@@ -74,8 +76,8 @@ void main() {
     vec3 lo = vec3(c) + 0.5f, hi = lo;
     lo[axis] -= 0.5f;
     hi[axis] += 0.5f;
-    float t_lo = sun_transmittance(diffusion_point(lo), sun, reduced);
-    float t_hi = sun_transmittance(diffusion_point(hi), sun, reduced);
+    float t_lo = sun_transmittance(diffusion_point(lo, cascade), sun, reduced);
+    float t_hi = sun_transmittance(diffusion_point(hi, cascade), sun, reduced);
     inflow += (t_lo - t_hi) * -sun[axis] / h[axis];
     brightest = max(brightest, max(t_lo, t_hi));
   }

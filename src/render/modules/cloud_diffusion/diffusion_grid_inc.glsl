@@ -3,8 +3,8 @@
 // sigma_tr) (m; 0 for a cell the solve leaves out, as clear air), y its absorption sigma_a
 // (1/m), z the sunlight it scatters Q (per unit volume and of the sun's irradiance, 1/m), w
 // the collimated source's flux 3 D g Q (along the sun's beam); the fluence phi, solved in
-// place. Cells are indexed (x, y, z) with x east and z up; a dispatch row is y + z
-// DIFFUSION_XY.
+// place. Cells are indexed (x, y, z) with x east and z up, the cascades stacked in z
+// (cloud_diffusion_gpu_inc.glsl); a dispatch row is y + z DIFFUSION_XY.
 #ifndef NEPHELE_DIFFUSION_GRID_INC
 #define NEPHELE_DIFFUSION_GRID_INC
 
@@ -12,12 +12,16 @@
 
 layout(std140, set = 1, binding = 0) uniform CloudDiffusionBlock { CloudDiffusionGpu diffusion; };
 
-// A cell's sides (m): x, y horizontal, z vertical.
-vec3 diffusion_cell_m() { return diffusion.cell.xxy; }
+// The cascade of a cell.
+int diffusion_cascade(ivec3 c) { return c.z / DIFFUSION_Z; }
 
-bool diffusion_in_grid(ivec3 c) {
-  return all(greaterThanEqual(c, ivec3(0))) &&
-         all(lessThan(c, ivec3(DIFFUSION_XY, DIFFUSION_XY, DIFFUSION_Z)));
+// A cell's sides (m) in cascade k: x, y horizontal, z vertical.
+vec3 diffusion_cell_m(int k) { return diffusion.cell[k].xxy; }
+
+// Whether n is a cell of cascade k.
+bool diffusion_in_grid(ivec3 n, int k) {
+  return all(greaterThanEqual(n, ivec3(0, 0, k * DIFFUSION_Z))) &&
+         all(lessThan(n, ivec3(DIFFUSION_XY, DIFFUSION_XY, (k + 1) * DIFFUSION_Z)));
 }
 
 // The cell of a dispatch's invocation (x the column, y the row y + z DIFFUSION_XY).

@@ -19,10 +19,11 @@ layout(set = 1, binding = 3, r32f) uniform image3D cloud_diffusion_phi;
 void main() {
   ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy);
   c.x = 2 * c.x + ((c.y + c.z + dispatch.values.x) & 1);
-  if (!diffusion_in_grid(c)) return;
+  int cascade = diffusion_cascade(c);
+  if (!diffusion_in_grid(c, cascade)) return;
   vec4 m = imageLoad(cloud_diffusion_medium, c);
   if (m.x <= 0.0f) return;
-  vec3 h = diffusion_cell_m();
+  vec3 h = diffusion_cell_m(cascade);
   vec3 beam = -frame.sun_dir.xyz;
   float phi = imageLoad(cloud_diffusion_phi, c).r;
   // The balance Q = sigma_a phi + sum over faces of flux / h is linear in phi: the flux
@@ -33,7 +34,7 @@ void main() {
     ivec3 step = ivec3(0);
     step[axis] = (k & 1) == 0 ? 1 : -1;
     ivec3 n = c + step;
-    bool inside = diffusion_in_grid(n);
+    bool inside = diffusion_in_grid(n, cascade);
     // Past the grid's sides the clouds go on: no flux through them (a deck cut there would
     // lose its light sideways).
     if (!inside && axis < 2) continue;
@@ -49,5 +50,5 @@ void main() {
     constant += (f0 - (f1 - f0) * phi) / h[axis];
   }
   float solved = (m.z - constant) / max(slope, 1e-12f);
-  imageStore(cloud_diffusion_phi, c, vec4(max(mix(phi, solved, diffusion.cell.z), 0.0f)));
+  imageStore(cloud_diffusion_phi, c, vec4(max(mix(phi, solved, diffusion.cell[cascade].z), 0.0f)));
 }

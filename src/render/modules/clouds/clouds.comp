@@ -328,10 +328,12 @@ void main() {
       float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
       float tau_light = depth * sigma_scale * light_atten;
       // The sun's light the sample scatters towards the eye (cloud_sun_light).
+      // With the diffusion light, its reduced beam exp(-(1 - w g) tau) and its field
+      // (cloud_diffusion_inc.glsl); past its grids, the two-stream light.
       vec3 sunlit;
-      if (light_model == 2 && diffusion_covers(lit_pos))
-        sunlit = vec3(exp(-tau_light * (1.0f - albedo * cloud_transport_g())) * phases[0],
-                      diffusion_radiance(lit_pos, dir, g1),
+      float diffused;
+      if (light_model == 2 && diffusion_light(lit_pos, dir, g1, diffused))
+        sunlit = vec3(exp(-tau_light * (1.0f - albedo * cloud_transport_g())) * phases[0], diffused,
                       cloud_diffuse_transmittance(tau_light, cloud_transport_g()));
       else
         sunlit = cloud_sun_light(lit_pos, sun, tau_light, sigma_scale * light_atten, mu,
