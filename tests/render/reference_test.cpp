@@ -351,6 +351,22 @@ TEST_F(ReferenceTest, TheFastModeDrawsTheLabsGridOnBlack) {
   EXPECT_GT(nephele::luminance(fast.color.at(12, 12)), 0.0f);
 }
 
+// A lab scene of thick cloud for the fast mode's multiple scattering against the tracer: `grid`
+// of sigma_t (1/m) at density 1, albedo and Henyey-Greenstein g, every bounce that matters, the
+// sun `elevation_deg` up from `azimuth_deg`.
+Scene thick_lab(const std::string& grid, float sigma_t_per_m, float albedo, float g,
+                float elevation_deg, float azimuth_deg) {
+  Scene s;
+  s.lab.grid = grid;
+  s.lab.sigma_t_per_m = sigma_t_per_m;
+  s.lab.albedo = albedo;
+  s.lab.g = g;
+  s.lab.max_bounces = 1024;
+  s.lab.sun_elevation_deg = elevation_deg;
+  s.lab.sun_azimuth_deg = azimuth_deg;
+  return s;
+}
+
 // The diffusion light (clouds.lighting = "diffusion", docs/cloud-lighting.md) against the path
 // tracer on the lab's cube (data/lab.toml: 1 km, optical depth 50 across, albedo 0.99999,
 // g 0.76) lit from behind the camera and from behind the cube, at 64 x 40 with 64 samples a
@@ -360,14 +376,8 @@ TEST_F(ReferenceTest, TheFastModeDrawsTheLabsGridOnBlack) {
 TEST_F(ReferenceTest, TheDiffusionLightIsCloserToTheLabCubeThanTheTwoStream) {
   const struct { float azimuth_deg, bound; } views[] = {{180.0f, 0.06f}, {0.0f, 0.2f}};
   for (const auto [azimuth_deg, bound] : views) {
-    Scene s;
-    s.lab.grid = std::string(NEPHELE_SOURCE_DIR) + "/data/lab/cube.vdb";
-    s.lab.sigma_t_per_m = 0.05f;
-    s.lab.albedo = 0.99999f;
-    s.lab.g = 0.76f;
-    s.lab.max_bounces = 1024;
-    s.lab.sun_elevation_deg = 30.0f;
-    s.lab.sun_azimuth_deg = azimuth_deg;
+    Scene s = thick_lab(std::string(NEPHELE_SOURCE_DIR) + "/data/lab/cube.vdb", 0.05f, 0.99999f,
+                        0.76f, 30.0f, azimuth_deg);
     s.lab.sun_irradiance = 3.0f;
     s.camera.position_m = {0.0f, -3500.0f, 500.0f};
     s.camera.view_dir = {0.0f, 1.0f, 0.0f};
@@ -422,14 +432,7 @@ TEST_F(ReferenceTest, TheDiffusionLightInsideAnErodedDeck) {
     out << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
   }
   nephele::voxel::write_vdb(nephele::voxel::voxelize_mesh(obj, 128), vdb);
-  Scene s;
-  s.lab.grid = vdb;
-  s.lab.sigma_t_per_m = 0.04f;
-  s.lab.albedo = 0.9999f;
-  s.lab.g = 0.86f;
-  s.lab.max_bounces = 1024;
-  s.lab.sun_elevation_deg = 35.0f;
-  s.lab.sun_azimuth_deg = 180.0f;
+  Scene s = thick_lab(vdb, 0.04f, 0.9999f, 0.86f, 35.0f, 180.0f);
   s.lab.sun_irradiance = 1.0f;
   s.camera.position_m = {0.0f, 0.0f, 500.0f};
   s.camera.view_dir = {1.0f, 0.0f, 0.0f};

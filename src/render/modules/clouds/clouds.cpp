@@ -4,6 +4,15 @@
 
 namespace nephele {
 
+namespace {
+// The passes that light cloud samples read the diffusion light's field too
+// (render/modules/cloud_diffusion), which the frame imports whatever the lighting.
+std::vector<std::string> with_diffusion(std::vector<std::string> reads) {
+  reads.push_back("cloud_diffusion");
+  return reads;
+}
+}  // namespace
+
 glm::ivec4 entering_region(const gpu::FrameParams& f) {
   const int w = f.cloud_grid.x, h = f.cloud_grid.y;
   if (f.cloud_grid.w != 1 || w < 8 || h < 8) return glm::ivec4(0);
@@ -186,7 +195,8 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   }
   if (frame.plan.measure == FramePlan::Measure::kSkyDome) {
     std::vector<std::string> reads = cloud_field_resources();
-    reads.insert(reads.end(), {"atmosphere", "cloud_diffusion"});
+    reads.push_back("atmosphere");
+    reads = with_diffusion(reads);
     graph.output("sky_dome");
     graph.add_pass("sky_dome", reads, {"sky_dome"},
                    [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
@@ -197,14 +207,15 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
     graph.add_pass("ground_light", {}, {"ground_light"},
                    [this](VkCommandBuffer cmd) { record_clear_ground_light(cmd); });
   else if (frame.plan.ground_light)
-    graph.add_pass("ground_light", cloud_field_resources(), {"ground_light"},
+    graph.add_pass("ground_light", with_diffusion(cloud_field_resources()), {"ground_light"},
                    [timer = frame.timer, this, mode](VkCommandBuffer cmd) {
                      record_ground_light(cmd, timer(), mode);
                    });
   if (frame.plan.classic) return;  // a classical model draws the cloud layer
   if (frame.plan.volumetric) {
     std::vector<std::string> march_reads = cloud_field_resources();
-    march_reads.insert(march_reads.end(), {"terrain", "cloud_diffusion", FrameGraph::kView});
+    march_reads.insert(march_reads.end(), {"terrain", FrameGraph::kView});
+    march_reads = with_diffusion(march_reads);
     graph.add_pass("march", march_reads, {"cloud_march"},
                    [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
                      record_march(cmd, timer(), mode, *params);

@@ -17,6 +17,7 @@
 layout(constant_id = 0) const int MARCH_MODE = 0;
 
 #include "cloud_field_inc.glsl"
+#include "render/modules/cloud_diffusion/cloud_diffusion_inc.glsl"
 
 const float GROUND_LIGHT_HALF_M = 16000.0f;  // the region's half extent
 const int GROUP_SIZE = 16;                   // invocations per side of the workgroup
@@ -58,6 +59,7 @@ vec3 cloud_light_along(vec3 base, vec3 dir) {
   float albedo = frame.cloud_shape.w, g1 = frame.cloud_droplets.z;
   float mu = dot(dir, sun);
   bool two_stream = frame.cloud_phase.w > 0.5f;
+  bool diffusion = frame.cloud_phase.w > 1.5f;
   vec4 phases = octave_phases(mu);
   float ds = (t1 - t0) / float(RAY_SAMPLES);
   // The ground's light that the clouds reflect back down (as clouds.comp lights their bases):
@@ -76,6 +78,10 @@ vec3 cloud_light_along(vec3 base, vec3 dir) {
     float tau_light = depth_towards_sun(pos, sun, covered, 4) * light_scale;
     vec3 sunlit = cloud_sun_light(pos, sun, tau_light, light_scale, mu, two_stream, phases,
                                   frame.cloud_light.z, albedo, g1);
+    // With the diffusion light, as clouds.comp lights the sample (cloud_diffusion_inc.glsl).
+    float diffused;
+    if (diffusion && diffusion_light(pos, dir, g1, diffused))
+      sunlit.xy = vec2(exp(-tau_light * (1.0f - albedo * cloud_transport_g())) * phases[0], diffused);
     float step_t = exp(-density * sigma_scale * ds);
     float h = saturate(layer_fraction(pos));
     light += transmittance * albedo * (sun_light * (sunlit.x + sunlit.y) + below * (1.0f - h)) *
