@@ -2,8 +2,7 @@
 // diffusion_field.comp): the medium of each cell, x its diffusion coefficient D = 1 / (3
 // sigma_tr) (m; 0 for a cell the solve leaves out, as clear air), y its absorption sigma_a
 // (1/m), z the sunlight it scatters Q (per unit volume and of the sun's irradiance, 1/m), w
-// the collimated source's flux 3 D g Q (along the sun's beam); the fluence phi, solved in
-// place. Cells are indexed (x, y, z) with x east and z up, the cascades stacked in z
+// unused; the fluence phi, solved in place. Cells are indexed (x, y, z) with x east and z up, the cascades stacked in z
 // (cloud_diffusion_gpu_inc.glsl); a dispatch row is y + z DIFFUSION_XY.
 #ifndef NEPHELE_DIFFUSION_GRID_INC
 #define NEPHELE_DIFFUSION_GRID_INC
@@ -37,19 +36,16 @@ float diffusion_limiter(float phi_i, float phi_j, float h) {
   return abs(phi_i - phi_j) / (h * max(0.5f * (phi_i + phi_j), 1e-12f));
 }
 
-// The diffuse flux (per unit area, in units of phi) out of cell i through its face towards
-// neighbour j, along the axis direction n: the two half cells' resistances h / 2D in series
-// (each D limited by `limiter`, diffusion_limiter), and the collimated source's flux across
-// the face (the mean of the two cells'); s_n the sun beam's component along n. Towards a cell
-// left out (clear air, or past the grid), the Marshak condition that no diffuse light comes
-// back in: the flux is the face's fluence / 2, (phi_i + a c_i s_n) / (a + 2) with a = h / 2D_i,
-// never negative.
-float diffusion_face_flux(float phi_i, vec4 m_i, float phi_j, vec4 m_j, bool open, float h,
-                          float s_n, float limiter) {
-  float a = 0.5f * h * (1.0f / m_i.x + limiter);
-  if (open) return max(phi_i + a * m_i.w * s_n, 0.0f) / (a + 2.0f);
-  float g = 1.0f / (a + 0.5f * h * (1.0f / m_j.x + limiter));
-  return g * (phi_i - phi_j) + 0.5f * (m_i.w + m_j.w) * s_n;
+// The conductance of the face between cells of diffusion coefficients d_i and d_j, h apart:
+// the flux from i to j per unit of phi_i - phi_j, the two half cells' resistances h / 2D in
+// series, each D limited by `limiter` (diffusion_limiter).
+float diffusion_conductance(float d_i, float d_j, float h, float limiter) {
+  return 1.0f / (0.5f * h * (1.0f / d_i + 1.0f / d_j + 2.0f * limiter));
 }
+
+// The same towards a cell left out (clear air, or past the grid above or below it): the
+// Marshak condition that no diffuse light comes back in makes the flux the face's fluence / 2,
+// phi_i / (h / 2D + 2).
+float diffusion_open_conductance(float d_i, float h) { return 1.0f / (0.5f * h / d_i + 2.0f); }
 
 #endif

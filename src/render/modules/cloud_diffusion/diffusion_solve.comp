@@ -1,10 +1,11 @@
 #version 450
-// Pass: cloud diffusion, one half of a red-black successive over-relaxation sweep of the P1
-// (diffusion) equation for the clouds' multiple-scattered light, -div(D grad phi) + sigma_a phi
-// = Q - div(3 D g Q s) (s the sun's beam), in finite volumes on the grid
+// Pass: cloud diffusion, one half of a red-black successive over-relaxation sweep of the
+// diffusion equation for the clouds' multiple-scattered light with similarity scaling
+// (isotropic scattering at sigma_s (1 - g)), -div(D grad phi) + sigma_a phi = Q, in finite
+// volumes on the grid
 // (diffusion_grid_inc.glsl): each cell of one colour (dispatch.values.x: (x + y + z) % 2) from
 // its six neighbours, which are of the other colour, in place. Faces towards clear air or past
-// the grid take the Marshak condition (diffusion_face_flux).
+// the grid take the Marshak condition (diffusion_open_conductance).
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -24,11 +25,9 @@ void main() {
   vec4 m = imageLoad(cloud_diffusion_medium, c);
   if (m.x <= 0.0f) return;
   vec3 h = diffusion_cell_m(cascade);
-  vec3 beam = -frame.sun_dir.xyz;
   float phi = imageLoad(cloud_diffusion_phi, c).r;
-  // The balance Q = sigma_a phi + sum over faces of flux / h is linear in phi: the flux
-  // through each face at phi and at phi + 1 give its slope and its constant.
-  float constant = 0.0f, slope = m.y;
+  // The balance Q = sigma_a phi + sum over faces of their flux out / h, linear in phi.
+  float gained = m.z, kept = m.y;
   for (int k = 0; k < 6; ++k) {
     int axis = k >> 1;
     ivec3 step = ivec3(0);
@@ -38,17 +37,17 @@ void main() {
     // Past the grid's sides the clouds go on: no flux through them (a deck cut there would
     // lose its light sideways).
     if (!inside && axis < 2) continue;
-    vec4 m_n = inside ? imageLoad(cloud_diffusion_medium, n) : vec4(0.0f);
-    float phi_n = inside ? imageLoad(cloud_diffusion_phi, n).r : 0.0f;
-    bool open = m_n.x <= 0.0f;  // clear air, or above or below the grid
-    float s_n = beam[axis] * float(step[axis]);
-    // The limiter from the fluence as it is (lagged: the balance stays linear in phi).
-    float limiter = open ? 0.0f : diffusion_limiter(phi, phi_n, h[axis]);
-    float f0 = diffusion_face_flux(phi, m, phi_n, m_n, open, h[axis], s_n, limiter);
-    float f1 = diffusion_face_flux(phi + 1.0f, m, phi_n, m_n, open, h[axis], s_n, limiter);
-    slope += (f1 - f0) / h[axis];
-    constant += (f0 - (f1 - f0) * phi) / h[axis];
+    float d_n = inside ? imageLoad(cloud_diffusion_medium, n).x : 0.0f;
+    if (d_n > 0.0f) {
+      float phi_n = imageLoad(cloud_diffusion_phi, n).r;
+      // The limiter from the fluence as it is (lagged: the balance stays linear in phi).
+      float g = diffusion_conductance(m.x, d_n, h[axis], diffusion_limiter(phi, phi_n, h[axis]));
+      gained += g * phi_n / h[axis];
+      kept += g / h[axis];
+    } else {
+      kept += diffusion_open_conductance(m.x, h[axis]) / h[axis];  // clear air, or open sky
+    }
   }
-  float solved = (m.z - constant) / max(slope, 1e-12f);
+  float solved = gained / max(kept, 1e-12f);
   imageStore(cloud_diffusion_phi, c, vec4(max(mix(phi, solved, diffusion.cell[cascade].z), 0.0f)));
 }
