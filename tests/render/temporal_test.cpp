@@ -10,6 +10,8 @@
 #include "nephele/image_compare.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
+#include "render/modules/cloud_diffusion/cloud_diffusion.h"
+#include "render/modules/light_volume/light_volume.h"
 #include "render_fixture.h"
 
 using nephele::Frame;
@@ -228,6 +230,40 @@ TEST_F(TemporalTest, DiffusionLightFramesStayNearTheirStills) {
       lost);
   EXPECT_LT(error, 0.06);
   EXPECT_LT(error, lost);
+}
+
+// An animation builds the diffusion light over frames (the medium, then a sweep and a band of
+// the clear air's gather a frame): after an edit of the clouds, once the light volume and then
+// the field are rebuilt, a frame is the frame of an animation that began with the edited
+// scene's still (whose field was built at once); before, it lags by the edit's change.
+TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
+  Scene before = nephele::load_preset("default");
+  before.clouds.optics = "droplets";
+  before.clouds.lighting = "diffusion";
+  before.output.width = 48;
+  before.output.height = 30;
+  before.camera.view_dir = {0.0f, 1.0f, 0.2f};
+  before.quality.march_stride = 1;  // every pixel marched every frame
+  Scene after = before;
+  after.clouds.coverage = before.clouds.coverage + 0.1f;
+  render(after);
+  shared_renderer().render_next(after);
+  const Frame from_still = shared_renderer().render_next(after, true);
+  render(before);
+  const int built = nephele::kLightVolumeEditFrames + nephele::kDiffusionFillFrames +
+                    nephele::kDiffusionSweeps / nephele::kDiffusionFrameSweeps;
+  Frame stale, frame;
+  for (int i = 1; i <= built + 2; ++i) {
+    const Frame f = shared_renderer().render_next(after, i == built - 8 || i == built + 2);
+    if (i == built - 8) stale = f;
+    if (i == built + 2) frame = f;
+  }
+  const double error = luminance_error(frame.color, from_still.color);
+  const double lag = luminance_error(stale.color, from_still.color);
+  std::printf("frame %d after the edit: %.4f off (frame %d, before the field: %.4f)\n", built + 2,
+              error, built - 8, lag);
+  EXPECT_LT(error, 0.01);
+  EXPECT_GT(lag, 0.03);
 }
 
 // A change of the clouds restarts the history: overcast, then clear, shows no stale cloud.

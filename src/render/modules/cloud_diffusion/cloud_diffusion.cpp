@@ -30,6 +30,8 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
     : set_(context.set),
       fill_(context.ctx, context.set, "diffusion_fill.comp.spv", 0, {1, 1}),
       solve_(context.ctx, context.set, "diffusion_solve.comp.spv"),
+      exchange_kernel_(context.ctx, context.set, "diffusion_exchange.comp.spv"),
+      inflow_kernel_(context.ctx, context.set, "diffusion_inflow.comp.spv"),
       gather_kernel_(context.ctx, context.set, "diffusion_field.comp.spv") {
   const auto volume = [&](VkFormat format) {
     return gpu::Texture(context.ctx, gpu::DIFFUSION_XY, gpu::DIFFUSION_XY,
@@ -38,7 +40,9 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
   };
   medium_ = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
   phi_ = volume(VK_FORMAT_R32_SFLOAT);
+  inflow_ = volume(VK_FORMAT_R32_SFLOAT);
   for (gpu::Texture& f : fields_) f = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
+  for (gpu::Texture& e : exchange_) e = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
   for (gpu::Buffer& b : blocks_) {
     b = gpu::Buffer(context.ctx, sizeof(gpu::CloudDiffusionGpu),
                     VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
@@ -52,6 +56,11 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
   set_.bind_module_storage_image("cloud_diffusion_medium", medium_);
   set_.bind_module_storage_image("cloud_diffusion_phi_out", phi_);
   set_.bind_module_storage_image("cloud_diffusion_phi", phi_);
+  set_.bind_module_storage_image("cloud_diffusion_exchange_xy_a", exchange_[0]);
+  set_.bind_module_storage_image("cloud_diffusion_exchange_z_a", exchange_[1]);
+  set_.bind_module_storage_image("cloud_diffusion_exchange_xy_b", exchange_[2]);
+  set_.bind_module_storage_image("cloud_diffusion_exchange_z_b", exchange_[3]);
+  set_.bind_module_storage_image("cloud_diffusion_inflow", inflow_);
 }
 
 void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
@@ -80,6 +89,8 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
         cell_[k] = cell;
       }
       zero_phi_ = moved;
+      if (moved) exchange_read_ = 0;
+      sweeps_since_exchange_ = exchange_row_ = 0;
       building_ = true;
       next_row_ = 0;
       sweeps_left_ = kDiffusionSweeps;
@@ -87,6 +98,7 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
     if (building_) {
       // At once for a still or when there is nothing to read yet, else a part a frame.
       const bool at_once = frame.still || !have_field_;
+      at_once_ = at_once;
       if (next_row_ < kRows) {
         fill_first_ = next_row_;
         fill_rows_ = at_once ? kRows - next_row_
@@ -132,15 +144,52 @@ void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
         cmd, fill_.get({with_voxels_ ? 1 : 0, with_flow_ ? 1 : 0}), timer, "diffusion_fill",
         gpu::DIFFUSION_XY, uint32_t(fill_rows_), 1, 8, 8, 1,
         gpu::DispatchConstants{glm::ivec4(fill_first_, fill_rows_, zero_phi_ ? 1 : 0, 0)});
-  // Each sweep the red cells, then the black.
-  if (sweeps_ > 0)
+  // The clear air's light gathered over rows [first, first + count) into the set not read.
+  const auto exchange = [&](int first, int count) {
+    gpu::dispatch(cmd, exchange_kernel_, timer, "diffusion_exchange", gpu::DIFFUSION_XY,
+                  uint32_t(count), 1, 8, 8, 1,
+                  gpu::DispatchConstants{glm::ivec4(exchange_read_, first, count, 0)});
+    if (first + count >= kRows) {
+      exchange_read_ = 1 - exchange_read_;
+      sweeps_since_exchange_ = 0;
+      gpu::dispatch(cmd, inflow_kernel_, timer, "diffusion_inflow", gpu::DIFFUSION_XY, rows(), 1, 8,
+                    8, 1, gpu::DispatchConstants{glm::ivec4(exchange_read_, 0, 0, 0)});
+    }
+  };
+  if (!at_once_) {
+    // An animation's build: its sweeps, and a band of the gather a frame, so that one gather
+    // completes every kDiffusionExchangeSweeps sweeps.
+    if (sweeps_ > 0) {
+      gpu::dispatch_repeated(
+          cmd, solve_, timer, "diffusion_solve", 2 * sweeps_,
+          glm::uvec3(gpu::DIFFUSION_XY / 2, rows(), 1), glm::uvec3(8, 8, 1),
+          [](int k) { return gpu::DispatchConstants{glm::ivec4(k & 1, 0, 0, 0)}; });
+      const int band = std::min(kRows / kDiffusionExchangeSweeps * sweeps_, kRows - exchange_row_);
+      exchange(exchange_row_, band);
+      exchange_row_ = (exchange_row_ + band) % kRows;
+    }
+    if (gather_)
+      gpu::dispatch(cmd, gather_kernel_, timer, "diffusion_field", gpu::DIFFUSION_XY, rows(), 1, 8,
+                    8, 1, gpu::DispatchConstants{glm::ivec4(exchange_read_, 0, 0, 0)});
+    return;
+  }
+  // A still's: each sweep the red cells, then the black; the clear air's light gathered whole
+  // every kDiffusionExchangeSweeps sweeps and before the field.
+  for (int done = 0; done < sweeps_;) {
+    const int chunk = std::min(sweeps_ - done, kDiffusionExchangeSweeps - sweeps_since_exchange_);
     gpu::dispatch_repeated(
-        cmd, solve_, timer, "diffusion_solve", 2 * sweeps_,
+        cmd, solve_, timer, "diffusion_solve", 2 * chunk,
         glm::uvec3(gpu::DIFFUSION_XY / 2, rows(), 1), glm::uvec3(8, 8, 1),
         [](int k) { return gpu::DispatchConstants{glm::ivec4(k & 1, 0, 0, 0)}; });
-  if (gather_)
+    done += chunk;
+    sweeps_since_exchange_ += chunk;
+    if (sweeps_since_exchange_ >= kDiffusionExchangeSweeps) exchange(0, kRows);
+  }
+  if (gather_) {
+    if (sweeps_since_exchange_ > 0) exchange(0, kRows);
     gpu::dispatch(cmd, gather_kernel_, timer, "diffusion_field", gpu::DIFFUSION_XY, rows(), 1, 8, 8,
-                  1);
+                  1, gpu::DispatchConstants{glm::ivec4(exchange_read_, 0, 0, 0)});
+  }
 }
 
 void CloudDiffusionModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

@@ -1,14 +1,15 @@
 // The cloud diffusion module (docs/cloud-lighting.md): the clouds' multiple-scattered light
 // solved on regular grids in cloud space around the camera (two cascades: 70 m cells to 4.5 km,
 // 280 m cells to 18 km), as the diffusion equation with similarity scaling and the sun's
-// reduced beam as its source, for `clouds.lighting = "diffusion"`. Three passes:
+// reduced beam as its source, for `clouds.lighting = "diffusion"`. Its passes:
 // the medium of each cell (diffusion_fill.comp), red-black sweeps of the solve
-// (diffusion_solve.comp) and the field the march reads (diffusion_field.comp,
-// cloud_diffusion_inc.glsl). Rebuilt with the light volume, whose optical depths towards the
-// sun give the source: when a light volume is completed. As the light volume is, a still (or the
-// first frame) builds it at once, an animation over frames into a second field while the clouds
-// read the last one completed: the medium a band of rows a frame, then a few sweeps a frame. The
-// frame knows it only through the registry (render_module.h).
+// (diffusion_solve.comp), between them the light clear air carries from cloud to cloud
+// (diffusion_exchange.comp, diffusion_inflow.comp), and the field the march reads
+// (diffusion_field.comp, cloud_diffusion_inc.glsl). Rebuilt with the light volume, whose optical
+// depths towards the sun give the source: when a light volume is completed. As the light volume is,
+// a still (or the first frame) builds it at once, an animation over frames into a second field
+// while the clouds read the last one completed: the medium a band of rows a frame, then a sweep and
+// a band of the gather a frame. The frame knows it only through the registry (render_module.h).
 #pragma once
 
 #include <glm/vec4.hpp>
@@ -33,6 +34,9 @@ constexpr int kDiffusionSweeps = 128;
 // 256).
 constexpr int kDiffusionFillFrames = 64;
 constexpr int kDiffusionFrameSweeps = 1;
+// The light clear air carries between clouds is gathered again after this many sweeps
+// (diffusion_exchange.comp), and once before the field.
+constexpr int kDiffusionExchangeSweeps = 16;
 
 class CloudDiffusionModule : public RenderModule {
  public:
@@ -47,8 +51,14 @@ class CloudDiffusionModule : public RenderModule {
 
   gpu::DescriptorSet& set_;
   gpu::KernelVariants fill_;  // with or without the voxel clouds, the flow map
-  gpu::Kernel solve_, gather_kernel_;
+  gpu::Kernel solve_, exchange_kernel_, inflow_kernel_, gather_kernel_;
   gpu::Texture medium_, phi_;
+  gpu::Texture inflow_;  // per cell of cloud, the light clear air brings in (diffusion_inflow.comp)
+  // The clear air's gathered light (diffusion_exchange_inc.glsl): two sets of two images, one
+  // read and one written.
+  gpu::Texture exchange_[4];
+  int exchange_read_ = 0, sweeps_since_exchange_ = 0, exchange_row_ = 0;
+  bool at_once_ = true;     // this frame builds the whole field
   gpu::Texture fields_[2];  // the one read, fields_[read_], and the one built
   int read_ = 0;
   gpu::Buffer blocks_[gpu::kFramesInFlight + 1];  // one a slot: a frame in flight reads its own

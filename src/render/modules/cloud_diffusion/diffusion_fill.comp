@@ -18,12 +18,19 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "cloud_field_inc.glsl"
 #include "dispatch_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
+#include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
 
 layout(set = 1, binding = 2, rgba32f) uniform writeonly image3D cloud_diffusion_medium_out;
 layout(set = 1, binding = 3, r32f) uniform writeonly image3D cloud_diffusion_phi_out;
+layout(set = 1, binding = 9, r32f) uniform writeonly image3D cloud_diffusion_inflow;
 
-// Below this optical depth across its thinnest side a cell is clear air.
-const float CLEAR_TAU = 1e-3f;
+// Below this optical depth (similarity-scaled) across its thinnest side a cell is clear air:
+// left out of the solve, the light crossing it gathered along rays (diffusion_exchange.comp).
+// Raised to 0.05 (haze and thin veils as clear air, streaming the light instead of diffusing
+// it), a veil over a deck in the lab came within 5% of the path tracer (2.8 times too bright
+// diffused), but the suite's decks went 20-30% too dark: their thin bases scatter the light
+// many times, which the gather's few rounds miss.
+const float THIN_TAU = 2.5e-4f;
 // The largest diffusion coefficient, in cell sides (below).
 const float THIN_CAP = 3.0f;
 
@@ -61,7 +68,12 @@ void main() {
   }
   float sigma_t = density / 8.0f * frame.cloud_shape.z * frame.cloud_light.y;
   vec3 h = diffusion_cell_m(cascade);
-  if (dispatch.values.z != 0) imageStore(cloud_diffusion_phi_out, c, vec4(0.0f));
+  if (dispatch.values.z != 0) {
+    imageStore(cloud_diffusion_phi_out, c, vec4(0.0f));
+    exchange_store(c, 0, vec4(0.0f), vec4(0.0f));
+    exchange_store(c, 1, vec4(0.0f), vec4(0.0f));
+    imageStore(cloud_diffusion_inflow, c, vec4(0.0f));
+  }
   float albedo = frame.cloud_shape.w;
   float g = cloud_transport_g();
   vec3 sun = frame.sun_dir.xyz;
@@ -86,10 +98,10 @@ void main() {
   // flight or a few, and diffusion's D = 1 / (3 sigma_tr), unbounded as sigma_tr goes to 0,
   // would pipe it through thin cloud to open sky at once (an eroded deck 3 times too dark
   // inside; capped at one side, 1.9 times too bright). Clear air is left out of the solve, its
-  // faces open.
+  // faces open, and the light it brings back is gathered along rays (diffusion_exchange.comp).
   float side_m = min(h.x, h.z);
-  float d = sigma_t * side_m < CLEAR_TAU ? 0.0f
-                                         : min(1.0f / (3.0f * sigma_t * reduced), THIN_CAP * side_m);
+  float sigma_tr = sigma_t * reduced;
+  float d = sigma_tr * side_m < THIN_TAU ? 0.0f : min(1.0f / (3.0f * sigma_tr), THIN_CAP * side_m);
   float sigma_a = (1.0f - albedo) * sigma_t;
-  imageStore(cloud_diffusion_medium_out, c, vec4(d, sigma_a, q, 0.0f));
+  imageStore(cloud_diffusion_medium_out, c, vec4(d, sigma_a, q, sigma_tr));
 }

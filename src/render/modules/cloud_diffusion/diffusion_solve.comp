@@ -16,6 +16,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_medium;
 layout(set = 1, binding = 3, r32f) uniform image3D cloud_diffusion_phi;
+layout(set = 1, binding = 9, r32f) uniform readonly image3D cloud_diffusion_inflow;
 
 void main() {
   ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy);
@@ -27,7 +28,8 @@ void main() {
   vec3 h = diffusion_cell_m(cascade);
   float phi = imageLoad(cloud_diffusion_phi, c).r;
   // The balance Q = sigma_a phi + sum over faces of their flux out / h, linear in phi.
-  float gained = m.z, kept = m.y;
+  // The sunlight it scatters, and the light clear air brings back in (diffusion_inflow.comp).
+  float gained = m.z + imageLoad(cloud_diffusion_inflow, c).r, kept = m.y;
   for (int k = 0; k < 6; ++k) {
     int axis = k >> 1;
     ivec3 step = ivec3(0);

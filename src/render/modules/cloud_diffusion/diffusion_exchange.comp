@@ -1,0 +1,115 @@
+#version 450
+// Pass: cloud diffusion, the light that clear air carries between clouds. Each cell of clear
+// air next to cloud casts rays in 14 directions (Lebedev's rule: the axes and the diagonals)
+// through clear air to the first cell of cloud (or out of the grid, or EXCHANGE_STEPS cells
+// on: no light), whose face sends back the radiance of its P1 field, (phi_f + 3 F cos) / 4 pi,
+// with the face's flux out F = open conductance x (phi - 4 J-) and fluence phi_f = 4 J- + 2 F
+// (Marshak's condition with the light coming in, J-, from the last gather). Their quadrature is
+// the cell's partial currents and fluence (diffusion_exchange_inc.glsl), which the solve's
+// faces towards it take as the light coming in (exchange_incoming): light that leaves one cloud
+// and enters another across a gap is no longer lost. A deck split by a clear gap came out 14
+// times too dark without it (ReferenceTest.TheDiffusionLightCrossesAGapInADeck).
+// dispatch.values: x the set read (0 or 1; the other written), y the first row, z the rows.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "common/bindings_inc.glsl"
+#include "common/math_inc.glsl"
+#include "dispatch_inc.glsl"
+#include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
+#include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
+
+layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_medium;
+layout(set = 1, binding = 3, r32f) uniform readonly image3D cloud_diffusion_phi;
+
+// How far a ray looks, in cells.
+const int EXCHANGE_STEPS = 24;
+
+// The radiance (per unit of the sun's irradiance) reaching cell c from direction w (unit).
+float exchange_ray(ivec3 c, int cascade, vec3 h, vec3 w, int read) {
+  // A step crosses one cell along the axis the ray moves fastest across.
+  vec3 p = vec3(c) + 0.5f;
+  vec3 dp = w / h;
+  dp /= max(abs(dp.x), max(abs(dp.y), abs(dp.z)));
+  float step_m = length(dp * h);
+  ivec3 last = c;
+  float t = 1.0f, radiance = 0.0f;
+  for (int s = 0; s < EXCHANGE_STEPS; ++s) {
+    p += dp;
+    ivec3 n = ivec3(floor(p));
+    if (n == last) continue;
+    if (!diffusion_in_grid(n, cascade)) break;
+    vec4 m = imageLoad(cloud_diffusion_medium, n);
+    float d = m.x;
+    if (d <= 0.0f) {
+      // Clear air, or cloud too thin for the solve (THIN_TAU, diffusion_fill.comp): what it
+      // scatters towards c of the light gathered in it (the last gather's) and of the sun's
+      // (its source Q), and what it lets through.
+      if (m.w > 0.0f) {
+        vec4 xy, z;
+        exchange_load(n, read, xy, z);
+        float kept = exp(-m.w * step_m);
+        radiance += t * (1.0f - kept) * ((m.w - m.y) * z.z + m.z) / (m.w * 4.0f * PI);
+        t *= kept;
+      }
+      last = n;
+      continue;
+    }
+    // The face crossed from `last` into n: where the ray crosses several at once, the one
+    // whose cell it entered last (its axis' crossing the latest along the ray).
+    ivec3 o = n - last;
+    vec3 entered = mix(vec3(-1.0f), (vec3(n) + vec3(lessThan(o, ivec3(0))) - (p - dp)) / dp,
+                       notEqual(o, ivec3(0)));
+    int axis = entered.x >= max(entered.y, entered.z) ? 0 : (entered.y >= entered.z ? 1 : 2);
+    ivec3 step = ivec3(0);
+    step[axis] = o[axis] > 0 ? 1 : -1;
+    float j_in = exchange_incoming(last, read, step);
+    float phi = imageLoad(cloud_diffusion_phi, n).r;
+    // The flux out, negative where more comes in than the cloud lets out.
+    float f = diffusion_open_conductance(d, h[axis]) * (phi - 4.0f * j_in);
+    float cosine = abs(w[axis]);
+    return radiance + t * max(4.0f * j_in + 2.0f * f + 3.0f * f * cosine, 0.0f) / (4.0f * PI);
+  }
+  return radiance;
+}
+
+void main() {
+  ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy + uvec2(0, dispatch.values.y));
+  int cascade = diffusion_cascade(c);
+  if (!diffusion_in_grid(c, cascade) || int(gl_GlobalInvocationID.y) >= dispatch.values.z) return;
+  int read = dispatch.values.x;
+  float currents[6] = float[6](0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f);
+  float phi = 0.0f;
+  bool next_to_cloud = false;
+  if (imageLoad(cloud_diffusion_medium, c).x <= 0.0f) {
+    for (int k = 0; k < 6; ++k) {
+      ivec3 n = c;
+      n[k >> 1] += (k & 1) == 0 ? 1 : -1;
+      if (diffusion_in_grid(n, cascade) && imageLoad(cloud_diffusion_medium, n).x > 0.0f)
+        next_to_cloud = true;
+    }
+  }
+  if (next_to_cloud) {
+    vec3 h = diffusion_cell_m(cascade);
+    // The quadrature of the fluence (the integral of L) and of each partial current (of L |cos|
+    // over the directions its light comes from): Lebedev's 14 points (exact to degree 5), the
+    // 6 axes of weight 1/15 and the 8 diagonals of 3/40, times 4 pi.
+    for (int k = 0; k < 14; ++k) {
+      ivec3 o = ivec3(0);
+      if (k < 6)
+        o[k >> 1] = (k & 1) == 0 ? 1 : -1;
+      else
+        o = ivec3(((k - 6) & 1) * 2 - 1, ((k - 6) & 2) - 1, ((k - 6) >> 1 & 2) - 1);
+      float weight = 4.0f * PI * (k < 6 ? 1.0f / 15.0f : 3.0f / 40.0f);
+      vec3 w = normalize(vec3(o));
+      float l = weight * exchange_ray(c, cascade, h, w, read);
+      phi += l;
+      // The light from w travels along -w: along +axis where w[axis] < 0.
+      for (int axis = 0; axis < 3; ++axis)
+        if (o[axis] != 0) currents[2 * axis + (o[axis] < 0 ? 0 : 1)] += abs(w[axis]) * l;
+    }
+  }
+  exchange_store(c, 1 - read, vec4(currents[0], currents[1], currents[2], currents[3]),
+                 vec4(currents[4], currents[5], phi, 0.0f));
+}
