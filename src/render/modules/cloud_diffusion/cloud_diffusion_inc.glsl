@@ -41,4 +41,21 @@ bool diffusion_light(vec3 pos, vec3 dir, float g1, out float radiance) {
   return false;
 }
 
+// The sunlight a cloud sample scatters towards a viewer, as cloud_sun_light's (x, y, z): with
+// the diffusion light (`diffusion`) where a cascade covers pos, its reduced beam exp(-(1 - w g)
+// tau) with the phase function, the field's multiple-scattered light and the diffuse
+// transmittance; elsewhere cloud_sun_light's. For the clouds' march and the clouds' light on
+// the ground.
+vec3 cloud_light(bool diffusion, vec3 pos, vec3 dir, vec3 sun, float tau_light, float light_scale,
+                 float mu, bool two_stream, vec4 phases, float powder, float albedo, float g1) {
+  float diffused;
+  if (diffusion && diffusion_light(pos, dir, g1, diffused)) {
+    float g = cloud_transport_g();
+    return vec3(exp(-tau_light * (1.0f - albedo * g)) * phases[0], diffused,
+                cloud_diffuse_transmittance(tau_light, g));
+  }
+  return cloud_sun_light(pos, sun, tau_light, light_scale, mu, two_stream, phases, powder, albedo,
+                         g1);
+}
+
 #endif

@@ -327,17 +327,10 @@ void main() {
       light_k = 0;
       float depth = lit_depth + (lit_volume ? light_volume_lookup(lit_pos + sun * lit_near_m) : 0.0f);
       float tau_light = depth * sigma_scale * light_atten;
-      // The sun's light the sample scatters towards the eye (cloud_sun_light).
-      // With the diffusion light, its reduced beam exp(-(1 - w g) tau) and its field
-      // (cloud_diffusion_inc.glsl); past its grids, the two-stream light.
-      vec3 sunlit;
-      float diffused;
-      if (light_model == 2 && diffusion_light(lit_pos, dir, g1, diffused))
-        sunlit = vec3(exp(-tau_light * (1.0f - albedo * cloud_transport_g())) * phases[0], diffused,
-                      cloud_diffuse_transmittance(tau_light, cloud_transport_g()));
-      else
-        sunlit = cloud_sun_light(lit_pos, sun, tau_light, sigma_scale * light_atten, mu,
-                                 two_stream, phases, powder, albedo, g1);
+      // The sun's light the sample scatters towards the eye (cloud_light: the diffusion
+      // light's field where it covers the sample, else cloud_sun_light).
+      vec3 sunlit = cloud_light(light_model == 2, lit_pos, dir, sun, tau_light,
+                                sigma_scale * light_atten, mu, two_stream, phases, powder, albedo, g1);
       float energy = sunlit.x * lit_visibility;
       // A voxel cloud may reach above or below the layers: the ground light weighs 0 to 1.
       float h = saturate(layer_fraction(lit_pos));

@@ -76,12 +76,8 @@ vec3 cloud_light_along(vec3 base, vec3 dir) {
     if (density <= 0.0f) continue;
     bool covered = light_volume_covers(pos);
     float tau_light = depth_towards_sun(pos, sun, covered, 4) * light_scale;
-    vec3 sunlit = cloud_sun_light(pos, sun, tau_light, light_scale, mu, two_stream, phases,
-                                  frame.cloud_light.z, albedo, g1);
-    // With the diffusion light, as clouds.comp lights the sample (cloud_diffusion_inc.glsl).
-    float diffused;
-    if (diffusion && diffusion_light(pos, dir, g1, diffused))
-      sunlit.xy = vec2(exp(-tau_light * (1.0f - albedo * cloud_transport_g())) * phases[0], diffused);
+    vec3 sunlit = cloud_light(diffusion, pos, dir, sun, tau_light, light_scale, mu, two_stream,
+                              phases, frame.cloud_light.z, albedo, g1);
     float step_t = exp(-density * sigma_scale * ds);
     float h = saturate(layer_fraction(pos));
     light += transmittance * albedo * (sun_light * (sunlit.x + sunlit.y) + below * (1.0f - h)) *
