@@ -156,40 +156,35 @@ void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
                     8, 1, gpu::DispatchConstants{glm::ivec4(exchange_read_, 0, 0, 0)});
     }
   };
-  if (!at_once_) {
-    // An animation's build: its sweeps, and a band of the gather a frame, so that one gather
-    // completes every kDiffusionExchangeSweeps sweeps.
-    if (sweeps_ > 0) {
-      gpu::dispatch_repeated(
-          cmd, solve_, timer, "diffusion_solve", 2 * sweeps_,
-          glm::uvec3(gpu::DIFFUSION_XY / 2, rows(), 1), glm::uvec3(8, 8, 1),
-          [](int k) { return gpu::DispatchConstants{glm::ivec4(k & 1, 0, 0, 0)}; });
-      const int band = std::min(kRows / kDiffusionExchangeSweeps * sweeps_, kRows - exchange_row_);
-      exchange(exchange_row_, band);
-      exchange_row_ = (exchange_row_ + band) % kRows;
-    }
-    if (gather_)
-      gpu::dispatch(cmd, gather_kernel_, timer, "diffusion_field", gpu::DIFFUSION_XY, rows(), 1, 8,
-                    8, 1, gpu::DispatchConstants{glm::ivec4(exchange_read_, 0, 0, 0)});
-    return;
-  }
-  // A still's: each sweep the red cells, then the black; the clear air's light gathered whole
-  // every kDiffusionExchangeSweeps sweeps and before the field.
-  for (int done = 0; done < sweeps_;) {
-    const int chunk = std::min(sweeps_ - done, kDiffusionExchangeSweeps - sweeps_since_exchange_);
+  // Each sweep the red cells, then the black.
+  const auto sweep = [&](int count) {
     gpu::dispatch_repeated(
-        cmd, solve_, timer, "diffusion_solve", 2 * chunk,
+        cmd, solve_, timer, "diffusion_solve", 2 * count,
         glm::uvec3(gpu::DIFFUSION_XY / 2, rows(), 1), glm::uvec3(8, 8, 1),
         [](int k) { return gpu::DispatchConstants{glm::ivec4(k & 1, 0, 0, 0)}; });
-    done += chunk;
-    sweeps_since_exchange_ += chunk;
-    if (sweeps_since_exchange_ >= kDiffusionExchangeSweeps) exchange(0, kRows);
+  };
+  if (at_once_) {
+    // A still's build: the gather whole every kDiffusionExchangeSweeps sweeps and before the
+    // field.
+    for (int done = 0; done < sweeps_;) {
+      const int chunk = std::min(sweeps_ - done, kDiffusionExchangeSweeps - sweeps_since_exchange_);
+      sweep(chunk);
+      done += chunk;
+      sweeps_since_exchange_ += chunk;
+      if (sweeps_since_exchange_ >= kDiffusionExchangeSweeps) exchange(0, kRows);
+    }
+    if (gather_ && sweeps_since_exchange_ > 0) exchange(0, kRows);
+  } else if (sweeps_ > 0) {
+    // An animation's: a band of the gather with each sweep, one gather completed every
+    // kDiffusionExchangeSweeps sweeps (the field reads the last completed).
+    sweep(sweeps_);
+    const int band = std::min(kRows / kDiffusionExchangeSweeps * sweeps_, kRows - exchange_row_);
+    exchange(exchange_row_, band);
+    exchange_row_ = (exchange_row_ + band) % kRows;
   }
-  if (gather_) {
-    if (sweeps_since_exchange_ > 0) exchange(0, kRows);
+  if (gather_)
     gpu::dispatch(cmd, gather_kernel_, timer, "diffusion_field", gpu::DIFFUSION_XY, rows(), 1, 8, 8,
                   1, gpu::DispatchConstants{glm::ivec4(exchange_read_, 0, 0, 0)});
-  }
 }
 
 void CloudDiffusionModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
