@@ -24,7 +24,7 @@ layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_m
 layout(set = 1, binding = 3, r32f) uniform readonly image3D cloud_diffusion_phi;
 
 // How far a ray looks, in cells.
-const int EXCHANGE_STEPS = 24;
+const int EXCHANGE_STEPS = 12;
 
 // The radiance (per unit of the sun's irradiance) reaching cell c from direction w (unit).
 float exchange_ray(ivec3 c, int cascade, vec3 h, vec3 w, int read) {
