@@ -35,6 +35,7 @@ struct FramePlan {
   bool layers = false;       // a translucent layer (a module's NAME_layer.glsl) draws this frame
   bool media = false;        // a medium's module (the ground fog) is on: compose draws media
   bool light_volume_built = false;  // a light volume is completed this frame (LightVolumeModule)
+  bool light_volume_edited = false;  // and it was rebuilt for an edit of the clouds
   // What the graph is built for besides a frame's image: a measurement whose pass the module
   // that owns it adds as an output; only that pass and what it needs are recorded
   // (FrameGraph::dependencies_of), so it runs after the same passes, in the same order, as in

@@ -232,10 +232,10 @@ TEST_F(TemporalTest, DiffusionLightFramesStayNearTheirStills) {
   EXPECT_LT(error, lost);
 }
 
-// An animation builds the diffusion light over frames (the medium, then a sweep and a band of
+// An animation builds the diffusion light over frames (the medium, then sweeps and a band of
 // the clear air's gather a frame): after an edit of the clouds, once the light volume and then
-// the field are rebuilt, a frame is the frame of an animation that began with the edited
-// scene's still (whose field was built at once); before, it lags by the edit's change.
+// the field are rebuilt (48 frames), a frame is the frame of an animation that began with the
+// edited scene's still (whose field was built at once); before, it lags by the edit's change.
 TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
   Scene before = nephele::load_preset("default");
   before.clouds.optics = "droplets";
@@ -250,8 +250,9 @@ TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
   shared_renderer().render_next(after);
   const Frame from_still = shared_renderer().render_next(after, true);
   render(before);
-  const int built = nephele::kLightVolumeEditFrames + nephele::kDiffusionFillFrames +
-                    nephele::kDiffusionSweeps / nephele::kDiffusionFrameSweeps;
+  // The light volume over kLightVolumeEditFrames, then the medium and the sweeps over
+  // kDiffusionEditFrames each.
+  const int built = nephele::kLightVolumeEditFrames + 2 * nephele::kDiffusionEditFrames;
   Frame stale, frame;
   for (int i = 1; i <= built + 2; ++i) {
     const Frame f = shared_renderer().render_next(after, i == built - 8 || i == built + 2);

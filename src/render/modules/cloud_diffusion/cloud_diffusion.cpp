@@ -94,6 +94,7 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
       building_ = true;
       next_row_ = 0;
       sweeps_left_ = kDiffusionSweeps;
+      edit_ = plan.light_volume_edited;
     }
     if (building_) {
       // At once for a still or when there is nothing to read yet, else a part a frame.
@@ -101,12 +102,15 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
       at_once_ = at_once;
       if (next_row_ < kRows) {
         fill_first_ = next_row_;
+        // After an edit of the clouds, as the light volume was, over kDiffusionEditFrames each.
+        const int frames = edit_ ? kDiffusionEditFrames : kDiffusionFillFrames;
         fill_rows_ = at_once ? kRows - next_row_
-                             : std::min((kRows + kDiffusionFillFrames - 1) / kDiffusionFillFrames,
-                                        kRows - next_row_);
+                             : std::min((kRows + frames - 1) / frames, kRows - next_row_);
         next_row_ += fill_rows_;
       } else {
-        sweeps_ = std::min(at_once ? sweeps_left_ : kDiffusionFrameSweeps, sweeps_left_);
+        const int per_frame =
+            edit_ ? kDiffusionSweeps / kDiffusionEditFrames : kDiffusionFrameSweeps;
+        sweeps_ = std::min(at_once ? sweeps_left_ : per_frame, sweeps_left_);
         sweeps_left_ -= sweeps_;
       }
       if (at_once && fill_rows_ > 0) {

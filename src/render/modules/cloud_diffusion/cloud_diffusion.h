@@ -34,6 +34,10 @@ constexpr int kDiffusionSweeps = 128;
 // 256).
 constexpr int kDiffusionFillFrames = 64;
 constexpr int kDiffusionFrameSweeps = 1;
+// After an edit of the clouds (the light volume rebuilt over kLightVolumeEditFrames), the
+// medium over this many frames and the sweeps over as many, so that the lighting follows the
+// edit within 48 frames rather than 208 (on lavapipe about 50 and 230 ms a frame).
+constexpr int kDiffusionEditFrames = 16;
 // The light clear air carries between clouds is gathered again after this many sweeps
 // (diffusion_exchange.comp), and once before the field.
 constexpr int kDiffusionExchangeSweeps = 16;
@@ -68,6 +72,7 @@ class CloudDiffusionModule : public RenderModule {
   glm::vec4 cell_[gpu::DIFFUSION_CASCADES]{};
   // The build in progress: the medium's next row (kRows when filled), the sweeps left.
   bool building_ = false;
+  bool edit_ = false;  // the build follows an edit (kDiffusionEditFrames)
   int next_row_ = 0, sweeps_left_ = 0;
   bool zero_phi_ = true;
   // This frame's work.

@@ -58,7 +58,7 @@ bool LightVolumeModule::stale(const Key& built, const Key& now, float half_m) co
 void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_key,
                                 double weather_time, bool still, bool needed,
                                 gpu::FrameParams& params) {
-  completed_ = false;
+  completed_ = completed_edit_ = false;
   first_row_ = rows_ = 0;
   with_voxels_ = params.voxel_info.x > 0;  // set by VoxelCloudsModule::prepare, which runs first
   with_flow_ = params.cloud_flow.x > 0.0f;
@@ -91,6 +91,7 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
   }
   next_row_ = first_row_ + rows_;
   if (rows_ > 0 && next_row_ >= kRows) {  // complete this frame: read after its last band
+    completed_edit_ = read_key_ && build_key_->clouds != read_key_->clouds;
     read_ = 1 - read_;
     read_key_ = build_key_;
     build_key_.reset();
@@ -126,6 +127,7 @@ void LightVolumeModule::prepare(const FramePrepare& frame, FramePlan& plan) {
           frame.still, plan.volumetric || frame.scene.clouds.model == CloudModel::Kajiya,
           frame.params);
   plan.light_volume_built = completed_;
+  plan.light_volume_edited = completed_edit_;
 }
 
 }  // namespace nephele

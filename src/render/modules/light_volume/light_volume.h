@@ -68,6 +68,7 @@ class LightVolumeModule : public RenderModule {
   int next_row_ = 0;
   int first_row_ = 0, rows_ = 0;  // this frame's band
   bool completed_ = false;
+  bool completed_edit_ = false;  // the volume completed was built after an edit of the clouds
 };
 
 }  // namespace nephele
