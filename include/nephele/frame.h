@@ -127,8 +127,10 @@ struct FrameOptions {
   HostLightingOptions lighting;
   // true: a frame of a sequence whose scene (every parameter, its time and camera) and options
   // are those of the last frame recorded, once that frame's clouds have settled (its history
-  // 2 x quality.march_stride^2 frames old: every pixel marched twice), records nothing and
-  // hands out the last frame's images again (FrameImages::reused): a paused view costs nothing.
+  // 2 x quality.march_stride^2 frames old: every pixel marched twice; and none of them built
+  // part of the light volume or the diffusion field, which a paused view finishes), records
+  // nothing and hands out the last frame's images again (FrameImages::reused): a paused view
+  // costs nothing.
   // Never with a host scene or the host's lighting, whose inputs may change while the options
   // do not.
   bool reuse_settled = false;

@@ -441,7 +441,8 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
                          scene.output.ev100 == previous->output.ev100 &&
                          scene.output.auto_exposure == previous->output.auto_exposure;
   const long long settled = stride == 1 ? 1 : 2LL * stride * stride;
-  if (unchanged && unchanged_frames >= settled && (previous_display || !options.display)) {
+  if (unchanged && unchanged_frames >= settled && !last_plan.building &&
+      (previous_display || !options.display)) {
     FrameImages images = frame_images(last_slot, false);
     images.reused = true;
     return images;
@@ -507,7 +508,8 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
 
   previous = scene;
   previous_key = key;
-  unchanged_frames = unchanged ? unchanged_frames + 1 : 1;
+  // Settled 2 stride^2 frames after the last change, or after the last frame that built.
+  unchanged_frames = unchanged && !plan.building ? unchanged_frames + 1 : 1;
   previous_reusable = reusable;
   previous_display = options.display;
   previous_still = still;

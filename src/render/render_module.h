@@ -36,6 +36,9 @@ struct FramePlan {
   bool media = false;        // a medium's module (the ground fog) is on: compose draws media
   bool light_volume_built = false;  // a light volume is completed this frame (LightVolumeModule)
   bool light_volume_edited = false;  // and it was rebuilt for an edit of the clouds
+  // A module builds over frames and is not done (the light volume, the diffusion field): the
+  // view is not settled (FrameOptions::reuse_settled), even if the scene is unchanged.
+  bool building = false;
   // What the graph is built for besides a frame's image: a measurement whose pass the module
   // that owns it adds as an output; only that pass and what it needs are recorded
   // (FrameGraph::dependencies_of), so it runs after the same passes, in the same order, as in

@@ -9,13 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "gpu/context.h"
 #include "nephele/error.h"
 #include "nephele/exposure.h"
 #include "nephele/frame.h"
 #include "nephele/image.h"
 #include "nephele/renderer.h"
 #include "nephele/scene_io.h"
-#include "gpu/context.h"
+#include "render/modules/cloud_diffusion/cloud_diffusion.h"
+#include "render/modules/light_volume/light_volume.h"
 #include "support/vulkan_host.h"
 
 namespace {
@@ -142,6 +144,38 @@ TEST(FrameApi, APausedViewReusesItsSettledFrame) {
     EXPECT_FALSE(sky.record_frame(cmd, scene, options).reused);
     host.submit(0);
     vkDeviceWaitIdle(host.vk.device);
+  }
+  EXPECT_EQ(host.messages, 0);
+}
+
+// A paused view waits for the lighting it is building: after an edit of the clouds with the
+// diffusion light, the light volume and then the field are rebuilt over frames (48 after an
+// edit), and no frame is reused before they are done, although the scene is unchanged for
+// longer than the 8 frames that settle it; 8 frames after, it settles.
+TEST(FrameApi, APausedViewWaitsForTheLightingItBuilds) {
+  Host host;
+  ASSERT_NE(host.vk.device, VK_NULL_HANDLE) << "no Vulkan device with validation";
+  nephele::Scene scene = small_scene();
+  scene.quality.march_stride = 2;  // settled after 8 frames
+  scene.clouds.optics = "droplets";
+  scene.clouds.lighting = "diffusion";
+  const int built = nephele::kLightVolumeEditFrames + 2 * nephele::kDiffusionEditFrames;
+  {
+    nephele::FrameRenderer sky(host.vk);
+    nephele::FrameOptions options;
+    options.reuse_settled = true;
+    std::vector<bool> reused;
+    for (int i = 0; i < 12 + built + 10; ++i) {
+      if (i == 12) scene.clouds.coverage += 0.1f;  // an edit, once the view has settled
+      const int slot = i % sky.frames_in_flight();
+      VkCommandBuffer cmd = host.begin(slot);
+      reused.push_back(sky.record_frame(cmd, scene, options).reused);
+      host.submit(slot);
+      vkWaitForFences(host.vk.device, 1, &host.fence[slot], VK_TRUE, UINT64_MAX);
+    }
+    EXPECT_TRUE(reused[11]);  // settled before the edit
+    for (int i = 12; i < 12 + built; ++i) EXPECT_FALSE(reused[size_t(i)]) << "frame " << i;
+    EXPECT_TRUE(reused.back());  // and after its lighting is built
   }
   EXPECT_EQ(host.messages, 0);
 }

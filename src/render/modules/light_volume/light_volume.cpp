@@ -128,6 +128,7 @@ void LightVolumeModule::prepare(const FramePrepare& frame, FramePlan& plan) {
           frame.params);
   plan.light_volume_built = completed_;
   plan.light_volume_edited = completed_edit_;
+  plan.building = plan.building || build_key_.has_value();
 }
 
 }  // namespace nephele
