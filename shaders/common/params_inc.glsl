@@ -129,7 +129,9 @@ struct FrameParams {
                             // unit vector towards it, w its illuminance in units of the key
                             // light's (0: none)
   ivec4 cloud_grid;         // x, y cloud buffer size (pixels); z march stride s (one pixel of
-                            // each s x s block is marched per frame); w 1 if the history is valid
+                            // each s x s block is marched per frame); w 1 if the history is
+                            // valid, 2 if it is but the lighting changed (an edit's rebuilt
+                            // light): a marched pixel starts its mean afresh
   ivec4 march_offset;       // xy the pixel of each block marched this frame; z jitter index;
                             // w image pixels per cloud pixel (per axis)
   ivec4 march_entering;     // what the previous frame did not see, marched this frame

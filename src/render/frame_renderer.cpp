@@ -474,7 +474,12 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
                                               atmosphere.tables(), window ? &*window : nullptr);
   if (history) set_previous_frame(params, scene, *previous);
   const glm::ivec2 offset = march_offset(stride, frame_counter);
-  params.cloud_grid = glm::ivec4(cloud_w, cloud_h, stride, history ? 1 : 0);
+  // After a build for an edit relit the clouds, each pixel's next march (stride^2 frames)
+  // starts its mean afresh rather than take in the new light an eighth at a time.
+  if (last_plan.relit) relit_frames_left = stride * stride;
+  params.cloud_grid =
+      glm::ivec4(cloud_w, cloud_h, stride, !history ? 0 : (relit_frames_left > 0 ? 2 : 1));
+  if (relit_frames_left > 0) --relit_frames_left;
   params.cloud_shape.x = 2.0f * params.camera_pos_m.w / float(cloud_h);  // detail noise's LOD
   params.march_offset = glm::ivec4(offset, int(frame_counter / (stride * stride)), downsample);
   // A classical model (seed 004) draws instead of the march; a sky without volumetric clouds

@@ -51,6 +51,7 @@ struct FrameRenderer::Impl {
       false;  // it was recorded with FrameOptions::reuse_settled (and may be reused)
   bool previous_display = false;   // it made the display image
   bool previous_still = false;     // it was a still (every pixel marched at full resolution)
+  int relit_frames_left = 0;       // frames whose marched pixels restart their means
   long long unchanged_frames = 0;  // frames recorded since the scene (or reuse_settled) changed
   glm::vec3 previous_light_dir{0.0f};        // its key light (sky_lights)
   long long frame_counter = 0;               // frames since the history (re)started

@@ -39,6 +39,9 @@ struct FramePlan {
   // A module builds over frames and is not done (the light volume, the diffusion field): the
   // view is not settled (FrameOptions::reuse_settled), even if the scene is unchanged.
   bool building = false;
+  // A module completed a build for an edit this frame (the light volume, the diffusion field):
+  // the lighting changed, and the clouds' history restarts its means (FrameParams::cloud_grid).
+  bool relit = false;
   // What the graph is built for besides a frame's image: a measurement whose pass the module
   // that owns it adds as an output; only that pass and what it needs are recorded
   // (FrameGraph::dependencies_of), so it runs after the same passes, in the same order, as in

@@ -267,6 +267,34 @@ TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
   EXPECT_GT(lag, 0.03);
 }
 
+// After an edit's lighting is rebuilt (the light volume, then the diffusion field), the clouds'
+// history restarts its means (each pixel's next march): two marches on (2 stride^2 frames), a
+// frame is the frame of an animation begun from the edited scene's still. Taking the new light
+// in an eighth a march, it still held three quarters of the old.
+TEST_F(TemporalTest, AnEditsRebuiltLightIsTakenInWithinTwoMarches) {
+  Scene before = nephele::load_preset("default");
+  before.clouds.optics = "droplets";
+  before.clouds.lighting = "diffusion";
+  before.output.width = 48;
+  before.output.height = 30;
+  before.camera.view_dir = {0.0f, 1.0f, 0.2f};
+  Scene after = before;
+  after.clouds.coverage = before.clouds.coverage + 0.1f;
+  const int stride = before.quality.march_stride;
+  const int frames =
+      nephele::kLightVolumeEditFrames + 2 * nephele::kDiffusionEditFrames + 2 * stride * stride;
+  render(after);
+  Frame from_still;
+  for (int i = 1; i <= frames; ++i) from_still = shared_renderer().render_next(after, i == frames);
+  render(before);
+  Frame frame;
+  for (int i = 1; i <= frames; ++i) frame = shared_renderer().render_next(after, i == frames);
+  const double error = luminance_error(frame.color, from_still.color);
+  std::printf("frame %d after the edit: %.4f off the animation begun from its still\n", frames,
+              error);
+  EXPECT_LT(error, 0.02);
+}
+
 // A change of the clouds restarts the history: overcast, then clear, shows no stale cloud.
 TEST_F(TemporalTest, ChangedCloudsRestartTheHistory) {
   Scene s = view();

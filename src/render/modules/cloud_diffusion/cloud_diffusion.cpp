@@ -129,6 +129,7 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
     }
   }
   plan.building = plan.building || building_;
+  plan.relit = plan.relit || (gather_ && edit_);
   gpu::CloudDiffusionGpu block{};
   if (on) {
     for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k) {

@@ -128,7 +128,7 @@ void main() {
                         frame.camera_pos_m.w, frame.camera_forward.w, float(p.x), float(p.y),
                         float(frame.cloud_grid.x), float(frame.cloud_grid.y),
                         vec2(frame.camera_right.w, frame.camera_up.w));
-  if (frame.cloud_grid.w == 1) {
+  if (frame.cloud_grid.w >= 1) {
     // Two fixed-point steps: distance from this frame's samples, then from the history there.
     vec2 q = previous_pixel(dir, result.b.z);
     if (inside_image(q)) q = previous_pixel(dir, textureLod(history_b, history_uv(q), 0.0f).z);
@@ -149,7 +149,7 @@ void main() {
         float d = result.b.z;
         // The running mean of up to MAX_SAMPLES samples (b.w counts them), so a still view
         // converges while a moving one, or new content, starts afresh.
-        bool same = abs(h.b.z - d) < 0.1f * d && moved_px < 1.0f;
+        bool same = abs(h.b.z - d) < 0.1f * d && moved_px < 1.0f && frame.cloud_grid.w == 1;
         float n = same ? min(floor(h.b.w + 0.5f), MAX_SAMPLES - 1.0f) : 0.0f;
         result.a = mix(result.a, h.a, n / (n + 1.0f));
         result.b = vec4(mix(result.b.xyz, h.b.xyz, n / (n + 1.0f)), n + 1.0f);

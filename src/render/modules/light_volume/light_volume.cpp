@@ -129,6 +129,7 @@ void LightVolumeModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   plan.light_volume_built = completed_;
   plan.light_volume_edited = completed_edit_;
   plan.building = plan.building || build_key_.has_value();
+  plan.relit = plan.relit || completed_edit_;
 }
 
 }  // namespace nephele
