@@ -73,6 +73,23 @@ Drift follow_wind(glm::vec2 wind_mps, int frames, float dt_s) {
 
 class TemporalTest : public RenderTest {};
 
+// The default preset with droplets and the diffusion light, width x height, looking north and
+// a little up.
+Scene diffusion_view(int width, int height) {
+  Scene s = nephele::load_preset("default");
+  s.clouds.optics = "droplets";
+  s.clouds.lighting = "diffusion";
+  s.output.width = width;
+  s.output.height = height;
+  s.camera.view_dir = {0.0f, 1.0f, 0.2f};
+  return s;
+}
+
+// The frames an edit's lighting takes to rebuild: the light volume over kLightVolumeEditFrames,
+// then the diffusion field's medium and sweeps over kDiffusionEditFrames each.
+constexpr int kEditRelitFrames =
+    nephele::kLightVolumeEditFrames + 2 * nephele::kDiffusionEditFrames;
+
 }  // namespace
 
 // With nothing moving, a march cycle reprojects every pixel onto itself: the frames stay the
@@ -206,12 +223,7 @@ TEST_F(TemporalTest, FlightFramesStayNearTheirStills) {
 // moment: frame 12 measures 0.044 off it, where the two-stream light's still
 // (what a frame that lost the field would show) is 0.076 off.
 TEST_F(TemporalTest, DiffusionLightFramesStayNearTheirStills) {
-  Scene s = nephele::load_preset("default");
-  s.clouds.optics = "droplets";
-  s.clouds.lighting = "diffusion";
-  s.output.width = 160;
-  s.output.height = 100;
-  s.camera.view_dir = {0.0f, 1.0f, 0.2f};
+  Scene s = diffusion_view(160, 100);
   const auto at = [&](int frame) {
     Scene f = turned(s, 1.0f * float(frame));
     f.time_s += 0.05f * float(frame);
@@ -237,12 +249,7 @@ TEST_F(TemporalTest, DiffusionLightFramesStayNearTheirStills) {
 // the field are rebuilt (48 frames), a frame is the frame of an animation that began with the
 // edited scene's still (whose field was built at once); before, it lags by the edit's change.
 TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
-  Scene before = nephele::load_preset("default");
-  before.clouds.optics = "droplets";
-  before.clouds.lighting = "diffusion";
-  before.output.width = 48;
-  before.output.height = 30;
-  before.camera.view_dir = {0.0f, 1.0f, 0.2f};
+  Scene before = diffusion_view(48, 30);
   before.quality.march_stride = 1;  // every pixel marched every frame
   Scene after = before;
   after.clouds.coverage = before.clouds.coverage + 0.1f;
@@ -250,9 +257,7 @@ TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
   shared_renderer().render_next(after);
   const Frame from_still = shared_renderer().render_next(after, true);
   render(before);
-  // The light volume over kLightVolumeEditFrames, then the medium and the sweeps over
-  // kDiffusionEditFrames each.
-  const int built = nephele::kLightVolumeEditFrames + 2 * nephele::kDiffusionEditFrames;
+  const int built = kEditRelitFrames;
   Frame stale, frame;
   for (int i = 1; i <= built + 2; ++i) {
     const Frame f = shared_renderer().render_next(after, i == built - 8 || i == built + 2);
@@ -272,17 +277,11 @@ TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
 // frame is the frame of an animation begun from the edited scene's still. Taking the new light
 // in an eighth a march, it still held three quarters of the old.
 TEST_F(TemporalTest, AnEditsRebuiltLightIsTakenInWithinTwoMarches) {
-  Scene before = nephele::load_preset("default");
-  before.clouds.optics = "droplets";
-  before.clouds.lighting = "diffusion";
-  before.output.width = 48;
-  before.output.height = 30;
-  before.camera.view_dir = {0.0f, 1.0f, 0.2f};
+  Scene before = diffusion_view(48, 30);
   Scene after = before;
   after.clouds.coverage = before.clouds.coverage + 0.1f;
   const int stride = before.quality.march_stride;
-  const int frames =
-      nephele::kLightVolumeEditFrames + 2 * nephele::kDiffusionEditFrames + 2 * stride * stride;
+  const int frames = kEditRelitFrames + 2 * stride * stride;
   render(after);
   Frame from_still;
   for (int i = 1; i <= frames; ++i) from_still = shared_renderer().render_next(after, i == frames);
