@@ -21,7 +21,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
 
 layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_medium;
-layout(set = 1, binding = 3, r32f) uniform readonly image3D cloud_diffusion_phi;
+layout(set = 1, binding = 3, rgba32f) uniform readonly image3D cloud_diffusion_phi;
 
 // How far a ray looks, in cells.
 const int EXCHANGE_STEPS = 12;

@@ -16,7 +16,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "dispatch_inc.glsl"
 
 layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_medium;
-layout(set = 1, binding = 3, r32f) uniform readonly image3D cloud_diffusion_phi;
+layout(set = 1, binding = 3, rgba32f) uniform readonly image3D cloud_diffusion_phi;
 layout(set = 1, binding = 4, rgba32f) uniform writeonly image3D cloud_diffusion_field_out;
 
 void main() {

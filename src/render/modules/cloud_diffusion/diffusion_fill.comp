@@ -21,8 +21,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
 
 layout(set = 1, binding = 2, rgba32f) uniform writeonly image3D cloud_diffusion_medium_out;
-layout(set = 1, binding = 3, r32f) uniform writeonly image3D cloud_diffusion_phi_out;
-layout(set = 1, binding = 9, r32f) uniform writeonly image3D cloud_diffusion_inflow;
+layout(set = 1, binding = 3, rgba32f) uniform image3D cloud_diffusion_phi_out;
+layout(set = 1, binding = 9, r32f) uniform image3D cloud_diffusion_inflow;
 
 // Below this optical depth (similarity-scaled) across its thinnest side a cell is clear air:
 // left out of the solve, the light crossing it gathered along rays (diffusion_exchange.comp).
@@ -68,8 +68,8 @@ void main() {
   }
   float sigma_t = density / 8.0f * frame.cloud_shape.z * frame.cloud_light.y;
   vec3 h = diffusion_cell_m(cascade);
-  if (dispatch.values.z != 0) {
-    imageStore(cloud_diffusion_phi_out, c, vec4(0.0f));
+  bool zero = dispatch.values.z != 0;
+  if (zero) {
     exchange_store(c, 0, vec4(0.0f), vec4(0.0f));
     exchange_store(c, 1, vec4(0.0f), vec4(0.0f));
     imageStore(cloud_diffusion_inflow, c, vec4(0.0f));
@@ -104,4 +104,8 @@ void main() {
   float d = sigma_tr * side_m < THIN_TAU ? 0.0f : min(1.0f / (3.0f * sigma_tr), THIN_CAP * side_m);
   float sigma_a = (1.0f - albedo) * sigma_t;
   imageStore(cloud_diffusion_medium_out, c, vec4(d, sigma_a, q, sigma_tr));
+  // What the solve reads of a cell, in one load (diffusion_grid_inc.glsl).
+  float phi = zero ? 0.0f : imageLoad(cloud_diffusion_phi_out, c).x;
+  float brought = zero ? 0.0f : imageLoad(cloud_diffusion_inflow, c).r;
+  imageStore(cloud_diffusion_phi_out, c, vec4(phi, d, sigma_a, q + brought));
 }

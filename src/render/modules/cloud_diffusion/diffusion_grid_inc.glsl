@@ -2,8 +2,10 @@
 // diffusion_field.comp): the medium of each cell, x its diffusion coefficient D = 1 / (3
 // sigma_tr) (m; 0 for a cell the solve leaves out, as clear air), y its absorption sigma_a
 // (1/m), z the sunlight it scatters Q (per unit volume and of the sun's irradiance, 1/m), w
-// its similarity-scaled extinction sigma_tr = sigma_t (1 - albedo g) (1/m); the fluence phi,
-// solved in place. Cells are indexed (x, y, z) with x east and z up, the cascades stacked in z
+// its similarity-scaled extinction sigma_tr = sigma_t (1 - albedo g) (1/m); and the solve's
+// image (phi, D, sigma_a, source): the fluence phi, solved in place, beside what the solve
+// reads of the medium, so that a neighbour is one load (source: Q plus the light clear air
+// brings in, diffusion_inflow.comp). Cells are indexed (x, y, z) with x east and z up, the cascades stacked in z
 // (cloud_diffusion_gpu_inc.glsl); a dispatch row is y + z DIFFUSION_XY.
 #ifndef NEPHELE_DIFFUSION_GRID_INC
 #define NEPHELE_DIFFUSION_GRID_INC

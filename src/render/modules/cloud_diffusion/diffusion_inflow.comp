@@ -14,13 +14,15 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
 
 layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_medium;
+layout(set = 1, binding = 3, rgba32f) uniform image3D cloud_diffusion_phi;
 layout(set = 1, binding = 9, r32f) uniform writeonly image3D cloud_diffusion_inflow;
 
 void main() {
   ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy);
   int cascade = diffusion_cascade(c);
   if (!diffusion_in_grid(c, cascade)) return;
-  float d = imageLoad(cloud_diffusion_medium, c).x;
+  vec4 m = imageLoad(cloud_diffusion_medium, c);
+  float d = m.x;
   vec3 h = diffusion_cell_m(cascade);
   float inflow = 0.0f;
   for (int k = 0; k < 6 && d > 0.0f; ++k) {
@@ -33,4 +35,6 @@ void main() {
                 exchange_incoming(n, dispatch.values.x, -step);
   }
   imageStore(cloud_diffusion_inflow, c, vec4(inflow));
+  vec4 solved = imageLoad(cloud_diffusion_phi, c);
+  imageStore(cloud_diffusion_phi, c, vec4(solved.xyz, m.z + inflow));
 }

@@ -14,22 +14,22 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "dispatch_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
 
-layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_medium;
-layout(set = 1, binding = 3, r32f) uniform image3D cloud_diffusion_phi;
-layout(set = 1, binding = 9, r32f) uniform readonly image3D cloud_diffusion_inflow;
+// Each cell's (phi, D, sigma_a, source): its fluence, solved in place, and what the solve reads
+// of its medium, in one load (the sunlight it scatters Q plus the light clear air brings back
+// in, diffusion_fill.comp and diffusion_inflow.comp).
+layout(set = 1, binding = 3, rgba32f) uniform image3D cloud_diffusion_phi;
 
 void main() {
   ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy);
   c.x = 2 * c.x + ((c.y + c.z + dispatch.values.x) & 1);
   int cascade = diffusion_cascade(c);
   if (!diffusion_in_grid(c, cascade)) return;
-  vec4 m = imageLoad(cloud_diffusion_medium, c);
-  if (m.x <= 0.0f) return;
+  vec4 cell = imageLoad(cloud_diffusion_phi, c);
+  float phi = cell.x, d = cell.y;
+  if (d <= 0.0f) return;
   vec3 h = diffusion_cell_m(cascade);
-  float phi = imageLoad(cloud_diffusion_phi, c).r;
   // The balance Q = sigma_a phi + sum over faces of their flux out / h, linear in phi.
-  // The sunlight it scatters, and the light clear air brings back in (diffusion_inflow.comp).
-  float gained = m.z + imageLoad(cloud_diffusion_inflow, c).r, kept = m.y;
+  float gained = cell.w, kept = cell.z;
   for (int k = 0; k < 6; ++k) {
     int axis = k >> 1;
     ivec3 step = ivec3(0);
@@ -39,17 +39,18 @@ void main() {
     // Past the grid's sides the clouds go on: no flux through them (a deck cut there would
     // lose its light sideways).
     if (!inside && axis < 2) continue;
-    float d_n = inside ? imageLoad(cloud_diffusion_medium, n).x : 0.0f;
-    if (d_n > 0.0f) {
-      float phi_n = imageLoad(cloud_diffusion_phi, n).r;
+    vec2 neighbour = inside ? imageLoad(cloud_diffusion_phi, n).xy : vec2(0.0f);
+    if (neighbour.y > 0.0f) {
       // The limiter from the fluence as it is (lagged: the balance stays linear in phi).
-      float g = diffusion_conductance(m.x, d_n, h[axis], diffusion_limiter(phi, phi_n, h[axis]));
-      gained += g * phi_n / h[axis];
+      float g = diffusion_conductance(d, neighbour.y, h[axis],
+                                      diffusion_limiter(phi, neighbour.x, h[axis]));
+      gained += g * neighbour.x / h[axis];
       kept += g / h[axis];
     } else {
-      kept += diffusion_open_conductance(m.x, h[axis]) / h[axis];  // clear air, or open sky
+      kept += diffusion_open_conductance(d, h[axis]) / h[axis];  // clear air, or open sky
     }
   }
   float solved = gained / max(kept, 1e-12f);
-  imageStore(cloud_diffusion_phi, c, vec4(max(mix(phi, solved, diffusion.cell[cascade].z), 0.0f)));
+  cell.x = max(mix(phi, solved, diffusion.cell[cascade].z), 0.0f);
+  imageStore(cloud_diffusion_phi, c, cell);
 }
