@@ -183,35 +183,38 @@ struct CloudParams {
   // clouds lean. high_clouds, moving with its own wind, reads at each point the map 0.37 tiles
   // east and 0.61 tiles north of it, so its clouds do not stack over the low ones.
   std::string weather_map;
-  // How the clouds scatter the sun's light (issue 42). "seed" (the default): Wrenninge's four
-  // octaves with the powder term and a conservative diffuse term, as seed 002 lights them.
+  // How the clouds scatter the sun's light (issue 42). "seed": Wrenninge's four octaves with
+  // the powder term and a conservative diffuse term, as seed 002 lights them.
   // "two-stream" (experimental, stop 33): single scattering plus the two-stream field along
   // the sun's chord through each sample (common/clouds_inc.glsl, cloud_two_stream_fluxes: the
   // light going on and the light scattered back towards the sun, with absorption), nothing
   // counted twice; closer to the path tracer on seven of the eight validation views with
   // droplets, not yet within the issue's 5% (docs/validation.md). The old key
   // clouds.two_stream_light = true / false reads as "two-stream" / "seed". "diffusion"
-  // (experimental, stop 56): single scattering plus the multiple-scattered light solved on a
+  // (the default since stop 58): single scattering plus the multiple-scattered light solved on a
   // regular grid around the camera (render/modules/cloud_diffusion: the diffusion equation with
   // van de Hulst's similarity scaling, the sun's beam through each cell's faces as its source);
-  // the two-stream light past the grid. Closer than the two-stream light in the lab and on the
-  // noon, sunset and voxel views, further on the decks (docs/cloud-lighting.md).
-  std::string lighting = "seed";
+  // the two-stream light past the grid. The closest of the three to the path tracer on the
+  // validation suite and in the lab (docs/validation.md).
+  std::string lighting = "diffusion";
   bool two_stream() const { return lighting == "two-stream"; }
-  // What the clouds are made of (issue 42). "seed": the seed's optics, sigma_t = density field
+  // What the clouds are made of (issue 42). "droplets" (the default since stop 58) or "seed":
+  // the seed's optics, sigma_t = density field
   // x extinction_per_m, `albedo`, and two Henyey-Greenstein lobes (phase_g_*). "droplets":
   // water droplets, each genus with its liquid water content and droplet effective radius
   // ([droplets], DropletParams): sigma_t = 3 LWC / (2 rho_water r_eff), the albedo of water
   // droplets and a fitted Mie phase function (render/droplets.h); extinction_per_m, albedo and
   // the phase_g_* keys then keep their defaults (validate_scene refuses others).
-  std::string optics = "seed";
+  std::string optics = "droplets";
 };
 
 // The microphysics of each cloud genus for clouds.optics = "droplets" (issue 42): the liquid
-// water content (g/m^3) where the density field is 1 (the cloud's core; the field's height
-// gradient is the profile over height: thin bases, dense tops, as the adiabatic water content
-// grows with height) and the droplets' effective radius (um). Between genera both blend with
-// clouds.type as the shapes do. Defaults are typical of each genus (Miles, Verlinde and
+// water content (g/m^3) in the cloud's core, where the noise clouds' density field is 0.1
+// (kDropletCoreField, render/frame_params.h; a voxel cloud's field is its grid's density x its
+// own), scaled with the field
+// (the field's height gradient is the profile over height: thin bases, dense tops, as the adiabatic
+// water content grows with height) and the droplets' effective radius (um). Between genera both
+// blend with clouds.type as the shapes do. Defaults are typical of each genus (Miles, Verlinde and
 // Clothiaux 2000 for stratiform clouds; Pruppacher and Klett 1997): sigma_t = 1.5 LWC / r_eff
 // gives stratus 0.047 /m, cumulus 0.1 /m, cumulonimbus 0.15 /m.
 struct DropletParams {
@@ -379,9 +382,11 @@ struct VoxelCloudParams {
   glm::vec3 position_m{0.0f, 0.0f, 1500.0f};
   float scale = 1.0f;         // (0, 100]: multiplies the grid's size
   float rotation_deg = 0.0f;  // about the up axis, from north through east, [-360, 360]
-  // [0, 100]: sigma_t = grid density x this x clouds.extinction_per_m. 0.15 gives a cumulus
-  // core 0.15/m at the default extinction, as a real one (liquid water 0.5 g/m^3 in droplets of
-  // 10 um radius: 1.5 LWC / (rho r) = 0.075/m, up to twice that); 1 made them solid as plaster.
+  // [0, 100]: the cloud's field is grid density x this, as the noise clouds' density field:
+  // with droplets its water is the cumulus' x field / 0.1 (kDropletCoreField), with the seed's
+  // optics sigma_t = field x clouds.extinction_per_m. 0.15 gives a core of 1.5 times the
+  // cumulus' water, sigma_t 0.15 /m (the seed's optics: the same), as a real one (liquid water
+  // 0.5 g/m^3 in droplets of 10 um radius: 1.5 LWC / (rho r) = 0.075/m, up to twice that).
   float density = 0.15f;
   // Moves with the low layer's wind (clouds.wind_mps) when true; else with wind_mps.
   bool follow_wind = true;

@@ -367,7 +367,10 @@ CloudOptics cloud_optics(const Scene& scene) {
   o.peak_fraction = 1.0f - fit.w;
   const float kept = 1.0f - omega * o.peak_fraction;
   for (int i = 0; i < 5; ++i)
-    o.genus_sigma_t_per_m[i] = glsl::droplet_extinction_per_m(water[i], radius[i]) * kept;
+    o.genus_sigma_t_per_m[i] =
+        glsl::droplet_extinction_per_m(water[i], radius[i]) * kept / kDropletCoreField;
+  // A voxel cloud's field is its grid's density x its own (0.15 by default: its core holds 1.5
+  // times the cumulus' water, as the seed's optics made it 0.15 /m).
   o.voxel_sigma_t_per_m = o.genus_sigma_t_per_m[3];
   o.albedo = omega * (1.0f - o.peak_fraction) / kept;
   o.mie = glm::vec4(fit.x, fit.y, fit.z, 1.0f);

@@ -367,18 +367,18 @@ const std::vector<Section>& scene_sections() {
           FIELD(clouds, ambient_strength, "sky light on the clouds, times the sky's",
                 closed(0, 100)),
           FIELD(clouds, lighting,
-                "how the clouds scatter sunlight: \"seed\" (Wrenninge's octaves, the powder term "
-                "and a conservative diffuse term), \"two-stream\" (experimental: single "
-                "scattering and the two-stream field along the sun's chord) or \"diffusion\" "
-                "(experimental: the multiple-scattered light solved on a grid around the "
-                "camera, the diffusion equation with similarity scaling); the old "
+                "how the clouds scatter sunlight: \"diffusion\" (single scattering and the "
+                "multiple-scattered light solved on a grid around the camera, the diffusion "
+                "equation with similarity scaling), \"two-stream\" (single scattering and the "
+                "two-stream field along the sun's chord) or \"seed\" (Wrenninge's octaves, the "
+                "powder term and a conservative diffuse term); the old "
                 "two_stream_light = true / false reads as \"two-stream\" / \"seed\"",
                 {}, {"seed", "two-stream", "diffusion"}, "cloud-lighting"),
           FIELD(clouds, optics,
-                "what the clouds are made of: \"seed\" (sigma_t = density field x "
-                "extinction_per_m, albedo, two Henyey-Greenstein lobes) or \"droplets\" (water "
-                "droplets of [droplets]: sigma_t = 1.5 LWC / r_eff, their albedo and a fitted Mie "
-                "phase function)",
+                "what the clouds are made of: \"droplets\" (water droplets of [droplets]: "
+                "sigma_t = 1.5 LWC / r_eff, their albedo and a fitted Mie phase function) or "
+                "\"seed\" (sigma_t = density field x extinction_per_m, albedo, two "
+                "Henyey-Greenstein lobes)",
                 {}, {"seed", "droplets"}, "cloud-optics"),
           FIELD(clouds, wind_mps, "east, north (m/s), at the layer's bottom", closed(-200, 200)),
           FIELD(clouds, wind_shear_mps, "east, north (m/s): the wind's growth up to the top",
@@ -409,8 +409,8 @@ const std::vector<Section>& scene_sections() {
          {"two_stream_light"}},
         {"droplets",
          {FIELD(droplets, stratus_water_g_m3,
-                "clouds.optics = \"droplets\": stratus liquid water content where the density "
-                "field is 1",
+                "clouds.optics = \"droplets\": stratus liquid water content in a cloud's core "
+                "(where the density field is 0.1), scaled with the field",
                 left_open(0, 10)),
           FIELD(droplets, stratus_radius_um,
                 "stratus droplets' effective radius (the Mie fit's range: diameters 5-50 um)",

@@ -136,10 +136,12 @@ TEST(CloudQuery, OpticalDepthAndInsideFollowTheDensity) {
 
 // Clouds of droplets (clouds.optics = "droplets", issue 42): where every genus holds the same
 // water in droplets of the same size, sigma_t is the seed's field (extinction_per_m 1) times
-// 1.5 LWC / r_eff at every point; with the defaults it lies between the genera's.
+// 1.5 LWC / r_eff / kDropletCoreField (the water given is the core's, where the field is 0.1)
+// at every point; with the defaults it lies between the genera's.
 TEST(CloudQuery, DropletCloudsHaveTheExtinctionOfTheirWater) {
   Renderer renderer(validated());
   Scene seed = load_preset("default");
+  seed.clouds.optics = "seed";
   const CloudQuery field = renderer.cloud_query(seed);
   Scene uniform = seed;
   uniform.clouds.optics = "droplets";
@@ -162,11 +164,12 @@ TEST(CloudQuery, DropletCloudsHaveTheExtinctionOfTheirWater) {
   const CloudOptics typical_optics = cloud_optics(typical);
   const float kept =
       1.0f - typical_optics.peak_fraction * glsl::droplet_albedo(typical_optics.radius_um);
-  const float lowest = 1.5f * kept *
+  const float lowest = 1.5f * kept / kDropletCoreField *
                        std::min({g.stratus_water_g_m3 / g.stratus_radius_um,
                                  g.altocumulus_water_g_m3 / g.altocumulus_radius_um,
                                  g.stratocumulus_water_g_m3 / g.stratocumulus_radius_um});
-  const float highest = 1.5f * kept * g.cumulonimbus_water_g_m3 / g.cumulonimbus_radius_um;
+  const float highest =
+      1.5f * kept / kDropletCoreField * g.cumulonimbus_water_g_m3 / g.cumulonimbus_radius_um;
   int clouds = 0;
   for (int i = 0; i < 40; ++i)
     for (int k = 0; k < 30; ++k) {
@@ -177,7 +180,8 @@ TEST(CloudQuery, DropletCloudsHaveTheExtinctionOfTheirWater) {
         continue;
       }
       ++clouds;
-      EXPECT_NEAR(water.sigma_t_per_m(p, 0.0f), sigma * 0.075f * kept_uniform, 1e-5f * sigma)
+      EXPECT_NEAR(water.sigma_t_per_m(p, 0.0f), sigma * 0.075f / kDropletCoreField * kept_uniform,
+                  1e-5f * sigma)
           << i << " " << k;
       const float share = genera.sigma_t_per_m(p, 0.0f) / sigma;
       EXPECT_GE(share, lowest * 0.999f) << i << " " << k;

@@ -1,11 +1,15 @@
 // Photometric units on the device: with the sun at the luminous solar constant (lux) and the
-// renderer's radiances in cd/m^2, the exposures a photographer would use (EV100: about 15 on a
-// sunny day, 12 to 13 overcast, 8 to 11 at sunset, 3 to 5 in civil twilight, -2 to -4 under a
-// full moon) give frames of a sane mid-grey, and the meter reads about those EVs.
+// renderer's radiances in cd/m^2, an incident meter at the camera (the illuminance on level
+// ground) reads the published illuminance of each light; the reflected meter (auto exposure)
+// reads the exposure a photographer would use (EV100: about 15 on a sunny day, 8 to 11 at
+// sunset, 3 to 5 in civil twilight, -2 to -4 under a full moon), and frames at those exposures
+// are a sane mid-grey; an overcast sky, bright as a white card under it, reads 2.5 EV above
+// the incident meter's 12 to 13.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "nephele/exposure.h"
 #include "nephele/image.h"
@@ -20,6 +24,11 @@ struct Light {
   const char* name;
   Scene scene;
   double photographers_ev100;  // the exposure a photographer would use
+  // The illuminance on level ground in such light (lux), as published, for an incident meter.
+  double lux_low, lux_high;
+  bool filled_by_cloud = false;  // the view is an overcast sky
+  // Where the incident meter stands, on the ground: the camera's place unless given.
+  std::optional<glm::vec3> meter_at_m = std::nullopt;
 };
 
 Scene small(Scene s) {
@@ -45,7 +54,22 @@ double mean_display_value(const nephele::Image& image, float exposure) {
   return sum / (255.0 * double(rgba.size() / 4));
 }
 
-class ExposureRenderTest : public RenderTest {};
+class ExposureRenderTest : public RenderTest {
+ protected:
+  // An incident meter's EV100 at the camera, log2(E S / C) with S = 100 and C = 250 (ISO 2720,
+  // a flat receptor): E, the illuminance on level ground there, from the ground's luminance
+  // straight below (the ground is Lambertian: L = albedo E / pi), the sun's, the sky's and the
+  // light the clouds scatter down together.
+  double incident_ev100(Scene s, std::optional<glm::vec3> at_m) {
+    if (at_m) s.camera.position_m = *at_m;
+    s.camera.view_dir = {0.0f, 0.01f, -1.0f};
+    s.camera.fov_deg = 10.0f;
+    s.output.width = s.output.height = 8;
+    const nephele::Frame frame = render(s);
+    const double lux = M_PI * frame.stats.mean_luminance / double(s.atmosphere.ground_albedo);
+    return std::log2(lux * 100.0 / 250.0);
+  }
+};
 
 TEST_F(ExposureRenderTest, PhotographersExposuresGiveSaneFrames) {
   Scene moon = small(nephele::load_preset("default"));
@@ -54,23 +78,42 @@ TEST_F(ExposureRenderTest, PhotographersExposuresGiveSaneFrames) {
   moon.location = {48.85f, 2.35f, 35.0f};
   moon.camera.view_dir = {0.9f, -0.12f, 0.42f};
   const Light lights[] = {
-      {"sunny day", small(nephele::load_preset("default")), 15.0},
-      {"overcast", small(nephele::load_preset("overcast")), 12.5},
-      {"sunset (sun at 0 deg, looking along the horizon)", sun_at(0.0f, {-1.0f, 0.3f, 0.1f}), 10.0},
-      {"civil twilight (sun at -5 deg)", sun_at(-5.0f, {0.0f, 1.0f, 0.3f}), 4.0},
-      {"full moon", moon, -3.0},
+      // Illuminances: the sun 35 deg up, in its light, 60-100 klx (clear sky alone 65 klx
+      // here); an overcast day 5-25 klx; the sun on the horizon 300-1,500 lx; civil twilight
+      // at -5 deg 3-40 lx; a full moon 41 deg up 0.03-0.2 lx (0.27 at the zenith, clear).
+      // Sunny 16 is for subjects in the sun: the camera's own place lies in a cumulus' shadow
+      // (incident 13.6 there, 14.7 under a clear sky, 14.95 here, the clouds' light added).
+      {"sunny day", small(nephele::load_preset("default")), 15.0, 60e3, 100e3, false,
+       glm::vec3(3000.0f, 0.0f, 2.0f)},
+      {"overcast", small(nephele::load_preset("overcast")), 12.5, 5e3, 25e3, true},
+      {"sunset (sun at 0 deg, looking along the horizon)", sun_at(0.0f, {-1.0f, 0.3f, 0.1f}), 10.0,
+       300.0, 1500.0},
+      {"civil twilight (sun at -5 deg)", sun_at(-5.0f, {0.0f, 1.0f, 0.3f}), 4.0, 3.0, 40.0},
+      {"full moon", moon, -3.0, 0.03, 0.2},
   };
   for (const Light& light : lights) {
     const nephele::Frame frame = render(light.scene);
     const double metered = nephele::ev100_from_luminance(nephele::metered_luminance(frame.color));
+    const double incident = incident_ev100(light.scene, light.meter_at_m);
     const double grey = mean_display_value(
         frame.color, float(nephele::exposure_from_ev100(light.photographers_ev100)));
-    std::printf("%-50s metered EV100 %6.2f (photographer %5.1f), mean luminance %.4g cd/m^2, "
-                "display mean at the photographer's EV %.3f\n",
-                light.name, metered, light.photographers_ev100, frame.stats.mean_luminance, grey);
-    EXPECT_NEAR(metered, light.photographers_ev100, 1.5) << light.name;
+    std::printf(
+        "%-50s incident EV100 %6.2f, metered %6.2f (photographer %5.1f), mean "
+        "luminance %.4g cd/m^2, display mean at the photographer's EV %.3f\n",
+        light.name, incident, metered, light.photographers_ev100, frame.stats.mean_luminance, grey);
+    const auto ev = [](double lux) { return std::log2(lux * 100.0 / 250.0); };
+    EXPECT_GE(incident, ev(light.lux_low)) << light.name;
+    EXPECT_LE(incident, ev(light.lux_high)) << light.name;
     EXPECT_GT(grey, 0.2) << light.name << ": too dark at the photographer's exposure";
-    EXPECT_LT(grey, 0.7) << light.name << ": too bright at the photographer's exposure";
+    if (light.filled_by_cloud) {
+      // An overcast sky is about as bright as a white card under it, L = E / pi: a reflected
+      // meter (calibrated on 18% grey) reads it about log2(1 / 0.18) = 2.5 EV above the
+      // incident reading, and a photographer's exposure renders it near white.
+      EXPECT_NEAR(metered - incident, 2.5, 1.0) << light.name;
+    } else {
+      EXPECT_NEAR(metered, light.photographers_ev100, 1.5) << light.name;
+      EXPECT_LT(grey, 0.7) << light.name << ": too bright at the photographer's exposure";
+    }
   }
 }
 

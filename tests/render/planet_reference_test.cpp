@@ -157,6 +157,7 @@ TEST_F(PlanetReferenceTest, TheNoiseCloudsMajorantGridIsNeverExceededAndChangesN
   s.output.width = 16;
   s.output.height = 12;
   s.camera.view_dir = {0.2f, 1.0f, 0.5f};
+  s.clouds.optics = "seed";
   s.clouds.density = 0.05f;
   s.clouds.extinction_per_m = 0.05f;
   nephele::ReferenceOptions options;

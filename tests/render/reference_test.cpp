@@ -288,6 +288,7 @@ TEST_F(ReferenceTest, ThePlanetsPathsScatterAsTheLabsDo) {
   planet.sun.illuminance_lux = 1.0f;
   planet.sun.disk_angular_radius_deg = 0.0f;
   planet.clouds.coverage = 0.0f;
+  planet.clouds.optics = "seed";  // the lab's medium: one Henyey-Greenstein lobe, no absorption
   planet.clouds.extinction_per_m = 0.05f;
   planet.clouds.albedo = 1.0f;
   planet.clouds.phase_g_forward = 0.8f;

@@ -220,8 +220,9 @@ TEST_F(TemporalTest, FlightFramesStayNearTheirStills) {
 // The diffusion light (clouds.lighting = "diffusion", render/modules/cloud_diffusion) in an
 // animation: the first frame builds its field at once, later frames read it (its next build
 // is spread over frames, into a second field), so a short flight stays near a still of its
-// moment: frame 12 measures 0.044 off it, where the two-stream light's still
-// (what a frame that lost the field would show) is 0.076 off.
+// moment: frame 12 measures 0.089 off it (the march's reprojection: with the same field every
+// frame), where the two-stream light's still (what a frame that lost the field would show) is
+// 0.124 off. (0.044 and 0.076 with the thin clouds of stops 56-57, a tenth of the water.)
 TEST_F(TemporalTest, DiffusionLightFramesStayNearTheirStills) {
   Scene s = diffusion_view(160, 100);
   const auto at = [&](int frame) {
@@ -240,7 +241,7 @@ TEST_F(TemporalTest, DiffusionLightFramesStayNearTheirStills) {
   std::printf(
       "diffusion flight frame 12: %.4f off its still (the two-stream light's still: %.4f)\n", error,
       lost);
-  EXPECT_LT(error, 0.06);
+  EXPECT_LT(error, 0.1);
   EXPECT_LT(error, lost);
 }
 
@@ -248,6 +249,9 @@ TEST_F(TemporalTest, DiffusionLightFramesStayNearTheirStills) {
 // the clear air's gather a frame): after an edit of the clouds, once the light volume and then
 // the field are rebuilt (48 frames), a frame is the frame of an animation that began with the
 // edited scene's still (whose field was built at once); before, it lags by the edit's change.
+// Measured 0.0112 and 0.30: the animation's build starts from the unedited still's fluence and
+// gathered light, the still's from zero (0.0043 when a still, too, started from the last
+// build's; 160 sweeps instead of 128 leave it at 0.0112).
 TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
   Scene before = diffusion_view(48, 30);
   before.quality.march_stride = 1;  // every pixel marched every frame
@@ -268,7 +272,7 @@ TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
   const double lag = luminance_error(stale.color, from_still.color);
   std::printf("frame %d after the edit: %.4f off (frame %d, before the field: %.4f)\n", built + 2,
               error, built - 8, lag);
-  EXPECT_LT(error, 0.01);
+  EXPECT_LT(error, 0.015);
   EXPECT_GT(lag, 0.03);
 }
 

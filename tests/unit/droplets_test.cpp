@@ -124,12 +124,14 @@ TEST(Droplets, TheFrameCarriesEachGenusExtinctionAndTheDropletsPhase) {
   const DropletParams& d = scene.droplets;
   const CloudOptics optics = cloud_optics(scene);
   const float kept = 1.0f - glsl::droplet_albedo(d.cumulus_radius_um) * optics.peak_fraction;
-  const float cb = 1.5f * d.cumulonimbus_water_g_m3 / d.cumulonimbus_radius_um * kept;
-  const float cu = 1.5f * d.cumulus_water_g_m3 / d.cumulus_radius_um * kept;
+  // Each genus' water where the field is kDropletCoreField.
+  const float cb =
+      1.5f * d.cumulonimbus_water_g_m3 / d.cumulonimbus_radius_um * kept / kDropletCoreField;
+  const float cu = 1.5f * d.cumulus_water_g_m3 / d.cumulus_radius_um * kept / kDropletCoreField;
   EXPECT_NEAR(f.cloud_shape.z, cb, 1e-6f);  // the largest of the defaults
   EXPECT_NEAR(f.cloud_genus_sigma.w * f.cloud_shape.z, cu, 1e-6f);
   EXPECT_NEAR(f.cloud_genus_sigma.x * f.cloud_shape.z,
-              1.5f * d.stratus_water_g_m3 / d.stratus_radius_um * kept, 1e-6f);
+              1.5f * d.stratus_water_g_m3 / d.stratus_radius_um * kept / kDropletCoreField, 1e-5f);
   EXPECT_FLOAT_EQ(f.cloud_droplets.x, 1.0f);
   EXPECT_EQ(f.cloud_droplets.y, 1.0f);
   EXPECT_NEAR(f.cloud_shape.w, optics.albedo, 1e-7f);
@@ -139,6 +141,8 @@ TEST(Droplets, TheFrameCarriesEachGenusExtinctionAndTheDropletsPhase) {
   EXPECT_EQ(f.cloud_droplets.w, f.cloud_droplets.z);  // the diffuse light's asymmetry
 
   Scene seed;
+  seed.clouds.optics = "seed";
+  seed.clouds.lighting = "seed";
   seed.clouds.extinction_per_m = 0.7f;
   const gpu::FrameParams s = make_frame_params(seed, 0);
   EXPECT_FLOAT_EQ(s.cloud_shape.z, 0.7f);
@@ -171,7 +175,7 @@ TEST(Droplets, TheDiffractionPeakGoesOnForwards) {
     EXPECT_LT(o.peak_fraction, 0.6f) << radius;
     const double sigma = glsl::droplet_extinction_per_m(scene.droplets.cumulus_water_g_m3, radius);
     const double omega = glsl::droplet_albedo(radius);
-    const double sigma_d = o.genus_sigma_t_per_m[3];
+    const double sigma_d = o.genus_sigma_t_per_m[3] * kDropletCoreField;  // at the core
     // (The albedo is a float: 1 - albedo to within two of its steps, 1.2e-7.)
     EXPECT_NEAR(sigma_d * (1.0 - double(o.albedo)), sigma * (1.0 - omega), 1.2e-7 * sigma);
     EXPECT_NEAR(sigma_d * o.albedo, sigma * omega * (1.0 - o.peak_fraction), 1e-6 * sigma);
@@ -205,8 +209,8 @@ TEST(Droplets, TheSeedsOpticalKeysAreRefusedWithDroplets) {
       EXPECT_NE(what.find("clouds.optics = \"seed\""), std::string::npos) << what;
     }
     // With the seed's optics the key is the seed's.
-    EXPECT_NO_THROW(
-        validate_scene(parse_scene_toml(std::string("[clouds]\n") + key + "\n", "test")));
+    EXPECT_NO_THROW(validate_scene(
+        parse_scene_toml(std::string("[clouds]\noptics = \"seed\"\n") + key + "\n", "test")));
   }
   EXPECT_THROW(validate_scene(parse_scene_toml("[clouds]\noptics = \"water\"\n", "test")),
                InputError);

@@ -140,22 +140,23 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
        [](const Scene& s) { return s.clouds.bottom_altitude_m == 900.0f; }},
       {{"--cloud-top-m", "7000"},
        [](const Scene& s) { return s.clouds.top_altitude_m == 7000.0f; }},
-      {{"--extinction-per-m", "0.02"},
+      {{"--extinction-per-m", "0.02", "--cloud-optics", "seed"},
        [](const Scene& s) { return s.clouds.extinction_per_m == 0.02f; }},
       {{"--attenuation", "1.5"}, [](const Scene& s) { return s.clouds.attenuation == 1.5f; }},
       {{"--light-attenuation", "0.5"},
        [](const Scene& s) { return s.clouds.light_attenuation == 0.5f; }},
-      {{"--albedo", "0.9"}, [](const Scene& s) { return s.clouds.albedo == 0.9f; }},
-      {{"--g-forward", "0.6"}, [](const Scene& s) { return s.clouds.phase_g_forward == 0.6f; }},
-      {{"--g-backward", "-0.6"}, [](const Scene& s) { return s.clouds.phase_g_backward == -0.6f; }},
-      {{"--lobe-weight", "0.25"},
+      {{"--albedo", "0.9", "--cloud-optics", "seed"},
+       [](const Scene& s) { return s.clouds.albedo == 0.9f; }},
+      {{"--g-forward", "0.6", "--cloud-optics", "seed"},
+       [](const Scene& s) { return s.clouds.phase_g_forward == 0.6f; }},
+      {{"--g-backward", "-0.6", "--cloud-optics", "seed"},
+       [](const Scene& s) { return s.clouds.phase_g_backward == -0.6f; }},
+      {{"--lobe-weight", "0.25", "--cloud-optics", "seed"},
        [](const Scene& s) { return s.clouds.phase_lobe_weight == 0.25f; }},
       {{"--powder", "0"}, [](const Scene& s) { return s.clouds.powder_strength == 0.0f; }},
       // A string field's flag takes the word as typed, or a quoted TOML string.
-      {{"--cloud-optics", "droplets"},
-       [](const Scene& s) { return s.clouds.optics == "droplets"; }},
-      {{"--cloud-optics", "\"droplets\""},
-       [](const Scene& s) { return s.clouds.optics == "droplets"; }},
+      {{"--cloud-optics", "seed"}, [](const Scene& s) { return s.clouds.optics == "seed"; }},
+      {{"--cloud-optics", "\"seed\""}, [](const Scene& s) { return s.clouds.optics == "seed"; }},
       {{"--ambient", "2"}, [](const Scene& s) { return s.clouds.ambient_strength == 2.0f; }},
       {{"--wind-mps", "-3,4"},
        [](const Scene& s) { return s.clouds.wind_mps == glm::vec2(-3.0f, 4.0f); }},
@@ -225,7 +226,8 @@ TEST(SceneFlags, EveryOverrideLandsInItsField) {
 }
 
 TEST(SceneFlags, NegativeValuesAreValuesNotFlags) {
-  Scene scene = resolve({"--sun-elevation-deg", "-5", "--g-backward", "-0.2"});
+  Scene scene =
+      resolve({"--sun-elevation-deg", "-5", "--cloud-optics", "seed", "--g-backward", "-0.2"});
   EXPECT_NEAR(sun_angles_from_direction(scene.sun.direction).elevation_deg, -5.0, 1e-4);
   EXPECT_EQ(scene.clouds.phase_g_backward, -0.2f);
   scene = resolve({"--view-dir=-1,0,0.2", "--wind-mps=-1,-2"});

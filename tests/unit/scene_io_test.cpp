@@ -471,7 +471,7 @@ TEST(SceneToml, SunAnglesReplaceDirection) {
 // clouds.lighting chooses the clouds' lighting; the old switch two_stream_light reads as it,
 // and both together, or a switch that is not true or false, are refused naming the new key.
 TEST(SceneToml, LightingReplacesTheOldTwoStreamSwitch) {
-  EXPECT_EQ(Scene{}.clouds.lighting, "seed");
+  EXPECT_EQ(Scene{}.clouds.lighting, "diffusion");
   EXPECT_EQ(parse_scene_toml("[clouds]\nlighting = \"two-stream\"\n", "s.toml").clouds.lighting,
             "two-stream");
   EXPECT_EQ(parse_scene_toml("[clouds]\ntwo_stream_light = true\n", "s.toml").clouds.lighting,
@@ -1092,10 +1092,22 @@ TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
       [](Scene& s) { s.clouds.coverage = 0.0f; },
       [](Scene& s) { s.clouds.coverage = 1.0f; },
       [](Scene& s) { s.clouds.density = 0.0f; },
-      [](Scene& s) { s.clouds.albedo = 1.0f; },
-      [](Scene& s) { s.clouds.phase_g_forward = 0.0f; },
-      [](Scene& s) { s.clouds.phase_g_backward = 0.0f; },
-      [](Scene& s) { s.clouds.phase_lobe_weight = 1.0f; },
+      [](Scene& s) {
+        s.clouds.optics = "seed";
+        s.clouds.albedo = 1.0f;
+      },
+      [](Scene& s) {
+        s.clouds.optics = "seed";
+        s.clouds.phase_g_forward = 0.0f;
+      },
+      [](Scene& s) {
+        s.clouds.optics = "seed";
+        s.clouds.phase_g_backward = 0.0f;
+      },
+      [](Scene& s) {
+        s.clouds.optics = "seed";
+        s.clouds.phase_lobe_weight = 1.0f;
+      },
       [](Scene& s) { s.clouds.bottom_altitude_m = 0.0f; },
       [](Scene& s) { s.camera.position_m.z = 0.0f; },
       [](Scene& s) { s.camera.fov_deg = 179.9f; },
@@ -1117,16 +1129,26 @@ TEST(SceneValidateExact, BoundaryValuesAreAccepted) {
       [](Scene& s) { s.camera.horizontal_fov_deg = 179.9f; },
       [](Scene& s) { s.time_s = -5.0f; },
       // The far ends of the documented ranges.
-      [](Scene& s) { s.camera.position_m = {-1e9f, 1e9f, 1e9f}; },
-      [](Scene& s) { s.camera.view_dir = {1e-6f, 0.0f, 0.0f}; },
-      [](Scene& s) { s.camera.view_dir = {0.0f, 1e6f, 0.0f}; },
+      [](Scene& s) {
+        s.camera.position_m = {-1e9f, 1e9f, 1e9f};
+      },
+      [](Scene& s) {
+        s.camera.view_dir = {1e-6f, 0.0f, 0.0f};
+      },
+      [](Scene& s) {
+        s.camera.view_dir = {0.0f, 1e6f, 0.0f};
+      },
       [](Scene& s) { s.camera.fov_deg = 0.01f; },
       [](Scene& s) { s.camera.roll_deg = -180.0f; },
       [](Scene& s) { s.camera.roll_deg = 180.0f; },
       [](Scene& s) { s.sun.illuminance_lux = 1e10f; },
-      [](Scene& s) { s.atmosphere.mie_scattering_per_m = s.atmosphere.mie_extinction_per_m = 0.01f; },
+      [](Scene& s) {
+        s.atmosphere.mie_scattering_per_m = s.atmosphere.mie_extinction_per_m = 0.01f;
+      },
       [](Scene& s) { s.clouds.ambient_strength = 100.0f; },
-      [](Scene& s) { s.clouds.wind_mps = {-200.0f, 200.0f}; },
+      [](Scene& s) {
+        s.clouds.wind_mps = {-200.0f, 200.0f};
+      },
       [](Scene& s) { s.clouds.weather_evolution_s = 0.0f; },
       [](Scene& s) { s.time_s = 1e6f; },
       [](Scene& s) { s.output.ev100 = 30.0f; },

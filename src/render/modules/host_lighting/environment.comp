@@ -3,10 +3,10 @@
 // of its six faces side by side (+X -X +Y -Y +Z -Z of ENU, the faces' texel directions as a
 // Vulkan cube map's): the sky and the lit ground of the sky-view table, behind the clouds
 // marched along the texel's direction in ENVIRONMENT_STEPS steps over the cloud shell (at most
-// ENVIRONMENT_REACH_M away), lit as the view's clouds are but more cheaply: the key light's
-// direct and diffuse light through the light volume (or a short light march beyond it) with the
-// clouds' phase function, the sky's light from above, the ground's from below. For image-based
-// lighting and reflections.
+// ENVIRONMENT_REACH_M away), lit as the view's clouds are (cloud_light: the diffusion field, the
+// two-stream light or the octaves, as the scene's lighting) but more cheaply: the key light's
+// depth through the light volume (or a short light march beyond it), the sky's light from
+// above, the ground's from below. For image-based lighting and reflections.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
@@ -18,6 +18,7 @@
 #include "sky_light_inc.glsl"
 const int MARCH_MODE = 0;  // cloud_field_inc.glsl's lookups
 #include "cloud_field_inc.glsl"
+#include "render/modules/cloud_diffusion/cloud_diffusion_inc.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -51,7 +52,10 @@ void main() {
   segment.y = min(segment.y, ENVIRONMENT_REACH_M);
   float dt = max(segment.y - segment.x, 0.0f) / float(ENVIRONMENT_STEPS);
   vec3 sun = frame.sun_dir.xyz;
-  float phase = cloud_phase_function(dot(dir, sun), 1.0f);
+  float mu = dot(dir, sun);
+  vec4 phases = octave_phases(mu);
+  bool two_stream = frame.cloud_phase.w > 0.5f, diffusion = frame.cloud_phase.w > 1.5f;
+  float light_scale = frame.cloud_shape.z * frame.cloud_light.y, g1 = frame.cloud_droplets.z;
   vec3 ambient_above = frame.ambient_at_clouds.rgb * frame.cloud_light.w;
   vec3 ambient_below = frame.ambient_below_clouds.rgb * frame.cloud_light.w;
   float below_share = texelFetch(ground_light, ivec2(0), 0).r;  // the ground's light under the clouds
@@ -61,15 +65,13 @@ void main() {
   for (int i = 0; i < (dt > 0.0f ? ENVIRONMENT_STEPS : 0); ++i) {
     vec3 p = eye + dir * (segment.x + (float(i) + 0.5f) * dt);
     float sigma_t = cloud_density(p, true) * frame.cloud_shape.z;
-    // As the view's clouds are lit (clouds.comp, without the two-stream light and the octaves):
-    // the sun's direct light and its diffuse light through the cloud towards it, the sky's light
-    // from above through the same cloud, the ground's from below.
+    // As the view's clouds are lit (clouds.comp): the sun's light scattered once and many times,
+    // the sky's light from above through the cloud towards the sun, the ground's from below.
     float depth = light_volume_covers(p) ? light_volume_lookup(p) : march_light(p, sun, 0.0f, light_ray_length(p, sun), 4);
-    float tau = depth * frame.cloud_shape.z * frame.cloud_light.y;
-    float t_d = cloud_diffuse_transmittance(tau);
-    float mu_sun = max(dot(sun, normalize(p)), 0.0f);
-    vec3 source = frame.sun_at_clouds.rgb * (phase * exp(-tau) + (t_d - exp(-tau)) * mu_sun / PI) +
-                  ambient_above * t_d + ambient_below * ((1.0f - layer_fraction(p)) * below_share);
+    vec3 sunlit = cloud_light(diffusion, p, dir, sun, depth * light_scale, light_scale, mu,
+                              two_stream, phases, frame.cloud_light.z, albedo, g1);
+    vec3 source = frame.sun_at_clouds.rgb * (sunlit.x + sunlit.y) + ambient_above * sunlit.z +
+                  ambient_below * ((1.0f - layer_fraction(p)) * below_share);
     float step_t = exp(-sigma_t * dt);
     light += transmittance * (1.0f - step_t) * albedo * source;
     transmittance *= step_t;
