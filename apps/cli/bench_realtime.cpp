@@ -108,8 +108,11 @@ Scene reference_scene(const Scene& scene) {
   r.quality.march_stride = 1;
   r.quality.cloud_downsample = 1;
   r.quality.primary_steps = std::min(4 * scene.quality.primary_steps, 1024);
-  r.quality.light_steps = 64;    // every light ray marched to the top of the layer,
-  r.quality.light_volume_km = 0;  // no light volume
+  r.quality.light_steps = 64;  // every light ray marched to the top of the layer,
+  // no light volume; but the diffusion light's field is built from it (without one the clouds
+  // would take the two-stream light), so the reference keeps it and judges the march's steps,
+  // its stride and its history against the same field.
+  if (scene.clouds.lighting != "diffusion") r.quality.light_volume_km = 0;
   return r;
 }
 

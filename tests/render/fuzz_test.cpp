@@ -74,9 +74,9 @@ constexpr int kCli11ProcessCases = 40;   // CLI11 errors judged on a process (re
 constexpr int kRandomRenderCases = 16;   // accepted scenes rendered, besides the edge scenes
 constexpr int kRenderSize = 16;          // rendered images are 16x16
 // The light volume costs about 5 s a render on lavapipe whatever the image size, and nearly
-// every fuzzed scene rebuilds it, and the diffusion light as much again; they are left on in
-// these many sampled renders and turned off (quality.light_volume_km = 0, and the two-stream
-// light for the diffusion light) in the others.
+// every fuzzed scene rebuilds it, and the diffusion light's field with it as much again; it is
+// left on in these many sampled renders and turned off (quality.light_volume_km = 0, --light-
+// volume-km 0; the diffusion light then falls back to the two-stream light) in the others.
 constexpr int kLightVolumeRenders = 2;
 constexpr int kMaxRandomDottedDepth = 2000;  // a.b.c... in random cases; 50,000 has its own test
 constexpr int kKnownDeepDottedDepth = 50000;
@@ -1133,10 +1133,7 @@ struct RenderJob {
 std::string render_one(nephele::Renderer& renderer, const RenderJob& job, const std::string& exr) {
   Scene scene = job.scene;
   scene.output.width = scene.output.height = kRenderSize;
-  if (!job.light_volume) {
-    scene.quality.light_volume_km = 0;
-    if (scene.clouds.lighting == "diffusion") scene.clouds.lighting = "two-stream";
-  }
+  if (!job.light_volume) scene.quality.light_volume_km = 0;
   const int messages_before = renderer.validation_messages();
   try {
     const nephele::Frame frame = renderer.render(scene);

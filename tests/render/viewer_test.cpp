@@ -342,10 +342,8 @@ TEST_F(ViewerTest, PlaysACameraPathAsNepheleRenderFliesIt) {
                                    "frame 5 quit\n");
   // At the exposure the tolerances were set for (the old default, EV100 13.38): the two
   // programs' clouds differ by a little noise, which a darker exposure brings out of the tone
-  // curve's shoulder. With the two-stream light: the default diffusion light's field follows a
-  // moving camera over frames in the viewer, where the CLI's one frame builds it at once.
-  const ProcessRun r =
-      view("--preset default --cloud-lighting two-stream --ev100 13.38 --script " + script);
+  // curve's shoulder.
+  const ProcessRun r = view("--preset default --ev100 13.38 --script " + script);
   expect_clean(r);
 
   const nephele::CameraPath expected =
@@ -364,13 +362,17 @@ TEST_F(ViewerTest, PlaysACameraPathAsNepheleRenderFliesIt) {
   // Frame 3 at 1 frame a second is path time 3, the scene's clock 3 s on from time_s 0.
   const ProcessRun cli =
       run(std::string(NEPHELE_CLI_PATH) +
-          " render --preset default --cloud-lighting two-stream --ev100 13.38 --width 160 "
-          "--height 120 --camera-path " +
+          " render --preset default --ev100 13.38 --width 160 --height 120 --camera-path " +
           flight + " --fps 1 --start-frame 3 --frames 1 -o " + path("cli_%d.png"));
   ASSERT_EQ(cli.status, 0) << cli.output;
   const nephele::Image reference = nephele::read_image(path("cli_3.png"));
-  const nephele::CompareResult result =
-      nephele::compare_images(second, reference, image_tolerance());
+  // The viewer's frame is an animation's (reprojected, its lighting following the camera over
+  // frames), the CLI's built at once: with the droplets' water their cloud edges and the ground
+  // under them differ by more than 0.02 on 3.4% of the pixels (mean 0.005), where the camera's
+  // move between the screenshots changes 92%.
+  nephele::CompareTolerance tolerance = image_tolerance();
+  tolerance.max_failing_fraction = 0.05f;
+  const nephele::CompareResult result = nephele::compare_images(second, reference, tolerance);
   std::printf("viewer at path time 3 s against nephele render --camera-path: %s\n",
               result.summary.c_str());
   if (!result.pass) nephele::write_image(result.diff, path("diff.png"));

@@ -65,10 +65,10 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
 
 void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   const gpu::FrameParams& params = frame.params;
-  const bool on = frame.scene.clouds.lighting == "diffusion" && plan.volumetric;
-  // Without a light volume (quality.light_volume_km = 0: every light ray marched, as the
-  // bench's references are), the field is built whole every frame about the camera.
-  const bool volume = params.light_volume.w > 0.0f;
+  // Its source's transmittance and its rebuilds follow the light volume: without one
+  // (quality.light_volume_km = 0), the clouds take the two-stream light.
+  const bool on =
+      frame.scene.clouds.lighting == "diffusion" && plan.volumetric && params.light_volume.w > 0.0f;
   fill_rows_ = sweeps_ = 0;
   gather_ = false;
   with_voxels_ = params.voxel_info.x > 0;
@@ -76,18 +76,15 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   if (!on) {
     have_field_ = building_ = false;
   } else {
-    if (!have_field_ || plan.light_volume_built || !volume) {
+    if (!have_field_ || plan.light_volume_built) {
       // A new build, centred where the light volume is (the camera, when it was built), in
       // cloud space; an animation's from the last build's fluence where the grid has not moved,
       // a still's from zero (so that it does not depend on what was rendered before).
       const float thickness_m = params.radii_m.w - params.radii_m.z;
-      bool moved = !have_field_ || frame.still || !volume;
-      const glm::vec2 centre_m =
-          volume ? glm::vec2(params.light_volume)
-                 : glm::vec2(frame.scene.camera.position_m) - glm::vec2(params.wind_offset_m);
+      bool moved = !have_field_ || frame.still;
       float half_m = kHalfExtentM;
       for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k, half_m *= kCascadeScale) {
-        const glm::vec4 grid(centre_m, half_m, 0.0f);
+        const glm::vec4 grid(params.light_volume.x, params.light_volume.y, half_m, 0.0f);
         const glm::vec4 cell(2.0f * half_m / float(gpu::DIFFUSION_XY),
                              thickness_m / float(gpu::DIFFUSION_Z), kOverRelaxation, 0.0f);
         moved = moved || grid != build_grid_[k] || cell != cell_[k];
@@ -104,7 +101,7 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
     }
     if (building_) {
       // At once for a still or when there is nothing to read yet, else a part a frame.
-      const bool at_once = frame.still || !have_field_ || !volume;
+      const bool at_once = frame.still || !have_field_;
       at_once_ = at_once;
       if (next_row_ < kRows) {
         fill_first_ = next_row_;
