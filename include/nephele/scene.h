@@ -198,9 +198,9 @@ struct CloudParams {
   // validation suite and in the lab (docs/validation.md).
   std::string lighting = "diffusion";
   bool two_stream() const { return lighting == "two-stream"; }
-  // What the clouds are made of (issue 42). "droplets" (the default since stop 58) or "seed":
-  // the seed's optics, sigma_t = density field
-  // x extinction_per_m, `albedo`, and two Henyey-Greenstein lobes (phase_g_*). "droplets":
+  // What the clouds are made of (issue 42). "seed": the seed's optics, sigma_t = density field
+  // x extinction_per_m, `albedo`, and two Henyey-Greenstein lobes (phase_g_*). "droplets" (the
+  // default since stop 58):
   // water droplets, each genus with its liquid water content and droplet effective radius
   // ([droplets], DropletParams): sigma_t = 3 LWC / (2 rho_water r_eff), the albedo of water
   // droplets and a fitted Mie phase function (render/droplets.h); extinction_per_m, albedo and
@@ -211,12 +211,11 @@ struct CloudParams {
 // The microphysics of each cloud genus for clouds.optics = "droplets" (issue 42): the liquid
 // water content (g/m^3) in the cloud's core, where the noise clouds' density field is 0.1
 // (kDropletCoreField, render/frame_params.h; a voxel cloud's field is its grid's density x its
-// own), scaled with the field
-// (the field's height gradient is the profile over height: thin bases, dense tops, as the adiabatic
-// water content grows with height) and the droplets' effective radius (um). Between genera both
-// blend with clouds.type as the shapes do. Defaults are typical of each genus (Miles, Verlinde and
-// Clothiaux 2000 for stratiform clouds; Pruppacher and Klett 1997): sigma_t = 1.5 LWC / r_eff
-// gives stratus 0.047 /m, cumulus 0.1 /m, cumulonimbus 0.15 /m.
+// own), scaled with the field (its height gradient is the profile over height: thin bases,
+// dense tops, as the adiabatic water content grows with height), and the droplets' effective
+// radius (um). Between genera both blend with clouds.type as the shapes do. Defaults are typical of
+// each genus (Miles, Verlinde and Clothiaux 2000 for stratiform clouds; Pruppacher and Klett 1997):
+// sigma_t = 1.5 LWC / r_eff gives stratus 0.047 /m, cumulus 0.1 /m, cumulonimbus 0.15 /m.
 struct DropletParams {
   float stratus_water_g_m3 = 0.25f, stratus_radius_um = 8.0f;
   float stratocumulus_water_g_m3 = 0.35f, stratocumulus_radius_um = 10.0f;

@@ -116,6 +116,14 @@ float cloud_relative_drift_m(const Scene& scene);
 // make_frame_params sets it, and the host's CPU queries (render/cloud_query.cpp) alone.
 void set_cloud_field(gpu::FrameParams& f, const Scene& scene);
 
+// The noise clouds' density field in a cloud's core, where a genus holds its liquid water
+// ([droplets]): the field is the seed's (its optics: sigma_t = field x 1 /m), whose cores reach
+// 0.07-0.1 in the default preset (clouds.density 0.5), 0.14-0.2 in the overcast's, 0.23-0.27 in
+// the stratus' (the 99th percentile and the largest value over 30 km). So the default
+// cumulus' columns have a median optical depth of 6.8 (95th percentile 26), the overcast's 46
+// (docs/cloud-optics.md).
+constexpr float kDropletCoreField = 0.1f;
+
 // The clouds' optics (clouds.optics, issue 42). For "droplets": each genus' sigma_t at density
 // field 1 (1/m, its water at kDropletCoreField; stratus, stratocumulus, altocumulus, cumulus,
 // cumulonimbus) from its liquid water and droplet radius, the droplets' effective radius at the
@@ -129,13 +137,6 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene);
 // peak's fireflies in the path tracer (next-event estimation towards the sun meets a phase
 // function 4000 times isotropic's there). For "seed": extinction_per_m for every genus and
 // the voxel clouds, the seed's albedo and lobes.
-// The noise clouds' density field in a cloud's core, where a genus holds its liquid water
-// ([droplets]): the field is the seed's (its optics: sigma_t = field x 1 /m), whose cores reach
-// 0.07-0.1 in the default preset (clouds.density 0.5), 0.14-0.2 in the overcast's, 0.23-0.27 in
-// the stratus' (the 99th percentile and the largest value over 30 km). So a default cumulus
-// column has an optical depth of 6-33 (median 15), the overcast's 85.
-constexpr float kDropletCoreField = 0.1f;
-
 struct CloudOptics {
   bool droplets = false;
   float genus_sigma_t_per_m[5] = {};

@@ -5,8 +5,8 @@
 // its similarity-scaled extinction sigma_tr = sigma_t (1 - albedo g) (1/m); and the solve's
 // image (phi, D, sigma_a, source): the fluence phi, solved in place, beside what the solve
 // reads of the medium, so that a neighbour is one load (source: Q plus the light clear air
-// brings in, diffusion_inflow.comp). Cells are indexed (x, y, z) with x east and z up, the cascades stacked in z
-// (cloud_diffusion_gpu_inc.glsl); a dispatch row is y + z DIFFUSION_XY.
+// brings in, diffusion_inflow.comp). Cells are indexed (x, y, z) with x east and z up, the
+// cascades stacked in z (cloud_diffusion_gpu_inc.glsl); a dispatch row is y + z DIFFUSION_XY.
 #ifndef NEPHELE_DIFFUSION_GRID_INC
 #define NEPHELE_DIFFUSION_GRID_INC
 
