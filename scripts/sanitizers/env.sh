@@ -30,7 +30,11 @@ export LD_PRELOAD="$_nephele_lvp${LD_PRELOAD:+:$LD_PRELOAD}"
 
 # Any report ends the process with a non-zero status, so its test fails: in-process for the
 # unit and fuzz tests, and through `nephele`'s exit status and output for the CLI tests.
-export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:verify_asan_link_order=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:strict_string_checks=1"
+# quarantine_size_mb=16: lavapipe allocates and frees large blocks with every dispatch, and the
+# diffusion light's build (about 300 dispatches) held 13 GB in the default quarantine (a render
+# at 32x32; two such CLI tests at once were killed for memory), 1.35 GB with 16 MB (3.7 GB with
+# 64). Freed memory is still poisoned while it waits there.
+export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:verify_asan_link_order=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:strict_string_checks=1:quarantine_size_mb=16"
 export LSAN_OPTIONS="suppressions=$_nephele_san_dir/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:report_error_type=1"
 unset _nephele_san_dir _nephele_icd _nephele_lvp
