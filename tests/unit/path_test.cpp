@@ -190,6 +190,40 @@ TEST(PathTracer, HenyeyGreensteinSamplesHaveTheMeanCosineG) {
   }
 }
 
+// Draine's lobe of the droplets' Mie fit (mie_fit at 20 um: alpha 27) and a mild one: the
+// sampled cosines' histogram is Draine's phase function, within 5 standard deviations a bin,
+// and nearly every draw weighs 1. A weighted draw from Henyey-Greenstein alone has the right
+// histogram only after its weights, which ranged over 0.06-1.7 (see pt_sample_draine_cos).
+TEST(PathTracer, DraineSamplesHaveDrainesDensityAndWeightOne) {
+  const vec4 fit = mie_fit(20.0f);
+  for (vec2 ga : {vec2(fit.y, fit.z), vec2(0.3f, 1.0f)}) {
+    constexpr int kBins = 40;
+    constexpr int n = 200000;
+    std::vector<double> histogram(kBins, 0.0);
+    int weighted = 0;
+    for (int i = 0; i < n; ++i) {
+      const vec2 c = sphere::pt_sample_draine_cos(ga.x, ga.y, sphere::pt_stream(5u, uint(i), 1u));
+      ASSERT_GE(c.x, -1.0f);
+      ASSERT_LE(c.x, 1.0f);
+      if (c.y != 1.0f) ++weighted;
+      histogram[std::min(int((c.x + 1.0f) * 0.5f * kBins), kBins - 1)] += c.y;
+    }
+    EXPECT_LT(weighted, n / 1000) << "g " << ga.x;
+    for (int b = 0; b < kBins; ++b) {
+      // The bin's probability: 2 pi times the phase function's integral over its cosines.
+      double expected = 0.0;
+      constexpr int kSteps = 200;
+      for (int k = 0; k < kSteps; ++k) {
+        const float mu = -1.0f + (b + (k + 0.5f) / kSteps) * 2.0f / kBins;
+        expected += 2.0 * M_PI * draine_phase(ga.x, ga.y, mu) * (2.0 / kBins / kSteps);
+      }
+      expected *= n;
+      EXPECT_NEAR(histogram[b], expected, 5.0 * std::sqrt(expected) + 2.0)
+          << "g " << ga.x << " alpha " << ga.y << " bin " << b;
+    }
+  }
+}
+
 // Albedo 1, lit only by a uniform environment of radiance 1: every path leaves the sphere
 // with its weight intact, so every pixel sees exactly 1 (any lost or created energy shows).
 TEST(PathTracer, AFurnaceReturnsTheEnvironment) {

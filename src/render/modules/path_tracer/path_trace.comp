@@ -524,19 +524,22 @@ PtPath path_scatter(PtPath p, int max_bounces) {
     vec3 chosen;  // the chosen scatterer's sigma_s per channel
     if (pick < sigma_c) {
       chosen = vec3(sigma_c);
-      // The clouds' two lobes, each sampled as Henyey-Greenstein in proportion to its weight:
-      // exact for the seed's lobes; for the droplets' Mie fit the Draine lobe is drawn from
-      // the HG lobe of its g, and the ratio of the phase to that mixture (at most
-      // (1 + alpha) / (1 + alpha (1 + 2 g^2) / 3)) weights the path.
+      // The clouds' two lobes, each drawn in proportion to its weight and exactly: the seed's
+      // two Henyey-Greenstein lobes; the droplets' Mie fit's Henyey-Greenstein lobe and its
+      // Draine lobe (pt_sample_draine_cos: by rejection, weight 1 but in 3e-5 of draws).
       bool mie = frame.cloud_droplets.y > 0.5f;
-      vec3 lobes = mie ? vec3(frame.cloud_mie.x, frame.cloud_mie.y, 1.0f - frame.cloud_mie.w)
-                       : frame.cloud_phase.xyz;
-      bool first = pt_uniform(s, 6u) < lobes.z;
-      next = pt_sample_hg(p.d, first ? lobes.x : lobes.y, pt_uniform(s, 3u), pt_uniform(s, 4u));
-      float mu = dot(p.d, next);
-      if (mie)
-        p.weight *= cloud_phase_function(mu, 1.0f) /
-                    mix(henyey_greenstein(lobes.y, mu), henyey_greenstein(lobes.x, mu), lobes.z);
+      float u = pt_uniform(s, 3u);
+      vec2 c;
+      if (mie) {
+        c = pt_uniform(s, 6u) < frame.cloud_mie.w
+                ? pt_sample_draine_cos(frame.cloud_mie.y, frame.cloud_mie.z, pt_hash(s ^ 0x2545f491u))
+                : vec2(pt_sample_hg_cos(frame.cloud_mie.x, u), 1.0f);
+      } else {
+        bool first = pt_uniform(s, 6u) < frame.cloud_phase.z;
+        c = vec2(pt_sample_hg_cos(first ? frame.cloud_phase.x : frame.cloud_phase.y, u), 1.0f);
+      }
+      next = pt_direction_at(p.d, c.x, pt_uniform(s, 4u));
+      p.weight *= c.y;
     } else if (pick < sigma_c + sigma_m) {
       chosen = vec3(sigma_m);
       next = pt_sample_hg(p.d, atmo.mie_g, pt_uniform(s, 3u), pt_uniform(s, 4u));
