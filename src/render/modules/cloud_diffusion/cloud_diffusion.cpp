@@ -32,7 +32,8 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
       solve_(context.ctx, context.set, "diffusion_solve.comp.spv"),
       exchange_kernel_(context.ctx, context.set, "diffusion_exchange.comp.spv"),
       inflow_kernel_(context.ctx, context.set, "diffusion_inflow.comp.spv"),
-      gather_kernel_(context.ctx, context.set, "diffusion_field.comp.spv") {
+      gather_kernel_(context.ctx, context.set, "diffusion_field.comp.spv"),
+      boundary_kernel_(context.ctx, context.set, "diffusion_boundary.comp.spv") {
   const auto volume = [&](VkFormat format) {
     return gpu::Texture(context.ctx, gpu::DIFFUSION_XY, gpu::DIFFUSION_XY,
                         gpu::DIFFUSION_Z * gpu::DIFFUSION_CASCADES, format,
@@ -41,6 +42,7 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
   medium_ = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
   phi_ = volume(VK_FORMAT_R32G32B32A32_SFLOAT);  // (phi, D, sigma_a, source): diffusion_solve.comp
   inflow_ = volume(VK_FORMAT_R32_SFLOAT);
+  boundary_ = volume(VK_FORMAT_R32_SFLOAT);  // diffusion_boundary.comp
   for (gpu::Texture& f : fields_) f = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
   for (gpu::Texture& e : exchange_) e = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
   for (gpu::Buffer& b : blocks_) {
@@ -61,6 +63,7 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
   set_.bind_module_storage_image("cloud_diffusion_exchange_xy_b", exchange_[2]);
   set_.bind_module_storage_image("cloud_diffusion_exchange_z_b", exchange_[3]);
   set_.bind_module_storage_image("cloud_diffusion_inflow", inflow_);
+  set_.bind_module_storage_image("cloud_diffusion_boundary", boundary_);
 }
 
 void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
@@ -153,6 +156,9 @@ void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
         cmd, fill_.get({with_voxels_ ? 1 : 0, with_flow_ ? 1 : 0}), timer, "diffusion_fill",
         gpu::DIFFUSION_XY, uint32_t(fill_rows_), 1, 8, 8, 1,
         gpu::DispatchConstants{glm::ivec4(fill_first_, fill_rows_, zero_phi_ ? 1 : 0, 0)});
+  // The medium complete: the cells the gathers cast rays from.
+  if (fill_rows_ > 0 && fill_first_ + fill_rows_ >= kRows)
+    gpu::dispatch(cmd, boundary_kernel_, timer, "diffusion_boundary", rows(), 1, 1, 64, 1, 1);
   // The clear air's light gathered over rows [first, first + count) into the set not read.
   const auto exchange = [&](int first, int count) {
     gpu::dispatch(cmd, exchange_kernel_, timer, "diffusion_exchange", gpu::DIFFUSION_XY,

@@ -10,6 +10,7 @@
 // and enters another across a gap is no longer lost. A deck split by a clear gap came out 14
 // times too dark without it (ReferenceTest.TheDiffusionLightCrossesAGapInADeck).
 // dispatch.values: x the set read (0 or 1; the other written), y the first row, z the rows.
+// Only the cells diffusion_boundary.comp listed; the others' gathered light stays 0.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -74,41 +75,36 @@ float exchange_ray(ivec3 c, int cascade, vec3 h, vec3 w, int read) {
   return radiance;
 }
 
+// Listed cells only (diffusion_boundary.comp): invocation (i, row) takes the row's i-th.
+layout(set = 1, binding = 10, r32f) uniform readonly image3D cloud_diffusion_boundary;
+
 void main() {
-  ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy + uvec2(0, dispatch.values.y));
+  int row = int(gl_GlobalInvocationID.y) + dispatch.values.y;
+  if (int(gl_GlobalInvocationID.y) >= dispatch.values.z) return;
+  float x = imageLoad(cloud_diffusion_boundary, ivec3(int(gl_GlobalInvocationID.x), diffusion_cell(uvec2(0, row)).yz)).r;
+  if (x < 0.0f) return;
+  ivec3 c = diffusion_cell(uvec2(uint(x), uint(row)));
   int cascade = diffusion_cascade(c);
-  if (!diffusion_in_grid(c, cascade) || int(gl_GlobalInvocationID.y) >= dispatch.values.z) return;
   int read = dispatch.values.x;
   float currents[6] = float[6](0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f);
   float phi = 0.0f;
-  bool next_to_cloud = false;
-  if (imageLoad(cloud_diffusion_medium, c).x <= 0.0f) {
-    for (int k = 0; k < 6; ++k) {
-      ivec3 n = c;
-      n[k >> 1] += (k & 1) == 0 ? 1 : -1;
-      if (diffusion_in_grid(n, cascade) && imageLoad(cloud_diffusion_medium, n).x > 0.0f)
-        next_to_cloud = true;
-    }
-  }
-  if (next_to_cloud) {
-    vec3 h = diffusion_cell_m(cascade);
-    // The quadrature of the fluence (the integral of L) and of each partial current (of L |cos|
-    // over the directions its light comes from): Lebedev's 14 points (exact to degree 5), the
-    // 6 axes of weight 1/15 and the 8 diagonals of 3/40, times 4 pi.
-    for (int k = 0; k < 14; ++k) {
-      ivec3 o = ivec3(0);
-      if (k < 6)
-        o[k >> 1] = (k & 1) == 0 ? 1 : -1;
-      else
-        o = ivec3(((k - 6) & 1) * 2 - 1, ((k - 6) & 2) - 1, ((k - 6) >> 1 & 2) - 1);
-      float weight = 4.0f * PI * (k < 6 ? 1.0f / 15.0f : 3.0f / 40.0f);
-      vec3 w = normalize(vec3(o));
-      float l = weight * exchange_ray(c, cascade, h, w, read);
-      phi += l;
-      // The light from w travels along -w: along +axis where w[axis] < 0.
-      for (int axis = 0; axis < 3; ++axis)
-        if (o[axis] != 0) currents[2 * axis + (o[axis] < 0 ? 0 : 1)] += abs(w[axis]) * l;
-    }
+  vec3 h = diffusion_cell_m(cascade);
+  // The quadrature of the fluence (the integral of L) and of each partial current (of L |cos|
+  // over the directions its light comes from): Lebedev's 14 points (exact to degree 5), the
+  // 6 axes of weight 1/15 and the 8 diagonals of 3/40, times 4 pi.
+  for (int k = 0; k < 14; ++k) {
+    ivec3 o = ivec3(0);
+    if (k < 6)
+      o[k >> 1] = (k & 1) == 0 ? 1 : -1;
+    else
+      o = ivec3(((k - 6) & 1) * 2 - 1, ((k - 6) & 2) - 1, ((k - 6) >> 1 & 2) - 1);
+    float weight = 4.0f * PI * (k < 6 ? 1.0f / 15.0f : 3.0f / 40.0f);
+    vec3 w = normalize(vec3(o));
+    float l = weight * exchange_ray(c, cascade, h, w, read);
+    phi += l;
+    // The light from w travels along -w: along +axis where w[axis] < 0.
+    for (int axis = 0; axis < 3; ++axis)
+      if (o[axis] != 0) currents[2 * axis + (o[axis] < 0 ? 0 : 1)] += abs(w[axis]) * l;
   }
   exchange_store(c, 1 - read, vec4(currents[0], currents[1], currents[2], currents[3]),
                  vec4(currents[4], currents[5], phi, 0.0f));
