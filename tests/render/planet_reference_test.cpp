@@ -178,14 +178,16 @@ TEST_F(PlanetReferenceTest, TheNoiseCloudsMajorantGridIsNeverExceededAndChangesN
 // pass, so lavapipe's loop limit cuts nothing, the image does not depend on where the passes
 // cut the paths, and it does not depend on the majorant. With nested loops in one pass, 2.3%
 // of the samples had their tracking cut and the grid's image came out 5% darker than one
-// majorant per shell's, 5 standard errors apart.
+// majorant per shell's, 5 standard errors apart. At 12 samples a pixel the means' standard
+// errors are 6% (droplets at their real depths since stop 58): the pixels' equality across
+// pass lengths and the counters are the strict checks, the means' agreement a loose one.
 TEST_F(PlanetReferenceTest, ThickCloudsAreTracedWhereverThePassesEndAndWhateverTheMajorant) {
   Scene s = nephele::load_preset("default");
   s.output.width = 16;
   s.output.height = 12;
   s.clouds.optics = "droplets";
   nephele::ReferenceOptions options;
-  options.spp = 30;
+  options.spp = 12;
   options.max_bounces = 6;
   const nephele::ReferenceImage grid = shared_renderer().render_reference(s, options);
   options.iterations_per_pass = 77;
@@ -243,7 +245,7 @@ TEST_F(PlanetReferenceTest, DropletCloudsStayUnderTheirMajorants) {
     s.output.height = 12;
     s.camera.view_dir = {0.2f, 1.0f, 0.5f};
     nephele::ReferenceOptions options;
-    options.spp = 30;
+    options.spp = 9;
     const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
     EXPECT_EQ(image.majorant_violations, 0) << preset;
     EXPECT_EQ(image.cut_loops, 0) << preset;
