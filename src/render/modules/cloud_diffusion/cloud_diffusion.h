@@ -59,8 +59,8 @@ class CloudDiffusionModule : public RenderModule {
   gpu::Kernel solve_, exchange_kernel_, inflow_kernel_, gather_kernel_, boundary_kernel_;
   gpu::Texture medium_, phi_;
   gpu::Texture inflow_;  // per cell of cloud, the light clear air brings in (diffusion_inflow.comp)
-  gpu::Texture
-      boundary_;  // per row, its cells the gather casts rays from (diffusion_boundary.comp)
+  // Per row, its cells the gather casts rays from (diffusion_boundary.comp).
+  gpu::Texture boundary_;
   // The clear air's gathered light (diffusion_exchange_inc.glsl): two sets of two images, one
   // read and one written.
   gpu::Texture exchange_[4];

@@ -81,9 +81,10 @@ layout(set = 1, binding = 10, r32f) uniform readonly image3D cloud_diffusion_bou
 void main() {
   int row = int(gl_GlobalInvocationID.y) + dispatch.values.y;
   if (int(gl_GlobalInvocationID.y) >= dispatch.values.z) return;
-  float x = imageLoad(cloud_diffusion_boundary, ivec3(int(gl_GlobalInvocationID.x), diffusion_cell(uvec2(0, row)).yz)).r;
+  ivec3 first = diffusion_cell(uvec2(0, row));
+  float x = imageLoad(cloud_diffusion_boundary, ivec3(int(gl_GlobalInvocationID.x), first.yz)).r;
   if (x < 0.0f) return;
-  ivec3 c = diffusion_cell(uvec2(uint(x), uint(row)));
+  ivec3 c = ivec3(int(x), first.yz);
   int cascade = diffusion_cascade(c);
   int read = dispatch.values.x;
   float currents[6] = float[6](0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f);
