@@ -210,8 +210,8 @@ TEST_F(PlanetReferenceTest, ThickCloudsAreTracedWhereverThePassesEndAndWhateverT
 // as many.
 TEST_F(PlanetReferenceTest, SpreadingSamplesOverInvocationsKeepsTheChannelsEven) {
   Scene s = nephele::load_preset("default");
-  s.output.width = 16;
-  s.output.height = 12;
+  s.output.width = 8;
+  s.output.height = 6;
   // Droplets: the seed's clouds (tau in the hundreds) have paths of tens of thousands of steps,
   // which make this test slow without making it stricter.
   s.clouds.optics = "droplets";
