@@ -158,7 +158,8 @@ void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
         gpu::DispatchConstants{glm::ivec4(fill_first_, fill_rows_, zero_phi_ ? 1 : 0, 0)});
   // The medium complete: the cells the gathers cast rays from.
   if (fill_rows_ > 0 && fill_first_ + fill_rows_ >= kRows)
-    gpu::dispatch(cmd, boundary_kernel_, timer, "diffusion_boundary", rows(), 1, 1, 64, 1, 1);
+    gpu::dispatch(cmd, boundary_kernel_, timer, "diffusion_boundary", rows(), 1, 1, 64, 1, 1,
+                  gpu::DispatchConstants{glm::ivec4(zero_phi_ ? 1 : 0, 0, 0, 0)});
   // The clear air's light gathered over rows [first, first + count) into the set not read.
   const auto exchange = [&](int first, int count) {
     gpu::dispatch(cmd, exchange_kernel_, timer, "diffusion_exchange", gpu::DIFFUSION_XY,

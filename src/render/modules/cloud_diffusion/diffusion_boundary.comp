@@ -5,13 +5,15 @@
 // such cell, -1 past its last. The gather's invocations then take listed cells only: where a
 // SIMD batch of lavapipe's held one such cell among eight, all eight ran its 14 rays (the
 // gather took 200 ms of a build's 3 s). The other cells' gathered light is 0 (in both sets),
-// as diffusion_exchange_inc.glsl has it. One invocation a row, in x order: the list is the
-// same on every run, and so is which cells an animation's band of the gather takes.
+// as diffusion_exchange_inc.glsl has it, and the listed ones' too for a build from zero
+// (dispatch.values.x 1, as diffusion_fill.comp's). One invocation a row, in x order: the list
+// is the same on every run, and so is which cells an animation's band of the gather takes.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 64) in;
 
 #include "common/bindings_inc.glsl"
+#include "dispatch_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
 
@@ -34,13 +36,16 @@ void main() {
   ivec3 first = diffusion_cell(uvec2(0, row));
   int cascade = diffusion_cascade(first);
   if (!diffusion_in_grid(first, cascade)) return;
+  bool zero = dispatch.values.x != 0;
   int listed = 0;
   for (int x = 0; x < DIFFUSION_XY; ++x) {
     ivec3 c = ivec3(x, first.yz);
-    if (imageLoad(cloud_diffusion_medium, c).x <= 0.0f && next_to_cloud(c, cascade)) {
+    bool boundary = imageLoad(cloud_diffusion_medium, c).x <= 0.0f && next_to_cloud(c, cascade);
+    if (boundary) {
       imageStore(cloud_diffusion_boundary, ivec3(listed, first.yz), vec4(float(x)));
       ++listed;
-    } else {
+    }
+    if (!boundary || zero) {
       exchange_store(c, 0, vec4(0.0f), vec4(0.0f));
       exchange_store(c, 1, vec4(0.0f), vec4(0.0f));
     }

@@ -18,7 +18,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "cloud_field_inc.glsl"
 #include "dispatch_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
-#include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
 
 layout(set = 1, binding = 2, rgba32f) uniform writeonly image3D cloud_diffusion_medium_out;
 layout(set = 1, binding = 3, rgba32f) uniform image3D cloud_diffusion_phi_out;
@@ -69,11 +68,8 @@ void main() {
   float sigma_t = density / 8.0f * frame.cloud_shape.z * frame.cloud_light.y;
   vec3 h = diffusion_cell_m(cascade);
   bool zero = dispatch.values.z != 0;
-  if (zero) {
-    exchange_store(c, 0, vec4(0.0f), vec4(0.0f));
-    exchange_store(c, 1, vec4(0.0f), vec4(0.0f));
-    imageStore(cloud_diffusion_inflow, c, vec4(0.0f));
-  }
+  // The gathers' light starts at zero in diffusion_boundary.comp.
+  if (zero) imageStore(cloud_diffusion_inflow, c, vec4(0.0f));
   float albedo = frame.cloud_shape.w;
   float g = cloud_transport_g();
   vec3 sun = frame.sun_dir.xyz;
