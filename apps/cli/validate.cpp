@@ -228,10 +228,11 @@ void add_validate_flags(CLI::App& cmd, ValidateOptions& options) {
   cmd.add_option("--time-limit", options.time_limit_s,
                  "stop each view's reference after this many seconds (0 = none)")
       ->capture_default_str();
-  cmd.add_option("--references", options.references,
-                 "folder of references (NAME.exr with a variance layer; with --sky "
-                 "sky_ELEVATION_VIEW.exr): read when there and of the same size, else path traced "
-                 "and written there");
+  cmd.add_option(
+      "--references", options.references,
+      "folder of references (NAME.exr with a variance layer; with --sky "
+      "sky_ELEVATION_VIEW.exr): read when there (one of another size is refused), else path traced "
+      "and written there");
   cmd.add_option("--out", options.out_dir,
                  "folder for each view's images (NAME.png: fast | reference | block errors; "
                  "NAME_fast.exr) and results.md, results.json")
@@ -323,9 +324,29 @@ std::string count_of(size_t n, const char* noun) {
   return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
+// Refuses, before anything is rendered or written, a --references folder whose NAME.exr for a
+// view is of another size than the view's: tracing the view again would write over it (a
+// shipped reference of 40 x 25 replaced by one of a few seconds at another --width).
+void check_reference_sizes(const ValidateOptions& options, const std::vector<std::string>& names,
+                           int width, int height) {
+  if (options.references.empty()) return;
+  for (const std::string& name : names) {
+    const fs::path file = fs::path(options.references) / (name + ".exr");
+    if (!fs::exists(file)) continue;
+    const Image held = read_exr_layer(file.string(), "");
+    if (held.width == width && held.height == height) continue;
+    throw InputError("--references \"" + options.references + "\": " + name + ".exr is " +
+                     std::to_string(held.width) + "x" + std::to_string(held.height) +
+                     ", the views are " + std::to_string(width) + "x" + std::to_string(height) +
+                     ": pass --width " + std::to_string(held.width) + " --height " +
+                     std::to_string(held.height) + ", or another folder to trace new ones into");
+  }
+}
+
 // The reference of view `name`: the --references folder's NAME.exr when it holds one of the
-// scene's size (its samples per pixel from the header's nephele.spp; no time spent), else path
-// traced and written there (or to the output folder as NAME_reference.exr).
+// scene's size (its samples per pixel from the header's nephele.spp; no time spent; another
+// size is refused up front, check_reference_sizes), else path traced and written there (or to
+// the output folder as NAME_reference.exr).
 ReferenceImage reference_for(Renderer& renderer, const Scene& scene,
                              const ValidateOptions& options, const std::string& name, bool show) {
   ReferenceImage reference;
@@ -565,6 +586,9 @@ int run_validate(const ValidateOptions& options) {
     scenes.back().output.height = suite.height;
     validate_scene(scenes.back());
   }
+  std::vector<std::string> names;
+  for (const ValidationView& v : views) names.push_back(v.name);
+  check_reference_sizes(options, names, suite.width, suite.height);
   fs::create_directories(options.out_dir);
   if (!options.references.empty()) fs::create_directories(options.references);
 

@@ -112,6 +112,21 @@ TEST_F(ValidateCliTest, WritesTheTableTheJsonAndTheImagesAndReadsReferencesBack)
   const nlohmann::json k = read_json(path("out2") + "/results.json");
   EXPECT_EQ(k["views"]["up"]["reference_s"].get<double>(), 0.0);
   EXPECT_NEAR(k["views"]["up"]["mean_error"].get<double>(), j["views"]["up"]["mean_error"].get<double>(), 1e-6);
+  // At another size the references are not traced again over the ones held (a shipped 40 x 25
+  // set replaced by a few seconds' trace): one line says what the folder holds and how to use
+  // it; nothing is rendered or written.
+  const auto before = fs::last_write_time(refs + "/up.exr");
+  const auto other =
+      run_cli("validate --suite " + path("suite.toml") + " --views up --spp 30 " +
+              "--width 16 --height 10 -q --out " + path("out3") + " --references " + refs);
+  EXPECT_EQ(other.status, 2) << other.output;
+  EXPECT_EQ(last_line(other.output),
+            "nephele: error: --references \"" + refs +
+                "\": up.exr is 24x16, the views are 16x10: "
+                "pass --width 24 --height 16, or another folder to trace new ones into")
+      << other.output;
+  EXPECT_EQ(fs::last_write_time(refs + "/up.exr"), before);
+  EXPECT_FALSE(fs::exists(path("out3") + "/results.json"));
 }
 
 // The lab suite nephele ships (data/lab.toml) runs from anywhere: its views' grids are found
