@@ -41,9 +41,36 @@ bool diffusion_light(vec3 pos, vec3 dir, float g1, out float radiance) {
   return false;
 }
 
+// The sunlight a sample at optical depth tau from the sun scatters towards a viewer (mu: the
+// cosine between the view ray and the sun), per unit of the sun's irradiance, from the light
+// that has scattered forward k = 0, 1, 2 ... times on its way in (Poisson, e^-tau (w tau)^k /
+// k!). Light scattered k times by a Henyey-Greenstein lobe of asymmetry g spreads about the
+// sun's direction as HG(g^k) (the convolution of HG lobes multiplies their Legendre moments),
+// and scatters towards the viewer as HG(g^(k+1)). The similarity-scaled diffusion already
+// carries the share 1 - g^k of order k, isotropic; this is the rest: order 0 by the phase
+// function itself (phase0), order k by HG(g^(k+1)) - (1 - g^k) / 4 pi. Their sum over k of the
+// weight g^k is the scaled beam exp(-(1 - w g) tau), which the diffusion light took with the
+// full phase function before stop 60: deep in a cloud that counted light scattered ten times
+// as if it were still a beam, and near a face it missed the forward orders' spread (the lab's
+// thin cumulus lit from in front 13.9% off the path tracer, now 3.9%).
+float diffusion_forward_orders(float tau, float albedo, float g, float mu, float phase0) {
+  float p_k = exp(-tau);
+  float light = p_k * phase0;
+  float g_k = 1.0f;
+  for (int k = 1; k <= 16; ++k) {
+    p_k *= albedo * tau / float(k);
+    g_k *= g;
+    float gg = g_k * g;
+    float x = max(1.0f + gg * gg - 2.0f * gg * mu, 1e-6f);
+    light += p_k * ((1.0f - gg * gg) / (x * sqrt(x)) - (1.0f - g_k)) / (4.0f * PI);
+    if (float(k) > tau && p_k < 1e-6f) break;  // past the orders' peak, the rest negligible
+  }
+  return max(light, 0.0f);
+}
+
 // The sunlight a cloud sample scatters towards a viewer, as cloud_sun_light's (x, y, z): with
-// the diffusion light (`diffusion`) where a cascade covers pos, its reduced beam exp(-(1 - w g)
-// tau) with the phase function, the field's multiple-scattered light and the diffuse
+// the diffusion light (`diffusion`) where a cascade covers pos, the forward orders of the
+// sun's beam (diffusion_forward_orders), the field's multiple-scattered light and the diffuse
 // transmittance; elsewhere cloud_sun_light's. For the clouds' march and the clouds' light on
 // the ground.
 vec3 cloud_light(bool diffusion, vec3 pos, vec3 dir, vec3 sun, float tau_light, float light_scale,
@@ -51,7 +78,7 @@ vec3 cloud_light(bool diffusion, vec3 pos, vec3 dir, vec3 sun, float tau_light, 
   float diffused;
   if (diffusion && diffusion_light(pos, dir, g1, diffused)) {
     float g = cloud_transport_g();
-    return vec3(exp(-tau_light * (1.0f - albedo * g)) * phases[0], diffused,
+    return vec3(diffusion_forward_orders(tau_light, albedo, g, mu, phases[0]), diffused,
                 cloud_diffuse_transmittance(tau_light, g));
   }
   return cloud_sun_light(pos, sun, tau_light, light_scale, mu, two_stream, phases, powder, albedo,
