@@ -99,7 +99,21 @@ double single_scattering(const Field& f, const Scene& s, float x, float y) {
   return radiance;
 }
 
-class ReferenceTest : public RenderTest {};
+class ReferenceTest : public RenderTest {
+ protected:
+  // The path tracer's image of s at `spp` samples a pixel.
+  nephele::ReferenceImage trace(const Scene& s, int spp) {
+    nephele::ReferenceOptions options;
+    options.spp = spp;
+    return shared_renderer().render_reference(s, options);
+  }
+  // validate's 8 x 8 block errors of the fast mode with clouds.lighting = `lighting`.
+  nephele::BlockLuminanceError lighting_error(Scene s, const char* lighting,
+                                              const nephele::Image& reference) {
+    s.clouds.lighting = lighting;
+    return nephele::block_luminance_error(render(s).color, reference, {}, 8);
+  }
+};
 
 // Renders the lab at 4096 samples per pixel and compares the pixels with single scattering
 // integrated over each one's footprint (3 x 3 points) through the same field.
@@ -371,6 +385,18 @@ Scene thick_lab(const std::string& grid, float sigma_t_per_m, float albedo, floa
   return s;
 }
 
+// The lab scene s lit by `irradiance`, seen from position_m along view_dir at width x height.
+Scene lab_view(Scene s, float irradiance, glm::vec3 position_m, glm::vec3 view_dir, float fov_deg,
+               int width, int height) {
+  s.lab.sun_irradiance = irradiance;
+  s.camera.position_m = position_m;
+  s.camera.view_dir = view_dir;
+  s.camera.fov_deg = fov_deg;
+  s.output.width = width;
+  s.output.height = height;
+  return s;
+}
+
 // The diffusion light (clouds.lighting = "diffusion", docs/cloud-lighting.md) against the path
 // tracer on the lab's cube (data/lab.toml: 1 km, optical depth 50 across, albedo 0.99999,
 // g 0.76) lit from behind the camera and from behind the cube, at 64 x 40 with 64 samples a
@@ -380,25 +406,12 @@ Scene thick_lab(const std::string& grid, float sigma_t_per_m, float albedo, floa
 TEST_F(ReferenceTest, TheDiffusionLightIsCloserToTheLabCubeThanTheTwoStream) {
   const struct { float azimuth_deg, bound; } views[] = {{180.0f, 0.06f}, {0.0f, 0.2f}};
   for (const auto [azimuth_deg, bound] : views) {
-    Scene s = thick_lab(std::string(NEPHELE_SOURCE_DIR) + "/data/lab/cube.vdb", 0.05f, 0.99999f,
-                        0.76f, 30.0f, azimuth_deg);
-    s.lab.sun_irradiance = 3.0f;
-    s.camera.position_m = {0.0f, -3500.0f, 500.0f};
-    s.camera.view_dir = {0.0f, 1.0f, 0.0f};
-    s.camera.fov_deg = 25.0f;
-    s.output.width = 64;
-    s.output.height = 40;
-    nephele::ReferenceOptions options;
-    options.spp = 64;
-    const nephele::ReferenceImage reference = shared_renderer().render_reference(s, options);
-    // validate's mean error over 8 x 8 blocks.
-    const auto block_error = [&](const nephele::Image& fast) {
-      return nephele::block_luminance_error(fast, reference.mean, {}, 8).mean_error;
-    };
-    s.clouds.lighting = "diffusion";
-    const double diffusion = block_error(render(s).color);
-    s.clouds.lighting = "two-stream";
-    const double two_stream = block_error(render(s).color);
+    const Scene s = lab_view(thick_lab(std::string(NEPHELE_SOURCE_DIR) + "/data/lab/cube.vdb",
+                                       0.05f, 0.99999f, 0.76f, 30.0f, azimuth_deg),
+                             3.0f, {0.0f, -3500.0f, 500.0f}, {0.0f, 1.0f, 0.0f}, 25.0f, 64, 40);
+    const nephele::ReferenceImage reference = trace(s, 64);
+    const double diffusion = lighting_error(s, "diffusion", reference.mean).mean_error;
+    const double two_stream = lighting_error(s, "two-stream", reference.mean).mean_error;
     std::printf("sun azimuth %.0f deg: mean block error, diffusion %.3f, two-stream %.3f\n",
                 azimuth_deg, diffusion, two_stream);
     EXPECT_LT(diffusion, bound) << "sun azimuth " << azimuth_deg;
@@ -414,20 +427,10 @@ TEST_F(ReferenceTest, TheDiffusionLightIsCloserToTheLabCubeThanTheTwoStream) {
 // reference); the scaled beam with the full phase function, before stop 60, gave 13.9% (its
 // image 14% too dark).
 TEST_F(ReferenceTest, TheDiffusionLightPassesTheForwardOrdersThroughAThinCumulus) {
-  Scene s = thick_lab(std::string(NEPHELE_SOURCE_DIR) + "/data/lab/cumulus.vdb", 0.01f, 0.99999f,
-                      0.76f, 30.0f, 0.0f);
-  s.lab.sun_irradiance = 3.0f;
-  s.camera.position_m = {0.0f, -2500.0f, 500.0f};
-  s.camera.view_dir = {0.0f, 1.0f, 0.0f};
-  s.camera.fov_deg = 40.0f;
-  s.output.width = 64;
-  s.output.height = 40;
-  nephele::ReferenceOptions options;
-  options.spp = 256;
-  const nephele::ReferenceImage reference = shared_renderer().render_reference(s, options);
-  s.clouds.lighting = "diffusion";
-  const nephele::BlockLuminanceError e =
-      nephele::block_luminance_error(render(s).color, reference.mean, {}, 8);
+  const Scene s = lab_view(thick_lab(std::string(NEPHELE_SOURCE_DIR) + "/data/lab/cumulus.vdb",
+                                     0.01f, 0.99999f, 0.76f, 30.0f, 0.0f),
+                           3.0f, {0.0f, -2500.0f, 500.0f}, {0.0f, 1.0f, 0.0f}, 40.0f, 64, 40);
+  const nephele::BlockLuminanceError e = lighting_error(s, "diffusion", trace(s, 256).mean);
   std::printf("the thin cumulus lit from in front: mean block error %.3f, bias %+.3f\n",
               e.mean_error, e.mean_bias);
   EXPECT_LT(e.mean_error, 0.08);
@@ -452,26 +455,14 @@ TEST_F(ReferenceTest, TheDiffusionLightInsideAnErodedDeck) {
     out << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
   }
   nephele::voxel::write_vdb(nephele::voxel::voxelize_mesh(obj, 128), vdb);
-  Scene s = thick_lab(vdb, 0.04f, 0.9999f, 0.86f, 35.0f, 180.0f);
-  s.lab.sun_irradiance = 1.0f;
-  s.camera.position_m = {0.0f, 0.0f, 500.0f};
-  s.camera.view_dir = {1.0f, 0.0f, 0.0f};
-  s.camera.fov_deg = 60.0f;
-  s.output.width = 24;
-  s.output.height = 16;
-  nephele::ReferenceOptions options;
-  options.spp = 64;
-  const nephele::ReferenceImage reference = shared_renderer().render_reference(s, options);
+  const Scene s = lab_view(thick_lab(vdb, 0.04f, 0.9999f, 0.86f, 35.0f, 180.0f), 1.0f,
+                           {0.0f, 0.0f, 500.0f}, {1.0f, 0.0f, 0.0f}, 60.0f, 24, 16);
+  const nephele::ReferenceImage reference = trace(s, 64);
   ASSERT_TRUE(std::any_of(reference.mean.pixels.begin(), reference.mean.pixels.end(),
                           [](const glm::vec4& p) { return nephele::luminance(p) > 0.0f; }));
   // The image's luminance over the reference's.
-  const auto ratio = [&](const nephele::Image& fast) {
-    return 1.0 + nephele::block_luminance_error(fast, reference.mean, {}, 8).mean_bias;
-  };
-  s.clouds.lighting = "diffusion";
-  const double diffusion = ratio(render(s).color);
-  s.clouds.lighting = "two-stream";
-  const double two_stream = ratio(render(s).color);
+  const double diffusion = 1.0 + lighting_error(s, "diffusion", reference.mean).mean_bias;
+  const double two_stream = 1.0 + lighting_error(s, "two-stream", reference.mean).mean_bias;
   std::printf("inside the deck: fast / reference, diffusion %.3f, two-stream %.3f\n", diffusion,
               two_stream);
   EXPECT_NEAR(diffusion, 1.0, 0.2);
@@ -503,19 +494,9 @@ TEST_F(ReferenceTest, TheDiffusionLightCrossesAGapInADeck) {
     nephele::voxel::compute_sdf_from_density(grid);
     nephele::voxel::write_vdb(grid, vdb);
   }
-  Scene s = thick_lab(vdb, 0.04f, 0.9999f, 0.76f, 60.0f, 180.0f);
-  s.lab.sun_irradiance = 1.0f;
-  s.camera.position_m = {0.0f, 0.0f, 0.0f};
-  s.camera.view_dir = {0.0f, 0.02f, 1.0f};
-  s.camera.fov_deg = 60.0f;
-  s.output.width = 24;
-  s.output.height = 16;
-  nephele::ReferenceOptions options;
-  options.spp = 64;
-  const nephele::ReferenceImage reference = shared_renderer().render_reference(s, options);
-  s.clouds.lighting = "diffusion";
-  const nephele::BlockLuminanceError error =
-      nephele::block_luminance_error(render(s).color, reference.mean, {}, 8);
+  const Scene s = lab_view(thick_lab(vdb, 0.04f, 0.9999f, 0.76f, 60.0f, 180.0f), 1.0f,
+                           {0.0f, 0.0f, 0.0f}, {0.0f, 0.02f, 1.0f}, 60.0f, 24, 16);
+  const nephele::BlockLuminanceError error = lighting_error(s, "diffusion", trace(s, 64).mean);
   std::printf("the split deck from below: fast / reference %.3f, mean block error %.3f\n",
               1.0 + error.mean_bias, error.mean_error);
   EXPECT_NEAR(1.0 + error.mean_bias, 1.0, 0.15);
