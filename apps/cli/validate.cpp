@@ -324,29 +324,36 @@ std::string count_of(size_t n, const char* noun) {
   return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
-// Refuses, before anything is rendered or written, a --references folder whose NAME.exr for a
-// view is of another size than the view's: tracing the view again would write over it (a
-// shipped reference of 40 x 25 replaced by one of a few seconds at another --width).
+// Refuses a --references folder's NAME.exr, `held`, of another size than the views': tracing
+// the view again would write over it (a shipped reference of 40 x 25 replaced by one of a few
+// seconds at another --width). `sized`: the views' size comes from --width and --height.
+void refuse_other_size(const ValidateOptions& options, const std::string& name, const Image& held,
+                       int width, int height, bool sized) {
+  if (held.width == width && held.height == height) return;
+  throw InputError("--references \"" + options.references + "\": " + name + ".exr is " +
+                   std::to_string(held.width) + "x" + std::to_string(held.height) +
+                   ", the views are " + std::to_string(width) + "x" + std::to_string(height) +
+                   (sized ? ": pass --width " + std::to_string(held.width) + " --height " +
+                                std::to_string(held.height) + ", or another folder"
+                          : ": pass another folder") +
+                   " to trace new ones into");
+}
+
+// The same for every view, before anything is rendered or written.
 void check_reference_sizes(const ValidateOptions& options, const std::vector<std::string>& names,
                            int width, int height) {
   if (options.references.empty()) return;
   for (const std::string& name : names) {
     const fs::path file = fs::path(options.references) / (name + ".exr");
-    if (!fs::exists(file)) continue;
-    const Image held = read_exr_layer(file.string(), "");
-    if (held.width == width && held.height == height) continue;
-    throw InputError("--references \"" + options.references + "\": " + name + ".exr is " +
-                     std::to_string(held.width) + "x" + std::to_string(held.height) +
-                     ", the views are " + std::to_string(width) + "x" + std::to_string(height) +
-                     ": pass --width " + std::to_string(held.width) + " --height " +
-                     std::to_string(held.height) + ", or another folder to trace new ones into");
+    if (fs::exists(file))
+      refuse_other_size(options, name, read_exr_layer(file.string(), ""), width, height, true);
   }
 }
 
-// The reference of view `name`: the --references folder's NAME.exr when it holds one of the
-// scene's size (its samples per pixel from the header's nephele.spp; no time spent; another
-// size is refused up front, check_reference_sizes), else path traced and written there (or to
-// the output folder as NAME_reference.exr).
+// The reference of view `name`: the --references folder's NAME.exr when it holds one (its
+// samples per pixel from the header's nephele.spp; no time spent; one of another size is
+// refused, refuse_other_size), else path traced and written there (or to the output folder as
+// NAME_reference.exr).
 ReferenceImage reference_for(Renderer& renderer, const Scene& scene,
                              const ValidateOptions& options, const std::string& name, bool show) {
   ReferenceImage reference;
@@ -354,11 +361,12 @@ ReferenceImage reference_for(Renderer& renderer, const Scene& scene,
       options.references.empty() ? "" : (fs::path(options.references) / (name + ".exr")).string();
   if (!cached.empty() && fs::exists(cached)) {
     reference.mean = read_exr_layer(cached, "");
+    refuse_other_size(options, name, reference.mean, scene.output.width, scene.output.height,
+                      !options.sky);
     reference.variance = read_exr_layer(cached, "variance");
     for (const auto& [key, value] : read_exr_attributes(cached))
       if (key == "nephele.spp") reference.spp = std::atoi(value.c_str());
-    if (reference.mean.width == scene.output.width && reference.mean.height == scene.output.height)
-      return reference;
+    return reference;
   }
   std::unique_ptr<Progress> bar;
   ReferenceOptions ro;

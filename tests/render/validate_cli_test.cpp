@@ -254,6 +254,19 @@ TEST_F(ValidateCliTest, TheClearSkyMeetsItsTargetsAgainstTheShippedReferences) {
       EXPECT_EQ(v["reference_spp"].get<int>(), 8193) << view << ": read back, not traced";
   }
   EXPECT_EQ(std::distance(fs::directory_iterator(path("refs")), fs::directory_iterator()), 40);
+  // A sky reference of another size (a foreign file) is refused, not traced over.
+  const std::string odd = path("refs") + "/sky_0_horizon-away.exr";
+  nephele::write_image(nephele::Image(32, 16), odd);
+  const auto before = fs::last_write_time(odd);
+  const auto refused =
+      run_cli("validate --sky -q --references " + path("refs") + " --out " + path("out2"));
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_EQ(last_line(refused.output),
+            "nephele: error: --references \"" + path("refs") +
+                "\": sky_0_horizon-away.exr is 32x16, the views are 16x16: pass another folder "
+                "to trace new ones into")
+      << refused.output;
+  EXPECT_EQ(fs::last_write_time(odd), before);
 }
 
 TEST_F(ValidateCliTest, BadInputGetsOneLine) {
