@@ -182,6 +182,12 @@ struct ReferenceOptions {
   // iterations a batch of lanes, in all its loops) or 16384 on a GPU. Any value gives the
   // same image.
   int iterations_per_pass = 0;
+  // Whether a pass undoes an iteration the device's loop limit cut short: -1 (auto) on a CPU
+  // device, whose loop limit can end a pass early (path_trace.comp), and not on a GPU, which
+  // has none (path_trace_gpu.comp: NVIDIA's driver 580 cannot compile the undo); 0 or 1 to
+  // choose. The two give the same image where the limit cuts no pass (on a CPU device 0 would
+  // otherwise bias it).
+  int undo_cut_iteration = -1;
 };
 
 constexpr int kMaxReferenceBounces = 1024;

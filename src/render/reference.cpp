@@ -155,6 +155,9 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
     throw InputError("ReferenceOptions::invocations_per_pixel " +
                      std::to_string(options.invocations_per_pixel) +
                      ": must be in [0, 64] (0 = auto)");
+  if (options.undo_cut_iteration < -1 || options.undo_cut_iteration > 1)
+    throw InputError("ReferenceOptions::undo_cut_iteration " +
+                     std::to_string(options.undo_cut_iteration) + ": must be -1 (auto), 0 or 1");
   const auto start = std::chrono::steady_clock::now();
   const bool planet = scene.lab.grid.empty();
   gpu::FrameParams params =
@@ -180,6 +183,8 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   const int spp = round_up(options.spp);
   int reported = 0;
   path_tracer.resize(width, height, slots);
+  path_tracer.set_undo_cut_iteration(
+      options.undo_cut_iteration < 0 ? ctx.is_cpu() : options.undo_cut_iteration == 1);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) { path_tracer.clear(cmd); });
 
   // Passes of a bounded number of iterations an invocation (path_trace.comp), grown while a

@@ -232,6 +232,33 @@ TEST_F(PlanetReferenceTest, SpreadingSamplesOverInvocationsKeepsTheChannelsEven)
   EXPECT_EQ(shared_renderer().render_reference(s, options).spp, 12);
 }
 
+// A GPU's shader (path_trace_gpu.comp, without the undo of an iteration the loop limit cut
+// short, which NVIDIA's driver 580 cannot compile) traces the same samples as a CPU device's
+// where no pass is cut: passes of 64 iterations stay far under lavapipe's 65535.
+TEST_F(PlanetReferenceTest, TheGpusShaderTracesTheSameSamples) {
+  Scene s = nephele::load_preset("default");
+  s.output.width = 8;
+  s.output.height = 6;
+  s.clouds.optics = "droplets";
+  s.camera.view_dir = {0.2f, 1.0f, 0.5f};
+  nephele::ReferenceOptions options;
+  options.spp = 6;
+  options.iterations_per_pass = 64;
+  options.undo_cut_iteration = 1;
+  const nephele::ReferenceImage cpu = shared_renderer().render_reference(s, options);
+  options.undo_cut_iteration = 0;
+  const nephele::ReferenceImage gpu = shared_renderer().render_reference(s, options);
+  double lit = 0.0;
+  for (size_t i = 0; i < cpu.mean.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      lit += cpu.mean.pixels[i][c];
+      EXPECT_EQ(gpu.mean.pixels[i][c], cpu.mean.pixels[i][c]) << "pixel " << i;
+    }
+  EXPECT_GT(lit, 0.0);
+  options.undo_cut_iteration = 2;
+  EXPECT_THROW(shared_renderer().render_reference(s, options), nephele::InputError);
+}
+
 // Clouds of droplets (clouds.optics = "droplets"): the genera's shares of cloud_shape.z and the
 // voxel clouds' keep every majorant a bound, and no path is lost on the way.
 TEST_F(PlanetReferenceTest, DropletCloudsStayUnderTheirMajorants) {

@@ -15,6 +15,7 @@ PathTracerModule::PathTracerModule(gpu::Context& ctx, gpu::DescriptorSet& set)
       majorant_(ctx, 1, 1, 2, VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE) {
   set_.bind_sampled_image(gpu::kPathMajorant, majorant_);
   set_.bind_buffer(gpu::kPathCounts, counts_, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  undo_ = ctx.is_cpu();
 }
 
 void PathTracerModule::reset_running() {
@@ -68,10 +69,11 @@ void PathTracerModule::clear(VkCommandBuffer cmd) const {
 void PathTracerModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, bool planet,
                               MarchMode mode) const {
   const int baseline = mode == MarchMode::Baseline ? 1 : 0;
-  const int variant = planet ? 1 + baseline : 0;
+  const int variant = (planet ? 1 + baseline : 0) + (undo_ ? 3 : 0);
   if (!kernels_[variant])
     kernels_[variant] = std::make_unique<gpu::Kernel>(
-        ctx_, set_, "path_trace.comp.spv", std::vector<int32_t>{planet ? 1 : 0, baseline});
+        ctx_, set_, undo_ ? "path_trace.comp.spv" : "path_trace_gpu.comp.spv",
+        std::vector<int32_t>{planet ? 1 : 0, baseline});
   gpu::dispatch(cmd, *kernels_[variant], timer, "path_trace", sum_.width(),
                 sum_.height() / uint32_t(slots_), uint32_t(slots_), 8, 8, 1,
                 gpu::DispatchConstants{glm::ivec4(target_, iterations_, seed_, max_bounces_)});

@@ -1,5 +1,6 @@
 // The reference path tracer module (issue 21): the accumulation images and the kernel of
-// path_trace.comp. FrameRenderer::Impl::render_reference (src/render/reference.cpp) drives it.
+// path_trace.comp (a CPU device's) or path_trace_gpu.comp (a GPU's).
+// FrameRenderer::Impl::render_reference (src/render/reference.cpp) drives it.
 #pragma once
 
 #include <memory>
@@ -49,6 +50,9 @@ class PathTracerModule : public RenderModule {
     seed_ = seed;
     max_bounces_ = max_bounces;
   }
+  // Whether a pass undoes the iteration a device's loop limit cut short (path_trace.comp, for
+  // a CPU device) or has no such limit (path_trace_gpu.comp); by default the device's kind.
+  void set_undo_cut_iteration(bool undo) { undo_ = undo; }
   // With FramePlan::Measure::kReference: the pass "path_trace" (record), after the passes it
   // needs (the planet's: the weather map).
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
@@ -64,13 +68,14 @@ class PathTracerModule : public RenderModule {
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   // Built on first use (a pipeline costs a CPU device its compilation at creation): the lab,
-  // the planet with the default and with the baseline field.
-  mutable std::unique_ptr<gpu::Kernel> kernels_[3];
+  // the planet with the default and with the baseline field; each without and with the undo.
+  mutable std::unique_ptr<gpu::Kernel> kernels_[6];
   gpu::Texture sum_, squares_, state_;
   gpu::Buffer counts_;
   gpu::Texture majorant_;  // 1 x 1 x 2 texels until a grid is uploaded
   int target_ = 0, iterations_ = 1, slots_ = 1;
   int seed_ = 0, max_bounces_ = 0;
+  bool undo_ = true;
 };
 
 }  // namespace nephele
