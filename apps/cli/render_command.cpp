@@ -371,9 +371,14 @@ int run_reference(const Scene& scene, const RenderOptions& options) {
                  "its majorant: the image is biased\n", image.majorant_violations);
   if (image.cut_loops > 0)
     std::fprintf(stderr,
-                 "nephele: warning: the device's loop limit cut %lld loops short: the image is "
-                 "biased\n",
+                 "nephele: warning: %lld tracking walks were cut at 2^24 tentative collisions: "
+                 "the image is biased\n",
                  image.cut_loops);
+  if (image.abandoned > 0 && !options.quiet)
+    std::fprintf(stderr,
+                 "nephele: the time limit left out %lld samples still in flight a tenth of it "
+                 "later (of %lld taken)\n",
+                 image.abandoned, (long long)(image.spp) * image.mean.width * image.mean.height);
   if (options.validation && renderer.validation_messages() > 0) {
     std::fprintf(stderr, "nephele: %d Vulkan validation messages\n", renderer.validation_messages());
     return 1;

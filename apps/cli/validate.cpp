@@ -691,9 +691,15 @@ int run_validate(const ValidateOptions& options) {
     if (!options.quiet) std::fprintf(stderr, "%s", row);
     if (reference.cut_loops > 0)
       std::fprintf(stderr,
-                   "nephele: warning: %s: the device's loop limit cut %lld of the reference's "
-                   "loops short: it is biased\n",
+                   "nephele: warning: %s: %lld of the reference's tracking walks were cut at "
+                   "2^24 tentative collisions: it is biased\n",
                    view.name.c_str(), reference.cut_loops);
+    if (reference.abandoned > 0 && !options.quiet)
+      std::fprintf(stderr,
+                   "nephele: %s: the time limit left out %lld samples still in flight a tenth "
+                   "of it later (of %lld taken)\n",
+                   view.name.c_str(), reference.abandoned,
+                   (long long)(reference.spp) * scene.output.width * scene.output.height);
     results["views"][view.name] = {{"description", view.description},
                                    {"mean_error", e.mean_error},
                                    {"max_mean_error", view.max_mean_error},

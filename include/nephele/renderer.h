@@ -163,7 +163,8 @@ enum class MajorantGrid { kAuto, kBricks, kNone };
 // Renderer::render_reference: how long to trace.
 struct ReferenceOptions {
   int spp = 64;               // samples per pixel, [1, 1000000]
-  double time_limit_s = 0.0;  // stop once this much time has passed (0: none), at a pass's end
+  double time_limit_s = 0.0;  // stop once this much time has passed (0: none), at a pass's end,
+                              // and leave out what is still in flight a tenth of it later
   uint32_t seed = 1;          // the same seed, scene and spp give the same image
   ProgressCallback progress;  // "reference", samples per pixel done, of spp
   // The lab's brick grid (kAuto: where under a quarter of the bricks are stored); on the
@@ -206,6 +207,11 @@ struct ReferenceImage {
   // Tentative collisions where the medium's extinction exceeded its majorant: 0 when the
   // majorants are right (a test of them; any would bias the image).
   long long majorant_violations = 0;
+  // Samples left out at a time limit: each invocation finishes the sample it is on for at most
+  // a tenth of the limit more, and those still in flight then are not counted (a pixel's mean
+  // is over the samples it finished, which favours short paths by at most this many over the
+  // samples taken).
+  long long abandoned = 0;
   double seconds = 0.0;
 };
 

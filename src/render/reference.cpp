@@ -191,7 +191,11 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   // pass takes under a quarter of a second, so that a time limit is kept to within about a
   // pass and progress is reported often: until no invocation has samples to take. At the time
   // limit, each finishes the sample it is on and takes its samples to a multiple of three, so
-  // that every channel has as many; pixels then differ in their samples.
+  // that every channel has as many; pixels then differ in their samples. That takes as long as
+  // the longest of those samples, which at a low sun runs into minutes on a GPU (hundreds of
+  // bounces through cloud, each with a shadow ray along the layer towards the horizon: an
+  // H200's 85 s sunset reference ran on past 125 s): after a tenth of the limit more, the
+  // samples still in flight are left out (ReferenceImage::abandoned).
   const long long pixels = (long long)(width)*height;
   // A CPU device's loop limit (65535 iterations an invocation's batch, in all its loops): an
   // iteration runs a few short loops of its own, and a pass the limit ends early lowers this.
@@ -204,12 +208,17 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   plan.planet_reference = planet;
   const FrameGraph graph = frame_graph(scene, params, plan);
   PathTracerModule::Counts counts;
+  long long abandoned = 0;
   for (bool first = true; first || counts.running > 0; first = false) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!stopping && counts.finished > 0 && options.time_limit_s > 0.0 &&
         elapsed >= options.time_limit_s)
       stopping = true;
+    if (stopping && elapsed >= 1.1 * options.time_limit_s) {
+      abandoned = counts.running;
+      break;
+    }
     path_tracer.set_paths(int(options.seed), max_bounces);
     path_tracer.set_samples(stopping ? 0 : spp, iterations);
     path_tracer.reset_running();
@@ -266,6 +275,7 @@ ReferenceImage FrameRenderer::Impl::render_reference(const Scene& scene,
   // The mean over the pixels (all alike unless a time limit stopped the passes).
   out.spp = int((long long)(counts.finished) / std::max(pixels, 1LL));
   out.cut_loops = counts.cut;
+  out.abandoned = abandoned;
   out.majorant_violations = counts.violations;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
