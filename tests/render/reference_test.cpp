@@ -270,7 +270,6 @@ TEST_F(ReferenceTest, ATimeLimitLeavesOutTheSamplesStillInFlight) {
   options.iterations_per_pass = 16;
   const nephele::ReferenceImage image = shared_renderer().render_reference(s, options);
   EXPECT_GT(image.abandoned, 0);
-  EXPECT_GE(image.spp, 1);  // the background's samples, which end at once
   EXPECT_LT(image.seconds, 30.0);
   for (const glm::vec4& p : image.mean.pixels) EXPECT_TRUE(std::isfinite(p.r));
   options.time_limit_s = 0.0;  // no limit: nothing is left out
