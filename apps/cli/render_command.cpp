@@ -90,8 +90,8 @@ void add_render_flags(CLI::App& cmd, RenderOptions& options) {
   cmd.add_option("--spp", options.spp, "--reference: samples per pixel, [1, 1000000]")
       ->capture_default_str();
   cmd.add_option("--time-limit", options.time_limit_s,
-                 "--reference: stop after this many seconds (at the end of a pass; 0 = none); samples still "
-                 "in flight a tenth of it later are left out")
+                 "--reference: stop after this many seconds (at the end of a pass; 0 = none); "
+                 "samples still in flight a tenth of it later are left out")
       ->capture_default_str();
   cmd.add_option("--max-bounces", options.max_bounces,
                  "--reference: scatterings after the first, [0, 1024] (0 = single scattering); -1: "

@@ -226,8 +226,8 @@ void add_validate_flags(CLI::App& cmd, ValidateOptions& options) {
   cmd.add_option("--spp", options.spp, "the reference's samples per pixel, [3, 1000000]")
       ->capture_default_str();
   cmd.add_option("--time-limit", options.time_limit_s,
-                 "stop each view's reference after this many seconds (0 = none); samples still in flight a "
-                 "tenth of it later are left out")
+                 "stop each view's reference after this many seconds (0 = none); samples "
+                 "still in flight a tenth of it later are left out")
       ->capture_default_str();
   cmd.add_option(
       "--references", options.references,
