@@ -205,17 +205,23 @@ TEST_F(PlanetReferenceTest, ThickCloudsAreTracedWhereverThePassesEndAndWhateverT
   expect_same_mean(grid, flat);
 }
 
+// The default scene at 8 x 6 looking up into its clouds, of droplets: the seed's clouds (tau in
+// the hundreds) have paths of tens of thousands of steps, which make a test slow without
+// making it stricter.
+Scene small_droplet_view() {
+  Scene s = nephele::load_preset("default");
+  s.output.width = 8;
+  s.output.height = 6;
+  s.clouds.optics = "droplets";
+  s.camera.view_dir = {0.2f, 1.0f, 0.5f};
+  return s;
+}
+
 // On the planet the samples take the colour channels in turn: spread over invocations they are
 // the same samples, and a pass that is not a multiple of three runs on until every channel has
 // as many.
 TEST_F(PlanetReferenceTest, SpreadingSamplesOverInvocationsKeepsTheChannelsEven) {
-  Scene s = nephele::load_preset("default");
-  s.output.width = 8;
-  s.output.height = 6;
-  // Droplets: the seed's clouds (tau in the hundreds) have paths of tens of thousands of steps,
-  // which make this test slow without making it stricter.
-  s.clouds.optics = "droplets";
-  s.camera.view_dir = {0.2f, 1.0f, 0.5f};
+  const Scene s = small_droplet_view();
   nephele::ReferenceOptions options;
   options.spp = 6;
   options.invocations_per_pixel = 1;
@@ -236,11 +242,7 @@ TEST_F(PlanetReferenceTest, SpreadingSamplesOverInvocationsKeepsTheChannelsEven)
 // short, which NVIDIA's driver 580 cannot compile) traces the same samples as a CPU device's
 // where no pass is cut: passes of 64 iterations stay far under lavapipe's 65535.
 TEST_F(PlanetReferenceTest, TheGpusShaderTracesTheSameSamples) {
-  Scene s = nephele::load_preset("default");
-  s.output.width = 8;
-  s.output.height = 6;
-  s.clouds.optics = "droplets";
-  s.camera.view_dir = {0.2f, 1.0f, 0.5f};
+  const Scene s = small_droplet_view();
   nephele::ReferenceOptions options;
   options.spp = 6;
   options.iterations_per_pass = 64;
