@@ -60,6 +60,7 @@ namespace {
 #include "common/classic_inc.glsl"
 #include "common/tonemap_inc.glsl"
 #include "common/sh_inc.glsl"
+#include "common/lebedev_inc.glsl"
 // clang-format on
 }  // namespace
 }  // namespace nephele::glsl
