@@ -18,6 +18,14 @@ ivec3 lebedev_step(int k) {
   return o;
 }
 
+// The partial current that light arriving from point k's direction feeds along `axis`: 2 axis
+// where it travels along +axis (it comes from the -axis side), 2 axis + 1 along -axis; -1 where
+// the direction lies across the axis. Slots: +x, -x, +y, -y, +z, -z.
+int lebedev_current_slot(int k, int axis) {
+  int o = lebedev_step(k)[axis];
+  return o == 0 ? -1 : 2 * axis + (o < 0 ? 0 : 1);
+}
+
 // Point k's weight (the weights sum to 4 pi).
 float lebedev_weight(int k) { return 4.0f * PI * (k < 6 ? 1.0f / 15.0f : 3.0f / 40.0f); }
 

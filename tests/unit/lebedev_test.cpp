@@ -25,15 +25,16 @@ template <typename F>
 Gathered gather(F radiance, bool corrected) {
   Gathered out;
   for (int k = 0; k < g::LEBEDEV_POINTS; ++k) {
-    const glm::ivec3 o = g::lebedev_step(k);
-    const glm::vec3 w = glm::normalize(glm::vec3(o));
+    const glm::vec3 w = glm::normalize(glm::vec3(g::lebedev_step(k)));
     const double l = double(g::lebedev_weight(k)) * radiance(w);
     out.phi += l;
-    for (int axis = 0; axis < 3; ++axis)
-      if (o[axis] != 0) out.currents[2 * axis + (o[axis] < 0 ? 0 : 1)] += std::abs(w[axis]) * l;
+    for (int axis = 0; axis < 3; ++axis) {
+      const int slot = g::lebedev_current_slot(k, axis);
+      if (slot >= 0) out.currents[slot] += std::abs(w[axis]) * l;
+    }
   }
-  if (corrected)
-    for (double& j : out.currents) j += g::lebedev_current_correction(float(out.phi));
+  const double correction = corrected ? g::lebedev_current_correction(float(out.phi)) : 0.0;
+  for (double& j : out.currents) j += correction;
   return out;
 }
 

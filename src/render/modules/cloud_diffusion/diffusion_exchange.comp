@@ -123,15 +123,16 @@ void main() {
   // The quadrature of the fluence (the integral of L) and of each partial current (of L |cos|
   // over the directions its light comes from): Lebedev's 14 points (lebedev_inc.glsl).
   for (int k = 0; k < LEBEDEV_POINTS; ++k) {
-    ivec3 o = lebedev_step(k);
-    vec3 w = normalize(vec3(o));
+    vec3 w = normalize(vec3(lebedev_step(k)));
     float l = lebedev_weight(k) * exchange_ray(c, cascade, h, w, read);
     phi += l;
-    // The light from w travels along -w: along +axis where w[axis] < 0.
-    for (int axis = 0; axis < 3; ++axis)
-      if (o[axis] != 0) currents[2 * axis + (o[axis] < 0 ? 0 : 1)] += abs(w[axis]) * l;
+    for (int axis = 0; axis < 3; ++axis) {
+      int slot = lebedev_current_slot(k, axis);
+      if (slot >= 0) currents[slot] += abs(w[axis]) * l;
+    }
   }
-  for (int k = 0; k < 6; ++k) currents[k] += lebedev_current_correction(phi);
+  float correction = lebedev_current_correction(phi);
+  for (int k = 0; k < 6; ++k) currents[k] += correction;
   exchange_store(c, 1 - read, vec4(currents[0], currents[1], currents[2], currents[3]),
                  vec4(currents[4], currents[5], phi, 0.0f));
 }
