@@ -21,4 +21,4 @@ regex="(^|/)(Fuzz[A-Za-z0-9_]*|CliTest|CliInputs|InputLimitsCli|${unit_suites})\
 
 source scripts/sanitizers/env.sh
 cd build-sanitize
-ctest --output-on-failure --no-tests=error -j2 -R "$regex" "$@"
+ctest --output-on-failure --no-tests=error -j2 -LE slow -R "$regex" "$@"

@@ -105,6 +105,11 @@ void add_gallery_flags(CLI::App& cmd, GalleryOptions& options) {
   cmd.add_option("--tile-height", options.tile_height, "height of each tile (pixels), [16, 4096]")
       ->capture_default_str();
   cmd.add_option("--columns", options.columns, "tiles per row, [1, 16]")->capture_default_str();
+  cmd.add_option("--presets", options.presets,
+                 "the presets to show, in this order, separated by commas (default: the "
+                 "sky-cover presets, clear to overcast, stratus, storm, cirrus, sunset, then the "
+                 "particle clouds'); not with --classic")
+      ->delimiter(',');
   cmd.add_flag("--classic", options.classic,
                "the classical cloud models of seed 004 (blinn, gardner cumulus, stratus and cirrus, gardner-quadrics, kajiya, nishita) "
                "and nephele's own on one scene, each labelled with its frame time on this device");
@@ -127,6 +132,8 @@ int run_gallery(const GalleryOptions& options) {
   check_output_path(options.output, "--output");
   if (!options.json.empty() && !options.classic)
     throw InputError("--json " + options.json + ": only with --classic (the models' frame times)");
+  if (options.classic && !options.presets.empty())
+    throw InputError("--presets: not with --classic (its tiles are the classical models)");
   if (!options.json.empty()) {
     check_output_file(options.json, "--json", true);
     check_distinct_outputs({{"--output", options.output}, {"--json", options.json}});
@@ -140,10 +147,17 @@ int run_gallery(const GalleryOptions& options) {
       scenes.push_back(std::move(tile.scene));
     }
   } else {
-    names = gallery_presets();
-    for (const std::string& name : gallery_scene_presets()) names.push_back(name);
+    names = options.presets;
+    if (names.empty()) {
+      names = gallery_presets();
+      for (const std::string& name : gallery_scene_presets()) names.push_back(name);
+    }
     for (const std::string& name : names) {
-      scenes.push_back(load_preset(name));
+      try {
+        scenes.push_back(load_preset(name));
+      } catch (const InputError& e) {
+        throw InputError(std::string("--presets: ") + e.what());
+      }
       scenes.back().output.width = options.tile_width;
       scenes.back().output.height = options.tile_height;
     }

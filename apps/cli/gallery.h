@@ -40,6 +40,8 @@ struct GalleryOptions {
   std::string json;      // --classic: {"models": {name: frame_ms}} here
   bool exr_float = false;  // EXR as 32-bit floats
   int tile_width = 400, tile_height = 250, columns = 3;
+  std::vector<std::string> presets;  // the tiles, in order; empty: the sky-cover presets, then
+                                     // the particle ones
   std::string device;
   bool verbose = false;
   bool validation = false;

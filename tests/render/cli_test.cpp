@@ -80,16 +80,38 @@ TEST_F(CliTest, RendersPngAndStatsJson) {
 
 // One command renders the presets side by side: a grid of tiles (3 columns, a 4-pixel gap).
 TEST_F(CliTest, GalleryRendersThePresetsInOneImage) {
+  // Three presets (every preset is rendered on its own elsewhere): the tiles in rows of
+  // --columns, in the order given.
   const std::string out = path("gallery.png");
-  const CliRun r = run_cli("gallery --tile-width 48 --tile-height 32 --validation -o " + out);
+  const CliRun r = run_cli(
+      "gallery --presets few,overcast,particle-cumulus --columns 2 "
+      "--tile-width 48 --tile-height 32 --validation -o " +
+      out);
   ASSERT_EQ(r.status, 0) << r.output;
   int w = 0, h = 0, n = 0;
-  ASSERT_TRUE(stbi_info(out.c_str(), &w, &h, &n));
-  EXPECT_EQ(w, 3 * 48 + 2 * 4);
-  EXPECT_EQ(h, 5 * 32 + 4 * 4);  // 11 sky-cover presets and 2 of particle clouds
+  unsigned char* pixels = stbi_load(out.c_str(), &w, &h, &n, 3);
+  ASSERT_NE(pixels, nullptr);
+  EXPECT_EQ(w, 2 * 48 + 4);
+  EXPECT_EQ(h, 2 * 32 + 4);
+  // The gap between the columns is black, the few clouds' sky blue, the overcast grey, the
+  // last row's second tile empty (black).
+  const auto at = [&](int x, int y, int c) { return int(pixels[3 * (y * w + x) + c]); };
+  EXPECT_EQ(at(49, 10, 0) + at(49, 10, 1) + at(49, 10, 2), 0);
+  EXPECT_GT(at(24, 14, 2), at(24, 14, 0) + 40) << "few: the blue sky";
+  EXPECT_LT(std::abs(at(52 + 24, 14, 2) - at(52 + 24, 14, 0)), 15) << "overcast: grey";
+  EXPECT_EQ(at(52 + 24, 36 + 16, 0) + at(52 + 24, 36 + 16, 1), 0);
+  stbi_image_free(pixels);
   const CliRun bad = run_cli("gallery --columns 0 -o " + path("bad.png"));
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.output.find("--columns 0: must be in [1, 16]"), std::string::npos) << bad.output;
+  const CliRun unknown = run_cli("gallery --presets few,nimbus -o " + path("bad.png"));
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.output.find("--presets: preset 'nimbus': unknown preset"), std::string::npos)
+      << unknown.output;
+  const CliRun classic = run_cli("gallery --classic --presets few -o " + path("bad.png"));
+  EXPECT_EQ(classic.status, 2);
+  EXPECT_NE(classic.output.find("--presets: not with --classic"), std::string::npos)
+      << classic.output;
   EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 

@@ -8,6 +8,7 @@
 #include "gpu/context.h"
 #include "nephele/scene.h"
 #include "render/frame_params.h"
+#include "render/glsl.h"
 #include "render/modules/atmosphere/atmosphere.h"
 #include "render/modules/clouds/clouds.h"
 #include "render/modules/host_lighting/host_lighting.h"
@@ -148,6 +149,42 @@ TEST(NoiseTextures, TileSeamlesslyAndCarryNoise) {
       EXPECT_LT(interior, 0.5 * random) << label << " channel " << c << " is not smooth";
     }
   }
+  EXPECT_EQ(ctx.validation_messages(), 0);
+}
+
+// The base noise texture holds noise_inc.glsl's functions (as C++) at each texel's centre, for
+// the default seed: noise_base.comp hashes the Worley lattices' feature points once per
+// workgroup in shared memory, and must not change a value (within the RGBA8 rounding).
+TEST(NoiseTextures, BaseNoiseIsTheNoiseFunctionsAtEachTexel) {
+  nephele::gpu::Context ctx({"", true, false});
+  nephele::GpuState state(ctx);
+  Modules modules(ctx, state);
+  const nephele::Scene scene{};
+  state.run_once(nephele::make_frame_params(scene, 0),
+                 [&](VkCommandBuffer cmd) { modules.noise.record(cmd, *state.timer, 0); });
+  const Volume base = download(ctx, modules.noise.base());
+  namespace g = nephele::glsl;
+  const uint32_t seed = uint32_t(nephele::make_frame_params(scene, 0).size.w) * 101u;
+  const uint32_t n = base.size;
+  int checked = 0, off = 0;
+  float worst = 0.0f;
+  // Every texel of a few rows in each axis' direction, across workgroups' borders.
+  for (uint32_t z = 0; z < n; z += 37)
+    for (uint32_t y = 0; y < n; y += 5)
+      for (uint32_t x = 0; x < n; ++x) {
+        const glm::vec3 uvw = (glm::vec3(x, y, z) + 0.5f) / float(n);
+        const float expected[4] = {
+            g::perlin_worley(uvw, 4, seed), g::worley_fbm(uvw, 4, seed + 31u),
+            g::worley_fbm(uvw, 8, seed + 41u), g::worley_fbm(uvw, 16, seed + 53u)};
+        for (int c = 0; c < 4; ++c) {
+          const float d = std::abs(base.at(x, y, z, c) - expected[c]);
+          worst = std::max(worst, d);
+          off += d > 0.5f / 255.0f + 1e-6f;
+          ++checked;
+        }
+      }
+  EXPECT_LE(worst, 1.0f / 255.0f + 1e-6f);
+  EXPECT_LE(off, checked / 1000) << off << " of " << checked << " values off by a code";
   EXPECT_EQ(ctx.validation_messages(), 0);
 }
 
