@@ -99,7 +99,8 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
       sweeps_since_exchange_ = exchange_row_ = 0;
       building_ = true;
       next_row_ = 0;
-      sweeps_left_ = kDiffusionSweeps;
+      // Built at once (below) or over frames.
+      sweeps_left_ = frame.still || !have_field_ ? kDiffusionSweeps : kDiffusionAnimationSweeps;
       edit_ = plan.light_volume_edited;
     }
     if (building_) {
@@ -115,7 +116,7 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
         next_row_ += fill_rows_;
       } else {
         const int per_frame =
-            edit_ ? kDiffusionSweeps / kDiffusionEditFrames : kDiffusionFrameSweeps;
+            edit_ ? kDiffusionAnimationSweeps / kDiffusionEditFrames : kDiffusionFrameSweeps;
         sweeps_ = std::min(at_once ? sweeps_left_ : per_frame, sweeps_left_);
         sweeps_left_ -= sweeps_;
       }
@@ -192,9 +193,10 @@ void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
     if (gather_ && sweeps_since_exchange_ > 0) exchange(0, kRows);
   } else if (sweeps_ > 0) {
     // An animation's: a band of the gather with each sweep, one gather completed every
-    // kDiffusionExchangeSweeps sweeps (the field reads the last completed).
+    // kDiffusionAnimationExchangeSweeps sweeps (the field reads the last completed).
     sweep(sweeps_);
-    const int band = std::min(kRows / kDiffusionExchangeSweeps * sweeps_, kRows - exchange_row_);
+    const int band =
+        std::min(kRows / kDiffusionAnimationExchangeSweeps * sweeps_, kRows - exchange_row_);
     exchange(exchange_row_, band);
     exchange_row_ = (exchange_row_ + band) % kRows;
   }

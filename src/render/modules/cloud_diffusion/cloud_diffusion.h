@@ -26,24 +26,30 @@
 
 namespace nephele {
 
-// The solve's red-black sweeps for a build, from a zero start (an animation's build starts from
-// the last one's fluence where the grid has not moved). Stop 59, at 40 x 25: 256 sweeps give
-// the validation views the same figures to the digit; 96 and 64 move them by under 0.6%, but
-// the lab's split deck (ReferenceTest.TheDiffusionLightCrossesAGapInADeck) falls from 0.95 of
-// the tracer to 0.90 and 0.79, its light crossing the gap once a gather.
-constexpr int kDiffusionSweeps = 128;
-// An animation's build: the medium over kDiffusionFillFrames frames, then kDiffusionFrameSweeps
-// sweeps a frame (on lavapipe 9 and 8 ms a frame; a build takes 192 frames, the light volume's
-// 256).
+// The solve's red-black sweeps for a build built at once (a still, an animation's first
+// field), from a zero start, and the gather of the light clear air carries between clouds
+// (diffusion_exchange.comp) every kDiffusionExchangeSweeps of them and once before the field.
+// The gathers, not the sweeps, limit the convergence: the lab's split deck
+// (ReferenceTest.TheDiffusionLightCrossesAGapInADeck) takes its light across the gap once a
+// gather (stop 59: 96 and 64 sweeps gathered every 16 left it at 0.90 and 0.79 of the tracer,
+// against 0.95 at 128). Stop 63, at 40 x 25: 64 sweeps gathered every 8 (eight gathers, as 128
+// every 16) give the suite's views within 0.6% of 128 (sum 100.4 points against 101) for 1.2 s
+// less a still on lavapipe; 32 every 4 leave the overcast deck unconverged (7 points darker).
+constexpr int kDiffusionSweeps = 64;
+constexpr int kDiffusionExchangeSweeps = 8;
+// An animation's build, a part a frame from the last build's fluence: the medium over
+// kDiffusionFillFrames frames, then kDiffusionFrameSweeps sweeps a frame of
+// kDiffusionAnimationSweeps, with a band of the gather each (one completed every
+// kDiffusionAnimationExchangeSweeps sweeps: a frame's share of a gather is what a sweep costs;
+// on lavapipe 9 and 8 ms a frame; a build takes 192 frames, the light volume's 256).
 constexpr int kDiffusionFillFrames = 64;
 constexpr int kDiffusionFrameSweeps = 1;
+constexpr int kDiffusionAnimationSweeps = 128;
+constexpr int kDiffusionAnimationExchangeSweeps = 16;
 // After an edit of the clouds (the light volume rebuilt over kLightVolumeEditFrames), the
 // medium over this many frames and the sweeps over as many, so that the lighting follows the
 // edit within 48 frames rather than 208 (on lavapipe about 50 and 230 ms a frame).
 constexpr int kDiffusionEditFrames = 16;
-// The light clear air carries between clouds is gathered again after this many sweeps
-// (diffusion_exchange.comp), and once before the field.
-constexpr int kDiffusionExchangeSweeps = 16;
 
 class CloudDiffusionModule : public RenderModule {
  public:
