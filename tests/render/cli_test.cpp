@@ -78,7 +78,7 @@ TEST_F(CliTest, RendersPngAndStatsJson) {
   EXPECT_GT(j["mean_luminance"].get<double>(), 0.0);
 }
 
-// One command renders the presets side by side: a grid of tiles (3 columns, a 4-pixel gap).
+// One command renders the presets side by side: a grid of tiles (--columns, a 4-pixel gap).
 TEST_F(CliTest, GalleryRendersThePresetsInOneImage) {
   // Three presets (every preset is rendered on its own elsewhere): the tiles in rows of
   // --columns, in the order given.
