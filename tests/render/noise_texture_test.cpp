@@ -159,12 +159,11 @@ TEST(NoiseTextures, BaseNoiseIsTheNoiseFunctionsAtEachTexel) {
   nephele::gpu::Context ctx({"", true, false});
   nephele::GpuState state(ctx);
   Modules modules(ctx, state);
-  const nephele::Scene scene{};
-  state.run_once(nephele::make_frame_params(scene, 0),
-                 [&](VkCommandBuffer cmd) { modules.noise.record(cmd, *state.timer, 0); });
+  const auto params = nephele::make_frame_params(nephele::Scene{}, 0);
+  state.run_once(params, [&](VkCommandBuffer cmd) { modules.noise.record(cmd, *state.timer, 0); });
   const Volume base = download(ctx, modules.noise.base());
   namespace g = nephele::glsl;
-  const uint32_t seed = uint32_t(nephele::make_frame_params(scene, 0).size.w) * 101u;
+  const uint32_t seed = uint32_t(params.size.w) * 101u;  // as noise_base.comp
   const uint32_t n = base.size;
   int checked = 0, off = 0;
   float worst = 0.0f;

@@ -79,12 +79,14 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   if (!on) {
     have_field_ = building_ = false;
   } else {
+    // A still, or nothing to read yet: the field built at once, else a part a frame.
+    const bool at_once = frame.still || !have_field_;
     if (!have_field_ || plan.light_volume_built) {
       // A new build, centred where the light volume is (the camera, when it was built), in
       // cloud space; an animation's from the last build's fluence where the grid has not moved,
       // a still's from zero (so that it does not depend on what was rendered before).
       const float thickness_m = params.radii_m.w - params.radii_m.z;
-      bool moved = !have_field_ || frame.still;
+      bool moved = at_once;
       float half_m = kHalfExtentM;
       for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k, half_m *= kCascadeScale) {
         const glm::vec4 grid(params.light_volume.x, params.light_volume.y, half_m, 0.0f);
@@ -99,13 +101,10 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
       sweeps_since_exchange_ = exchange_row_ = 0;
       building_ = true;
       next_row_ = 0;
-      // Built at once (below) or over frames.
-      sweeps_left_ = frame.still || !have_field_ ? kDiffusionSweeps : kDiffusionAnimationSweeps;
+      sweeps_left_ = at_once ? kDiffusionSweeps : kDiffusionAnimationSweeps;
       edit_ = plan.light_volume_edited;
     }
     if (building_) {
-      // At once for a still or when there is nothing to read yet, else a part a frame.
-      const bool at_once = frame.still || !have_field_;
       at_once_ = at_once;
       if (next_row_ < kRows) {
         fill_first_ = next_row_;
