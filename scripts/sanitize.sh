@@ -20,5 +20,7 @@ unit_suites=$(grep -ho 'TEST\(_F\|_P\)\?( *[A-Za-z0-9_]*' tests/unit/*.cpp | sed
 regex="(^|/)(Fuzz[A-Za-z0-9_]*|CliTest|CliInputs|InputLimitsCli|${unit_suites})\\."
 
 source scripts/sanitizers/env.sh
+source scripts/ctest_costs.sh
+seed_costs build-sanitize
 cd build-sanitize
 ctest --output-on-failure --no-tests=error -j2 -LE slow -R "$regex" "$@"

@@ -5,6 +5,7 @@
 # which run the benchmarks they check), --all both. Other arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/ctest_costs.sh
 labels=(-LE slow)
 case "${1:-}" in
   --slow) labels=(-L slow); shift ;;
@@ -12,5 +13,6 @@ case "${1:-}" in
 esac
 [ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build >&2
+seed_costs build
 cd build
 ctest --output-on-failure -j2 "${labels[@]}" "$@"

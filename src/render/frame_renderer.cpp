@@ -115,20 +115,26 @@ void FrameRenderer::Impl::print_timings(const std::vector<std::pair<std::string,
 
 void FrameRenderer::Impl::update_noise(const Scene& scene, const gpu::FrameParams& params) {
   if (!noise.stale(scene.noise_seed)) return;
+  // The base noise from the disk cache where an earlier process made it.
+  const std::optional<std::filesystem::path> cached = noise.load_base(scene.noise_seed);
+  if (cached && verbose)
+    std::fprintf(stderr, "nephele: pass noise_base read from %s\n", cached->string().c_str());
+  const int first = cached ? 1 : 0;
   const auto record_all = [&](VkCommandBuffer cmd) {
-    for (int i = 0; i < NoiseModule::kTextures; ++i) noise.record(cmd, *state.timer, i);
+    for (int i = first; i < NoiseModule::kTextures; ++i) noise.record(cmd, *state.timer, i);
   };
   if (!progress) {
     print_timings(state.run_once(params, record_all), " (made once for its seed)");
   } else {  // one submission a texture, each reported
-    progress("noise", 0, NoiseModule::kTextures);
-    for (int i = 0; i < NoiseModule::kTextures; ++i) {
+    progress("noise", first, NoiseModule::kTextures);
+    for (int i = first; i < NoiseModule::kTextures; ++i) {
       print_timings(
           state.run_once(params, [&](VkCommandBuffer cmd) { noise.record(cmd, *state.timer, i); }),
           " (made once for its seed)");
       progress("noise", i + 1, NoiseModule::kTextures);
     }
   }
+  if (!cached) noise.store_base(scene.noise_seed);
   noise.made(scene.noise_seed);
 }
 

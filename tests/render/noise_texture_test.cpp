@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
 
 #include "gpu/context.h"
 #include "nephele/scene.h"
@@ -228,4 +232,46 @@ TEST(NoiseTextures, CurlNoiseIsDivergenceFreeUnitAndTiles) {
   EXPECT_LT(seam, 1.5 * interior);
   EXPECT_GT(interior / n, 0.01);
   EXPECT_EQ(ctx.validation_messages(), 0);
+}
+
+// The base noise kept in the disk cache (noise_cache.h) comes back texel for texel, into a
+// texture that held something else; a damaged file is not read.
+TEST(NoiseTextures, TheBaseNoiseComesBackFromTheDiskCacheAsItWasMade) {
+  const std::filesystem::path dir =
+      std::filesystem::path(NEPHELE_TEST_OUTPUT_DIR) / "noise_texture_cache";
+  std::filesystem::remove_all(dir);
+  const char* old = std::getenv("NEPHELE_CACHE_DIR");
+  const std::optional<std::string> restore = old ? std::optional<std::string>(old) : std::nullopt;
+  setenv("NEPHELE_CACHE_DIR", dir.c_str(), 1);
+  {
+    nephele::gpu::Context ctx({"", true, false});
+    nephele::GpuState state(ctx);
+    Modules modules(ctx, state);
+    nephele::Scene scene;
+    scene.noise_seed = 7;
+    const auto params = nephele::make_frame_params(scene, 0);
+    EXPECT_FALSE(modules.noise.load_base(7));  // nothing there yet
+    state.run_once(params,
+                   [&](VkCommandBuffer cmd) { modules.noise.record(cmd, *state.timer, 0); });
+    const Volume made = download(ctx, modules.noise.base());
+    modules.noise.store_base(7);
+    EXPECT_FALSE(modules.noise.load_base(8));  // another seed's is another file
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) { modules.noise.base().record_clear(cmd); });
+    ASSERT_NE(download(ctx, modules.noise.base()).texels, made.texels);
+    const std::optional<std::filesystem::path> file = modules.noise.load_base(7);
+    ASSERT_TRUE(file);
+    EXPECT_EQ(file->parent_path(), dir);
+    EXPECT_TRUE(download(ctx, modules.noise.base()).texels == made.texels);
+    {
+      std::fstream f(*file, std::ios::binary | std::ios::in | std::ios::out);
+      f.seekp(1000);
+      f.put('\x5a');
+    }
+    EXPECT_FALSE(modules.noise.load_base(7));
+    EXPECT_EQ(ctx.validation_messages(), 0);
+  }
+  if (restore)
+    setenv("NEPHELE_CACHE_DIR", restore->c_str(), 1);
+  else
+    unsetenv("NEPHELE_CACHE_DIR");
 }

@@ -1,8 +1,10 @@
 // The noise module: the cloud shapes' base noise (128^3), detail noise (32^3 and its mip
 // levels) and curl noise (128^2), made once per noise seed at the first frame (a host wait,
-// about 3 s on a CPU: reported by RendererOptions::progress) and kept.
+// about 1.5 s on a CPU: reported by RendererOptions::progress) and kept. The base noise, most
+// of that wait, is kept on disk too (noise_cache.h) and read back by the next process.
 #pragma once
 
+#include <filesystem>
 #include <optional>
 
 #include "gpu/kernel.h"
@@ -29,12 +31,21 @@ class NoiseModule : public RenderModule {
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, int i);
   // The textures recorded have been made for `seed`.
   void made(uint32_t seed) { seed_ = seed; }
+  // Fills the base noise texture for `seed` from the disk cache: the file read, or nothing
+  // when there is no cache or no valid file in it (then record texture 0).
+  std::optional<std::filesystem::path> load_base(uint32_t seed);
+  // Keeps the base noise texture, made for `seed`, in the disk cache (where there is one).
+  void store_base(uint32_t seed);
 
   const gpu::Texture& base() const { return base_; }
   const gpu::Texture& detail() const { return detail_; }
   const gpu::Texture& curl() const { return curl_; }
 
  private:
+  // The cache's file for `seed` (empty: no cache).
+  std::filesystem::path cache_file(uint32_t seed) const;
+
+  gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::Kernel base_kernel_, detail_kernel_, curl_kernel_;
   gpu::Texture base_, detail_, curl_;
