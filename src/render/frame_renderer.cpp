@@ -126,7 +126,8 @@ void FrameRenderer::Impl::update_noise(const Scene& scene, const gpu::FrameParam
   if (!progress) {
     print_timings(state.run_once(params, record_all), " (made once for its seed)");
   } else {  // one submission a texture, each reported
-    progress("noise", first, NoiseModule::kTextures);
+    progress("noise", 0, NoiseModule::kTextures);
+    if (cached) progress("noise", 1, NoiseModule::kTextures);
     for (int i = first; i < NoiseModule::kTextures; ++i) {
       print_timings(
           state.run_once(params, [&](VkCommandBuffer cmd) { noise.record(cmd, *state.timer, i); }),
