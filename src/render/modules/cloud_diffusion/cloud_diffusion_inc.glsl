@@ -25,20 +25,25 @@ vec3 diffusion_coord(vec3 pos, int k) {
 bool diffusion_light(vec3 pos, vec3 dir, float g1, out float radiance) {
   radiance = 0.0f;
   float margin = 2.0f / float(DIFFUSION_XY);
-  for (int k = 0; k < DIFFUSION_CASCADES; ++k) {
-    vec3 c = diffusion_coord(pos, k);
-    if (diffusion.grid[k].w < 0.5f || any(lessThan(c.xy, vec2(margin))) ||
-        any(greaterThan(c.xy, vec2(1.0f - margin))))
-      continue;
-    // Within the cascade's own slices of the stacked volume (no blend with the next one's).
-    float z = float(k * DIFFUSION_Z) + clamp(c.z * float(DIFFUSION_Z), 0.5f, float(DIFFUSION_Z) - 0.5f);
-    vec4 f = textureLod(cloud_diffusion_field,
-                        vec3(c.xy, z / float(DIFFUSION_Z * DIFFUSION_CASCADES)), 0.0f);
-    // The light propagating towards the viewer travels along -dir.
-    radiance = max(f.x - 3.0f * g1 * dot(f.yzw, dir), 0.0f) / (4.0f * PI);
-    return true;
+  // The cascade first, then one lookup (lavapipe would make a loop's lookup for every
+  // cascade).
+  int found = -1;
+  vec3 c = vec3(0.0f);
+  for (int k = DIFFUSION_CASCADES - 1; k >= 0; --k) {
+    vec3 ck = diffusion_coord(pos, k);
+    bool covers = diffusion.grid[k].w > 0.5f && all(greaterThanEqual(ck.xy, vec2(margin))) &&
+                  all(lessThanEqual(ck.xy, vec2(1.0f - margin)));
+    found = covers ? k : found;
+    c = covers ? ck : c;
   }
-  return false;
+  if (found < 0) return false;
+  // Within the cascade's own slices of the stacked volume (no blend with the next one's).
+  float z = float(found * DIFFUSION_Z) + clamp(c.z * float(DIFFUSION_Z), 0.5f, float(DIFFUSION_Z) - 0.5f);
+  vec4 f = textureLod(cloud_diffusion_field,
+                      vec3(c.xy, z / float(DIFFUSION_Z * DIFFUSION_CASCADES)), 0.0f);
+  // The light propagating towards the viewer travels along -dir.
+  radiance = max(f.x - 3.0f * g1 * dot(f.yzw, dir), 0.0f) / (4.0f * PI);
+  return true;
 }
 
 // The sunlight a sample at optical depth tau from the sun scatters towards a viewer (mu: the

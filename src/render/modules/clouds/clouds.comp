@@ -22,12 +22,14 @@
 layout(constant_id = 0) const int MARCH_MODE = 0;
 // The scene's features (CloudsModule::march_variant): WITH_VOXELS false compiles the voxel
 // clouds' code out (lavapipe runs both sides of every branch); LIGHTING 0 the octaves, 1 the
-// two-stream light, 2 the diffusion field (cloud_diffusion_inc.glsl), -1 as frame.cloud_phase.w
-// says; WITH_FLOW false the flow map's reads.
+// two-stream light, 2 the diffusion field (cloud_diffusion_inc.glsl; only with a light volume:
+// the two-stream light beyond its grids takes its depth behind a sample from the volume
+// alone), -1 as frame.cloud_phase.w says; WITH_FLOW false the flow map's reads.
 layout(constant_id = 1) const bool WITH_VOXELS = true;
 layout(constant_id = 2) const int LIGHTING = -1;
 layout(constant_id = 3) const bool WITH_FLOW = true;
 #define CLOUD_FIELD_VARIANTS
+#define DEPTH_BEHIND_MAY_MARCH (LIGHTING != 2)
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "cloud_field_inc.glsl"

@@ -122,9 +122,12 @@ void CloudsModule::swap_history() {
 
 std::vector<int32_t> CloudsModule::march_variant(MarchMode mode, const gpu::FrameParams& params) {
   // Each feature where clouds.comp would find it in the parameters, so that a variant draws
-  // what the full shader draws.
-  return {mode == MarchMode::Baseline ? 1 : 0, params.voxel_info.x > 0 ? 1 : 0,
-          int(params.cloud_phase.w + 0.5f), params.cloud_flow.x > 0.0f ? 1 : 0};
+  // what the full shader draws. Without a light volume the diffusion light is the two-stream
+  // light (its variant, 2, needs the volume).
+  int lighting = int(params.cloud_phase.w + 0.5f);
+  if (lighting == 2 && params.light_volume.w <= 0.0f) lighting = 1;
+  return {mode == MarchMode::Baseline ? 1 : 0, params.voxel_info.x > 0 ? 1 : 0, lighting,
+          params.cloud_flow.x > 0.0f ? 1 : 0};
 }
 
 void CloudsModule::record_march(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode,
