@@ -2,6 +2,7 @@
 // validation layer on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <glm/trigonometric.hpp>
@@ -376,6 +377,35 @@ TEST_F(TemporalTest, ResizingKeepsTheLightVolume) {
 
 // Moving the sun rebuilds the light volume: a frame after the move equals a fresh renderer's
 // image of the new sun.
+// A still that changes only what the clouds' lighting does not read (the cirrus, the ground
+// fog, the light shafts) keeps the light volume and the diffusion light, and is the image a
+// fresh renderer makes; a change of the clouds rebuilds them.
+TEST_F(TemporalTest, AStillKeepsTheLightingWhenOnlyWhatItDoesNotReadChanges) {
+  Scene s = view();
+  s.output.width = 64;
+  s.output.height = 40;
+  render(s);
+  const auto rebuilt = [](const Frame& f) {
+    return std::any_of(f.stats.passes.begin(), f.stats.passes.end(), [](const auto& p) {
+      return p.name == "light_volume" || p.name.rfind("diffusion", 0) == 0;
+    });
+  };
+  s.cirrus.coverage = 0.6f;
+  s.ground_fog.visibility_m = 2000.0f;
+  s.quality.light_shafts = "volumetric";
+  const Frame kept = render(s);
+  EXPECT_FALSE(rebuilt(kept));
+  nephele::RendererOptions options;
+  options.validation = true;
+  nephele::Renderer fresh(options);
+  const Frame reference = fresh.render(s);
+  EXPECT_TRUE(rebuilt(reference));
+  EXPECT_LT(luminance_error(kept.color, reference.color), 1e-5);
+  EXPECT_EQ(fresh.validation_messages(), 0);
+  s.clouds.coverage += 0.1f;
+  EXPECT_TRUE(rebuilt(render(s)));
+}
+
 TEST_F(TemporalTest, SunMoveRebuildsTheLightVolume) {
   Scene s = view();
   render(s);

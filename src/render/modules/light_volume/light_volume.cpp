@@ -12,13 +12,24 @@ namespace nephele {
 
 namespace {
 
-// What shapes the clouds' density, for the light volume: the history's key less the image's
-// size (the viewer's dynamic resolution changes it every few frames, and each change restarted
-// the volume's build, 16 frames of 140 ms bands on lavapipe), how the view rays are marched
-// and how their samples are lit.
+// What shapes the clouds' density, for the light volume (and the diffusion light, rebuilt with
+// it): the history's key less the image's size (the viewer's dynamic resolution changes it
+// every few frames, and each change restarted the volume's build, 16 frames of 140 ms bands on
+// lavapipe), how the view rays are marched and how their samples are lit, and what neither
+// the volume nor the diffusion light reads: the cirrus sheet, the ground fog, the terrain,
+// the particle clouds and the light shafts (a still that changes only those, or a viewer's
+// edit of them, keeps the lighting: 5 s of a still on lavapipe).
 std::string density_key(Scene scene) {
   const QualityParams shipped;
   scene.output = OutputParams{};
+  scene.cirrus = CirrusParams{};
+  scene.ground_fog = GroundFogParams{};
+  scene.terrain = TerrainParams{};
+  scene.particle_clouds = ParticleCloudParams{};
+  scene.quality.light_shafts = shipped.light_shafts;
+  scene.quality.screen_shaft_samples = shipped.screen_shaft_samples;
+  scene.quality.screen_shaft_strength = shipped.screen_shaft_strength;
+  scene.quality.screen_shaft_decay = shipped.screen_shaft_decay;
   scene.quality.primary_steps = shipped.primary_steps;
   scene.quality.light_steps = shipped.light_steps;
   scene.quality.march_stride = shipped.march_stride;
