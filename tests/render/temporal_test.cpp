@@ -406,6 +406,22 @@ TEST_F(TemporalTest, AStillKeepsTheLightingWhenOnlyWhatItDoesNotReadChanges) {
   EXPECT_TRUE(rebuilt(render(s)));
 }
 
+// A still 2 km from the last is the image a fresh renderer makes: its lighting is built around
+// it, not kept from the last still (the animation's tolerance, 7.5 km, would keep it).
+TEST_F(TemporalTest, AStillAfterAShortMoveIsLitAroundItself) {
+  Scene s = view();
+  s.output.width = 64;
+  s.output.height = 40;
+  render(s);
+  s.camera.position_m.x += 2000.0f;
+  const Frame moved = render(s);
+  nephele::RendererOptions options;
+  options.validation = true;
+  nephele::Renderer fresh(options);
+  EXPECT_LT(luminance_error(moved.color, fresh.render(s).color), 1e-5);
+  EXPECT_EQ(fresh.validation_messages(), 0);
+}
+
 TEST_F(TemporalTest, SunMoveRebuildsTheLightVolume) {
   Scene s = view();
   render(s);

@@ -66,6 +66,11 @@ bool LightVolumeModule::stale(const Key& built, const Key& now, float half_m) co
          std::abs(now.weather_time - built.weather_time) > 1.0 / 360.0;
 }
 
+bool LightVolumeModule::same(const Key& built, const Key& now) {
+  return built.clouds == now.clouds && built.light == now.light && built.centre_m == now.centre_m &&
+         built.drift_m == now.drift_m && built.weather_time == now.weather_time;
+}
+
 void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_key,
                                 double weather_time, bool still, bool needed,
                                 gpu::FrameParams& params) {
@@ -83,7 +88,11 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
   const Key now{clouds_key, glm::vec3(params.sun_dir),
                 glm::vec2(scene.camera.position_m) - glm::vec2(params.wind_offset_m),
                 cloud_relative_drift_m(scene), weather_time};
-  const bool read_stale = !read_key_ || stale(*read_key_, now, half_m);
+  // A still takes a volume built for exactly its own scene, so that it does not depend on what
+  // was rendered before (a still 5 km from the last one would otherwise keep the diffusion
+  // light's grids, 4.5 km across, centred on the last).
+  const bool read_stale =
+      !read_key_ || (still ? !same(*read_key_, now) : stale(*read_key_, now, half_m));
   if (read_stale && (still || !read_key_)) {
     // At once: into the volume not read, which becomes the one read in this frame.
     build_key_ = now;

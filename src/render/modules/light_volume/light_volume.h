@@ -56,6 +56,7 @@ class LightVolumeModule : public RenderModule {
     double weather_time = 0.0;
   };
   bool stale(const Key& built, const Key& now, float half_m) const;
+  static bool same(const Key& built, const Key& now);  // built for exactly `now`
 
   gpu::DescriptorSet& set_;
   gpu::KernelVariants kernels_;  // light_volume.comp's, with or without the voxel clouds
