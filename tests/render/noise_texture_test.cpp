@@ -30,6 +30,7 @@
 #include "render/modules/voxel_clouds/voxel_clouds.h"
 #include "render/modules/weather/weather.h"
 #include "render/passes.h"
+#include "support/scoped_env.h"
 
 namespace {
 
@@ -240,9 +241,7 @@ TEST(NoiseTextures, TheBaseNoiseComesBackFromTheDiskCacheAsItWasMade) {
   const std::filesystem::path dir =
       std::filesystem::path(NEPHELE_TEST_OUTPUT_DIR) / "noise_texture_cache";
   std::filesystem::remove_all(dir);
-  const char* old = std::getenv("NEPHELE_CACHE_DIR");
-  const std::optional<std::string> restore = old ? std::optional<std::string>(old) : std::nullopt;
-  setenv("NEPHELE_CACHE_DIR", dir.c_str(), 1);
+  ScopedEnv cache("NEPHELE_CACHE_DIR", dir.string());
   {
     nephele::gpu::Context ctx({"", true, false});
     nephele::GpuState state(ctx);
@@ -270,8 +269,4 @@ TEST(NoiseTextures, TheBaseNoiseComesBackFromTheDiskCacheAsItWasMade) {
     EXPECT_FALSE(modules.noise.load_base(7));
     EXPECT_EQ(ctx.validation_messages(), 0);
   }
-  if (restore)
-    setenv("NEPHELE_CACHE_DIR", restore->c_str(), 1);
-  else
-    unsetenv("NEPHELE_CACHE_DIR");
 }

@@ -9,33 +9,13 @@
 #include <optional>
 #include <string>
 
+#include "support/scoped_env.h"
+
 namespace fs = std::filesystem;
 using nephele::read_noise_cache;
 using nephele::write_noise_cache;
 
 namespace {
-
-// Sets an environment variable (or unsets it: nullopt) for a test's length.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, std::optional<std::string> value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    if (value)
-      setenv(name, value->c_str(), 1);
-    else
-      unsetenv(name);
-  }
-  ~ScopedEnv() {
-    if (old_)
-      setenv(name_, old_->c_str(), 1);
-    else
-      unsetenv(name_);
-  }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
 
 class NoiseCacheTest : public ::testing::Test {
  protected:
