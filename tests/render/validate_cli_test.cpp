@@ -269,6 +269,39 @@ TEST_F(ValidateCliTest, TheClearSkyMeetsItsTargetsAgainstTheShippedReferences) {
   EXPECT_EQ(fs::last_write_time(odd), before);
 }
 
+// The views whose shipped references are converged (0.1-0.2% noise a block) hold the errors
+// measured at stop 64 with a point of margin: the noon cumulus within the suite's 5% (4.7%), the
+// inside of a cloud within 14% (12.8%; its target is 5%). A bound is tightened when the model
+// improves, never loosened. The inside view is what the diffusion gather's corner rule holds: a
+// gather whose diagonal rays slip between the cloud cells beside a corner (before stop 62) lets
+// the light out of the clear pockets of an eroded cloud, and the view reads 17.7% (-17.5%).
+TEST_F(ValidateCliTest, TheConvergedViewsHoldTheirMeasuredErrors) {
+  const fs::path shipped = fs::path(NEPHELE_SOURCE_DIR) / "data" / "validation" / "views";
+  const struct {
+    const char* view;
+    double bound;
+  } views[] = {{"noon-cumulus", 0.05}, {"inside-cloud", 0.14}};
+  fs::create_directories(path("refs"));
+  std::string names;
+  for (const auto& [view, bound] : views) {
+    fs::copy(shipped / (std::string(view) + ".exr"), path("refs"));
+    names += (names.empty() ? "" : ",") + std::string(view);
+  }
+  const auto r = run_cli("validate -q --views " + names + " --references " + path("refs") +
+                         " --out " + path("out"));
+  ASSERT_TRUE(r.status == 0 || r.status == 1) << r.output;  // 1: a view over the suite's 5%
+  const nlohmann::json j = read_json(path("out") + "/results.json");
+  for (const auto& [view, bound] : views) {
+    const nlohmann::json& v = j["views"][view];
+    ASSERT_FALSE(v.is_null()) << view << ": " << j.dump(1);
+    EXPECT_EQ(v["reference_s"].get<double>(), 0.0) << view << ": read back, not traced";
+    const double error = v["mean_error"].get<double>();
+    std::printf("%s: mean error %.4f, bias %+.4f (bound %.2f)\n", view, error,
+                v["mean_bias"].get<double>(), bound);
+    EXPECT_LE(error, bound) << view;
+  }
+}
+
 TEST_F(ValidateCliTest, BadInputGetsOneLine) {
   std::ofstream(path("suite.toml")) << kSuite;
   for (const auto& [args, expected] :
