@@ -8,6 +8,10 @@
 #include "common/math_inc.glsl"
 #include "common/voxel_inc.glsl"
 
+#ifndef NOISE_DETAIL_FOOTPRINT_M  // (m) the detail noise's mip level, noise_density_inc.glsl
+#define NOISE_DETAIL_FOOTPRINT_M(pos) (distance(pos, frame.camera_pos_m.xyz) * frame.cloud_shape.x)
+#endif
+
 // What the voxel clouds hold at a point.
 struct VoxelSample {
   float density;  // density field (as the noise clouds', sigma_t = density x cloud_shape.z)
@@ -49,7 +53,7 @@ float voxel_surface_erosion(float density, float sdf_voxels, vec3 u, float voxel
   // trip or none (a CPU device, lavapipe, still runs its body once when no lane needs it).
   for (int k = 0; k < (skin > 0.0f && density > 0.0f ? 1 : 0); ++k) {
     float frequency = frame.cloud_noise.y * frame.voxel_light.w;
-    float footprint_texels = distance(p, frame.camera_pos_m.xyz) * frame.cloud_shape.x *
+    float footprint_texels = NOISE_DETAIL_FOOTPRINT_M(p) *
                              frequency * float(textureSize(detail_noise, 0).x);
     vec3 d = textureLod(detail_noise, u * voxel_m * frequency, log2(max(footprint_texels, 1e-6f))).rgb;
     float detail = d.r * 0.625f + d.g * 0.25f + d.b * 0.125f;

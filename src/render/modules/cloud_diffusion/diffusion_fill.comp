@@ -15,6 +15,9 @@ layout(constant_id = 1) const bool WITH_FLOW = true;
 #define CLOUD_FIELD_VARIANTS
 layout(local_size_x = 8, local_size_y = 8) in;
 
+// The detail noise over the grid's own cell (set in main), whatever the view.
+float grid_footprint_m = 0.0f;
+#define NOISE_DETAIL_FOOTPRINT_M(pos) grid_footprint_m
 #include "cloud_field_inc.glsl"
 #include "dispatch_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
@@ -60,6 +63,7 @@ void main() {
   ivec3 c = diffusion_cell(gl_GlobalInvocationID.xy + uvec2(0, dispatch.values.x));
   int cascade = diffusion_cascade(c);
   if (!diffusion_in_grid(c, cascade) || int(gl_GlobalInvocationID.y) >= dispatch.values.y) return;
+  grid_footprint_m = diffusion_cell_m(cascade).x;
   float density = 0.0f;
   for (int k = 0; k < 8; ++k) {
     vec3 sub = vec3(k & 1, (k >> 1) & 1, k >> 2) * 0.5f + 0.25f;

@@ -16,6 +16,9 @@
 
 layout(constant_id = 0) const int MARCH_MODE = 0;
 
+// The detail noise over the grid's own cell (set in main), whatever the view.
+float grid_footprint_m = 0.0f;
+#define NOISE_DETAIL_FOOTPRINT_M(pos) grid_footprint_m
 #include "cloud_field_inc.glsl"
 #include "render/modules/cloud_diffusion/cloud_diffusion_inc.glsl"
 
@@ -101,6 +104,7 @@ vec3 cosine_direction(int k, int n, vec3 up) {
 void main() {
   uint id = gl_LocalInvocationIndex;
   const float cell_m = 2.0f * GROUND_LIGHT_HALF_M / float(GRID);
+  grid_footprint_m = cell_m;
   vec4 sum = vec4(0.0f);
   for (int k = 0; k < 4; ++k) {
     ivec2 cell = 2 * ivec2(gl_LocalInvocationID.xy) + ivec2(k & 1, k >> 1);

@@ -15,6 +15,9 @@ layout(constant_id = 1) const bool WITH_FLOW = true;
 #define CLOUD_FIELD_VARIANTS
 layout(local_size_x = 8, local_size_y = 8) in;
 
+// The detail noise over the grid's own cell (set in main), whatever the view.
+float grid_footprint_m = 0.0f;
+#define NOISE_DETAIL_FOOTPRINT_M(pos) grid_footprint_m
 #include "cloud_field_inc.glsl"
 
 const int VOLUME_LIGHT_STEPS = 32;  // converged to ~0.4% (measured against 64)
@@ -33,6 +36,7 @@ void main() {
   float r = mix(frame.radii_m.z, frame.radii_m.w, h);
   vec3 pos = point_at_radius(xy, r);
   vec3 sun = frame.sun_dir.xyz;
+  grid_footprint_m = light_volume_voxel_m(length(offset), half_m, LIGHT_VOLUME_XY);
   float depth = march_light(pos, sun, 0.0f, light_ray_length(pos, sun), VOLUME_LIGHT_STEPS);
   imageStore(light_volume_out, v, vec4(depth));
 }
