@@ -387,6 +387,7 @@ Frame FrameRenderer::read_back() {
 
 void FrameRenderer::Impl::collect(int slot) {
   if (slot < 0 || !pending[slot]) return;
+  for (RenderModule* module : prepare_order()) module->finished(slot);
   completed_lighting = host_lighting.collect(slot);
   FrameStats stats = std::move(*pending[slot]);
   pending[slot].reset();
@@ -499,6 +500,9 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   plan.display = options.display;
   FramePrepare prepare{scene, params, slot, still, s.width, s.height, &options, &lights};
   for (RenderModule* module : prepare_order()) module->prepare(prepare, plan);
+  if (verbose)
+    for (const std::string& read : plan.cache_reads)
+      std::fprintf(stderr, "nephele: pass %s\n", read.c_str());
   if (lab) params.voxel_light.z = 0.0f;  // the grid as the file has it: no surface erosion
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);

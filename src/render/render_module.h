@@ -36,6 +36,14 @@ struct FramePlan {
   bool media = false;        // a medium's module (the ground fog) is on: compose draws media
   bool light_volume_built = false;  // a light volume is completed this frame (LightVolumeModule)
   bool light_volume_edited = false;  // and it was rebuilt for an edit of the clouds
+  // A still's lighting in the disk cache (render/disk_cache.h): the hash of everything the light
+  // volume, and what is built with it, are made from (LightVolumeModule), when this frame
+  // builds or reads one; empty otherwise. A module keeps what it builds with the light volume
+  // under that name, and reads it back instead of building it.
+  std::string lighting_cache_key;
+  // What modules read from the disk cache this frame instead of building it ("PASS from FILE"),
+  // for --verbose.
+  std::vector<std::string> cache_reads;
   // A module builds over frames and is not done (the light volume, the diffusion field): the
   // view is not settled (FrameOptions::reuse_settled), even if the scene is unchanged.
   bool building = false;
@@ -93,6 +101,9 @@ class RenderModule {
   virtual void prepare(const FramePrepare&, FramePlan&) {}
   // Declares what the module keeps (FrameGraph::import, output) and adds this frame's passes.
   virtual void add_passes(FrameGraph& graph, const FrameSetup& frame) = 0;
+  // The frame recorded in `slot` has finished on the device (FrameRenderer::Impl::collect): a
+  // module may read back what it built in it (the disk cache's files).
+  virtual void finished(int /*slot*/) {}
 };
 
 // What a module is made with: the device, the frame's descriptor table (its set-1 bindings) and

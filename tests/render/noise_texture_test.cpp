@@ -235,7 +235,7 @@ TEST(NoiseTextures, CurlNoiseIsDivergenceFreeUnitAndTiles) {
   EXPECT_EQ(ctx.validation_messages(), 0);
 }
 
-// The base noise kept in the disk cache (noise_cache.h) comes back texel for texel, into a
+// The base noise kept in the disk cache (render/disk_cache.h) comes back texel for texel, into a
 // texture that held something else; a damaged file is not read.
 TEST(NoiseTextures, TheBaseNoiseComesBackFromTheDiskCacheAsItWasMade) {
   const std::filesystem::path dir =

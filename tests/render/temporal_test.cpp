@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <glm/trigonometric.hpp>
 #include <vector>
 
@@ -14,6 +16,7 @@
 #include "render/modules/cloud_diffusion/cloud_diffusion.h"
 #include "render/modules/light_volume/light_volume.h"
 #include "render_fixture.h"
+#include "support/scoped_env.h"
 
 using nephele::Frame;
 using nephele::luminance_error;
@@ -443,6 +446,62 @@ TEST_F(TemporalTest, AStillIsLitAlikeWhateverTheViewOfTheStillBefore) {
   nephele::Renderer fresh(options);
   EXPECT_LT(luminance_error(kept.color, fresh.render(s).color), 1e-6);
   EXPECT_EQ(fresh.validation_messages(), 0);
+}
+
+// A still's lighting (the light volume and the diffusion field, about 5 s on lavapipe) is kept
+// in the disk cache, and the next process that renders the same scene from the same place, at
+// any size or in any direction, reads it back: the image is the one built anew to the bit. A
+// damaged file is built anew; another scene is not read from the file.
+TEST_F(TemporalTest, AStillsLightingComesBackFromTheDiskCacheAsItWasBuilt) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(NEPHELE_TEST_OUTPUT_DIR) / "lighting_cache_test";
+  fs::remove_all(dir);
+  ScopedEnv cache("NEPHELE_CACHE_DIR", dir.string());
+  const auto built = [](const Frame& f) {
+    return std::count_if(f.stats.passes.begin(), f.stats.passes.end(), [](const auto& p) {
+      return p.name == "light_volume" || p.name == "diffusion_fill";
+    });
+  };
+  const auto fresh = [] {
+    nephele::RendererOptions options;
+    options.validation = true;
+    return std::make_unique<nephele::Renderer>(options);
+  };
+  Scene s = view();
+  s.output.width = 48;
+  s.output.height = 30;
+  EXPECT_EQ(built(fresh()->render(s)), 2);
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind("lighting_", 0) == 0) files.push_back(e.path());
+  ASSERT_EQ(files.size(), 2u);  // lighting_volume_KEY.bin, lighting_diffusion_KEY.bin
+  // Another process's still of the same scene, smaller and turned.
+  s.output.width = 32;
+  s.output.height = 20;
+  s.camera.view_dir = {0.4f, 1.0f, 0.2f};
+  const auto reader = fresh();
+  const Frame read = reader->render(s);
+  EXPECT_EQ(built(read), 0);
+  EXPECT_EQ(reader->validation_messages(), 0);
+  Frame anew;
+  {
+    ScopedEnv none("NEPHELE_CACHE_DIR", "");
+    anew = fresh()->render(s);
+    EXPECT_EQ(built(anew), 2);
+  }
+  EXPECT_EQ(luminance_error(read.color, anew.color), 0.0);
+  // A damaged file is not read: that part is built anew, and the image is the same.
+  for (const fs::path& f : files) {
+    std::fstream io(f, std::ios::in | std::ios::out | std::ios::binary);
+    io.seekp(std::streamoff(fs::file_size(f) / 2));
+    io.put('\x5a');
+  }
+  const Frame rebuilt = fresh()->render(s);
+  EXPECT_EQ(built(rebuilt), 2);
+  EXPECT_EQ(luminance_error(rebuilt.color, anew.color), 0.0);
+  // Other clouds: their own lighting.
+  s.clouds.coverage += 0.1f;
+  EXPECT_EQ(built(fresh()->render(s)), 2);
 }
 
 TEST_F(TemporalTest, SunMoveRebuildsTheLightVolume) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstring>
 
+#include "render/disk_cache.h"
 #include "render/gpu_params.h"
+#include "render/texture_cache.h"
 // The block's one definition, as the shaders have it.
 #include "render/modules/cloud_diffusion/cloud_diffusion_gpu_inc.glsl"
 
@@ -21,13 +23,15 @@ constexpr float kCascadeScale = 4.0f;
 constexpr float kOverRelaxation = 1.93f;
 
 constexpr int kRows = gpu::DIFFUSION_XY * gpu::DIFFUSION_Z * gpu::DIFFUSION_CASCADES;
+constexpr size_t kFieldBytes = size_t(kRows) * gpu::DIFFUSION_XY * 4 * sizeof(float);
 uint32_t rows() {
   return uint32_t(kRows);
 }
 }  // namespace
 
 CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
-    : set_(context.set),
+    : ctx_(context.ctx),
+      set_(context.set),
       fill_(context.ctx, context.set, "diffusion_fill.comp.spv", 0, {1, 1}),
       solve_(context.ctx, context.set, "diffusion_solve.comp.spv"),
       exchange_kernel_(context.ctx, context.set, "diffusion_exchange.comp.spv"),
@@ -86,7 +90,8 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
       // cloud space; an animation's from the last build's fluence where the grid has not moved,
       // a still's from zero (so that it does not depend on what was rendered before).
       const float thickness_m = params.radii_m.w - params.radii_m.z;
-      bool moved = at_once;
+      bool moved = at_once || !phi_kept_;
+      phi_kept_ = true;
       float half_m = kHalfExtentM;
       for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k, half_m *= kCascadeScale) {
         const glm::vec4 grid(params.light_volume.x, params.light_volume.y, half_m, 0.0f);
@@ -103,6 +108,24 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
       next_row_ = 0;
       sweeps_left_ = at_once ? kDiffusionSweeps : kDiffusionAnimationSweeps;
       edit_ = plan.light_volume_edited;
+      // A still's field from the disk cache, where an earlier process built it with the same
+      // light volume; else kept there once built (finished).
+      store_file_.clear();
+      if (frame.still && !plan.lighting_cache_key.empty()) {
+        const std::filesystem::path file =
+            cache_dir() / ("lighting_diffusion_" + plan.lighting_cache_key + ".bin");
+        if (load_cached_texture(ctx_, fields_[1 - read_], file, kFieldBytes)) {
+          plan.cache_reads.push_back("cloud_diffusion read from " + file.string());
+          building_ = false;
+          read_ = 1 - read_;
+          have_field_ = true;
+          phi_kept_ = false;  // the fluence is not this field's: the next build starts at zero
+          for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k)
+            read_grid_[k] = glm::vec4(glm::vec3(build_grid_[k]), 1.0f);
+        } else {
+          store_file_ = file;
+        }
+      }
     }
     if (building_) {
       at_once_ = at_once;
@@ -131,6 +154,8 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
         have_field_ = true;
         for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k)
           read_grid_[k] = glm::vec4(glm::vec3(build_grid_[k]), 1.0f);
+        if (!store_file_.empty()) store_slot_ = frame.slot;
+        store_field_ = read_;
       }
     }
   }
@@ -148,6 +173,13 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   set_.bind_module_buffer(kBlockName, blocks_[frame.slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   set_.bind_module_sampled_image("cloud_diffusion_field", fields_[read_]);
   set_.bind_module_storage_image("cloud_diffusion_field_out", fields_[read_]);
+}
+
+void CloudDiffusionModule::finished(int slot) {
+  if (slot != store_slot_) return;
+  store_slot_ = -1;
+  if (store_cached_texture(ctx_, fields_[store_field_], store_file_, kFieldBytes))
+    prune_cache(store_file_.parent_path(), "lighting_", kLightingCacheBytes);
 }
 
 void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {

@@ -13,6 +13,7 @@
 // a band of the gather a frame. The frame knows it only through the registry (render_module.h).
 #pragma once
 
+#include <filesystem>
 #include <glm/vec4.hpp>
 #include <memory>
 
@@ -58,10 +59,13 @@ class CloudDiffusionModule : public RenderModule {
   // volume was completed, or none has been built for it), and the block the march reads.
   void prepare(const FramePrepare& frame, FramePlan& plan) override;
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
+  // A still's field built in `slot` is written to the disk cache (FramePlan::lighting_cache_key).
+  void finished(int slot) override;
 
  private:
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
 
+  gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::KernelVariants fill_;  // with or without the voxel clouds, the flow map
   gpu::Kernel solve_, exchange_kernel_, inflow_kernel_, gather_kernel_, boundary_kernel_;
@@ -86,6 +90,10 @@ class CloudDiffusionModule : public RenderModule {
   bool edit_ = false;  // the build follows an edit (kDiffusionEditFrames)
   int next_row_ = 0, sweeps_left_ = 0;
   bool zero_phi_ = true;
+  bool phi_kept_ = true;  // phi_ holds the fluence of the field read (not one from the disk cache)
+  // A still's field to keep in the disk cache once the frame in store_slot_ has finished.
+  std::filesystem::path store_file_;
+  int store_slot_ = -1, store_field_ = 0;
   // This frame's work.
   int fill_first_ = 0, fill_rows_ = 0, sweeps_ = 0;
   bool gather_ = false;

@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <vector>
 
+#include "render/disk_cache.h"
 #include "render/frame_params.h"
 #include "render/modules/weather/weather.h"
+#include "render/texture_cache.h"
 
 namespace nephele {
 
@@ -40,13 +44,14 @@ std::string density_key(Scene scene) {
   return history_key(scene);
 }
 constexpr int kRows = gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_Z;
+constexpr size_t kVolumeBytes = size_t(kRows) * gpu::LIGHT_VOLUME_XY * sizeof(float);
 constexpr int rows_per_frame(int frames) {
   return (kRows + frames - 1) / frames;
 }
 }  // namespace
 
 LightVolumeModule::LightVolumeModule(gpu::Context& ctx, gpu::DescriptorSet& set)
-    : set_(set), kernels_(ctx, set, "light_volume.comp.spv", 0, {1, 1}) {
+    : ctx_(ctx), set_(set), kernels_(ctx, set, "light_volume.comp.spv", 0, {1, 1}) {
   for (gpu::Texture& v : volumes_)
     v = gpu::Texture(ctx, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_XY, gpu::LIGHT_VOLUME_Z,
                      VK_FORMAT_R32_SFLOAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
@@ -71,11 +76,31 @@ bool LightVolumeModule::same(const Key& built, const Key& now) {
          built.drift_m == now.drift_m && built.weather_time == now.weather_time;
 }
 
+std::string LightVolumeModule::disk_key(const Scene& scene, const Key& now) const {
+  char values[192];
+  std::snprintf(values, sizeof(values), "%a %a %a|%a %a|%a|%a|%a", now.light.x, now.light.y,
+                now.light.z, now.centre_m.x, now.centre_m.y, now.drift_m, now.weather_time,
+                double(scene.time_s));
+  std::string text = code_identity();
+  for (const std::string* part : {&ctx_.device_name(), &now.clouds})
+    text.append("\n").append(*part);
+  text.append("\n").append(values);
+  std::vector<std::string> files = {scene.clouds.weather_map, scene.lab.grid};
+  for (const VoxelCloudParams& c : scene.voxel_clouds) files.push_back(c.file);
+  for (const std::string& file : files)
+    if (!file.empty()) text.append("\n").append(file_identity(file));
+  char name[24];
+  std::snprintf(name, sizeof(name), "%016llx", static_cast<unsigned long long>(fnv1a64(text)));
+  return name;
+}
+
 void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_key,
                                 double weather_time, bool still, bool needed,
                                 gpu::FrameParams& params) {
   completed_ = completed_edit_ = false;
   first_row_ = rows_ = 0;
+  cache_key_.clear();
+  read_from_.clear();
   with_voxels_ = params.voxel_info.x > 0;  // set by VoxelCloudsModule::prepare, which runs first
   with_flow_ = params.cloud_flow.x > 0.0f;
   const float half_m = float(scene.quality.light_volume_km) * 1000.0f;
@@ -93,12 +118,25 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
   // light's grids, 4.5 km across, centred on the last).
   const bool read_stale =
       !read_key_ || (still ? !same(*read_key_, now) : stale(*read_key_, now, half_m));
+  bool loaded = false;
   if (read_stale && (still || !read_key_)) {
-    // At once: into the volume not read, which becomes the one read in this frame.
+    // At once: into the volume not read, which becomes the one read in this frame. A still's
+    // from the disk cache, where an earlier process built it.
     build_key_ = now;
     next_row_ = 0;
     first_row_ = 0;
     rows_ = kRows;
+    const std::filesystem::path dir = still ? cache_dir() : std::filesystem::path();
+    if (!dir.empty()) {
+      cache_key_ = disk_key(scene, now);
+      store_file_ = dir / ("lighting_volume_" + cache_key_ + ".bin");
+      ctx_.wait_queue_idle();  // a frame in flight may still read the volume filled
+      loaded = load_cached_texture(ctx_, volumes_[1 - read_], store_file_, kVolumeBytes);
+      if (loaded) {
+        read_from_ = store_file_;
+        rows_ = 0;
+      }
+    }
   } else if (read_stale || build_key_) {
     if (!build_key_ || (read_stale && build_key_->clouds != now.clouds)) {
       build_key_ = now;  // a new build (one for other clouds is abandoned)
@@ -110,13 +148,17 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
                      kRows - next_row_);
   }
   next_row_ = first_row_ + rows_;
-  if (rows_ > 0 && next_row_ >= kRows) {  // complete this frame: read after its last band
+  if (loaded ||
+      (rows_ > 0 && next_row_ >= kRows)) {  // complete this frame: read after its last band
     completed_edit_ = read_key_ && build_key_->clouds != read_key_->clouds;
     read_ = 1 - read_;
     read_key_ = build_key_;
     build_key_.reset();
     next_row_ = 0;
     completed_ = true;
+    // Built whole for a still: kept in the disk cache once the frame has finished.
+    store_volume_ = read_;
+    if (!cache_key_.empty() && !loaded) store_slot_ = -2;  // the slot, set by the frame's prepare
   }
   const gpu::Texture& read = volumes_[read_];
   const gpu::Texture& built = completed_ ? volumes_[read_] : volumes_[1 - read_];
@@ -126,6 +168,13 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
   params.light_volume = glm::vec4(read_key_->centre_m, half_m, 1.0f);
   params.light_volume_build = glm::vec4(target.centre_m, half_m, 0.0f);
   params.light_volume_rows = glm::ivec4(first_row_, rows_, 0, 0);
+}
+
+void LightVolumeModule::finished(int slot) {
+  if (slot != store_slot_) return;
+  store_slot_ = -1;
+  if (store_cached_texture(ctx_, volumes_[store_volume_], store_file_, kVolumeBytes))
+    prune_cache(store_file_.parent_path(), "lighting_", kLightingCacheBytes);
 }
 
 void LightVolumeModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
@@ -146,7 +195,11 @@ void LightVolumeModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   prepare(frame.scene, density_key(frame.scene), WeatherModule::weather_time(frame.scene),
           frame.still, plan.volumetric || frame.scene.clouds.model == CloudModel::Kajiya,
           frame.params);
+  if (store_slot_ == -2) store_slot_ = frame.slot;
   plan.light_volume_built = completed_;
+  plan.lighting_cache_key = cache_key_;
+  if (!read_from_.empty())
+    plan.cache_reads.push_back("light_volume read from " + read_from_.string());
   plan.light_volume_edited = completed_edit_;
   plan.building = plan.building || build_key_.has_value();
   plan.relit = plan.relit || completed_edit_;

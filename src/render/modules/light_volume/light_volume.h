@@ -4,6 +4,7 @@
 // successor is complete; only a still image, or the first frame, builds a volume at once.
 #pragma once
 
+#include <filesystem>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <optional>
@@ -37,14 +38,21 @@ class LightVolumeModule : public RenderModule {
   // (in clouds.weather_evolution_s). `still`: a volume that is stale is rebuilt whole now.
   // `needed`: false when nothing this frame reads the volume (a clear sky, particle clouds
   // only, a classical model other than Kajiya's): none is built or read, and the next frame
-  // that needs one builds it at once.
+  // that needs one builds it at once. A still's volume is read from the disk cache where an
+  // earlier process built it for exactly this scene (cache_key()), and kept there once built
+  // (finished).
   void prepare(const Scene& scene, const std::string& clouds_key, double weather_time, bool still,
                bool needed, gpu::FrameParams& params);
   // The contract's (render_module.h): the above with the frame's values.
   void prepare(const FramePrepare& frame, FramePlan& plan) override;
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer);
+  // A still's volume built in `slot` is written to the disk cache.
+  void finished(int slot) override;
   // A volume was completed this frame (what the ground's light follows).
   bool completed() const { return completed_; }
+  // The disk cache's name for this frame's still lighting (FramePlan::lighting_cache_key):
+  // empty when the frame builds none at once, or there is no cache.
+  const std::string& cache_key() const { return cache_key_; }
 
  private:
   // What a volume is built for.
@@ -57,7 +65,11 @@ class LightVolumeModule : public RenderModule {
   };
   bool stale(const Key& built, const Key& now, float half_m) const;
   static bool same(const Key& built, const Key& now);  // built for exactly `now`
+  // The hash of everything a still's volume for `now` is made from (the code, the device, the
+  // key, the scene's time and the contents of the files it reads).
+  std::string disk_key(const Scene& scene, const Key& now) const;
 
+  gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::KernelVariants kernels_;  // light_volume.comp's, with or without the voxel clouds
   bool with_voxels_ = false;     // this frame's variant: voxel clouds, the flow map
@@ -70,6 +82,11 @@ class LightVolumeModule : public RenderModule {
   int first_row_ = 0, rows_ = 0;  // this frame's band
   bool completed_ = false;
   bool completed_edit_ = false;  // the volume completed was built after an edit of the clouds
+  std::string cache_key_;        // this frame's (cache_key())
+  std::filesystem::path read_from_;
+  // A still's volume to keep in the disk cache once the frame in store_slot_ has finished.
+  int store_slot_ = -1, store_volume_ = 0;
+  std::filesystem::path store_file_;
 };
 
 }  // namespace nephele

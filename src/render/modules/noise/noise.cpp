@@ -1,9 +1,10 @@
 #include "render/modules/noise/noise.h"
 
-#include <cstring>
+#include <cstdio>
 
 #include "gpu/shader_interface.h"
-#include "render/modules/noise/noise_cache.h"
+#include "render/disk_cache.h"
+#include "render/texture_cache.h"
 
 namespace nephele {
 
@@ -43,8 +44,18 @@ void NoiseModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int i) {
   }
 }
 
+std::string noise_cache_name(std::span<const uint32_t> spirv, const std::string& device,
+                             uint32_t seed) {
+  uint64_t h = fnv1a64({reinterpret_cast<const uint8_t*>(spirv.data()), spirv.size_bytes()});
+  h = fnv1a64(device, h);
+  h = fnv1a64({reinterpret_cast<const uint8_t*>(&seed), sizeof(seed)}, h);
+  char name[48];
+  std::snprintf(name, sizeof(name), "base_noise_%016llx.bin", static_cast<unsigned long long>(h));
+  return name;
+}
+
 std::filesystem::path NoiseModule::cache_file(uint32_t seed) const {
-  const std::filesystem::path dir = noise_cache_dir();
+  const std::filesystem::path dir = cache_dir();
   if (dir.empty()) return {};
   return dir /
          noise_cache_name(gpu::embedded_spirv("noise_base.comp.spv"), ctx_.device_name(), seed);
@@ -52,22 +63,12 @@ std::filesystem::path NoiseModule::cache_file(uint32_t seed) const {
 
 std::optional<std::filesystem::path> NoiseModule::load_base(uint32_t seed) {
   const std::filesystem::path file = cache_file(seed);
-  if (file.empty()) return std::nullopt;
-  const std::optional<std::vector<uint8_t>> texels = read_noise_cache(file, kBaseNoiseBytes);
-  if (!texels) return std::nullopt;
-  gpu::Buffer staging(ctx_, kBaseNoiseBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-  std::memcpy(staging.data(), texels->data(), kBaseNoiseBytes);
-  ctx_.submit_and_wait([&](VkCommandBuffer cmd) { base_.record_upload(cmd, staging); });
+  if (!load_cached_texture(ctx_, base_, file, kBaseNoiseBytes)) return std::nullopt;
   return file;
 }
 
 void NoiseModule::store_base(uint32_t seed) {
-  const std::filesystem::path file = cache_file(seed);
-  if (file.empty()) return;
-  gpu::Buffer staging(ctx_, kBaseNoiseBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  ctx_.submit_and_wait([&](VkCommandBuffer cmd) { base_.record_download(cmd, staging); });
-  // A cache that cannot be written (a read-only home) only costs the next process the time.
-  write_noise_cache(file, {static_cast<const uint8_t*>(staging.data()), kBaseNoiseBytes});
+  store_cached_texture(ctx_, base_, cache_file(seed), kBaseNoiseBytes);
 }
 
 void NoiseModule::add_passes(FrameGraph& graph, const FrameSetup& /*frame*/) {

@@ -1,11 +1,13 @@
 // The noise module: the cloud shapes' base noise (128^3), detail noise (32^3 and its mip
 // levels) and curl noise (128^2), made once per noise seed at the first frame (a host wait,
 // about 1.5 s on a CPU: reported by RendererOptions::progress) and kept. The base noise, most
-// of that wait, is kept on disk too (noise_cache.h) and read back by the next process.
+// of that wait, is kept on disk too (render/disk_cache.h) and read back by the next process.
 #pragma once
 
 #include <filesystem>
 #include <optional>
+#include <span>
+#include <string>
 
 #include "gpu/kernel.h"
 #include "nephele/scene.h"
@@ -17,6 +19,11 @@ constexpr uint32_t kBaseNoiseSize = 128;    // seed 000, 2.2.2: base shape noise
 constexpr uint32_t kDetailNoiseSize = 32;   // detail noise 32^3
 constexpr uint32_t kDetailNoiseLevels = 6;  // and its mip levels down to 1^3 (far clouds)
 constexpr uint32_t kCurlNoiseSize = 128;    // curl noise 128^2
+
+// The base noise's file in the disk cache: named by what makes its texels, the shader's SPIR-V,
+// the device and the seed.
+std::string noise_cache_name(std::span<const uint32_t> spirv, const std::string& device,
+                             uint32_t seed);
 
 class NoiseModule : public RenderModule {
  public:

@@ -1,7 +1,10 @@
-#include "render/modules/noise/noise_cache.h"
+#include "render/disk_cache.h"
 
+#include <dlfcn.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -29,7 +32,11 @@ uint64_t fnv1a64(std::span<const uint8_t> bytes, uint64_t hash) {
   return hash;
 }
 
-std::filesystem::path noise_cache_dir() {
+uint64_t fnv1a64(const std::string& text, uint64_t hash) {
+  return fnv1a64(bytes_of(text.data(), text.size()), hash);
+}
+
+std::filesystem::path cache_dir() {
   if (const char* dir = std::getenv("NEPHELE_CACHE_DIR")) return dir;
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
     return std::filesystem::path(xdg) / "nephele";
@@ -38,18 +45,25 @@ std::filesystem::path noise_cache_dir() {
   return {};
 }
 
-std::string noise_cache_name(std::span<const uint32_t> spirv, const std::string& device,
-                             uint32_t seed) {
-  uint64_t h = fnv1a64(bytes_of(spirv.data(), spirv.size_bytes()));
-  h = fnv1a64(bytes_of(device.data(), device.size()), h);
-  h = fnv1a64(bytes_of(&seed, sizeof(seed)), h);
-  char name[48];
-  std::snprintf(name, sizeof(name), "base_noise_%016llx.bin", static_cast<unsigned long long>(h));
-  return name;
+std::string file_identity(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return path + "|missing";
+  return path + "|" + std::to_string(st.st_size) + "|" + std::to_string(st.st_mtim.tv_sec) + "." +
+         std::to_string(st.st_mtim.tv_nsec);
 }
 
-std::optional<std::vector<uint8_t>> read_noise_cache(const std::filesystem::path& file,
-                                                     size_t bytes) {
+const std::string& code_identity() {
+  static const std::string identity = [] {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<const void*>(&cache_dir), &info) == 0 || !info.dli_fname)
+      return std::string("unknown");
+    return file_identity(info.dli_fname);
+  }();
+  return identity;
+}
+
+std::optional<std::vector<uint8_t>> read_cache_file(const std::filesystem::path& file,
+                                                    size_t bytes) {
   std::error_code ec;
   if (std::filesystem::file_size(file, ec) != kHeader + bytes || ec) return std::nullopt;
   std::ifstream in(file, std::ios::binary);
@@ -63,10 +77,11 @@ std::optional<std::vector<uint8_t>> read_noise_cache(const std::filesystem::path
   std::vector<uint8_t> texels(bytes);
   in.read(reinterpret_cast<char*>(texels.data()), std::streamsize(bytes));
   if (!in || fnv1a64(texels) != checksum) return std::nullopt;
+  std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now(), ec);
   return texels;
 }
 
-bool write_noise_cache(const std::filesystem::path& file, std::span<const uint8_t> texels) {
+bool write_cache_file(const std::filesystem::path& file, std::span<const uint8_t> texels) {
   std::error_code ec;
   std::filesystem::create_directories(file.parent_path(), ec);
   if (ec) return false;
@@ -89,6 +104,31 @@ bool write_noise_cache(const std::filesystem::path& file, std::span<const uint8_
   if (!ec) return true;
   std::filesystem::remove(temporary, ec);
   return false;
+}
+
+void prune_cache(const std::filesystem::path& dir, const std::string& prefix, uint64_t max_bytes) {
+  struct Entry {
+    std::filesystem::file_time_type used;
+    uint64_t bytes;
+    std::filesystem::path file;
+  };
+  std::vector<Entry> entries;
+  uint64_t total = 0;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || name.find(".tmp") != std::string::npos) continue;
+    const uint64_t bytes = e.file_size(ec);
+    if (ec) continue;
+    entries.push_back({e.last_write_time(ec), bytes, e.path()});
+    total += bytes;
+  }
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& a, const Entry& b) { return a.used < b.used; });
+  for (const Entry& e : entries) {
+    if (total <= max_bytes) break;
+    if (std::filesystem::remove(e.file, ec)) total -= e.bytes;
+  }
 }
 
 }  // namespace nephele
