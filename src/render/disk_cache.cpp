@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -85,9 +86,11 @@ bool write_cache_file(const std::filesystem::path& file, std::span<const uint8_t
   std::error_code ec;
   std::filesystem::create_directories(file.parent_path(), ec);
   if (ec) return false;
-  // Unique to this process: two that make the same texture at once each write their own.
+  // Unique to this process and call: two that make the same texture at once (two processes, or
+  // two renderers of one) each write their own.
+  static std::atomic<uint64_t> writes{0};
   std::filesystem::path temporary = file;
-  temporary += ".tmp" + std::to_string(::getpid());
+  temporary += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(writes++);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     const uint64_t length = texels.size(), checksum = fnv1a64(texels);

@@ -384,6 +384,7 @@ TEST_F(TemporalTest, ResizingKeepsTheLightVolume) {
 // fog, the light shafts) keeps the light volume and the diffusion light, and is the image a
 // fresh renderer makes; a change of the clouds rebuilds them.
 TEST_F(TemporalTest, AStillKeepsTheLightingWhenOnlyWhatItDoesNotReadChanges) {
+  ScopedEnv no_cache("NEPHELE_CACHE_DIR", "");  // the fresh renderer builds its lighting
   Scene s = view();
   s.output.width = 64;
   s.output.height = 40;
@@ -431,6 +432,8 @@ TEST_F(TemporalTest, AStillAfterAShortMoveIsLitAroundItself) {
 // level of the view's pixels, and a 64 x 40 still lit by a 640 x 400 one's grids was 1.8% off
 // its own.
 TEST_F(TemporalTest, AStillIsLitAlikeWhateverTheViewOfTheStillBefore) {
+  // The fresh renderer builds its lighting for its own view, not reads the first still's.
+  ScopedEnv no_cache("NEPHELE_CACHE_DIR", "");
   Scene s = view();
   render(s);
   s.output.width = 32;
