@@ -57,8 +57,15 @@ const std::string& code_identity() {
   static const std::string identity = [] {
     Dl_info info{};
     if (dladdr(reinterpret_cast<const void*>(&cache_dir), &info) == 0 || !info.dli_fname)
-      return std::string("unknown");
-    return file_identity(info.dli_fname);
+      return std::string();
+    // The program itself is named as it was started (relative, or found on the PATH): its
+    // file is /proc/self/exe.
+    std::error_code ec;
+    std::filesystem::path file = info.dli_fname;
+    if (!file.is_absolute()) file = std::filesystem::read_symlink("/proc/self/exe", ec);
+    struct stat st {};
+    if (ec || file.empty() || ::stat(file.c_str(), &st) != 0) return std::string();
+    return file_identity(file.string());
   }();
   return identity;
 }

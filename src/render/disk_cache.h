@@ -28,7 +28,8 @@ std::filesystem::path cache_dir();
 
 // What identifies the code that makes a cached texture beyond its shader: the file this library
 // was loaded from (the program, or libnephele.so), its size and its time of modification, so
-// that a rebuild (other shaders, other constants in C++) makes its own files.
+// that a rebuild (other shaders, other constants in C++) makes its own files. Empty when that
+// file cannot be found: then nothing is cached that depends on it.
 const std::string& code_identity();
 
 // What identifies an input file's contents: its path, size and time of modification ("missing"

@@ -126,7 +126,8 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
     next_row_ = 0;
     first_row_ = 0;
     rows_ = kRows;
-    const std::filesystem::path dir = still ? cache_dir() : std::filesystem::path();
+    const std::filesystem::path dir =
+        still && !code_identity().empty() ? cache_dir() : std::filesystem::path();
     if (!dir.empty()) {
       cache_key_ = disk_key(scene, now);
       store_file_ = dir / ("lighting_volume_" + cache_key_ + ".bin");
