@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/trigonometric.hpp>
+#include <memory>
 #include <vector>
 
 #include "nephele/image_compare.h"
@@ -93,6 +94,20 @@ Scene diffusion_view(int width, int height) {
 // then the diffusion field's medium and sweeps over kDiffusionEditFrames each.
 constexpr int kEditRelitFrames =
     nephele::kLightVolumeEditFrames + 2 * nephele::kDiffusionEditFrames;
+
+// Whether a frame built the clouds' lighting: the light volume or a pass of the diffusion light.
+bool builds_lighting(const Frame& f) {
+  return std::any_of(f.stats.passes.begin(), f.stats.passes.end(), [](const auto& p) {
+    return p.name == "light_volume" || p.name.rfind("diffusion", 0) == 0;
+  });
+}
+
+// A renderer that has rendered nothing, as a new process has it, with validation on.
+std::unique_ptr<nephele::Renderer> fresh_renderer() {
+  nephele::RendererOptions options;
+  options.validation = true;
+  return std::make_unique<nephele::Renderer>(options);
+}
 
 }  // namespace
 
@@ -378,8 +393,6 @@ TEST_F(TemporalTest, ResizingKeepsTheLightVolume) {
   EXPECT_TRUE(rebuilds(shared_renderer().render_next(s)));
 }
 
-// Moving the sun rebuilds the light volume: a frame after the move equals a fresh renderer's
-// image of the new sun.
 // A still that changes only what the clouds' lighting does not read (the cirrus, the ground
 // fog, the light shafts) keeps the light volume and the diffusion light, and is the image a
 // fresh renderer makes; a change of the clouds rebuilds them.
@@ -389,25 +402,18 @@ TEST_F(TemporalTest, AStillKeepsTheLightingWhenOnlyWhatItDoesNotReadChanges) {
   s.output.width = 64;
   s.output.height = 40;
   render(s);
-  const auto rebuilt = [](const Frame& f) {
-    return std::any_of(f.stats.passes.begin(), f.stats.passes.end(), [](const auto& p) {
-      return p.name == "light_volume" || p.name.rfind("diffusion", 0) == 0;
-    });
-  };
   s.cirrus.coverage = 0.6f;
   s.ground_fog.visibility_m = 2000.0f;
   s.quality.light_shafts = "volumetric";
   const Frame kept = render(s);
-  EXPECT_FALSE(rebuilt(kept));
-  nephele::RendererOptions options;
-  options.validation = true;
-  nephele::Renderer fresh(options);
-  const Frame reference = fresh.render(s);
-  EXPECT_TRUE(rebuilt(reference));
+  EXPECT_FALSE(builds_lighting(kept));
+  const auto fresh = fresh_renderer();
+  const Frame reference = fresh->render(s);
+  EXPECT_TRUE(builds_lighting(reference));
   EXPECT_LT(luminance_error(kept.color, reference.color), 1e-5);
-  EXPECT_EQ(fresh.validation_messages(), 0);
+  EXPECT_EQ(fresh->validation_messages(), 0);
   s.clouds.coverage += 0.1f;
-  EXPECT_TRUE(rebuilt(render(s)));
+  EXPECT_TRUE(builds_lighting(render(s)));
 }
 
 // A still 2 km from the last is the image a fresh renderer makes: its lighting is built around
@@ -419,11 +425,9 @@ TEST_F(TemporalTest, AStillAfterAShortMoveIsLitAroundItself) {
   render(s);
   s.camera.position_m.x += 2000.0f;
   const Frame moved = render(s);
-  nephele::RendererOptions options;
-  options.validation = true;
-  nephele::Renderer fresh(options);
-  EXPECT_LT(luminance_error(moved.color, fresh.render(s).color), 1e-5);
-  EXPECT_EQ(fresh.validation_messages(), 0);
+  const auto fresh = fresh_renderer();
+  EXPECT_LT(luminance_error(moved.color, fresh->render(s).color), 1e-5);
+  EXPECT_EQ(fresh->validation_messages(), 0);
 }
 
 // The lighting's grids are the scene's, not the view's: a still of another size, field of view
@@ -441,14 +445,10 @@ TEST_F(TemporalTest, AStillIsLitAlikeWhateverTheViewOfTheStillBefore) {
   s.camera.fov_deg = 30.0f;
   s.camera.view_dir = {0.4f, 1.0f, 0.2f};
   const Frame kept = render(s);
-  EXPECT_FALSE(std::any_of(kept.stats.passes.begin(), kept.stats.passes.end(), [](const auto& p) {
-    return p.name == "light_volume" || p.name.rfind("diffusion", 0) == 0;
-  }));
-  nephele::RendererOptions options;
-  options.validation = true;
-  nephele::Renderer fresh(options);
-  EXPECT_LT(luminance_error(kept.color, fresh.render(s).color), 1e-6);
-  EXPECT_EQ(fresh.validation_messages(), 0);
+  EXPECT_FALSE(builds_lighting(kept));
+  const auto fresh = fresh_renderer();
+  EXPECT_LT(luminance_error(kept.color, fresh->render(s).color), 1e-6);
+  EXPECT_EQ(fresh->validation_messages(), 0);
 }
 
 // A still's lighting (the light volume and the diffusion field, about 5 s on lavapipe) is kept
@@ -465,15 +465,10 @@ TEST_F(TemporalTest, AStillsLightingComesBackFromTheDiskCacheAsItWasBuilt) {
       return p.name == "light_volume" || p.name == "diffusion_fill";
     });
   };
-  const auto fresh = [] {
-    nephele::RendererOptions options;
-    options.validation = true;
-    return std::make_unique<nephele::Renderer>(options);
-  };
   Scene s = view();
   s.output.width = 48;
   s.output.height = 30;
-  EXPECT_EQ(built(fresh()->render(s)), 2);
+  EXPECT_EQ(built(fresh_renderer()->render(s)), 2);
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().filename().string().rfind("lighting_", 0) == 0) files.push_back(e.path());
@@ -482,14 +477,14 @@ TEST_F(TemporalTest, AStillsLightingComesBackFromTheDiskCacheAsItWasBuilt) {
   s.output.width = 32;
   s.output.height = 20;
   s.camera.view_dir = {0.4f, 1.0f, 0.2f};
-  const auto reader = fresh();
+  const auto reader = fresh_renderer();
   const Frame read = reader->render(s);
   EXPECT_EQ(built(read), 0);
   EXPECT_EQ(reader->validation_messages(), 0);
   Frame anew;
   {
     ScopedEnv none("NEPHELE_CACHE_DIR", "");
-    anew = fresh()->render(s);
+    anew = fresh_renderer()->render(s);
     EXPECT_EQ(built(anew), 2);
   }
   EXPECT_EQ(luminance_error(read.color, anew.color), 0.0);
@@ -499,23 +494,22 @@ TEST_F(TemporalTest, AStillsLightingComesBackFromTheDiskCacheAsItWasBuilt) {
     io.seekp(std::streamoff(fs::file_size(f) / 2));
     io.put('\x5a');
   }
-  const Frame rebuilt = fresh()->render(s);
+  const Frame rebuilt = fresh_renderer()->render(s);
   EXPECT_EQ(built(rebuilt), 2);
   EXPECT_EQ(luminance_error(rebuilt.color, anew.color), 0.0);
   // Other clouds: their own lighting.
   s.clouds.coverage += 0.1f;
-  EXPECT_EQ(built(fresh()->render(s)), 2);
+  EXPECT_EQ(built(fresh_renderer()->render(s)), 2);
 }
 
+// Moving the sun rebuilds the light volume: a frame after the move equals a fresh renderer's
+// image of the new sun.
 TEST_F(TemporalTest, SunMoveRebuildsTheLightVolume) {
   Scene s = view();
   render(s);
   s.sun.direction = {0.6f, 0.3f, 0.4f};
   const Frame moved = render(s);
-  nephele::RendererOptions options;
-  options.validation = true;
-  nephele::Renderer fresh(options);
-  const Frame reference = fresh.render(s);
-  EXPECT_LT(luminance_error(moved.color, reference.color), 1e-5);
-  EXPECT_EQ(fresh.validation_messages(), 0);
+  const auto fresh = fresh_renderer();
+  EXPECT_LT(luminance_error(moved.color, fresh->render(s).color), 1e-5);
+  EXPECT_EQ(fresh->validation_messages(), 0);
 }
