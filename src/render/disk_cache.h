@@ -14,8 +14,8 @@
 
 namespace nephele {
 
-// The most the clouds' lighting (files named lighting_*) may take of the cache: about 50 stills'
-// (a light volume of 3.3 MB and a diffusion field of 16.8 MB each).
+// The most the clouds' lighting (files named lighting_*, texture_cache.h) may take of the cache:
+// about 50 stills' (a light volume of 3.3 MB and a diffusion field of 16.8 MB each).
 constexpr uint64_t kLightingCacheBytes = 1ull << 30;
 
 // FNV-1a, 64 bits, continuing from `hash`.

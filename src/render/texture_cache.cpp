@@ -27,4 +27,20 @@ bool store_cached_texture(gpu::Context& ctx, const gpu::Texture& texture,
   return write_cache_file(file, {static_cast<const uint8_t*>(staging.data()), bytes});
 }
 
+namespace {
+constexpr const char* kLightingPrefix = "lighting_";
+}
+
+std::filesystem::path lighting_cache_file(const std::string& part, const std::string& key) {
+  const std::filesystem::path dir = cache_dir();
+  if (dir.empty() || key.empty()) return {};
+  return dir / (kLightingPrefix + part + "_" + key + ".bin");
+}
+
+void store_lighting_texture(gpu::Context& ctx, const gpu::Texture& texture,
+                            const std::filesystem::path& file, size_t bytes) {
+  if (store_cached_texture(ctx, texture, file, bytes))
+    prune_cache(file.parent_path(), kLightingPrefix, kLightingCacheBytes);
+}
+
 }  // namespace nephele

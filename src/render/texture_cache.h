@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <string>
 
 #include "gpu/context.h"
 #include "gpu/resources.h"
@@ -19,5 +20,14 @@ bool load_cached_texture(gpu::Context& ctx, const gpu::Texture& texture,
 // home) only costs the next process the time: false, and nothing else.
 bool store_cached_texture(gpu::Context& ctx, const gpu::Texture& texture,
                           const std::filesystem::path& file, size_t bytes);
+
+// A still's lighting in the cache: `part` ("volume", "diffusion") of the lighting named `key`
+// (FramePlan::lighting_cache_key), in cache_dir(); empty when there is no cache or no key.
+std::filesystem::path lighting_cache_file(const std::string& part, const std::string& key);
+
+// Writes `texture` to `file` as store_cached_texture does, then keeps the lighting's files
+// within kLightingCacheBytes (prune_cache, least recently used first).
+void store_lighting_texture(gpu::Context& ctx, const gpu::Texture& texture,
+                            const std::filesystem::path& file, size_t bytes);
 
 }  // namespace nephele

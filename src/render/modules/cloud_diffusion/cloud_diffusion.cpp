@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstring>
 
-#include "render/disk_cache.h"
 #include "render/gpu_params.h"
 #include "render/texture_cache.h"
 // The block's one definition, as the shaders have it.
@@ -109,22 +108,21 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
       sweeps_left_ = at_once ? kDiffusionSweeps : kDiffusionAnimationSweeps;
       edit_ = plan.light_volume_edited;
       // A still's field from the disk cache, where an earlier process built it with the same
-      // light volume; else kept there once built (finished).
+      // light volume; else kept there once built (finished). No file: no cache.
+      const std::filesystem::path file =
+          frame.still ? lighting_cache_file("diffusion", plan.lighting_cache_key)
+                      : std::filesystem::path();
       store_file_.clear();
-      if (frame.still && !plan.lighting_cache_key.empty()) {
-        const std::filesystem::path file =
-            cache_dir() / ("lighting_diffusion_" + plan.lighting_cache_key + ".bin");
-        if (load_cached_texture(ctx_, fields_[1 - read_], file, kFieldBytes)) {
-          plan.cache_reads.push_back("cloud_diffusion read from " + file.string());
-          building_ = false;
-          read_ = 1 - read_;
-          have_field_ = true;
-          phi_kept_ = false;  // the fluence is not this field's: the next build starts at zero
-          for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k)
-            read_grid_[k] = glm::vec4(glm::vec3(build_grid_[k]), 1.0f);
-        } else {
-          store_file_ = file;
-        }
+      if (load_cached_texture(ctx_, fields_[1 - read_], file, kFieldBytes)) {
+        plan.cache_reads.push_back("cloud_diffusion read from " + file.string());
+        building_ = false;
+        read_ = 1 - read_;
+        have_field_ = true;
+        phi_kept_ = false;  // the fluence is not this field's: the next build starts at zero
+        for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k)
+          read_grid_[k] = glm::vec4(glm::vec3(build_grid_[k]), 1.0f);
+      } else {
+        store_file_ = file;
       }
     }
     if (building_) {
@@ -178,8 +176,7 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
 void CloudDiffusionModule::finished(int slot) {
   if (slot != store_slot_) return;
   store_slot_ = -1;
-  if (store_cached_texture(ctx_, fields_[store_field_], store_file_, kFieldBytes))
-    prune_cache(store_file_.parent_path(), "lighting_", kLightingCacheBytes);
+  store_lighting_texture(ctx_, fields_[store_field_], store_file_, kFieldBytes);
 }
 
 void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {

@@ -126,11 +126,9 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
     next_row_ = 0;
     first_row_ = 0;
     rows_ = kRows;
-    const std::filesystem::path dir =
-        still && !code_identity().empty() ? cache_dir() : std::filesystem::path();
-    if (!dir.empty()) {
+    if (still && !code_identity().empty() && !cache_dir().empty()) {
       cache_key_ = disk_key(scene, now);
-      store_file_ = dir / ("lighting_volume_" + cache_key_ + ".bin");
+      store_file_ = lighting_cache_file("volume", cache_key_);
       ctx_.wait_queue_idle();  // a frame in flight may still read the volume filled
       loaded = load_cached_texture(ctx_, volumes_[1 - read_], store_file_, kVolumeBytes);
       if (loaded) {
@@ -174,8 +172,7 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
 void LightVolumeModule::finished(int slot) {
   if (slot != store_slot_) return;
   store_slot_ = -1;
-  if (store_cached_texture(ctx_, volumes_[store_volume_], store_file_, kVolumeBytes))
-    prune_cache(store_file_.parent_path(), "lighting_", kLightingCacheBytes);
+  store_lighting_texture(ctx_, volumes_[store_volume_], store_file_, kVolumeBytes);
 }
 
 void LightVolumeModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
