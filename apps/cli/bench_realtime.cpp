@@ -116,13 +116,23 @@ Scene reference_scene(const Scene& scene) {
   return r;
 }
 
+Scene seed_lit_scene(const Scene& scene) {
+  Scene s = scene;
+  s.clouds.lighting = "seed";
+  s.clouds.optics = "seed";
+  s.quality.light_steps = 6;
+  return s;
+}
+
 nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& options,
                                 const Scene& base, const RealtimeSettings& f) {
-  // Three renderers, one history each: the still camera (`renderer`), the flight and the
-  // seed's algorithm. Their timed frames are interleaved, so a slow spell of a shared machine
-  // falls on all three alike and the ratios between them hold.
+  // Four renderers, one history each: the still camera (`renderer`), the flight, the seed's
+  // algorithm and the still camera lit as the seed lights clouds (seed_lit_scene). Their timed
+  // frames are interleaved, so a slow spell of a shared machine falls on all alike and the
+  // ratios between them hold.
   Renderer flight(options);
   Renderer seed_renderer(options);
+  Renderer seed_lit_renderer(options);
   Renderer reference(options);
   const int cycle = base.quality.march_stride * base.quality.march_stride;
   nlohmann::json out;
@@ -145,8 +155,16 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   Scene baseline = base;
   baseline.quality.mode = MarchMode::Baseline;
   seed_renderer.render_next(baseline, false);  // warm-up
+  // The still camera lit as the seed lights clouds, converged as the still camera is.
+  Scene seed_lit = seed_lit_scene(base);
+  seed_lit.quality.mode = MarchMode::Default;
+  seed_lit_renderer.render(seed_lit);
+  for (int i = 0; i < 2 * cycle; ++i) {
+    seed_lit.time_s += f.frame_dt_s;
+    seed_lit_renderer.render_next(seed_lit, false);
+  }
 
-  Timing still, moving, seed;
+  Timing still, moving, seed, lit_by_seed;
   const int frames = std::max(f.static_frames, f.moving_frames);
   const int seed_every = std::max(1, frames / 8);  // eight of the seed's slow frames
   for (int i = 0; i < frames; ++i) {
@@ -160,6 +178,10 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
                      .stats);
     }
     if (i % seed_every == seed_every / 2) seed.add(seed_renderer.render_next(baseline, false).stats);
+    if (i % 2 == 0 && i < f.static_frames) {  // every other frame: enough for its median
+      seed_lit.time_s += 2.0f * f.frame_dt_s;
+      lit_by_seed.add(seed_lit_renderer.render_next(seed_lit, false).stats);
+    }
     if (f.on_step) f.on_step();
   }
 
@@ -196,6 +218,8 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   out["baseline_ms"] = seed.median_wall();
   out["baseline_fps"] = 1000.0 / seed.median_wall();
   out["speedup_vs_baseline"] = seed.median_wall() / still.median_wall();
+  out["seed_lit_ms"] = lit_by_seed.median_wall();
+  out["cost_vs_seed_lit"] = still.median_wall() / lit_by_seed.median_wall();
   out["static_error"] = f.errors ? nlohmann::json(static_error) : nlohmann::json();
   out["moving_error"] = f.errors ? nlohmann::json(moving_error) : nlohmann::json();
   out["feature_variants"] = options.feature_variants;

@@ -34,8 +34,15 @@ struct RealtimeSettings {
 // 4x the primary steps, every light ray marched with 64 steps (no light volume).
 Scene reference_scene(const Scene& scene);
 
+// The scene lit as the seed lights clouds and as nephele's default did before issue 42: the
+// seed's lighting and optics (clouds.lighting and clouds.optics "seed"), 6 light steps. The
+// bench times the still camera with it too, for the cost of the physical lighting as a ratio
+// measured in one run (cost_vs_seed_lit; issue 42's bound: 1.15 on lavapipe at 900x600).
+Scene seed_lit_scene(const Scene& scene);
+
 // Runs the measurements on `renderer` (a second renderer draws the references) and returns
-// static_fps, moving_fps, static_error, moving_error, speedup_vs_baseline, the underlying
+// static_fps, moving_fps, static_error, moving_error, speedup_vs_baseline, cost_vs_seed_lit
+// (the still camera's median over seed_lit_scene's, seed_lit_ms), the underlying
 // milliseconds and the device; with errors, also flight_from_still (each frame's
 // luminance_error against a still of its moment, from frame 1) and flight_from_still_ratio
 // (the largest over the mean of the last ten).
