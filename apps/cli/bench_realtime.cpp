@@ -137,14 +137,17 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   const int cycle = base.quality.march_stride * base.quality.march_stride;
   nlohmann::json out;
 
-  // Still camera, clouds drifting with the wind: two march cycles to converge first.
-  Scene scene = base;
-  scene.quality.mode = MarchMode::Default;
-  renderer.render(scene);
-  for (int i = 0; i < 2 * cycle; ++i) {
-    scene.time_s += f.frame_dt_s;
-    renderer.render_next(scene, false);
-  }
+  // A still camera, clouds drifting with the wind: two march cycles to converge first.
+  const auto still_camera = [&](Renderer& r, Scene s) {
+    s.quality.mode = MarchMode::Default;
+    r.render(s);
+    for (int i = 0; i < 2 * cycle; ++i) {
+      s.time_s += f.frame_dt_s;
+      r.render_next(s, false);
+    }
+    return s;
+  };
+  Scene scene = still_camera(renderer, base);
   // The flight: a cycle to fill the history.
   const Scene start = base;
   flight.render(start);
@@ -155,14 +158,8 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   Scene baseline = base;
   baseline.quality.mode = MarchMode::Baseline;
   seed_renderer.render_next(baseline, false);  // warm-up
-  // The still camera lit as the seed lights clouds, converged as the still camera is.
-  Scene seed_lit = seed_lit_scene(base);
-  seed_lit.quality.mode = MarchMode::Default;
-  seed_lit_renderer.render(seed_lit);
-  for (int i = 0; i < 2 * cycle; ++i) {
-    seed_lit.time_s += f.frame_dt_s;
-    seed_lit_renderer.render_next(seed_lit, false);
-  }
+  // The still camera lit as the seed lights clouds.
+  Scene seed_lit = still_camera(seed_lit_renderer, seed_lit_scene(base));
 
   Timing still, moving, seed, lit_by_seed;
   const int frames = std::max(f.static_frames, f.moving_frames);
