@@ -32,8 +32,9 @@ constexpr const char* kLightingPrefix = "lighting_";
 }
 
 std::filesystem::path lighting_cache_file(const std::string& part, const std::string& key) {
+  // The key holds code_identity(): without it nothing that code made can be told apart.
   const std::filesystem::path dir = cache_dir();
-  if (dir.empty() || key.empty()) return {};
+  if (dir.empty() || key.empty() || code_identity().empty()) return {};
   return dir / (kLightingPrefix + part + "_" + key + ".bin");
 }
 

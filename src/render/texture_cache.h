@@ -22,7 +22,8 @@ bool store_cached_texture(gpu::Context& ctx, const gpu::Texture& texture,
                           const std::filesystem::path& file, size_t bytes);
 
 // A still's lighting in the cache: `part` ("volume", "diffusion") of the lighting named `key`
-// (FramePlan::lighting_cache_key), in cache_dir(); empty when there is no cache or no key.
+// (FramePlan::lighting_cache_key), in cache_dir(); empty when there is no cache, no key or no
+// code_identity().
 std::filesystem::path lighting_cache_file(const std::string& part, const std::string& key);
 
 // Writes `texture` to `file` as store_cached_texture does, then keeps the lighting's files

@@ -126,9 +126,12 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
     next_row_ = 0;
     first_row_ = 0;
     rows_ = kRows;
-    if (still && !code_identity().empty() && !cache_dir().empty()) {
+    if (still) {
       cache_key_ = disk_key(scene, now);
       store_file_ = lighting_cache_file("volume", cache_key_);
+      if (store_file_.empty()) cache_key_.clear();  // no cache
+    }
+    if (!cache_key_.empty()) {
       ctx_.wait_queue_idle();  // a frame in flight may still read the volume filled
       loaded = load_cached_texture(ctx_, volumes_[1 - read_], store_file_, kVolumeBytes);
       if (loaded) {
