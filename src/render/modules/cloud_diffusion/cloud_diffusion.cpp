@@ -32,10 +32,10 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
     : ctx_(context.ctx),
       set_(context.set),
       fill_(context.ctx, context.set, "diffusion_fill.comp.spv", 0, {1, 1}),
+      exchange_kernel_(context.ctx, context.set, "diffusion_exchange.comp.spv", 1, {}),
+      inflow_kernel_(context.ctx, context.set, "diffusion_inflow.comp.spv", 1, {}),
+      gather_kernel_(context.ctx, context.set, "diffusion_field.comp.spv", 1, {}),
       solve_(context.ctx, context.set, "diffusion_solve.comp.spv"),
-      exchange_kernel_(context.ctx, context.set, "diffusion_exchange.comp.spv"),
-      inflow_kernel_(context.ctx, context.set, "diffusion_inflow.comp.spv"),
-      gather_kernel_(context.ctx, context.set, "diffusion_field.comp.spv"),
       boundary_kernel_(context.ctx, context.set, "diffusion_boundary.comp.spv") {
   const auto volume = [&](VkFormat format) {
     return gpu::Texture(context.ctx, gpu::DIFFUSION_XY, gpu::DIFFUSION_XY,
@@ -47,7 +47,10 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
   inflow_ = volume(VK_FORMAT_R32_SFLOAT);
   boundary_ = volume(VK_FORMAT_R32_SFLOAT);  // diffusion_boundary.comp
   for (gpu::Texture& f : fields_) f = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
-  for (gpu::Texture& e : exchange_) e = volume(VK_FORMAT_R32G32B32A32_SFLOAT);
+  for (gpu::Texture& e : exchange_)  // diffusion_exchange_inc.glsl: two texels a cell
+    e = gpu::Texture(context.ctx, 2 * gpu::DIFFUSION_XY, gpu::DIFFUSION_XY,
+                     gpu::DIFFUSION_Z * gpu::DIFFUSION_CASCADES, VK_FORMAT_R32G32B32A32_SFLOAT,
+                     VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   for (gpu::Buffer& b : blocks_) {
     b = gpu::Buffer(context.ctx, sizeof(gpu::CloudDiffusionGpu),
                     VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
@@ -61,10 +64,8 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
   set_.bind_module_storage_image("cloud_diffusion_medium", medium_);
   set_.bind_module_storage_image("cloud_diffusion_phi_out", phi_);
   set_.bind_module_storage_image("cloud_diffusion_phi", phi_);
-  set_.bind_module_storage_image("cloud_diffusion_exchange_xy_a", exchange_[0]);
-  set_.bind_module_storage_image("cloud_diffusion_exchange_z_a", exchange_[1]);
-  set_.bind_module_storage_image("cloud_diffusion_exchange_xy_b", exchange_[2]);
-  set_.bind_module_storage_image("cloud_diffusion_exchange_z_b", exchange_[3]);
+  set_.bind_module_storage_image("cloud_diffusion_exchange_a", exchange_[0]);
+  set_.bind_module_storage_image("cloud_diffusion_exchange_b", exchange_[1]);
   set_.bind_module_storage_image("cloud_diffusion_inflow", inflow_);
   set_.bind_module_storage_image("cloud_diffusion_boundary", boundary_);
 }
@@ -191,14 +192,14 @@ void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
                   gpu::DispatchConstants{glm::ivec4(zero_phi_ ? 1 : 0, 0, 0, 0)});
   // The clear air's light gathered over rows [first, first + count) into the set not read.
   const auto exchange = [&](int first, int count) {
-    gpu::dispatch(cmd, exchange_kernel_, timer, "diffusion_exchange", gpu::DIFFUSION_XY,
-                  uint32_t(count), 1, 8, 8, 1,
-                  gpu::DispatchConstants{glm::ivec4(exchange_read_, first, count, 0)});
+    gpu::dispatch(cmd, exchange_kernel_.get({exchange_read_}), timer, "diffusion_exchange",
+                  gpu::DIFFUSION_XY, uint32_t(count), 1, 8, 8, 1,
+                  gpu::DispatchConstants{glm::ivec4(0, first, count, 0)});
     if (first + count >= kRows) {
       exchange_read_ = 1 - exchange_read_;
       sweeps_since_exchange_ = 0;
-      gpu::dispatch(cmd, inflow_kernel_, timer, "diffusion_inflow", gpu::DIFFUSION_XY, rows(), 1, 8,
-                    8, 1, gpu::DispatchConstants{glm::ivec4(exchange_read_, 0, 0, 0)});
+      gpu::dispatch(cmd, inflow_kernel_.get({exchange_read_}), timer, "diffusion_inflow",
+                    gpu::DIFFUSION_XY, rows(), 1, 8, 8, 1);
     }
   };
   // Each sweep the red cells, then the black.
@@ -229,8 +230,8 @@ void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
     exchange_row_ = (exchange_row_ + band) % kRows;
   }
   if (gather_)
-    gpu::dispatch(cmd, gather_kernel_, timer, "diffusion_field", gpu::DIFFUSION_XY, rows(), 1, 8, 8,
-                  1, gpu::DispatchConstants{glm::ivec4(exchange_read_, 0, 0, 0)});
+    gpu::dispatch(cmd, gather_kernel_.get({exchange_read_}), timer, "diffusion_field",
+                  gpu::DIFFUSION_XY, rows(), 1, 8, 8, 1);
 }
 
 void CloudDiffusionModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

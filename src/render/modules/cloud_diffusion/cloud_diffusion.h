@@ -68,14 +68,16 @@ class CloudDiffusionModule : public RenderModule {
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::KernelVariants fill_;  // with or without the voxel clouds, the flow map
-  gpu::Kernel solve_, exchange_kernel_, inflow_kernel_, gather_kernel_, boundary_kernel_;
+  // Reading the gather's set 0 or set 1 (EXCHANGE_READ_SET).
+  gpu::KernelVariants exchange_kernel_, inflow_kernel_, gather_kernel_;
+  gpu::Kernel solve_, boundary_kernel_;
   gpu::Texture medium_, phi_;
   gpu::Texture inflow_;  // per cell of cloud, the light clear air brings in (diffusion_inflow.comp)
   // Per row, its cells the gather casts rays from (diffusion_boundary.comp).
   gpu::Texture boundary_;
-  // The clear air's gathered light (diffusion_exchange_inc.glsl): two sets of two images, one
-  // read and one written.
-  gpu::Texture exchange_[4];
+  // The clear air's gathered light (diffusion_exchange_inc.glsl): two sets, one read and one
+  // written.
+  gpu::Texture exchange_[2];
   int exchange_read_ = 0, sweeps_since_exchange_ = 0, exchange_row_ = 0;
   bool at_once_ = true;     // this frame builds the whole field
   gpu::Texture fields_[2];  // the one read, fields_[read_], and the one built

@@ -13,7 +13,7 @@
 // the rule's partial currents are corrected to be exact for a P1 field: before stop 62 the
 // light leaked out of every clear pocket of an eroded cloud through its corners and 4% of it at
 // each crossing (the inside of a cloud -19.6 -> -11.8% off the path tracer).
-// dispatch.values: x the set read (0 or 1; the other written), y the first row, z the rows.
+// dispatch.values: y the first row, z the rows.
 // Only the cells diffusion_boundary.comp listed; the others' gathered light stays 0.
 #extension GL_GOOGLE_include_directive : require
 
@@ -116,7 +116,7 @@ void main() {
   if (x < 0.0f) return;
   ivec3 c = ivec3(int(x), first.yz);
   int cascade = diffusion_cascade(c);
-  int read = dispatch.values.x;
+  const int read = EXCHANGE_READ_SET;
   float currents[6] = float[6](0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f);
   float phi = 0.0f;
   vec3 h = diffusion_cell_m(cascade);

@@ -5,7 +5,7 @@
 // to cloud takes the light gathered in it (diffusion_exchange.comp), or where none was, what
 // its cloudy neighbours' faces towards it hold, the face's fluence 2 E_n and their flux, so that
 // the trilinear field a sample reads near a cloud's surface is the surface's and not half of it.
-// dispatch.values: x the gather's set to read.
+// The gather's set to read: EXCHANGE_READ_SET (diffusion_exchange_inc.glsl).
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -13,7 +13,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "common/bindings_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
-#include "dispatch_inc.glsl"
 
 layout(set = 1, binding = 2, rgba32f) uniform readonly image3D cloud_diffusion_medium;
 layout(set = 1, binding = 3, rgba32f) uniform readonly image3D cloud_diffusion_phi;
@@ -41,7 +40,7 @@ void main() {
     if (d > 0.0f) {
       // Out of this cell through the face, along step; towards clear air, less what it brings
       // back.
-      float back = d_n <= 0.0f && inside ? 4.0f * exchange_incoming(n, dispatch.values.x, -step)
+      float back = d_n <= 0.0f && inside ? 4.0f * exchange_incoming(n, EXCHANGE_READ_SET, -step)
                                          : 0.0f;
       float out_flux = d_n > 0.0f ? diffusion_conductance(d, d_n, h[axis],
                                                           diffusion_limiter(phi, phi_n, h[axis])) *
@@ -59,7 +58,7 @@ void main() {
   }
   if (d <= 0.0f) {
     vec4 xy, z;
-    exchange_load(c, dispatch.values.x, xy, z);
+    exchange_load(c, EXCHANGE_READ_SET, xy, z);
     phi = surfaces > 0 ? surface / float(surfaces) : 0.0f;
     if (z.z > 0.0f) {
       phi = z.z;

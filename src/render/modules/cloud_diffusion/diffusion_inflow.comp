@@ -3,13 +3,12 @@
 // (diffusion_exchange.comp): for each cell of cloud, the light that comes in through its faces
 // towards clear air, sum of open conductance x 4 J- / h over them (exchange_incoming), the
 // source the solve adds (diffusion_solve.comp reads one value a cell, not six faces' gathers).
-// dispatch.values: x the gather's set to read.
+// The gather's set to read: EXCHANGE_READ_SET (diffusion_exchange_inc.glsl).
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "common/bindings_inc.glsl"
-#include "dispatch_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_grid_inc.glsl"
 #include "render/modules/cloud_diffusion/diffusion_exchange_inc.glsl"
 
@@ -32,7 +31,7 @@ void main() {
     ivec3 n = c + step;
     if (diffusion_in_grid(n, cascade) && imageLoad(cloud_diffusion_medium, n).x <= 0.0f)
       inflow += diffusion_open_conductance(d, h[axis]) / h[axis] * 4.0f *
-                exchange_incoming(n, dispatch.values.x, -step);
+                exchange_incoming(n, EXCHANGE_READ_SET, -step);
   }
   imageStore(cloud_diffusion_inflow, c, vec4(inflow));
   vec4 solved = imageLoad(cloud_diffusion_phi, c);
