@@ -24,8 +24,9 @@ layout(set = 0, binding = 7, rgba16f) uniform writeonly image2D sky_view_out;
 layout(set = 0, binding = 8) uniform sampler2D sky_view_lut;
 // Optical depth towards the sun (density field x metres) on the light volume's grid
 // (common/light_volume_inc.glsl): LIGHT_VOLUME_XY^2 x LIGHT_VOLUME_Z texels, written by
-// light_volume.comp, sampled with trilinear filtering.
-layout(set = 0, binding = 9, r32f) uniform writeonly image3D light_volume_out;
+// light_volume.comp (which reads back the layers it built above), sampled with trilinear
+// filtering.
+layout(set = 0, binding = 9, r32f) uniform image3D light_volume_out;
 layout(set = 0, binding = 10) uniform sampler3D light_volume;
 // Cloud samples: two images per cloud buffer, A = (rgb in-scattered cloud radiance, a cloud
 // transmittance), B = (x haze weight, y ground shadow, z cloud distance (km), w samples

@@ -44,6 +44,9 @@ std::string density_key(Scene scene) {
   return history_key(scene);
 }
 constexpr int kRows = gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_Z;
+// The rows of a group of layers built together (light_volume.comp).
+constexpr int kGroupRows = gpu::LIGHT_VOLUME_XY * gpu::LIGHT_VOLUME_LAYERS_UP;
+static_assert(gpu::LIGHT_VOLUME_Z % gpu::LIGHT_VOLUME_LAYERS_UP == 0);
 constexpr size_t kVolumeBytes = size_t(kRows) * gpu::LIGHT_VOLUME_XY * sizeof(float);
 constexpr int rows_per_frame(int frames) {
   return (kRows + frames - 1) / frames;
@@ -169,7 +172,6 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
   const Key& target = completed_ ? *read_key_ : build_key_ ? *build_key_ : *read_key_;
   params.light_volume = glm::vec4(read_key_->centre_m, half_m, 1.0f);
   params.light_volume_build = glm::vec4(target.centre_m, half_m, 0.0f);
-  params.light_volume_rows = glm::ivec4(first_row_, rows_, 0, 0);
 }
 
 void LightVolumeModule::finished(int slot) {
@@ -180,8 +182,20 @@ void LightVolumeModule::finished(int slot) {
 
 void LightVolumeModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   if (rows_ == 0) return;
-  gpu::dispatch(cmd, kernels_.get({with_voxels_ ? 1 : 0, with_flow_ ? 1 : 0}), timer,
-                "light_volume", gpu::LIGHT_VOLUME_XY, uint32_t(rows_), 1, 8, 8, 1);
+  // The band in pieces that each lie in one group of layers: a group reads the layers above
+  // it, complete before it starts (a barrier after each piece). One pass in the timings.
+  std::vector<glm::ivec2> pieces;  // first row, rows
+  for (int row = first_row_; row < first_row_ + rows_;) {
+    const int end = std::min(first_row_ + rows_, (row / kGroupRows + 1) * kGroupRows);
+    pieces.emplace_back(row, end - row);
+    row = end;
+  }
+  int most = 0;
+  for (const glm::ivec2& p : pieces) most = std::max(most, p.y);
+  gpu::dispatch_repeated(
+      cmd, kernels_.get({with_voxels_ ? 1 : 0, with_flow_ ? 1 : 0}), timer, "light_volume",
+      int(pieces.size()), glm::uvec3(gpu::LIGHT_VOLUME_XY, most, 1), glm::uvec3(8, 8, 1),
+      [&](int k) { return gpu::DispatchConstants{glm::ivec4(pieces[k].x, pieces[k].y, 0, 0)}; });
 }
 
 void LightVolumeModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

@@ -33,7 +33,7 @@ class LightVolumeModule : public RenderModule {
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
   // Decides this frame's work and sets params.light_volume (the volume read),
-  // light_volume_build and light_volume_rows (the band built), and the bindings. `clouds_key`
+  // light_volume_build (the volume built), the band built (record), and the bindings. `clouds_key`
   // changes with anything that shapes the clouds; `weather_time` is the evolving weather's
   // (in clouds.weather_evolution_s). `still`: a volume that is stale is rebuilt whole now.
   // `needed`: false when nothing this frame reads the volume (a clear sky, particle clouds
