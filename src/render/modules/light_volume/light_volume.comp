@@ -81,7 +81,8 @@ void main() {
   if (above < LIGHT_VOLUME_Z) {
     // Where the light reaches the layer above (inside that layer's sphere, the ray leaves it).
     float up_m = ray_sphere(pos, sun, layer_radius_m(above)).y;
-    depth = march_light(pos, sun, 0.0f, up_m, SEGMENT_STEPS) + built_depth(pos + sun * up_m, above, half_m);
+    depth = march_light(pos, sun, 0.0f, up_m, SEGMENT_STEPS) +
+            built_depth(pos + sun * up_m, above, half_m);
   } else {
     depth = march_light(pos, sun, 0.0f, ray_sphere(pos, sun, frame.radii_m.w).y, WHOLE_STEPS);
   }
