@@ -185,13 +185,13 @@ void LightVolumeModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
   // The band in pieces that each lie in one group of layers: a group reads the layers above
   // it, complete before it starts (a barrier after each piece). One pass in the timings.
   std::vector<glm::ivec2> pieces;  // first row, rows
+  int most = 0;
   for (int row = first_row_; row < first_row_ + rows_;) {
     const int end = std::min(first_row_ + rows_, (row / kGroupRows + 1) * kGroupRows);
     pieces.emplace_back(row, end - row);
+    most = std::max(most, end - row);
     row = end;
   }
-  int most = 0;
-  for (const glm::ivec2& p : pieces) most = std::max(most, p.y);
   gpu::dispatch_repeated(
       cmd, kernels_.get({with_voxels_ ? 1 : 0, with_flow_ ? 1 : 0}), timer, "light_volume",
       int(pieces.size()), glm::uvec3(gpu::LIGHT_VOLUME_XY, most, 1), glm::uvec3(8, 8, 1),
