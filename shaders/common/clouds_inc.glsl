@@ -259,6 +259,22 @@ float cloud_ground_sky_share(float local_t, float mean_t) {
   return 0.5f * (local_t + mean_t);
 }
 
+// The light of the ground around a cloud sample, as a share of the clear ground's (per channel):
+// the sun's light on the ground `sun_ground` by the mean share `sun_t` the clouds pass of it
+// there (the diffuse transmittance towards the sun, below_light_share), the sky's `sky_ground`
+// by the clouds' mean transmittance down `mean_t`, and the sunlight the clouds around scatter
+// down `clouds_down`, the share of it from the cloud overhead (half the diffuse light comes
+// from within 45 deg of the zenith, as in cloud_ground_light_shares) being in sun_t already;
+// all per unit of the key light, as ground_light.comp's r and gba. Means over the ground
+// around: the clear ground's light times the sun's share alone left the shadows around a
+// cumulus black to the bases above them (the sky and the clouds light them) and the sunlit
+// ground without the clouds' light (14% of it at noon, ground_light.comp).
+vec3 cloud_ground_light_ratio(float sun_t, float mean_t, vec3 clouds_down, vec3 sun_ground,
+                              vec3 sky_ground) {
+  vec3 cloudy = sun_ground * sun_t + sky_ground * mean_t + clouds_down * (0.5f + 0.5f * sun_t);
+  return cloudy / max(sun_ground + sky_ground, vec3(1e-20f));
+}
+
 // Light reaching a sample (listing B.2, formulas 1.7, 1.9, 1.10): Beer-Lambert exp(-tau) times
 // the powder term mix(2 (1 - exp(-2 tau)), 1, (mu + 1) / 2), with `powder` in [0, 1] blending
 // it in. tau is the optical depth towards the sun.

@@ -506,7 +506,10 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   if (lab) params.voxel_light.z = 0.0f;  // the grid as the file has it: no surface erosion
   if (scene.atmosphere.model == SkyModel::Reference) render_reference_sky(params);
   update_noise(scene, params);
-  plan.ground_light = light_volume.completed() || params.light_volume.w == 0.0f;
+  // Measured again once a light volume or a diffusion field is completed (the modules' prepare
+  // says so): the clouds' bases take their light from below by it (clouds.comp).
+  plan.ground_light =
+      plan.ground_light || light_volume.completed() || params.light_volume.w == 0.0f;
   const FrameGraph graph = frame_graph(scene, params, plan);
   if (verbose && frames_recorded == 0)
     std::fprintf(stderr, "nephele: frame graph\n%s", graph.describe().c_str());

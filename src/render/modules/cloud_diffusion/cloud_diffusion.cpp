@@ -119,6 +119,7 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
         building_ = false;
         read_ = 1 - read_;
         have_field_ = true;
+        plan.ground_light = true;  // the clouds' light on the ground, from this field
         phi_kept_ = false;  // the fluence is not this field's: the next build starts at zero
         for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k)
           read_grid_[k] = glm::vec4(glm::vec3(build_grid_[k]), 1.0f);
@@ -151,6 +152,7 @@ void CloudDiffusionModule::prepare(const FramePrepare& frame, FramePlan& plan) {
         building_ = false;
         read_ = 1 - read_;
         have_field_ = true;
+        plan.ground_light = true;  // the clouds' light on the ground, from this field
         for (int k = 0; k < gpu::DIFFUSION_CASCADES; ++k)
           read_grid_[k] = glm::vec4(glm::vec3(build_grid_[k]), 1.0f);
         if (!store_file_.empty()) store_slot_ = frame.slot;

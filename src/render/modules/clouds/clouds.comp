@@ -138,6 +138,12 @@ void main() {
   // The ground light's share under the clouds, once per ray: where it enters the clouds.
   vec3 entry = eye + dir * segment.x;
   float below_share = WITH_VOXELS && frame.voxel_info.x > 0 ? -1.0f : below_light_share(entry, length(entry) - frame.radii_m.x);
+  // The ground's light under the clouds around (ground_light.comp), per unit of the key light:
+  // the clear ground's is the sun's and the sky's (cloud_ground_light_ratio).
+  vec4 ground_light_texel = texelFetch(ground_light, ivec2(0), 0);
+  vec3 key_light = max(frame.sun_illuminance.rgb, vec3(1e-20f));
+  vec3 sun_ground = sun_light / key_light * max(dot(normalize(entry), frame.sun_dir.xyz), 0.0f) / PI;
+  vec3 sky_ground = frame.ground_sky_light.rgb / key_light;
   float thickness = frame.radii_m.w - frame.radii_m.z;
   vec4 phases = octave_phases(mu);
   int light_model = LIGHTING < 0 ? int(frame.cloud_phase.w + 0.5f) : LIGHTING;
@@ -344,8 +350,10 @@ void main() {
       // the same cloud; from below, the light of the ground around, itself under the
       // clouds' shadow, less the higher the sample is in the layer.
       float diffuse = sunlit.y, t_d = sunlit.z;
-      vec3 luminance = albedo * (sun_light * (energy + diffuse) +
-                                 ambient_above * t_d + ambient_below * ((1.0f - h) * below_share));
+      vec3 below = cloud_ground_light_ratio(below_share, ground_light_texel.r, ground_light_texel.gba,
+                                            sun_ground, sky_ground);
+      vec3 luminance = albedo * (sun_light * (energy + diffuse) + ambient_above * t_d +
+                                 ambient_below * below * (1.0f - h));
       float step_t = exp(-lit_sigma_t * lit_step_m);
       vec3 air = air_transmittance(eye_alt_m, length(lit_pos) - frame.radii_m.x, t);
       // Energy-conserving integration over the step (Hillaire 2016).

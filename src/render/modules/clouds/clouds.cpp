@@ -217,7 +217,7 @@ void CloudsModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
   if (frame.plan.classic) return;  // a classical model draws the cloud layer
   if (frame.plan.volumetric) {
     std::vector<std::string> march_reads = cloud_field_resources();
-    march_reads.insert(march_reads.end(), {"terrain", FrameGraph::kView});
+    march_reads.insert(march_reads.end(), {"terrain", "ground_light", FrameGraph::kView});
     march_reads = with_diffusion(march_reads);
     graph.add_pass("march", march_reads, {"cloud_march"},
                    [timer = frame.timer, this, mode, params = &frame.params](VkCommandBuffer cmd) {
