@@ -303,6 +303,27 @@ TEST(CloudModel, GroundLightSharesTheCloudOverheadWithTheCloudsAround) {
   EXPECT_EQ(g::cloud_ground_light_shares(t_d, 0.76f, glm::vec3(0.0f)), glm::vec2(t_d, 0.0f));
 }
 
+// The ground's light under clouds relative to the clear ground's (cloud_ground_light_ratio), as
+// the clouds' bases take it: 1 under a clear sky; under a closed deck (no sun through) the sky
+// through the deck and half the deck's own light (the other half is the deck overhead, whose
+// light the sun's share holds); between, more light than the sun's share alone gives.
+TEST(CloudModel, GroundLightUnderCloudsKeepsTheSkysAndTheCloudsLight) {
+  const glm::vec3 sun(0.27f, 0.28f, 0.26f), sky(0.03f, 0.04f, 0.06f);
+  const glm::vec3 clear = g::cloud_ground_light_ratio(1.0f, 1.0f, glm::vec3(0.0f), sun, sky);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(clear[c], 1.0f, 1e-6f);
+  const glm::vec3 down(0.05f);
+  const glm::vec3 deck = g::cloud_ground_light_ratio(0.0f, 0.1f, down, sun, sky);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(deck[c], (0.1f * sky[c] + 0.5f * down[c]) / (sun[c] + sky[c]), 1e-6f);
+  // A broken field: the sun's share 0.6, the sky's 0.7, and the clouds' light added.
+  const glm::vec3 broken = g::cloud_ground_light_ratio(0.6f, 0.7f, down, sun, sky);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GT(broken[c], 0.6f);
+    EXPECT_NEAR(broken[c], (0.6f * sun[c] + 0.7f * sky[c] + 0.8f * down[c]) / (sun[c] + sky[c]),
+                1e-6f);
+  }
+}
+
 // The two-stream fluxes along a sun chord (cloud_two_stream_fluxes) against the two-stream
 // equations integrated numerically: dF_on/dtau = -gamma1 F_on + gamma2 F_back,
 // dF_back/dtau = gamma1 F_back - gamma2 F_on, with F_on(0) = 1 and F_back(T) = 0, by RK4 and
