@@ -268,7 +268,7 @@ TEST_F(TemporalTest, DiffusionLightFramesStayNearTheirStills) {
 // the clear air's gather a frame): after an edit of the clouds, once the light volume and then
 // the field are rebuilt (48 frames), a frame is the frame of an animation that began with the
 // edited scene's still (whose field was built at once); before, it lags by the edit's change.
-// Measured 0.0002 and 0.31 since the clouds' light on the ground is measured again when a field
+// Measured 0.0002 and 0.29 since the clouds' light on the ground is measured again when a field
 // is completed (0.0112 before: the ground's light read by the bases was the old field's).
 TEST_F(TemporalTest, AnAnimatedDiffusionBuildReachesTheStillsField) {
   Scene before = diffusion_view(48, 30);

@@ -216,12 +216,6 @@ void main() {
     vec3 air = max(sky - ground_sky, vec3(0.0f));
     background -= air * shaft.rgb;
     haze_kept = 1.0f - shaft.a;
-  } else if (REFERENCE == 0 && length(frame.camera_pos_m.xyz) < frame.radii_m.z) {
-    // Without the shafts, from under the clouds: the air in front of them lies in their
-    // shadows as far as they cover the ground around (ground_light.comp's mean transmittance
-    // down), its sunlit haze dimmed by that share. An overcast's horizon was otherwise a strip
-    // as bright as a clear day's haze, 1.3-3 times the path tracer's there.
-    haze_kept = texelFetch(ground_light, ivec2(0), 0).r;
   }
   // The terrain (terrain.comp) in place of the sky and the ground behind it, seen through the
   // air in front (the aerial perspective at its distance, its sunlight dimmed by the shafts'
