@@ -144,6 +144,8 @@ void main() {
   vec3 key_light = max(frame.sun_illuminance.rgb, vec3(1e-20f));
   vec3 sun_ground = sun_light / key_light * max(dot(normalize(entry), frame.sun_dir.xyz), 0.0f) / PI;
   vec3 sky_ground = frame.ground_sky_light.rgb / key_light;
+  vec3 below = cloud_ground_light_ratio(max(below_share, 0.0f), ground_light_texel.r,
+                                        ground_light_texel.gba, sun_ground, sky_ground);
   float thickness = frame.radii_m.w - frame.radii_m.z;
   vec4 phases = octave_phases(mu);
   int light_model = LIGHTING < 0 ? int(frame.cloud_phase.w + 0.5f) : LIGHTING;
@@ -344,14 +346,16 @@ void main() {
       float h = saturate(layer_fraction(lit_pos));
       // With voxel clouds, where the ray first meets cloud: the shell's entry may lie far
       // from a voxel cloud, and the light volume's voxels there would draw facets on it.
-      if (below_share < 0.0f) below_share = below_light_share(lit_pos, length(lit_pos) - frame.radii_m.x);
+      if (below_share < 0.0f) {
+        below_share = below_light_share(lit_pos, length(lit_pos) - frame.radii_m.x);
+        below = cloud_ground_light_ratio(below_share, ground_light_texel.r, ground_light_texel.gba,
+                                         sun_ground, sky_ground);
+      }
       // What the cloud between the sample and the light lets through: the sunlight it has
       // scattered forward, no longer a beam but a diffuse flux, and the sky's light through
       // the same cloud; from below, the light of the ground around, itself under the
       // clouds' shadow, less the higher the sample is in the layer.
       float diffuse = sunlit.y, t_d = sunlit.z;
-      vec3 below = cloud_ground_light_ratio(below_share, ground_light_texel.r, ground_light_texel.gba,
-                                            sun_ground, sky_ground);
       vec3 luminance = albedo * (sun_light * (energy + diffuse) + ambient_above * t_d +
                                  ambient_below * below * (1.0f - h));
       float step_t = exp(-lit_sigma_t * lit_step_m);
