@@ -39,6 +39,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "cirrus_inc.glsl"
 #include "air_inc.glsl"
 #include "terrain_inc.glsl"
+#include "frame_atmosphere_inc.glsl"
 
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
 const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance
@@ -143,7 +144,7 @@ void main() {
   vec4 ground_light_texel = texelFetch(ground_light, ivec2(0), 0);
   vec3 key_light = max(frame.sun_illuminance.rgb, vec3(1e-20f));
   vec3 sun_ground = sun_light / key_light * max(dot(normalize(entry), frame.sun_dir.xyz), 0.0f) / PI;
-  vec3 sky_ground = frame.ground_sky_light.rgb / key_light;
+  vec3 sky_ground = frame_ground_sky();
   vec3 below = cloud_ground_light_ratio(max(below_share, 0.0f), ground_light_texel.r,
                                         ground_light_texel.gba, sun_ground, sky_ground);
   float thickness = frame.radii_m.w - frame.radii_m.z;
