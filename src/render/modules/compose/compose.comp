@@ -87,6 +87,16 @@ vec4 air_in_front(vec2 uv, float distance_m) {
                     0.0f);
 }
 
+// The air's light along the view between 0 and end_m (m) where it lies under the clouds' base
+// (per unit of the key light, as air_in_front's): the aerial perspective counts the clear sky's
+// light there, where the clouds let only part of it through (the share `air_below_kept`).
+vec3 air_below_base(vec2 uv, vec3 eye, vec3 dir, float end_m) {
+  vec2 base = ray_sphere(eye, dir, frame.radii_m.z);
+  float s0 = max(base.x, 0.0f), s1 = min(base.y, end_m);
+  if (s1 <= s0) return vec3(0.0f);
+  return max(air_in_front(uv, s1).rgb - air_in_front(uv, s0).rgb, vec3(0.0f));
+}
+
 // What the translucent layers are blended over (layers_over): the light in front of the sky so
 // far (premultiplied), its opacity and distance, and what blending a layer needs.
 #define NEPHELE_LAYER_BLEND
@@ -203,6 +213,21 @@ void main() {
     discs = mix(discs, frame.conditions_disk_fog.rgb,
                 fog_ramp(elevation_deg, frame.conditions_fog_deg.z, frame.conditions_fog_deg.w));
   vec3 background = sky + ground_sun.rgb * shares.x + discs;
+  // Under the clouds' base the air is lit as the ground around is (cloud_ground_light_ratio,
+  // the sun's share taken as the clouds' mean transmittance): the aerial perspective's clear
+  // light is kept by that share there, in front of the sky, the ground and the clouds alike.
+  // The volumetric shafts shadow the air's sunlight themselves.
+  vec3 air_kept = vec3(1.0f);
+  if (!(WITH_SHAFTS && int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC) && REFERENCE == 0 &&
+      conditions != 1) {
+    vec4 texel = texelFetch(ground_light, ivec2(0), 0);
+    vec3 sun_ground = frame.sun_at_clouds.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f)) *
+                      max(dot(sky_frame.up, sun), 0.0f) / PI;
+    air_kept = min(cloud_ground_light_ratio(texel.r, texel.r, texel.gba, sun_ground,
+                                            frame_ground_sky()),
+                   vec3(1.0f));
+    background -= (1.0f - air_kept) * air_below_base(uv, frame.camera_pos_m.xyz, dir, ground_m > 0.0f ? ground_m : 1e9f);
+  }
   // Volumetric light shafts (light_shafts.comp, a quarter of the resolution): the air's light
   // dimmed by the share of its sunlight the clouds' shadows take, along the whole ray behind
   // the clouds (the sky seen through them; the ground's sky-lit part keeps its own shadowing)
@@ -225,7 +250,8 @@ void main() {
   for (int i = 0; i < (terrain_m > 0.0f ? 1 : 0); ++i) {  // a loop: see the cirrus' below
     vec4 air = air_in_front(uv, terrain_m);
     vec3 lit = layer_texel(LAYER_SURFACES, pixel).rgb;
-    background = lit * air.a + air.rgb * (1.0f - shaft.rgb);
+    background = lit * air.a + air.rgb * (1.0f - shaft.rgb) -
+                 (1.0f - air_kept) * air_below_base(uv, frame.camera_pos_m.xyz, dir, terrain_m);
     if (cloud_b.z * 1000.0f > terrain_m) {
       cloud = vec4(0.0f, 0.0f, 0.0f, 1.0f);
       haze = 0.0f;
@@ -234,7 +260,12 @@ void main() {
   if (conditions == 1) haze = 0.0f;  // the keyframes' fog stands for the aerial perspective
   vec3 illuminance = frame.sun_illuminance.rgb;
   // The air in front of a cloud scatters as the sky does along this direction.
-  vec3 cloud_light = haze_color * haze * haze_kept * illuminance + cloud.rgb;
+  vec3 haze_below = air_below_base(uv, frame.camera_pos_m.xyz, dir, cloud_b.z * 1000.0f) /
+                    max(ap.rgb, vec3(1e-20f));
+  vec3 cloud_light =
+      haze_color * haze * haze_kept * (1.0f - (1.0f - air_kept) * min(haze_below, vec3(1.0f))) *
+          illuminance +
+      cloud.rgb;
   // The surface along the view: the terrain or the host's scene, else the ground; 0 for none.
   float surface_m = terrain_m > 0.0f
                         ? terrain_m
