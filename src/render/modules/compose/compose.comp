@@ -87,14 +87,28 @@ vec4 air_in_front(vec2 uv, float distance_m) {
                     0.0f);
 }
 
-// The air's light along the view between 0 and end_m (m) where it lies under the clouds' base
-// (per unit of the key light, as air_in_front's): the aerial perspective counts the clear sky's
-// light there, where the clouds let only part of it through (the share `air_below_kept`).
-vec3 air_below_base(vec2 uv, vec3 eye, vec3 dir, float end_m) {
+// The part of the view under the clouds' base, [x, y] (m; y <= x where it has none), and the
+// aerial perspective's in-scattering at its ends (per unit of the key light, as
+// air_in_front's). The aerial perspective counts the clear sky's light there, where the clouds
+// let only part of it through.
+struct AirBelowBase {
+  vec2 span_m;
+  vec3 near, far;
+};
+
+AirBelowBase air_below_base(vec2 uv, vec3 eye, vec3 dir, float ground_m) {
   vec2 base = ray_sphere(eye, dir, frame.radii_m.z);
-  float s0 = max(base.x, 0.0f), s1 = min(base.y, end_m);
-  if (s1 <= s0) return vec3(0.0f);
-  return max(air_in_front(uv, s1).rgb - air_in_front(uv, s0).rgb, vec3(0.0f));
+  AirBelowBase a;
+  a.span_m = vec2(max(base.x, 0.0f), ground_m > 0.0f ? min(base.y, ground_m) : base.y);
+  a.near = a.span_m.x > 0.0f ? air_in_front(uv, a.span_m.x).rgb : vec3(0.0f);
+  a.far = a.span_m.y > a.span_m.x ? air_in_front(uv, a.span_m.y).rgb : a.near;
+  return a;
+}
+
+// Its in-scattering in front of distance_m, given the aerial perspective's there (`at`).
+vec3 air_below_base_before(AirBelowBase a, float distance_m, vec3 at) {
+  vec3 end = distance_m >= a.span_m.y ? a.far : distance_m > a.span_m.x ? at : a.near;
+  return max(end - a.near, vec3(0.0f));
 }
 
 // What the translucent layers are blended over (layers_over): the light in front of the sky so
@@ -218,6 +232,7 @@ void main() {
   // light is kept by that share there, in front of the sky, the ground and the clouds alike.
   // The volumetric shafts shadow the air's sunlight themselves.
   vec3 air_kept = vec3(1.0f);
+  AirBelowBase below_base = AirBelowBase(vec2(0.0f), vec3(0.0f), vec3(0.0f));
   if (!(WITH_SHAFTS && int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC) && REFERENCE == 0 &&
       conditions != 1) {
     vec4 texel = texelFetch(ground_light, ivec2(0), 0);
@@ -226,7 +241,8 @@ void main() {
     air_kept = min(cloud_ground_light_ratio(texel.r, texel.r, texel.gba, sun_ground,
                                             frame_ground_sky()),
                    vec3(1.0f));
-    background -= (1.0f - air_kept) * air_below_base(uv, frame.camera_pos_m.xyz, dir, ground_m > 0.0f ? ground_m : 1e9f);
+    below_base = air_below_base(uv, frame.camera_pos_m.xyz, dir, ground_m);
+    background -= (1.0f - air_kept) * max(below_base.far - below_base.near, vec3(0.0f));
   }
   // Volumetric light shafts (light_shafts.comp, a quarter of the resolution): the air's light
   // dimmed by the share of its sunlight the clouds' shadows take, along the whole ray behind
@@ -251,7 +267,7 @@ void main() {
     vec4 air = air_in_front(uv, terrain_m);
     vec3 lit = layer_texel(LAYER_SURFACES, pixel).rgb;
     background = lit * air.a + air.rgb * (1.0f - shaft.rgb) -
-                 (1.0f - air_kept) * air_below_base(uv, frame.camera_pos_m.xyz, dir, terrain_m);
+                 (1.0f - air_kept) * air_below_base_before(below_base, terrain_m, air.rgb);
     if (cloud_b.z * 1000.0f > terrain_m) {
       cloud = vec4(0.0f, 0.0f, 0.0f, 1.0f);
       haze = 0.0f;
@@ -260,8 +276,8 @@ void main() {
   if (conditions == 1) haze = 0.0f;  // the keyframes' fog stands for the aerial perspective
   vec3 illuminance = frame.sun_illuminance.rgb;
   // The air in front of a cloud scatters as the sky does along this direction.
-  vec3 haze_below = air_below_base(uv, frame.camera_pos_m.xyz, dir, cloud_b.z * 1000.0f) /
-                    max(ap.rgb, vec3(1e-20f));
+  vec3 haze_below =
+      air_below_base_before(below_base, cloud_b.z * 1000.0f, ap.rgb) / max(ap.rgb, vec3(1e-20f));
   vec3 cloud_light =
       haze_color * haze * haze_kept * (1.0f - (1.0f - air_kept) * min(haze_below, vec3(1.0f))) *
           illuminance +
