@@ -96,12 +96,20 @@ struct AirBelowBase {
   vec3 near, far;
 };
 
-AirBelowBase air_below_base(vec2 uv, vec3 eye, vec3 dir, float ground_m) {
+// table_air: the sky-view table's air along the whole view (in front of the ground where it
+// meets the ground), the span's far end where the view ends under the base, and nearly so
+// where it comes out of the base's sphere again from above (grazing it beyond the horizon:
+// the air further on is far). One lookup (lavapipe runs both sides of a branch): the far end
+// from under the base, the near end from above it.
+AirBelowBase air_below_base(vec2 uv, vec3 eye, vec3 dir, float ground_m, vec3 table_air) {
   vec2 base = ray_sphere(eye, dir, frame.radii_m.z);
+  bool above = length(eye) > frame.radii_m.z;
   AirBelowBase a;
   a.span_m = vec2(max(base.x, 0.0f), ground_m > 0.0f ? min(base.y, ground_m) : base.y);
-  a.near = a.span_m.x > 0.0f ? air_in_front(uv, a.span_m.x).rgb : vec3(0.0f);
-  a.far = a.span_m.y > a.span_m.x ? air_in_front(uv, a.span_m.y).rgb : a.near;
+  vec3 looked_up = air_in_front(uv, max(above ? a.span_m.x : a.span_m.y, 0.0f)).rgb;
+  a.near = above ? looked_up : vec3(0.0f);
+  a.far = ground_m > 0.0f || above ? table_air : looked_up;
+  if (a.span_m.y <= a.span_m.x) a.far = a.near;
   return a;
 }
 
@@ -175,6 +183,7 @@ void main() {
                      ? vec4(0.0f)
                      : textureLod(sky_view_lut, sky_view_texcoord(uv, rows, 1.0f), 0.0f);
   }
+  vec3 sky_table = sky;  // the air's light and the ground's sky-lit part, on the ground
   int conditions = WITH_CONDITIONS ? int(frame.conditions_sky.w) : 0;
   float albedo = frame.sky_model.y;
   float elevation_deg = degrees(asin(clamp(dot(dir, sky_frame.up), -1.0f, 1.0f)));
@@ -241,7 +250,8 @@ void main() {
     air_kept = min(cloud_ground_light_ratio(texel.r, texel.r, texel.gba, sun_ground,
                                             frame_ground_sky()),
                    vec3(1.0f));
-    below_base = air_below_base(uv, frame.camera_pos_m.xyz, dir, ground_m);
+    below_base = air_below_base(uv, frame.camera_pos_m.xyz, dir, ground_m,
+                                max(sky_table - ground_sun.a * albedo * frame_ground_sky(), 0.0f));
     background -= (1.0f - air_kept) * max(below_base.far - below_base.near, vec3(0.0f));
   }
   // Volumetric light shafts (light_shafts.comp, a quarter of the resolution): the air's light
