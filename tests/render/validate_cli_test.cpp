@@ -271,17 +271,18 @@ TEST_F(ValidateCliTest, TheClearSkyMeetsItsTargetsAgainstTheShippedReferences) {
 
 // The views whose shipped references are converged (0.1-0.2% noise a block) hold the errors
 // measured at stop 68 with about a point of margin: the noon cumulus within the suite's 5%
-// (3.8%), the inside of a cloud within 10% (8.9%; its target is 5%). A bound is tightened when
-// the model improves, never loosened. The inside view is also what the diffusion gather's
-// corner rule holds: a gather whose diagonal rays slip between the cloud cells beside a corner
-// (before stop 62) lets the light out of the clear pockets of an eroded cloud, and the view
-// read 17.7% (-17.5%) at stop 64.
+// (3.8%), the inside of a cloud within 10% (8.9%; its target is 5%), and since stop 69 the
+// overcast within 27% (25.6%; 35.4% while the air under its base was lit as on a clear day).
+// A bound is tightened when the model improves, never loosened. The inside view is also what the
+// diffusion gather's corner rule holds: a gather whose diagonal rays slip between the cloud cells
+// beside a corner (before stop 62) lets the light out of the clear pockets of an eroded cloud, and
+// the view read 17.7% (-17.5%) at stop 64.
 TEST_F(ValidateCliTest, TheConvergedViewsHoldTheirMeasuredErrors) {
   const fs::path shipped = fs::path(NEPHELE_SOURCE_DIR) / "data" / "validation" / "views";
   const struct {
     const char* view;
     double bound;
-  } views[] = {{"noon-cumulus", 0.05}, {"inside-cloud", 0.10}};
+  } views[] = {{"noon-cumulus", 0.05}, {"inside-cloud", 0.10}, {"overcast-below", 0.27}};
   fs::create_directories(path("refs"));
   std::string names;
   for (const auto& [view, bound] : views) {
