@@ -29,4 +29,11 @@ vec3 frame_ground_sky() {
   return frame.ground_sky_light.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f));
 }
 
+// The sun's light (as it reaches the clouds) on a horizontal ground of normal `up`, per unit
+// key-light illuminance (the radiance of a white Lambertian ground lit by the sun alone).
+vec3 frame_ground_sun(vec3 up) {
+  return frame.sun_at_clouds.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f)) *
+         max(dot(up, frame.sun_dir.xyz), 0.0f) / PI;
+}
+
 #endif

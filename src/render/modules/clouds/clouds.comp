@@ -142,8 +142,7 @@ void main() {
   // The ground's light under the clouds around (ground_light.comp), per unit of the key light:
   // the clear ground's is the sun's and the sky's (cloud_ground_light_ratio).
   vec4 ground_light_texel = texelFetch(ground_light, ivec2(0), 0);
-  vec3 key_light = max(frame.sun_illuminance.rgb, vec3(1e-20f));
-  vec3 sun_ground = sun_light / key_light * max(dot(normalize(entry), frame.sun_dir.xyz), 0.0f) / PI;
+  vec3 sun_ground = frame_ground_sun(normalize(entry));
   vec3 sky_ground = frame_ground_sky();
   vec3 below = cloud_ground_light_ratio(max(below_share, 0.0f), ground_light_texel.r,
                                         ground_light_texel.gba, sun_ground, sky_ground);

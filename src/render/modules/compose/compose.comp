@@ -209,7 +209,10 @@ void main() {
   // (cloud_ground_sky_share, ground_light.comp): an overcast's ground is a dim grey, not lit by
   // the clear blue sky, and a broken field's shadows keep the gaps' blue light. Off the
   // ground ground_sun.a is 0.
-  float sky_share = cloud_ground_sky_share(ground_shadow, texelFetch(ground_light, ivec2(0), 0).r);
+  // The clouds' light on the ground around (ground_light.comp): r their mean transmittance
+  // down, gba the light they scatter down.
+  vec4 ground_light_texel = texelFetch(ground_light, ivec2(0), 0);
+  float sky_share = cloud_ground_sky_share(ground_shadow, ground_light_texel.r);
   // A medium above the ground (a fog) dims the sun's and the sky's light on it as well.
   // The ground along the view, 0 for none.
   float ground_m = max(ray_sphere(frame.camera_pos_m.xyz, dir, frame.radii_m.x).x, 0.0f);
@@ -220,7 +223,7 @@ void main() {
             0.0f);
   // And the sunlight the clouds around scatter down onto it (ground_light.comp), shared with the
   // diffuse light of the cloud towards the sun (cloud_ground_light_shares).
-  vec3 clouds_down = texelFetch(ground_light, ivec2(0), 0).gba;
+  vec3 clouds_down = ground_light_texel.gba;
   vec2 shares = cloud_ground_light_shares(
       ground_shadow, frame.cloud_droplets.w,
       clouds_down);
@@ -244,10 +247,8 @@ void main() {
   AirBelowBase below_base = AirBelowBase(vec2(0.0f), vec3(0.0f), vec3(0.0f));
   if (!(WITH_SHAFTS && int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC) && REFERENCE == 0 &&
       conditions != 1) {
-    vec4 texel = texelFetch(ground_light, ivec2(0), 0);
-    vec3 sun_ground = frame.sun_at_clouds.rgb / max(frame.sun_illuminance.rgb, vec3(1e-20f)) *
-                      max(dot(sky_frame.up, sun), 0.0f) / PI;
-    air_kept = min(cloud_ground_light_ratio(texel.r, texel.r, texel.gba, sun_ground,
+    air_kept = min(cloud_ground_light_ratio(ground_light_texel.r, ground_light_texel.r,
+                                            clouds_down, frame_ground_sun(sky_frame.up),
                                             frame_ground_sky()),
                    vec3(1.0f));
     below_base = air_below_base(uv, frame.camera_pos_m.xyz, dir, ground_m,
@@ -307,7 +308,7 @@ void main() {
   // transmittance to the ground around, and where the view meets the ground, at least the
   // clouds' transmittance to the sun there, so that a fog sea shows the clouds' shadows and is
   // sunlit in their gaps (the ground's shadow stands for the fog's above it).
-  float clouds_diffuse = texelFetch(ground_light, ivec2(0), 0).r;
+  float clouds_diffuse = ground_light_texel.r;
   if (ground_m > 0.0f) clouds_diffuse = max(clouds_diffuse, ground_shadow);
   // The media (fog) in front of the clouds: the clouds' light through them, and their own light
   // as far as the clouds cover (premultiplied).
