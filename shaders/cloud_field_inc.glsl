@@ -123,6 +123,7 @@ vec2 cloud_field(vec3 pos, out VoxelSample voxels) {
   voxels = voxel_field(pos);
   float fade = voxel_noise_fade(voxels.region_m);
   vec2 noise = vec2(0.0f);
+  noise_shape_margin = -1.0f;
   if (fade > 0.0f) noise = noise_density_pair(pos) * fade;
   return noise + voxels.density;
 }

@@ -39,6 +39,14 @@ vec4 flowed_base_noise(vec2 ground_xy, float altitude_m, vec2 flow_m, vec2 phase
                                               frame.cloud_noise.x, 0.0f);
 }
 
+// How far the last noise_density_pair's point lies inside the base shape (or the anvil), in
+// units of the shape noise: the noise less the threshold the coverage sets, negative outside
+// (-1 where no cloud can be: no coverage, outside the layer). The clouds' coarse steps shorten
+// where it is a little under 0 (clouds.comp), so that they do not step over a thin part of the
+// shape: a tower's rounded top seen at a grazing angle was hit by some pixels' jittered steps
+// and not by their neighbours', dithering a still's tops.
+float noise_shape_margin = -1.0f;
+
 // The noise clouds' density field (dimensionless, listing B.1); sigma_t = field * cloud_shape.z
 // (with the droplets' optics the field carries its genus' share of cloud_shape.z).
 // Returns (x) the base shape alone, without detail erosion (what coarse steps test), and
@@ -80,6 +88,7 @@ vec2 noise_density_pair(vec3 pos) {
                            frame.cloud_noise.y * float(textureSize(detail_noise, 0).x);
   float detail_lod = MARCH_MODE == 1 ? 0.0f : log2(max(footprint_texels, 1e-6f));
   vec3 d = vec3(textureLod(detail_noise, detail_pos * frame.cloud_noise.y, detail_lod));
+  noise_shape_margin = -1.0f;
   if (h <= 0.0f || h >= 1.0f) return vec2(0.0f);
   // Cloud type (B, around the layer's type) and precipitation (the layer's, where the map has
   // storm cells: G), which turns the cells' cores into cumulonimbus and spreads an anvil over
@@ -119,7 +128,10 @@ vec2 noise_density_pair(vec3 pos) {
   float worley = base.g * 0.625f + base.b * 0.25f + base.a * 0.125f;
   float noise = saturate(remap(base.r, worley - 1.0f, 1.0f, 0.0f, 1.0f));
   float detail = d.r * 0.625f + d.g * 0.25f + d.b * 0.125f;
-  float shape = cloud_apply_coverage(noise * cloud_type_gradient(h, type), coverage);
+  float shape_noise = noise * cloud_type_gradient(h, type);
+  float shape = cloud_apply_coverage(shape_noise, coverage);
+  noise_shape_margin = max(coverage > 0.0f ? shape_noise - (1.0f - coverage) : -1.0f,
+                           anvil > 0.0f ? noise - (1.0f - anvil) : -1.0f);
   float eroded = cloud_erode(shape, detail, h, frame.cloud_noise.w);
   // The anvil, smooth (not eroded): ice, spread thin by the wind.
   float anvil_shape = cloud_apply_coverage(noise, anvil) * anvil_density;

@@ -183,6 +183,34 @@ TEST_F(RenderTest, Seed7_ZeroViewVectorIsRejected) {
   EXPECT_THROW(render(s), nephele::InputError);
 }
 
+// Pixels whose clouds (transmittance under a half) differ from all four neighbours': a dither
+// of single pixels, in the share of the pixels that see cloud.
+double isolated_cloud_pixels(const Frame& f) {
+  const int w = f.clouds.width, h = f.clouds.height;
+  const auto cloud = [&](int x, int y) { return f.clouds.pixels[size_t(y) * w + x].a < 0.5f; };
+  int isolated = 0, clouds = 0;
+  for (int y = 1; y + 1 < h; ++y)
+    for (int x = 1; x + 1 < w; ++x) {
+      const bool c = cloud(x, y);
+      clouds += c;
+      isolated += c != cloud(x - 1, y) && c != cloud(x + 1, y) && c != cloud(x, y - 1) &&
+                  c != cloud(x, y + 1);
+    }
+  return clouds > 0 ? double(isolated) / clouds : 0.0;
+}
+
+// The storm's rounded tops, seen from 30 km at a grazing angle: coarse steps over empty space
+// stepped over their thin parts, so that in a still (one jittered march a pixel) some pixels hit
+// a top and their neighbours did not, a dither along every top (the striped tops of issue 42).
+// The coarse steps shorten near the base shape (noise_shape_margin): at 640 x 400, 0.03% of the
+// storm's cloud pixels are isolated, against 0.30% before (and 0.03% marching every fine step).
+TEST_F(RenderTest, AStillsStormTopsAreNotDithered) {
+  Scene s = nephele::load_preset("cumulonimbus-storm");
+  s.output.width = 640;
+  s.output.height = 400;
+  EXPECT_LT(isolated_cloud_pixels(render(s)), 0.001);
+}
+
 TEST_F(RenderTest, CameraCrossesTheLayerBoundariesSmoothly) {
   Scene s = small_scene();
   s.clouds.coverage = 0.7f;

@@ -43,6 +43,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
 const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance
+// Near the base shape a coarse step is at most the distance to it were the shape noise to rise
+// by 1 over this many metres (noise_shape_margin, noise_density_inc.glsl).
+const float SHAPE_NOISE_M = 3000.0f;
 const float TAU_STEP_96 = 0.5f;     // optical depth per step in dense cloud at 96 primary steps
 
 // Cloud shadow on the ground where this ray hits it (cloud_shadow_at), 1 where it misses the
@@ -227,7 +230,7 @@ void main() {
     // box returns to sphere tracing at once, leaving the box to phase 1.
     bool three_phase = WITH_VOXELS && frame.voxel_info.x > 0 && frame.voxel_info.y == VOXEL_MARCH_THREE_PHASE;
     bool sdf_shadow = WITH_VOXELS && frame.voxel_info.x > 0 && frame.voxel_info.z == VOXEL_SHADOW_SDF_CONE;
-    float traced_step = 0.0f;  // the last view-ray step, when it was sphere traced (phase 2)
+    float skipped_m = 1e30f;   // the last coarse (or sphere-traced, phase 2) view-ray step
     int slow = 0;              // phase 2 steps in a row at the shortest step (voxel_min_step_m)
     float lit_visibility = 1.0f;  // the SDF cone's soft shadow of the sample being lit
     for (int i = 0; i < budget && t < segment.y && transmittance.x >= 0.01f; ++i) {
@@ -256,25 +259,26 @@ void main() {
         bool tracing = three_phase && in_region;
         if (!fine) {
           if (field.x <= 0.0f) {
-            traced_step = 0.0f;
+            // Shorter near the base shape, at least a fine step (SHAPE_NOISE_M).
+            skipped_m = clamp(-noise_shape_margin * SHAPE_NOISE_M, fine_step, coarse_step);
             if (tracing) {  // phase 2
               float min_step = voxel_min_step_m(fine_step, coarse_step, slow);
               slow = vox.sdf_m - vox.voxel_m < min_step ? slow + 1 : 0;
-              traced_step = min(voxel_sphere_step(vox.sdf_m, vox.voxel_m, min_step),
-                                voxel_region_exit_m(pos, dir) + 0.5f * fine_step);
+              skipped_m = min(voxel_sphere_step(vox.sdf_m, vox.voxel_m, min_step),
+                              voxel_region_exit_m(pos, dir) + 0.5f * fine_step);
             }
-            t += tracing ? traced_step : coarse_step;
+            t += skipped_m;
             continue;
           }
           fine = true;
           misses = 0;
           fine_until = t;
-          // Step back over what the coarse (or sphere-traced) step skipped, not into what fine
-          // steps have sampled: where the base shape fills space that erosion has emptied (a
-          // deck's thin base seen at a grazing angle) the march would otherwise crawl one fine
-          // step per return.
-          t = max(t - (traced_step > 0.0f ? traced_step : coarse_step), sampled_until);
-          traced_step = 0.0f;
+          // Step back over what the last coarse (or sphere-traced) step skipped, not into what
+          // fine steps have sampled: where the base shape fills space that erosion has emptied
+          // (a deck's thin base seen at a grazing angle) the march would otherwise crawl one
+          // fine step per return.
+          t = max(t - skipped_m, sampled_until);
+          skipped_m = coarse_step;
           continue;
         }
         sampled_until = t;
