@@ -44,7 +44,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 const float COARSE_STEPS = 6.0f;    // a coarse step is this many fine steps
 const float FINE_PER_M = 0.0025f;   // fine steps grow to this fraction of the distance
 // Near the base shape a coarse step is at most the distance to it were the shape noise to rise
-// by 1 over this many metres (noise_shape_margin, noise_density_inc.glsl).
+// by 1 over this many metres (noise_shape_margin, noise_density_inc.glsl), rounded down to 1,
+// 2 or 4 fine steps: a few lengths, so that a ray and one a rounding error away (a tile's)
+// take the same steps unless the margin lies on a boundary between two of them.
 const float SHAPE_NOISE_M = 3000.0f;
 const float TAU_STEP_96 = 0.5f;     // optical depth per step in dense cloud at 96 primary steps
 
@@ -260,7 +262,9 @@ void main() {
         if (!fine) {
           if (field.x <= 0.0f) {
             // Shorter near the base shape, at least a fine step (SHAPE_NOISE_M).
-            skipped_m = clamp(-noise_shape_margin * SHAPE_NOISE_M, fine_step, coarse_step);
+            float fine_steps = -noise_shape_margin * SHAPE_NOISE_M / fine_step;
+            skipped_m = fine_steps >= COARSE_STEPS ? coarse_step
+                                                   : fine_step * exp2(floor(log2(clamp(fine_steps, 1.0f, 4.0f))));
             if (tracing) {  // phase 2
               float min_step = voxel_min_step_m(fine_step, coarse_step, slow);
               slow = vox.sdf_m - vox.voxel_m < min_step ? slow + 1 : 0;
