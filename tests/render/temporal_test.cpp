@@ -392,6 +392,27 @@ TEST_F(TemporalTest, ResizingKeepsTheLightVolume) {
   EXPECT_TRUE(rebuilds(shared_renderer().render_next(s)));
 }
 
+// An edit taken back: an animation frame that changes the clouds starts the light volume's
+// build for them over kLightVolumeEditFrames frames; stills of the clouds as they were keep the
+// volume they read and drop that build. Before stop 72 they went on with it, a sixteenth of the
+// volume each, until the 15th made the edited clouds' volume the one read and the 16th rebuilt
+// its own at once (found when the tests first shared a process).
+TEST_F(TemporalTest, StillsAfterAnEditTakenBackKeepTheirLighting) {
+  ScopedEnv no_cache("NEPHELE_CACHE_DIR", "");
+  Scene s = view();
+  s.output.width = 32;
+  s.output.height = 20;
+  const Frame first = render(s);
+  Scene edited = s;
+  edited.clouds.coverage += 0.1f;
+  ASSERT_TRUE(builds_lighting(shared_renderer().render_next(edited)));
+  for (int i = 0; i <= nephele::kLightVolumeEditFrames; ++i) {
+    const Frame still = render(s);
+    EXPECT_FALSE(builds_lighting(still)) << "still " << i;
+    ASSERT_LT(luminance_error(still.color, first.color), 1e-5) << "still " << i;
+  }
+}
+
 // A still that changes only what the clouds' lighting does not read (the cirrus, the ground
 // fog, the light shafts) keeps the light volume and the diffusion light, and is the image a
 // fresh renderer makes; a change of the clouds rebuilds them.

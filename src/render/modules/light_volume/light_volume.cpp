@@ -121,6 +121,9 @@ void LightVolumeModule::prepare(const Scene& scene, const std::string& clouds_ke
   // light's grids, 4.5 km across, centred on the last).
   const bool read_stale =
       !read_key_ || (still ? !same(*read_key_, now) : stale(*read_key_, now, half_m));
+  // A build in progress that this frame does not need is dropped: a still's volume is the one
+  // it reads, and an animation's build for other clouds is an edit taken back.
+  if (build_key_ && !read_stale && (still || build_key_->clouds != now.clouds)) build_key_.reset();
   bool loaded = false;
   if (read_stale && (still || !read_key_)) {
     // At once: into the volume not read, which becomes the one read in this frame. A still's
