@@ -40,13 +40,18 @@ set(chunk "")        # gtest filter of the chunk being filled
 set(chunk_cost 0)
 set(chunk_index 0)
 
+# A ctest test NAME that runs the tests FILTER selects, with further PROPERTIES.
+macro(emit_test name filter properties)
+  string(APPEND script "add_test([==[${name}]==] [==[${EXE}]==] [==[--gtest_filter=${filter}]==])\n"
+         "set_tests_properties([==[${name}]==] PROPERTIES TIMEOUT ${TIMEOUT_S} ${properties} "
+         "ENVIRONMENT [==[${ENV}]==])\n")
+endmacro()
+
 macro(add_chunk)
   if(NOT chunk STREQUAL "")
     math(EXPR chunk_index "${chunk_index} + 1")
     set(name "${suite}part${chunk_index}")
-    string(APPEND script "add_test([==[${name}]==] [==[${EXE}]==] [==[--gtest_filter=${chunk}]==])\n"
-           "set_tests_properties([==[${name}]==] PROPERTIES TIMEOUT ${TIMEOUT_S} "
-           "ENVIRONMENT [==[${ENV}]==])\n")
+    emit_test("${name}" "${chunk}" "")
     string(APPEND costs_out "${name} 1 ${chunk_cost}\n")
   endif()
   set(chunk "")
@@ -65,9 +70,7 @@ foreach(line IN LISTS lines)
       continue()
     endif()
     if(test MATCHES "${SLOW}")
-      string(APPEND script "add_test([==[${test}]==] [==[${EXE}]==] [==[--gtest_filter=${test}]==])\n"
-             "set_tests_properties([==[${test}]==] PROPERTIES TIMEOUT ${TIMEOUT_S} LABELS slow "
-             "ENVIRONMENT [==[${ENV}]==])\n")
+      emit_test("${test}" "${test}" "LABELS slow")
       continue()
     endif()
     string(MAKE_C_IDENTIFIER "${test}" key)
