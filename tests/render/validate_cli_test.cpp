@@ -271,8 +271,9 @@ TEST_F(ValidateCliTest, TheClearSkyMeetsItsTargetsAgainstTheShippedReferences) {
 
 // The views whose shipped references are converged (0.1-0.2% noise a block) hold the errors
 // measured at stop 68 with about a point of margin: the noon cumulus within the suite's 5%
-// (3.8%), the inside of a cloud within 10% (8.9%; its target is 5%), and since stop 69 the
-// overcast within 27% (25.6%; 35.4% while the air under its base was lit as on a clear day).
+// (3.8%), the inside of a cloud within 10% (8.9%; 9.7% since stop 73; its target is 5%), and
+// since stop 73 the overcast within 10% (9.1%; 25.6% while the diffusion light's cap on D held
+// the light in the deck's thin base, 35.4% while the air under it was lit as on a clear day).
 // A bound is tightened when the model improves, never loosened. The inside view is also what the
 // diffusion gather's corner rule holds: a gather whose diagonal rays slip between the cloud cells
 // beside a corner (before stop 62) lets the light out of the clear pockets of an eroded cloud, and
@@ -282,7 +283,7 @@ TEST_F(ValidateCliTest, TheConvergedViewsHoldTheirMeasuredErrors) {
   const struct {
     const char* view;
     double bound;
-  } views[] = {{"noon-cumulus", 0.05}, {"inside-cloud", 0.10}, {"overcast-below", 0.27}};
+  } views[] = {{"noon-cumulus", 0.05}, {"inside-cloud", 0.10}, {"overcast-below", 0.10}};
   fs::create_directories(path("refs"));
   std::string names;
   for (const auto& [view, bound] : views) {

@@ -36,6 +36,7 @@ CloudDiffusionModule::CloudDiffusionModule(const ModuleContext& context)
       inflow_kernel_(context.ctx, context.set, "diffusion_inflow.comp.spv", 1, {}),
       gather_kernel_(context.ctx, context.set, "diffusion_field.comp.spv", 1, {}),
       solve_(context.ctx, context.set, "diffusion_solve.comp.spv"),
+      column_kernel_(context.ctx, context.set, "diffusion_column.comp.spv"),
       boundary_kernel_(context.ctx, context.set, "diffusion_boundary.comp.spv") {
   const auto volume = [&](VkFormat format) {
     return gpu::Texture(context.ctx, gpu::DIFFUSION_XY, gpu::DIFFUSION_XY,
@@ -188,10 +189,13 @@ void CloudDiffusionModule::record(VkCommandBuffer cmd, gpu::PassTimer& timer) {
         cmd, fill_.get({with_voxels_ ? 1 : 0, with_flow_ ? 1 : 0}), timer, "diffusion_fill",
         gpu::DIFFUSION_XY, uint32_t(fill_rows_), 1, 8, 8, 1,
         gpu::DispatchConstants{glm::ivec4(fill_first_, fill_rows_, zero_phi_ ? 1 : 0, 0)});
-  // The medium complete: the cells the gathers cast rays from.
-  if (fill_rows_ > 0 && fill_first_ + fill_rows_ >= kRows)
+  // The medium complete: a deck's open base, then the cells the gathers cast rays from.
+  if (fill_rows_ > 0 && fill_first_ + fill_rows_ >= kRows) {
+    gpu::dispatch(cmd, column_kernel_, timer, "diffusion_column", gpu::DIFFUSION_XY,
+                  gpu::DIFFUSION_XY * gpu::DIFFUSION_CASCADES, 1, 8, 8, 1);
     gpu::dispatch(cmd, boundary_kernel_, timer, "diffusion_boundary", rows(), 1, 1, 64, 1, 1,
                   gpu::DispatchConstants{glm::ivec4(zero_phi_ ? 1 : 0, 0, 0, 0)});
+  }
   // The clear air's light gathered over rows [first, first + count) into the set not read.
   const auto exchange = [&](int first, int count) {
     gpu::dispatch(cmd, exchange_kernel_.get({exchange_read_}), timer, "diffusion_exchange",

@@ -2,8 +2,8 @@
 // solved on regular grids in cloud space around the camera (two cascades: 70 m cells to 4.5 km,
 // 280 m cells to 18 km), as the diffusion equation with similarity scaling and the sun's
 // reduced beam as its source, for `clouds.lighting = "diffusion"`. Its passes:
-// the medium of each cell (diffusion_fill.comp) and the cells of clear air next to cloud
-// (diffusion_boundary.comp), red-black sweeps of the solve
+// the medium of each cell (diffusion_fill.comp), a deck's open base (diffusion_column.comp) and
+// the cells of clear air next to cloud (diffusion_boundary.comp), red-black sweeps of the solve
 // (diffusion_solve.comp), between them the light clear air carries from cloud to cloud
 // (diffusion_exchange.comp, diffusion_inflow.comp), and the field the march reads
 // (diffusion_field.comp, cloud_diffusion_inc.glsl). Rebuilt with the light volume, whose optical
@@ -70,7 +70,7 @@ class CloudDiffusionModule : public RenderModule {
   gpu::KernelVariants fill_;  // with or without the voxel clouds, the flow map
   // Reading the gather's set 0 or set 1 (EXCHANGE_READ_SET).
   gpu::KernelVariants exchange_kernel_, inflow_kernel_, gather_kernel_;
-  gpu::Kernel solve_, boundary_kernel_;
+  gpu::Kernel solve_, column_kernel_, boundary_kernel_;
   gpu::Texture medium_, phi_;
   gpu::Texture inflow_;  // per cell of cloud, the light clear air brings in (diffusion_inflow.comp)
   // Per row, its cells the gather casts rays from (diffusion_boundary.comp).

@@ -99,6 +99,7 @@ void main() {
   // would pipe it through thin cloud to open sky at once (an eroded deck 3 times too dark
   // inside; capped at one side, 1.9 times too bright). Clear air is left out of the solve, its
   // faces open, and the light it brings back is gathered along rays (diffusion_exchange.comp).
+  // A deck's open base is freed of the cap once the medium is filled (diffusion_column.comp).
   float side_m = min(h.x, h.z);
   float sigma_tr = sigma_t * reduced;
   float d = sigma_tr * side_m < THIN_TAU ? 0.0f : min(1.0f / (3.0f * sigma_tr), THIN_CAP * side_m);
