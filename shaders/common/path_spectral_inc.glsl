@@ -41,7 +41,9 @@ PtTrack pt_track_begin(vec3 o, vec3 d, float t_max, uint stream, int hero) {
   k.t_max = t_max;
   k.d = d;
   k.i = 0;
-  k.walk = vec4(0.0f, 0.0f, pt_majorant_segment(o, d, 0.0f));
+  // An empty segment ending at 0: the first draw crosses it and takes the first segment, so
+  // that pt_walk's is the one copy of pt_majorant_segment that a path's iteration runs.
+  k.walk = vec4(0.0f);
   k.value = vec3(1.0f);
   k.t = t_max + 1.0f;
   k.stream = stream;
