@@ -297,7 +297,7 @@ struct PtPath {
   vec3 weight;        // each channel's albedos and phase ratios so far
   int hero;           // the channel deciding its events
   vec3 ratio;         // each channel's probability of the path's events / the hero's
-  int light;          // PT_LIGHTS: the light whose turn it is; PT_SHADOW: that light + 1
+  int light;          // the next light's turn (in PT_SHADOW, the one after the light tracked)
   vec3 radiance;      // gathered so far
   int started;        // samples this invocation's slot has begun
   vec3 pending;       // PT_SHADOW: the light's contribution before its transmittance
@@ -462,7 +462,7 @@ bool planet_light_up(PtPath p, int i) {
 // the lab's its one light (albedo and Henyey-Greenstein). One light an iteration, in one copy
 // of this code: lavapipe runs a branch for every lane of a SIMD batch when one lane takes it,
 // and the three calls an iteration there were before (stop 73) made every iteration pay for
-// three lights' phase functions and atmosphere (1.4-1.5 times the samples a second since).
+// three lights' phase functions and atmosphere (1.3 times the samples a second since).
 PtPath path_next_light(PtPath p) {
   int lights = PLANET == 1 ? 2 : 1;
   int i = p.light;
