@@ -464,13 +464,14 @@ bool planet_light_up(PtPath p, int i) {
 // and the three calls an iteration there were before (stop 73) made every iteration pay for
 // three lights' phase functions and atmosphere (1.3 times the samples a second since).
 PtPath path_next_light(PtPath p) {
-  int lights = PLANET == 1 ? 2 : 1;
-  int i = p.light;
-  if (PLANET == 1 && i == 0 && !planet_light_up(p, 0)) i = 1;
+  // Which lights light the collision (the lab's one light always; it has no second).
+  bool up0 = PLANET == 0 || planet_light_up(p, 0);
+  bool up1 = PLANET == 1 && planet_light_up(p, 1);
+  int i = p.light == 0 && !up0 ? 1 : p.light;
   p.stage = PT_SCATTER;
-  if (i >= lights || (PLANET == 1 && !planet_light_up(p, i))) return p;
+  if (i > 1 || !(i == 0 ? up0 : up1)) return p;
   p.light = i + 1;
-  bool another = PLANET == 1 && p.light < lights && planet_light_up(p, p.light);
+  bool another = i == 0 && up1;
   vec3 to_light;
   vec3 contribution;
   if (PLANET == 1) {
