@@ -72,8 +72,9 @@ layout(set = 0, binding = 35) uniform sampler2D reference_sky;
 // Curl noise (noise_curl.comp): RG a divergence-free 2D field, tiling, 128^2.
 layout(set = 0, binding = 36, rgba32f) uniform writeonly image2D curl_noise_out;
 layout(set = 0, binding = 37) uniform sampler2D curl_noise;
-// The ground's light under the clouds around the camera, one texel (ground_light.comp; read
-// by compose.comp and terrain.comp): r the share of the sky's light, gba the clouds' light.
+// The ground's light under the clouds around the camera (ground_light.comp; read by
+// compose.comp and terrain.comp), texel 0: r the share of the sky's light, gba the clouds'
+// light; texel 1, the layer seen from above: r the share of the ground seen, gba the clouds'.
 layout(set = 0, binding = 38, rgba32f) uniform writeonly image2D ground_light_out;
 layout(set = 0, binding = 39) uniform sampler2D ground_light;
 // The display image (tonemap.comp): exposed, tone-mapped, sRGB code values, 8 bits.

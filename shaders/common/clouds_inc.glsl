@@ -275,6 +275,16 @@ vec3 cloud_ground_light_ratio(float sun_t, float mean_t, vec3 clouds_down, vec3 
   return cloudy / max(sun_ground + sky_ground, vec3(1e-20f));
 }
 
+// The radiance the clouds' layer adds, seen from above, to the clear ground's (per unit of the
+// key light, as ground_light.comp's): the layer's own light `clouds_up` plus the ground seen
+// through it (the share `up_t`), itself lit `ground_ratio` times as the clear ground
+// (cloud_ground_light_ratio), against the clear ground of albedo `albedo` whose radiance
+// under a white ground's `white_ground` the sky-view table already counts. Never negative.
+vec3 cloud_layer_gain(vec3 clouds_up, float up_t, vec3 ground_ratio, vec3 white_ground,
+                      float albedo) {
+  return max(clouds_up + (up_t * ground_ratio - 1.0f) * albedo * white_ground, vec3(0.0f));
+}
+
 // Light reaching a sample (listing B.2, formulas 1.7, 1.9, 1.10): Beer-Lambert exp(-tau) times
 // the powder term mix(2 (1 - exp(-2 tau)), 1, (mu + 1) / 2), with `powder` in [0, 1] blending
 // it in. tau is the optical depth towards the sun.

@@ -359,10 +359,12 @@ TEST_F(TemporalTest, LightVolumeMatchesAFullLightMarch) {
   marched.quality.light_steps = 48;
   const Frame a = render(s);
   const Frame b = render(marched);
-  // Measured 0.041: the light that cloud passes on diffusely reads optical depths of 1 to 50,
-  // where the volume's interpolation shows more than in exp(-tau).
+  // Measured 0.034: the light that cloud passes on diffusely reads optical depths of 1 to 50,
+  // where the volume's interpolation shows more than in exp(-tau). (0.046 while the ground
+  // light's rays, which now light the air above the layer too, marched 4 light steps where
+  // the march takes light_steps.)
   const double volume_error = luminance_error(a.color, b.color);
-  EXPECT_LT(volume_error, 0.045);
+  EXPECT_LT(volume_error, 0.04);
   // A short march of every light ray (2 steps, no volume) is further off.
   Scene short_march = marched;
   short_march.quality.light_steps = 2;

@@ -324,6 +324,28 @@ TEST(CloudModel, GroundLightUnderCloudsKeepsTheSkysAndTheCloudsLight) {
   }
 }
 
+// The radiance a cloud layer adds, seen from above, to the clear ground's (cloud_layer_gain):
+// nothing without clouds (all ground seen, lit as the clear ground); a closed white deck adds
+// its own light less the ground's it hides; a broken field adds its clouds' light and loses
+// the ground's in their shadows; never negative.
+TEST(CloudModel, ALayerSeenFromAboveAddsItsLightToTheGrounds) {
+  const glm::vec3 white(0.30f, 0.31f, 0.32f);
+  const float albedo = 0.1f;
+  const glm::vec3 clear =
+      g::cloud_layer_gain(glm::vec3(0.0f), 1.0f, glm::vec3(1.0f), white, albedo);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(clear[c], 0.0f, 1e-7f);
+  // A deck reflecting 70% of the light on it: 0.7 white, the ground hidden.
+  const glm::vec3 deck = g::cloud_layer_gain(0.7f * white, 0.0f, glm::vec3(0.3f), white, albedo);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(deck[c], (0.7f - albedo) * white[c], 1e-6f);
+  // Half the ground seen, itself lit 0.8 times as the clear ground.
+  const glm::vec3 broken = g::cloud_layer_gain(0.25f * white, 0.5f, glm::vec3(0.8f), white, albedo);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(broken[c], (0.25f + (0.4f - 1.0f) * albedo) * white[c], 1e-6f);
+  // Dark clouds over a bright ground: no negative light.
+  const glm::vec3 dark = g::cloud_layer_gain(glm::vec3(0.0f), 0.0f, glm::vec3(1.0f), white, 0.9f);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(dark[c], 0.0f);
+}
+
 // The two-stream fluxes along a sun chord (cloud_two_stream_fluxes) against the two-stream
 // equations integrated numerically: dF_on/dtau = -gamma1 F_on + gamma2 F_back,
 // dF_back/dtau = gamma1 F_back - gamma2 F_on, with F_on(0) = 1 and F_back(T) = 0, by RK4 and

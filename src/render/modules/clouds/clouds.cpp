@@ -61,7 +61,7 @@ CloudsModule::CloudsModule(gpu::Context& ctx, gpu::DescriptorSet& set)
       profile_(ctx, set, "cloud_profile.comp.spv"),
       ground_default_(ctx, set, "ground_light.comp.spv", {0}),
       ground_baseline_(ctx, set, "ground_light.comp.spv", {1}),
-      ground_light_(ctx, 1, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT) {
+      ground_light_(ctx, 2, 1, 1, VK_FORMAT_R32G32B32A32_SFLOAT) {
   for (gpu::Texture* t : {&dome_a_, &dome_b_})
     *t = gpu::Texture(ctx, kSkyDomeSize, kSkyDomeSize, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                       VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
@@ -161,7 +161,8 @@ void CloudsModule::record_clear_sky(VkCommandBuffer cmd) {
 }
 
 void CloudsModule::record_clear_ground_light(VkCommandBuffer cmd) {
-  ground_light_.record_clear(cmd, {{1.0f, 0.0f, 0.0f, 0.0f}});  // all the sky, no cloud light
+  ground_light_.record_clear(cmd, {{1.0f, 0.0f, 0.0f, 0.0f}});  // all the sky, no cloud light;
+  // seen from above, all the ground
 }
 
 void CloudsModule::record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode) {

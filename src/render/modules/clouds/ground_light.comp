@@ -9,9 +9,11 @@
 // cosine-weighted directions of the clouds' radiance seen from the ground, lit as the fast
 // mode lights them (cloud_sun_light). Under a fair-weather cumulus field the path tracer's
 // sunlit ground is 14% brighter than under a clear sky (noon, ground albedo 0.1): the clouds'
-// sunlit sides and bases are brighter than the blue sky they hide. One workgroup: each
-// invocation marches 2 x 2 of the GRID^2 columns and two slanted rays, then they sum in
-// shared memory.
+// sunlit sides and bases are brighter than the blue sky they hide.
+// Texel 1, the layer seen from above (the air above it is lit by it, compose.comp): r the mean
+// transmittance of cosine-weighted rays down from the layer's top (the ground seen through
+// it), gba the clouds' mean light along them. One workgroup: each invocation marches 2 x 2 of
+// the GRID^2 columns, two slanted rays up and two down, then they sum in shared memory.
 #extension GL_GOOGLE_include_directive : require
 
 layout(constant_id = 0) const int MARCH_MODE = 0;
@@ -33,6 +35,7 @@ const float RAY_MAX_M = 60000.0f;            // the slanted rays' reach through 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
 shared vec4 partial[GROUP_SIZE * GROUP_SIZE];
+shared vec4 partial_above[GROUP_SIZE * GROUP_SIZE];
 
 // Diffuse transmittance of the clouds straight up from the shell's bottom at horizontal
 // position xy (planet frame).
@@ -47,15 +50,13 @@ float column_transmittance(vec2 xy) {
   return light_transmittance(depth);
 }
 
-// The sunlight the clouds scatter towards a ground point `base` (planet frame, on the ground)
-// along direction `dir` (upwards), per unit of the key light's illuminance (as the sky-view
-// table's radiance): RAY_SAMPLES midpoint samples of the cloud shell's part of the ray, lit as
-// the fast mode lights them. The air between is left out.
-vec3 cloud_light_along(vec3 base, vec3 dir) {
-  vec2 inner = ray_sphere(base, dir, frame.radii_m.z);
-  vec2 outer = ray_sphere(base, dir, frame.radii_m.w);
-  float t0 = max(inner.y, 0.0f), t1 = min(outer.y, t0 + RAY_MAX_M);
-  if (t1 <= t0) return vec3(0.0f);
+// The sunlight the clouds scatter along a ray from `origin` (planet frame) in direction `dir`,
+// back towards the origin, over [t0, t1] (m) of it, per unit of the key light's illuminance (as
+// the sky-view table's radiance): RAY_SAMPLES midpoint samples, lit as the fast mode lights
+// them; a: the ray's transmittance. The air between is left out. `with_sky`: the sky's light
+// through the cloud towards the sun as well (as clouds.comp lights a cloud seen from above).
+vec4 cloud_light_span(vec3 origin, vec3 dir, float t0, float t1, bool with_sky) {
+  if (t1 <= t0) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
   vec3 sun = frame.sun_dir.xyz;
   float sigma_scale = frame.cloud_shape.z * frame.cloud_light.x;
   float light_scale = frame.cloud_shape.z * frame.cloud_light.y;
@@ -67,27 +68,46 @@ vec3 cloud_light_along(vec3 base, vec3 dir) {
   float ds = (t1 - t0) / float(RAY_SAMPLES);
   // The ground's light that the clouds reflect back down (as clouds.comp lights their bases):
   // the ground around where the ray enters them, itself under their shadow.
-  vec3 entry = base + dir * t0;
+  vec3 entry = origin + dir * t0;
   vec3 below = frame.ambient_below_clouds.rgb * frame.cloud_light.w *
                below_light_share(entry, length(entry) - frame.radii_m.x);
+  vec3 above = with_sky ? frame.ambient_at_clouds.rgb * frame.cloud_light.w : vec3(0.0f);
   vec3 sun_light = frame.sun_at_clouds.rgb;
   float transmittance = 1.0f;
   vec3 light = vec3(0.0f);
   for (int i = 0; i < RAY_SAMPLES; ++i) {
-    vec3 pos = base + dir * (t0 + (float(i) + 0.5f) * ds);
+    vec3 pos = origin + dir * (t0 + (float(i) + 0.5f) * ds);
     float density = cloud_density(pos, true);
     if (density <= 0.0f) continue;
     bool covered = light_volume_covers(pos);
-    float tau_light = depth_towards_sun(pos, sun, covered, 4) * light_scale;
+    float tau_light = depth_towards_sun(pos, sun, covered, frame.steps.y) * light_scale;
     vec3 sunlit = cloud_light(diffusion, pos, dir, sun, tau_light, light_scale, mu, two_stream,
                               phases, frame.cloud_light.z, albedo, g1);
     float step_t = exp(-density * sigma_scale * ds);
     float h = saturate(layer_fraction(pos));
-    light += transmittance * albedo * (sun_light * (sunlit.x + sunlit.y) + below * (1.0f - h)) *
+    light += transmittance * albedo *
+             (sun_light * (sunlit.x + sunlit.y) + above * sunlit.z + below * (1.0f - h)) *
              (1.0f - step_t);
     transmittance *= step_t;
   }
-  return light / max(frame.sun_illuminance.rgb, vec3(1e-30f));
+  return vec4(light / max(frame.sun_illuminance.rgb, vec3(1e-30f)), transmittance);
+}
+
+// The clouds' light towards a ground point `base` seen along `dir` (upwards).
+vec3 cloud_light_along(vec3 base, vec3 dir) {
+  vec2 inner = ray_sphere(base, dir, frame.radii_m.z);
+  vec2 outer = ray_sphere(base, dir, frame.radii_m.w);
+  float t0 = max(inner.y, 0.0f);
+  return cloud_light_span(base, dir, t0, min(outer.y, t0 + RAY_MAX_M), false).rgb;
+}
+
+// The layer seen from `top`, a point on its top, along `dir` (downwards): the clouds' light
+// (rgb) and the transmittance (a) down to the base, or out through the top again.
+vec4 cloud_light_from_above(vec3 top, vec3 dir) {
+  vec2 inner = ray_sphere(top, dir, frame.radii_m.z);
+  vec2 outer = ray_sphere(top, dir, frame.radii_m.w);
+  float t1 = inner.x > 0.0f ? inner.x : outer.y;
+  return cloud_light_span(top, dir, 0.0f, min(t1, RAY_MAX_M), true);
 }
 
 // The k-th of n directions (n a power of two), cosine-weighted about the local vertical `up`:
@@ -105,7 +125,7 @@ void main() {
   uint id = gl_LocalInvocationIndex;
   const float cell_m = 2.0f * GROUND_LIGHT_HALF_M / float(GRID);
   grid_footprint_m = cell_m;
-  vec4 sum = vec4(0.0f);
+  vec4 sum = vec4(0.0f), from_above = vec4(0.0f);
   for (int k = 0; k < 4; ++k) {
     ivec2 cell = 2 * ivec2(gl_LocalInvocationID.xy) + ivec2(k & 1, k >> 1);
     vec2 xy = frame.camera_pos_m.xy + (vec2(cell) + 0.5f) * cell_m - GROUND_LIGHT_HALF_M;
@@ -113,19 +133,30 @@ void main() {
     // A slanted ray from two of the four cells (k = 0, 3: a chequerboard), the directions
     // shuffled over them (617 is odd: a permutation of 0 .. RAYS - 1), so that a direction's
     // elevation does not follow the cell's row. 512 rays: 25 ms on lavapipe with a ray from
-    // every cell.
-    if (k == 1 || k == 2) continue;
+    // every cell. From the other two (k = 1, 2), a ray down from the layer's top.
+    int ray = ((int(id) * 2 + (k == 3 || k == 2 ? 1 : 0)) * 617) & (RAYS - 1);
+    if (k == 1 || k == 2) {
+      vec3 top = point_at_radius(xy, frame.radii_m.w);
+      vec4 seen = cloud_light_from_above(top, cosine_direction(ray, RAYS, -normalize(top)));
+      from_above += vec4(seen.a, seen.rgb);
+      continue;
+    }
     vec3 ground = point_at_radius(xy, frame.radii_m.x);
-    int ray = ((int(id) * 2 + (k == 3 ? 1 : 0)) * 617) & (RAYS - 1);
     sum.yzw += cloud_light_along(ground, cosine_direction(ray, RAYS, normalize(ground)));
   }
   partial[id] = sum;
+  partial_above[id] = from_above;
   barrier();
   for (uint n = uint(GROUP_SIZE * GROUP_SIZE) / 2u; n > 0u; n >>= 1) {
-    if (id < n) partial[id] += partial[id + n];
+    if (id < n) {
+      partial[id] += partial[id + n];
+      partial_above[id] += partial_above[id + n];
+    }
     barrier();
   }
-  if (id == 0u)
+  if (id == 0u) {
     imageStore(ground_light_out, ivec2(0),
                partial[0] / vec4(float(GRID * GRID), vec3(float(RAYS))));
+    imageStore(ground_light_out, ivec2(1, 0), partial_above[0] / float(RAYS));
+  }
 }
