@@ -646,31 +646,32 @@ int run_validate(const ValidateOptions& options) {
       }
     }
 
-    // fast | reference | block errors, each at twice the size, labelled.
-    // Both exposed as the scene's camera would expose the reference.
+    // fast | reference | block errors, each at twice the size or more, so that its label fits
+    // over it. Both exposed as the scene's camera would expose the reference.
     const float exposure = still_exposure(scene.output, reference.mean);
-    const int s = 2, w = suite.width * s, h = suite.height * s, gap = 4;
+    // Red at the tolerance each block is held to: the view's block tolerance where it has one.
+    const double map_tolerance =
+        view.max_block_error > 0.0 ? view.max_block_error : view.max_mean_error;
+    char labels[3][200];
+    std::snprintf(labels[0], sizeof labels[0], "%s: fast", view.name.c_str());
+    std::snprintf(labels[1], sizeof labels[1], "reference, %d spp", reference.spp);
+    std::snprintf(labels[2], sizeof labels[2], "%dx%d error %.1f%% (red: %s)", suite.block,
+                  suite.block, 100.0 * e.mean_error, percent(map_tolerance).c_str());
+    int widest = 0;
+    for (const char* l : labels) widest = std::max(widest, label_width(l, 1));
+    const int s = std::max(2, (widest + 4 + suite.width - 1) / suite.width);
+    const int w = suite.width * s, h = suite.height * s, gap = 4;
     Image side(3 * w + 2 * gap, h + kLegendHeight);
     for (glm::vec4& p : side.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     paste(side, fast.color, 0, 0, s, exposure);
     paste(side, reference.mean, w + gap, 0, s, exposure);
-    // Red at the tolerance each block is held to: the view's block tolerance where it has one.
-    const double map_tolerance =
-        view.max_block_error > 0.0 ? view.max_block_error : view.max_mean_error;
     const Image colours = error_colours(e.map, map_tolerance);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
         side.at(2 * (w + gap) + x, y) =
             colours.at(std::min(x / (suite.block * s), colours.width - 1),
                        std::min(y / (suite.block * s), colours.height - 1));
-    char label[200];
-    std::snprintf(label, sizeof label, "%s: fast", view.name.c_str());
-    draw_label(side, 0, 0, label, 1);
-    std::snprintf(label, sizeof label, "reference, %d spp", reference.spp);
-    draw_label(side, w + gap, 0, label, 1);
-    std::snprintf(label, sizeof label, "%dx%d error %.1f%% (red: %s)", suite.block, suite.block,
-                  100.0 * e.mean_error, percent(map_tolerance).c_str());
-    draw_label(side, 2 * (w + gap), 0, label, 1);
+    for (int k = 0; k < 3; ++k) draw_label(side, k * (w + gap), 0, labels[k], 1);
     // The map's scale under it (at least 120 pixels long, room for its labels).
     const int legend_x1 = 3 * w + 2 * gap;
     draw_error_legend(side, std::max(0, std::min(2 * (w + gap), legend_x1 - 120)), legend_x1, h + 2,

@@ -94,13 +94,19 @@ TEST_F(ValidateCliTest, WritesTheTableTheJsonAndTheImagesAndReadsReferencesBack)
   EXPECT_EQ(last_line(table), failed) << table;
   EXPECT_NE(r.output.find("Error maps"), std::string::npos) << r.output;  // what the colours mean
   // The error map's scale under the images: black at 0, red at the tolerance (a quarter of the
-  // way), white at 4 times it (the end); 24 x 16 pixels at twice the size, three side by side.
+  // way), white at 4 times it (the end); 24 x 16 pixels, three side by side, each scaled by a
+  // whole factor of 2 or more so that its label (about 150 pixels) fits over it.
   const nephele::Image side = nephele::read_image(out + "/up.png");
-  ASSERT_EQ(side.width, 3 * 48 + 2 * 4);
-  ASSERT_EQ(side.height, 32 + 26);
-  const int bar_y = 32 + 5, x1 = side.width - 1, x0 = x1 - 119;
+  const int panel = (side.width - 2 * 4) / 3, scale = panel / 24;
+  ASSERT_EQ(side.width, 3 * 24 * scale + 2 * 4);
+  EXPECT_GE(panel, 140);
+  EXPECT_LE(panel, 24 * 8);
+  ASSERT_EQ(side.height, 16 * scale + 26);
+  // The scale spans the map's panel, 120 pixels at least.
+  const int length = std::max(panel, 120);
+  const int bar_y = 16 * scale + 5, x1 = side.width - 1, x0 = side.width - length;
   EXPECT_LT(side.at(x0, bar_y).r, 0.05f);
-  const glm::vec4 red = side.at(x0 + 30, bar_y), white = side.at(x1, bar_y);
+  const glm::vec4 red = side.at(x0 + length / 4, bar_y), white = side.at(x1, bar_y);
   EXPECT_GT(red.r, 0.8f);
   EXPECT_LT(red.g, 0.1f);
   EXPECT_GT(std::min({white.r, white.g, white.b}), 0.8f);
