@@ -161,8 +161,8 @@ void CloudsModule::record_clear_sky(VkCommandBuffer cmd) {
 }
 
 void CloudsModule::record_clear_ground_light(VkCommandBuffer cmd) {
-  ground_light_.record_clear(cmd, {{1.0f, 0.0f, 0.0f, 0.0f}});  // all the sky, no cloud light;
-  // seen from above, all the ground
+  // All the sky, no cloud light; seen from above, all the ground and no cloud light.
+  ground_light_.record_clear(cmd, {{1.0f, 0.0f, 0.0f, 0.0f}});
 }
 
 void CloudsModule::record_ground_light(VkCommandBuffer cmd, gpu::PassTimer& timer, MarchMode mode) {

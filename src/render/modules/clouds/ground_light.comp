@@ -134,7 +134,7 @@ void main() {
     // shuffled over them (617 is odd: a permutation of 0 .. RAYS - 1), so that a direction's
     // elevation does not follow the cell's row. 512 rays: 25 ms on lavapipe with a ray from
     // every cell. From the other two (k = 1, 2), a ray down from the layer's top.
-    int ray = ((int(id) * 2 + (k == 3 || k == 2 ? 1 : 0)) * 617) & (RAYS - 1);
+    int ray = ((int(id) * 2 + (k >> 1)) * 617) & (RAYS - 1);
     if (k == 1 || k == 2) {
       vec3 top = point_at_radius(xy, frame.radii_m.w);
       vec4 seen = cloud_light_from_above(top, cosine_direction(ray, RAYS, -normalize(top)));

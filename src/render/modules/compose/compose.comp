@@ -122,9 +122,9 @@ vec3 air_below_base_before(AirBelowBase a, float distance_m, vec3 at) {
 // The air above the clouds' layer, lit from below by the layer's reflection beyond the
 // clear ground's (`gain`: the radiance it adds, per unit of the key light, cloud_layer_gain):
 // the sky-view table's air sees a ground of the ground's albedo (from above the layer, the
-// sky above a cumulus field was 16-24% too dark against the path tracer). The layer fills the lower hemisphere with a uniform radiance and
-// the air scatters half of it towards any view (Rayleigh's phase is even), as much as the
-// view's span above the layer's top is opaque. `front`: the span in front of everything (the
+// sky above a cumulus field was 16-24% too dark against the path tracer). The layer fills the
+// lower hemisphere with a uniform radiance and the air scatters half of it towards any view
+// (Rayleigh's phase is even), as much as the view's span above the layer's top is opaque. `front`: the span in front of everything (the
 // eye above the top, down to where the view meets the top or out to space); `behind`: behind
 // the clouds (the eye under the top: the sky through their gaps), dimmed by the air in front.
 struct AirAboveLayer {
@@ -271,15 +271,15 @@ void main() {
     discs = mix(discs, frame.conditions_disk_fog.rgb,
                 fog_ramp(elevation_deg, frame.conditions_fog_deg.z, frame.conditions_fog_deg.w));
   vec3 background = sky + ground_sun.rgb * shares.x + discs;
+  // The ground around's light over the clear ground's, the sun's share taken as the clouds'
+  // mean transmittance down; and a white ground's clear light.
+  vec3 white_sun = frame_ground_sun(sky_frame.up), white_sky = frame_ground_sky();
+  vec3 ground_ratio = cloud_ground_light_ratio(ground_light_texel.r, ground_light_texel.r,
+                                               clouds_down, white_sun, white_sky);
   // Under the clouds' base the air is lit as the ground around is (cloud_ground_light_ratio,
   // the sun's share taken as the clouds' mean transmittance): the aerial perspective's clear
   // light is kept by that share there, in front of the sky, the ground and the clouds alike.
   // The volumetric shafts shadow the air's sunlight themselves.
-  // The ground around's light over the clear ground's, the sun's share taken as the clouds'
-  // mean transmittance down.
-  vec3 ground_ratio =
-      cloud_ground_light_ratio(ground_light_texel.r, ground_light_texel.r, clouds_down,
-                               frame_ground_sun(sky_frame.up), frame_ground_sky());
   vec3 air_kept = vec3(1.0f);
   AirBelowBase below_base = AirBelowBase(vec2(0.0f), vec3(0.0f), vec3(0.0f));
   if (!(WITH_SHAFTS && int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC) && REFERENCE == 0 &&
@@ -292,9 +292,9 @@ void main() {
   // The air above the clouds' layer, lit by it from below.
   AirAboveLayer above_layer = AirAboveLayer(vec3(0.0f), vec3(0.0f));
   if (REFERENCE == 0 && conditions != 1) {
-    vec3 white_ground = frame_ground_sun(sky_frame.up) + frame_ground_sky();
     vec4 from_above = texelFetch(ground_light, ivec2(1, 0), 0);
-    vec3 gain = cloud_layer_gain(from_above.gba, from_above.r, ground_ratio, white_ground, albedo);
+    vec3 gain =
+        cloud_layer_gain(from_above.gba, from_above.r, ground_ratio, white_sun + white_sky, albedo);
     above_layer = air_above_layer(frame_atmosphere(), frame.camera_pos_m.xyz, dir, gain);
     background += above_layer.behind;
   }
