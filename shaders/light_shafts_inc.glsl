@@ -38,11 +38,13 @@ float shaft_visibility(vec3 p, vec3 sun) {
 // sky's (t ~ (i / n)^2), offset by `jitter` in [0, 1).
 struct ShaftLight {
   vec3 single_front, lost_front, single_behind, lost_behind;
+  vec3 multiple_front, multiple_behind;  // the air's multiple scattering (Psi_ms, isotropic)
 };
 
 ShaftLight light_shaft_light(vec3 eye, vec3 dir, float cloud_m, float end_limit_m, float jitter) {
   ShaftLight s;
   s.single_front = s.lost_front = s.single_behind = s.lost_behind = vec3(0.0f);
+  s.multiple_front = s.multiple_behind = vec3(0.0f);
   Atmosphere a = frame_atmosphere();
   vec3 sun = frame.sun_dir.xyz;
   vec2 ground = ray_sphere(eye, dir, frame.radii_m.x);
@@ -64,12 +66,17 @@ ShaftLight light_shaft_light(vec3 eye, vec3 dir, float cloud_m, float end_limit_
     vec3 single = exp(-optical_depth) * (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) *
                   t_sun * (end_m * 2.0f * u / float(SHAFT_STEPS));  // dt/du du
     vec3 lost = single * (1.0f - shaft_visibility(p, sun));
+    vec3 psi = multiple_scattering_at(a, transmittance_lut, ms_lut, false, p, sun, frame.sky_model.y);
+    vec3 multiple = exp(-optical_depth) * (m.scattering_r + vec3(m.scattering_m)) * psi *
+                    (end_m * 2.0f * u / float(SHAFT_STEPS));
     if (t < cloud_m) {
       s.single_front += single;
       s.lost_front += lost;
+      s.multiple_front += multiple;
     } else {
       s.single_behind += single;
       s.lost_behind += lost;
+      s.multiple_behind += multiple;
     }
   }
   return s;

@@ -303,13 +303,12 @@ struct QualityParams {
   VoxelShadow voxel_shadow = VoxelShadow::LightMarch;
   // The SDF cone's half-angle tangent (the seed's LightTangent): larger, softer shadows.
   float sdf_light_tangent = 0.1f;  // [0.001, 10]
-  // Light shafts: "volumetric" (the air's single scattering shadowed by the clouds: beams
-  // below broken clouds, consistent with the aerial perspective), "screen" (seed 002's
-  // screen-space god rays after GPU Gems 3 ch. 13 and its radial blur, which add light) or
-  // "off" (the default for now: under a closed deck the volumetric method darkens the haze
-  // towards the horizon, since the air's light from the deck's own diffuse glow is not yet
-  // modelled). The screen method's samples (the seed's 10), strength and decay per sample.
-  std::string light_shafts = "off";
+  // Light shafts: "volumetric" (the default: the air's single scattering shadowed by the
+  // clouds, beams below broken clouds, consistent with the aerial perspective), "screen" (seed
+  // 002's screen-space god rays after GPU Gems 3 ch. 13 and its radial blur, which add light)
+  // or "off" (the air under the clouds' base dimmed by their mean shadow instead). The screen
+  // method's samples (the seed's 10), strength and decay per sample.
+  std::string light_shafts = "volumetric";
   int screen_shaft_samples = 10;        // [1, 128]
   float screen_shaft_strength = 0.3f;   // [0, 10]
   float screen_shaft_decay = 0.95f;     // [0, 1]

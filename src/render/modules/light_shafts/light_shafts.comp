@@ -35,9 +35,11 @@ void main() {
   float terrain_m = terrain_distance_at(uv);
   ShaftLight s = light_shaft_light(frame.camera_pos_m.xyz, dir, cloud_m,
                                    terrain_m > 0.0f ? terrain_m : SHAFT_FAR_M, jitter);
-  vec3 single = s.single_front + s.single_behind, lost = s.lost_front + s.lost_behind;
+  vec3 air = s.single_front + s.single_behind + s.multiple_front + s.multiple_behind;
+  vec3 lost = s.lost_front + s.lost_behind;
   const vec3 Y = vec3(0.2126f, 0.7152f, 0.0722f);
-  vec3 share = lost / max(single, vec3(1e-30f));
-  float front = dot(s.lost_front, Y) / max(dot(s.single_front, Y), 1e-30f);
+  vec3 share = lost / max(air, vec3(1e-30f));
+  float front =
+      dot(s.lost_front, Y) / max(dot(s.single_front + s.multiple_front, Y), 1e-30f);
   imageStore(light_shafts_out, q, vec4(clamp(share, 0.0f, 1.0f), clamp(front, 0.0f, 1.0f)));
 }
