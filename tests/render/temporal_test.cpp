@@ -354,6 +354,7 @@ TEST_F(TemporalTest, LightVolumeMatchesAFullLightMarch) {
   Scene s = view();
   s.clouds.lighting = "seed";
   s.quality.cloud_downsample = 1;
+  s.quality.light_shafts = "off";  // the air's shadows read the volume; without one, none
   Scene marched = s;
   marched.quality.light_volume_km = 0;
   marched.quality.light_steps = 48;
