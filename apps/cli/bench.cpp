@@ -192,7 +192,7 @@ void print_realtime(const nlohmann::json& r) {
               r["speedup_vs_baseline"].get<double>());
   std::printf(
       "  the still camera lit as the seed lights clouds (its lighting and optics, 6 light "
-      "steps): %.1f ms; the default costs %.2fx that\n",
+      "steps, no light shafts): %.1f ms; the default costs %.2fx that\n",
       r["seed_lit_ms"].get<double>(), r["cost_vs_seed_lit"].get<double>());
   if (r.contains("flight_from_still")) {
     const std::vector<double> e = r["flight_from_still"].get<std::vector<double>>();

@@ -121,6 +121,7 @@ Scene seed_lit_scene(const Scene& scene) {
   s.clouds.lighting = "seed";
   s.clouds.optics = "seed";
   s.quality.light_steps = 6;
+  s.quality.light_shafts = "off";  // as before issue 42, too
   return s;
 }
 
