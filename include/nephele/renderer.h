@@ -31,7 +31,7 @@ struct RendererOptions {
   ProgressCallback progress;
   // Renderer: a still with more pixels than this, or a side longer than the device's largest
   // image, renders in tiles (render(), render_layers()): the same image, drawn a window at a
-  // time; 0 = 3840 x 2160 (kDefaultMaxTilePixels), else at least 1024.
+  // time; 0 = 3840 x 2160 (kDefaultMaxTilePixels), else at least 4096 (64 x 64).
   int64_t max_tile_pixels = 0;
   // Each pass is compiled for the features a frame uses (the sky model, voxel clouds, the
   // cloud lighting, keyframes, shafts, terrain, cirrus, particles), so that a feature a scene

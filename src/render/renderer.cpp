@@ -17,24 +17,27 @@ namespace nephele {
 
 namespace {
 
-int64_t checked_max_tile_pixels(const RendererOptions& options) {
-  if (options.max_tile_pixels == 0) return kDefaultMaxTilePixels;
-  if (options.max_tile_pixels < 1024)
-    throw InputError("RendererOptions::max_tile_pixels = " +
-                     std::to_string(options.max_tile_pixels) + ": must be 0 (the default, " +
-                     std::to_string(kDefaultMaxTilePixels) + ") or at least 1024");
-  return options.max_tile_pixels;
-}
-
 // Strips as wide as the image unless they would be thinner than this; then square tiles.
 constexpr int kMinStripRows = 64;
 
 // Each tile is drawn with this many pixels more on every side, then cropped: what reads its
-// neighbours (the light shafts, drawn at a quarter of the resolution and interpolated) sees
+// neighbours (the light shafts, drawn at an eighth of the resolution and interpolated) sees
 // the same neighbours as in the whole image.
 constexpr int kTileMarginPx = 2 * kLightShaftsDownsample;
 // Tiles start on multiples of this: the shafts' coarse pixels fall where the image's do.
 constexpr int kTileAlignPx = kLightShaftsDownsample;
+// The smallest tile budget: a square window of four margins a side, half of it the tile.
+constexpr int64_t kMinTilePixels = int64_t(16) * kTileMarginPx * kTileMarginPx;
+
+int64_t checked_max_tile_pixels(const RendererOptions& options) {
+  if (options.max_tile_pixels == 0) return kDefaultMaxTilePixels;
+  if (options.max_tile_pixels < kMinTilePixels)
+    throw InputError(
+        "RendererOptions::max_tile_pixels = " + std::to_string(options.max_tile_pixels) +
+        ": must be 0 (the default, " + std::to_string(kDefaultMaxTilePixels) + ") or at least " +
+        std::to_string(kMinTilePixels));
+  return options.max_tile_pixels;
+}
 
 // What tiles drawn one at a time cannot show: effects that reach across the image, and
 // particle clouds (drawn by a raster pipeline of their own).

@@ -80,7 +80,7 @@ TEST_F(LightShaftsTest, BeamsOnlyBelowBrokenCloudsAndNeverAddedLight) {
   EXPECT_LT(clear.mean, 1e-5);
   EXPECT_LT(clear.beams, 1e-5);
   // Broken clouds: beams, the loss changing along a row by a larger share of itself than
-  // under a deck (0.20 against 0.027 measured), which darkens the air below it about evenly.
+  // under a deck (0.14 against 0.027 measured), which darkens the air below it about evenly.
   EXPECT_GT(broken.mean, 0.002);
   EXPECT_GT(broken.beams / broken.mean, 3.0 * deck.beams / deck.mean);
   // The deck shadows more of the air than broken clouds do, but only the sun's single

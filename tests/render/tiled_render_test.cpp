@@ -16,12 +16,12 @@ namespace {
 using nephele::Image;
 using nephele::Scene;
 
-// A renderer whose frames hold at most 2048 pixels: 72 x 48 draws as 3 x 2 tiles of 24 x 24,
-// each drawn with 8 pixels more around it (within the image).
+// A renderer whose frames hold at most 4096 pixels (the least allowed): 96 x 64 draws as 3 x 2
+// tiles of 32 x 32, each drawn with 16 pixels more around it (within the image).
 nephele::Renderer& tiled_renderer() {
   static std::unique_ptr<nephele::Renderer> renderer = [] {
     nephele::RendererOptions options = validated();
-    options.max_tile_pixels = 2048;
+    options.max_tile_pixels = 4096;
     return std::make_unique<nephele::Renderer>(options);
   }();
   return *renderer;
@@ -39,8 +39,8 @@ class TiledRender : public RenderTest {
 // clouds then march their light): what the tiles must agree on is the view's rays.
 Scene small(const std::string& preset) {
   Scene s = nephele::load_preset(preset);
-  s.output.width = 72;
-  s.output.height = 48;
+  s.output.width = 96;
+  s.output.height = 64;
   s.quality.light_volume_km = 0;
   return s;
 }
@@ -72,8 +72,8 @@ TEST_F(TiledRender, TheLimitSplitsTheImageIntoAGridOfTiles) {
   const auto t = tiled_renderer().tiling(small("default"));
   EXPECT_EQ(t.columns, 3);
   EXPECT_EQ(t.rows, 2);
-  EXPECT_EQ(t.tile_width, 24);
-  EXPECT_EQ(t.tile_height, 24);
+  EXPECT_EQ(t.tile_width, 32);
+  EXPECT_EQ(t.tile_height, 32);
   // The advertised largest still on this device, in strips within the default limit.
   Scene huge = small("default");
   huge.output.width = huge.output.height = 16384;
@@ -88,7 +88,7 @@ TEST_F(TiledRender, TheLimitSplitsTheImageIntoAGridOfTiles) {
 }
 
 // The mountains at sunset under broken cumulus with volumetric light shafts, and a voxel
-// cloud: the tiles' rays and jitter are the whole image's, and the shafts (drawn at a quarter
+// cloud: the tiles' rays and jitter are the whole image's, and the shafts (drawn at an eighth
 // of the resolution) see their neighbours through the tiles' margins. What differs is the
 // float rounding of the rays at a few edge pixels.
 TEST_F(TiledRender, TilesGiveTheImageOfOneFrame) {
@@ -100,8 +100,8 @@ TEST_F(TiledRender, TilesGiveTheImageOfOneFrame) {
     EXPECT_LT(colour.mean_relative, 2e-3) << preset;
     EXPECT_LT(colour.worst_relative, 0.05) << preset;
     EXPECT_LT(compare(whole.clouds, tiled.clouds).mean_relative, 2e-3) << preset;
-    EXPECT_EQ(tiled.stats.width, 72);
-    EXPECT_EQ(tiled.stats.height, 48);
+    EXPECT_EQ(tiled.stats.width, 96);
+    EXPECT_EQ(tiled.stats.height, 64);
     EXPECT_NEAR(tiled.stats.mean_luminance, whole.stats.mean_luminance,
                 2e-3 * whole.stats.mean_luminance)
         << preset;
@@ -130,7 +130,7 @@ TEST_F(TiledRender, WhatTilesCannotDrawIsRefused) {
     ADD_FAILURE() << "bloom rendered in tiles";
   } catch (const nephele::InputError& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("72 x 48"), std::string::npos) << m;
+    EXPECT_NE(m.find("96 x 64"), std::string::npos) << m;
     EXPECT_NE(m.find("bloom (output.bloom_strength > 0)"), std::string::npos) << m;
     EXPECT_EQ(m.find('\n'), std::string::npos) << m;
   }
@@ -139,6 +139,6 @@ TEST_F(TiledRender, WhatTilesCannotDrawIsRefused) {
   EXPECT_THROW(tiled_renderer().render(shafts), nephele::InputError);
   EXPECT_THROW(tiled_renderer().render_next(small("default")), nephele::InputError);
   nephele::RendererOptions tiny = validated();
-  tiny.max_tile_pixels = 100;
+  tiny.max_tile_pixels = 4095;
   EXPECT_THROW(nephele::Renderer{tiny}, nephele::InputError);
 }

@@ -298,7 +298,7 @@ void main() {
     above_layer = air_above_layer(frame_atmosphere(), frame.camera_pos_m.xyz, dir, gain);
     background += above_layer.behind;
   }
-  // Volumetric light shafts (light_shafts.comp, a quarter of the resolution): the air's light
+  // Volumetric light shafts (light_shafts.comp, an eighth of the resolution): the air's light
   // dimmed by the share of its sunlight the clouds' shadows take, along the whole ray behind
   // the clouds (the sky seen through them; the ground's sky-lit part keeps its own shadowing)
   // and in front of them (the haze).

@@ -1,6 +1,6 @@
 #version 450
 // Pass: volumetric light shafts (quality.light_shafts = "volumetric"; light_shafts_inc.glsl) at
-// a quarter of the image's resolution per axis (the beams are broad; compose filters them up):
+// an eighth of the image's resolution per axis (the beams are broad; compose filters them up):
 // per texel, along the ray through its block's centre, the share of the air's single
 // scattering that the clouds' shadows take: rgb along the whole ray, a (of the luminance) in
 // front of the clouds there.

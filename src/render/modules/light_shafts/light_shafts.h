@@ -1,5 +1,5 @@
 // Volumetric light shafts (quality.light_shafts = "volumetric"): the air's single scattering
-// lost to the clouds' shadows, marched at a quarter of the image's resolution per axis
+// lost to the clouds' shadows, marched at an eighth of the image's resolution per axis
 // (light_shafts.comp, light_shafts_inc.glsl) after the clouds and read by compose.
 #pragma once
 
@@ -12,7 +12,7 @@
 
 namespace nephele {
 
-constexpr int kLightShaftsDownsample = 4;
+constexpr int kLightShaftsDownsample = 8;
 
 class LightShaftsModule : public RenderModule {
  public:
