@@ -259,7 +259,8 @@ void main() {
   vec2 shares = cloud_ground_light_shares(
       ground_shadow, frame.cloud_droplets.w,
       clouds_down);
-  sky += ground_sun.a * ground_media.y * albedo * clouds_down * shares.y;
+  vec3 ground_clouds = ground_sun.a * ground_media.y * albedo * clouds_down * shares.y;
+  sky += ground_clouds;
   ground_sun.rgb *= ground_media.x;
   // The planet hides the part of the sun's disk below the horizon.
   vec3 sun_light = above_horizon
@@ -307,8 +308,9 @@ void main() {
   if (WITH_SHAFTS && int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC && REFERENCE == 0 &&
       conditions != 1) {
     shaft = textureLod(light_shafts, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f);
+    // The air's light alone: the ground's light from the sky and the clouds left out.
     vec3 ground_sky = ground_sun.a * albedo * frame_ground_sky() * sky_share;
-    vec3 air = max(sky - ground_sky, vec3(0.0f));
+    vec3 air = max(sky - ground_sky - ground_clouds, vec3(0.0f));
     background -= air * shaft.rgb;
     haze_kept = 1.0f - shaft.a;
   }
