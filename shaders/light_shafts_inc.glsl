@@ -1,5 +1,5 @@
-// Volumetric light shafts (quality.light_shafts = "volumetric"): the share of the sunlight the
-// air scatters once towards the eye that the clouds' shadows take away. The sky-view table
+// Volumetric light shafts (quality.light_shafts = "volumetric", the default): the share of the
+// air's light towards the eye that the clouds' shadows take from the sun. The sky-view table
 // and the aerial perspective hold the air's light as if no cloud stood between it and the sun;
 // dimming it by that share leaves beams of lit air between shadowed air below broken clouds
 // (crepuscular rays), a darker air under a closed deck, and nothing changed under a clear sky:
@@ -32,10 +32,12 @@ float shaft_visibility(vec3 p, vec3 sun) {
   return light_transmittance(light_volume_lookup(base));
 }
 
-// The air's single scattering of the key light along the view ray, per unit illuminance, and
-// the part of it the clouds shadow, in front of the clouds (t < cloud_m) and behind them, to
-// the ground or the atmosphere's top (at most SHAFT_FAR_M and end_limit_m: the terrain): SHAFT_STEPS steps spaced as the
-// sky's (t ~ (i / n)^2), offset by `jitter` in [0, 1).
+// The air's single scattering of the key light along the view ray, per unit illuminance, the
+// part of it the clouds shadow and the air's multiple scattering (Hillaire's Psi_ms, which the
+// shadows leave: the whole sky lights it), in front of the clouds (t < cloud_m) and behind
+// them, to the ground or the atmosphere's top (at most SHAFT_FAR_M and end_limit_m: the
+// terrain): SHAFT_STEPS steps spaced as the sky's (t ~ (i / n)^2), offset by `jitter` in
+// [0, 1).
 struct ShaftLight {
   vec3 single_front, lost_front, single_behind, lost_behind;
   vec3 multiple_front, multiple_behind;  // the air's multiple scattering (Psi_ms, isotropic)

@@ -36,9 +36,9 @@ Scene reference_scene(const Scene& scene);
 
 // The scene lit as the seed lights clouds and as nephele's default did before issue 42: the
 // seed's lighting and optics (clouds.lighting and clouds.optics "seed"), 6 light steps, no
-// light shafts (quality.light_shafts "off"). The
-// bench times the still camera with it too, for the cost of the physical lighting as a ratio
-// measured in one run (cost_vs_seed_lit; issue 42's bound: 1.15 on lavapipe at 900x600).
+// light shafts (quality.light_shafts "off"). The bench times the still camera with it too,
+// for the cost of the physical lighting as a ratio measured in one run (cost_vs_seed_lit;
+// issue 42's bound: 1.15 on lavapipe at 900x600).
 Scene seed_lit_scene(const Scene& scene);
 
 // Runs the measurements on `renderer` (a second renderer draws the references) and returns

@@ -300,8 +300,8 @@ void main() {
     background += above_layer.behind;
   }
   // Volumetric light shafts (light_shafts.comp, an eighth of the resolution): the air's light
-  // dimmed by the share of its sunlight the clouds' shadows take, along the whole ray behind
-  // the clouds (the sky seen through them; the ground's sky-lit part keeps its own shadowing)
+  // dimmed by the share of it the clouds' shadows take from the sun, along the whole ray
+  // behind the clouds (the sky seen through them; the ground's light keeps its own shadowing)
   // and in front of them (the haze).
   float haze_kept = 1.0f;
   vec4 shaft = vec4(0.0f);

@@ -1,9 +1,9 @@
 #version 450
 // Pass: volumetric light shafts (quality.light_shafts = "volumetric"; light_shafts_inc.glsl) at
 // an eighth of the image's resolution per axis (the beams are broad; compose filters them up):
-// per texel, along the ray through its block's centre, the share of the air's single
-// scattering that the clouds' shadows take: rgb along the whole ray, a (of the luminance) in
-// front of the clouds there.
+// per texel, along the ray through its block's centre, the share of the air's light (its
+// single and multiple scattering) that the clouds' shadows take from the sun: rgb along the
+// whole ray, a (of the luminance) in front of the clouds there.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
