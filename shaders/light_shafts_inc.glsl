@@ -65,12 +65,12 @@ ShaftLight light_shaft_light(vec3 eye, vec3 dir, float cloud_m, float end_limit_
     optical_depth += m.extinction * (t - previous_t);
     previous_t = t;
     vec3 t_sun = transmittance_to_light(a, transmittance_lut, false, p, sun);
-    vec3 single = exp(-optical_depth) * (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) *
-                  t_sun * (end_m * 2.0f * u / float(SHAFT_STEPS));  // dt/du du
+    vec3 seen = exp(-optical_depth) * (end_m * 2.0f * u / float(SHAFT_STEPS));  // dt/du du
+    vec3 single =
+        seen * (m.scattering_r * phase_r + vec3(m.scattering_m * phase_m)) * t_sun;
     vec3 lost = single * (1.0f - shaft_visibility(p, sun));
     vec3 psi = multiple_scattering_at(a, transmittance_lut, ms_lut, false, p, sun, frame.sky_model.y);
-    vec3 multiple = exp(-optical_depth) * (m.scattering_r + vec3(m.scattering_m)) * psi *
-                    (end_m * 2.0f * u / float(SHAFT_STEPS));
+    vec3 multiple = seen * (m.scattering_r + vec3(m.scattering_m)) * psi;
     if (t < cloud_m) {
       s.single_front += single;
       s.lost_front += lost;

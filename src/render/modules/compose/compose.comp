@@ -124,9 +124,10 @@ vec3 air_below_base_before(AirBelowBase a, float distance_m, vec3 at) {
 // the sky-view table's air sees a ground of the ground's albedo (from above the layer, the
 // sky above a cumulus field was 16-24% too dark against the path tracer). The layer fills the
 // lower hemisphere with a uniform radiance and the air scatters half of it towards any view
-// (Rayleigh's phase is even), as much as the view's span above the layer's top is opaque. `front`: the span in front of everything (the
-// eye above the top, down to where the view meets the top or out to space); `behind`: behind
-// the clouds (the eye under the top: the sky through their gaps), dimmed by the air in front.
+// (Rayleigh's phase is even), as much as the view's span above the layer's top is opaque.
+// `front`: the span in front of everything (the eye above the top, down to where the view
+// meets the top or out to space); `behind`: behind the clouds (the eye under the top: the sky
+// through their gaps), dimmed by the air in front.
 struct AirAboveLayer {
   vec3 front, behind;
 };
@@ -309,7 +310,7 @@ void main() {
       conditions != 1) {
     shaft = textureLod(light_shafts, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f);
     // The air's light alone: the ground's light from the sky and the clouds left out.
-    vec3 ground_sky = ground_sun.a * albedo * frame_ground_sky() * sky_share;
+    vec3 ground_sky = ground_sun.a * albedo * white_sky * sky_share;
     vec3 air = max(sky - ground_sky - ground_clouds, vec3(0.0f));
     background -= air * shaft.rgb;
     haze_kept = 1.0f - shaft.a;
