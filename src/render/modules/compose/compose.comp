@@ -309,8 +309,9 @@ void main() {
   if (WITH_SHAFTS && int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC && REFERENCE == 0 &&
       conditions != 1) {
     shaft = textureLod(light_shafts, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f);
-    // The air's light alone: the ground's light from the sky and the clouds left out.
-    vec3 ground_sky = ground_sun.a * albedo * white_sky * sky_share;
+    // The air's light alone: the ground's light from the sky (as a fog over it dims it) and
+    // the clouds left out.
+    vec3 ground_sky = ground_sun.a * albedo * white_sky * sky_share * ground_media.y;
     vec3 air = max(sky - ground_sky - ground_clouds, vec3(0.0f));
     background -= air * shaft.rgb;
     haze_kept = 1.0f - shaft.a;
