@@ -148,9 +148,8 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
   cmd.add_option("--json", options.json,
                  "write the real-time figures (static_fps, moving_fps, static_p99_ms, "
                  "moving_p99_ms, moving_max_ms, speedup_vs_baseline, cost_vs_seed_lit, "
-                 "cost_vs_seed_lighting, static_error, "
-                 "moving_error, frame_times_ms, device, ...) to this file, or to standard "
-                 "output with -");
+                 "cost_vs_seed_lighting, static_error, moving_error, frame_times_ms, device, "
+                 "...) to this file, or to standard output with -");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
   add_progress_flags(cmd, options.progress, options.quiet);
 }

@@ -132,10 +132,10 @@ Scene seed_lit_scene(const Scene& scene) {
 
 nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& options,
                                 const Scene& base, const RealtimeSettings& f) {
-  // Four renderers, one history each: the still camera (`renderer`), the flight, the seed's
-  // algorithm and the still camera lit as the seed lights clouds (seed_lit_scene). Their timed
-  // frames are interleaved, so a slow spell of a shared machine falls on all alike and the
-  // ratios between them hold.
+  // Five renderers, one history each: the still camera (`renderer`), the flight, the seed's
+  // algorithm, the still camera lit as the seed lights clouds (seed_lit_scene) and the same
+  // on the droplets (seed_lighting_scene). Their timed frames are interleaved, so a slow spell
+  // of a shared machine falls on all alike and the ratios between them hold.
   Renderer flight(options);
   Renderer seed_renderer(options);
   Renderer seed_lit_renderer(options);
