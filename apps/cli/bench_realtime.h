@@ -42,9 +42,9 @@ Scene reference_scene(const Scene& scene);
 Scene seed_lit_scene(const Scene& scene);
 
 // seed_lit_scene with the scene's own optics (the droplets' clouds, lit as the seed lights
-// them): the bench's cost_vs_seed_lighting, the share of cost_vs_seed_lit that the lighting
-// takes; the rest is the optics' (clouds of real droplets are thinner than the seed's, so
-// the march crosses more of them before they are opaque).
+// them): the bench's cost_vs_seed_lighting, the default's cost over the seed's lighting on
+// the same clouds. What cost_vs_seed_lit adds to it is the optics' (clouds of real droplets
+// are thinner than the seed's, so the march crosses more of them before they are opaque).
 Scene seed_lighting_scene(const Scene& scene);
 
 // Runs the measurements on `renderer` (a second renderer draws the references) and returns

@@ -252,8 +252,12 @@ void main() {
   vec2 ground_media = WITH_MEDIA && ground_m > 0.0f
                           ? media_surface_light(frame.camera_pos_m.xyz + dir * ground_m)
                           : vec2(1.0f);
-  sky = max(sky - (1.0f - sky_share * ground_media.y) * ground_sun.a * albedo * frame_ground_sky(),
-            0.0f);
+  // The ground's sky light under a clear sky, and as much of it as comes through the clouds
+  // and a fog over the ground.
+  vec3 white_sky = frame_ground_sky();
+  vec3 ground_sky_clear = ground_sun.a * albedo * white_sky;
+  vec3 ground_sky = ground_sky_clear * sky_share * ground_media.y;
+  sky = max(sky - ground_sky_clear + ground_sky, 0.0f);
   // And the sunlight the clouds around scatter down onto it (ground_light.comp), shared with the
   // diffuse light of the cloud towards the sun (cloud_ground_light_shares).
   vec3 clouds_down = ground_light_texel.gba;
@@ -275,7 +279,7 @@ void main() {
   vec3 background = sky + ground_sun.rgb * shares.x + discs;
   // The ground around's light over the clear ground's, the sun's share taken as the clouds'
   // mean transmittance down; and a white ground's clear light.
-  vec3 white_sun = frame_ground_sun(sky_frame.up), white_sky = frame_ground_sky();
+  vec3 white_sun = frame_ground_sun(sky_frame.up);
   vec3 ground_ratio = cloud_ground_light_ratio(ground_light_texel.r, ground_light_texel.r,
                                                clouds_down, white_sun, white_sky);
   // Under the clouds' base the air is lit as the ground around is (cloud_ground_light_ratio,
@@ -288,7 +292,7 @@ void main() {
       conditions != 1) {
     air_kept = min(ground_ratio, vec3(1.0f));
     below_base = air_below_base(uv, frame.camera_pos_m.xyz, dir, ground_m,
-                                max(sky_table - ground_sun.a * albedo * frame_ground_sky(), 0.0f));
+                                max(sky_table - ground_sky_clear, 0.0f));
     background -= (1.0f - air_kept) * max(below_base.far - below_base.near, vec3(0.0f));
   }
   // The air above the clouds' layer, lit by it from below.
@@ -309,9 +313,7 @@ void main() {
   if (WITH_SHAFTS && int(frame.light_shafts.x) == LIGHT_SHAFTS_VOLUMETRIC && REFERENCE == 0 &&
       conditions != 1) {
     shaft = textureLod(light_shafts, (vec2(pixel) + 0.5f) / vec2(width, height), 0.0f);
-    // The air's light alone: the ground's light from the sky (as a fog over it dims it) and
-    // the clouds left out.
-    vec3 ground_sky = ground_sun.a * albedo * white_sky * sky_share * ground_media.y;
+    // The air's light alone: the ground's light from the sky and the clouds left out.
     vec3 air = max(sky - ground_sky - ground_clouds, vec3(0.0f));
     background -= air * shaft.rgb;
     haze_kept = 1.0f - shaft.a;
