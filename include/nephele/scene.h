@@ -350,6 +350,14 @@ struct LocationParams {
   float altitude_m = 0.0f;  // the ground's height above sea level
 };
 
+// The weather from a report, applied when the scene is loaded: a METAR or SPECI whose cloud
+// groups, wind, visibility, present weather and day and time set the clouds' layers, the
+// winds, the haze, the storm growth and the time of day on the scene's date. They take
+// precedence over the same keys of the other tables (docs/weather-reports.md).
+struct WeatherReportParams {
+  std::string metar;  // "" = none
+};
+
 // The artist-driven time of day and weather of seed 003, section 4 (nephele/conditions.h):
 // eight keyframe sets by local solar time in a good- and a bad-weather table, blended by
 // `weather`.
@@ -567,6 +575,7 @@ struct Scene {
   OutputParams output;
   LocationParams location;
   ConditionsParams conditions;
+  WeatherReportParams weather;
   // Date and time (ISO 8601, UTC or with an offset: "2026-06-21T18:30:00Z"); empty = none (no
   // moon, and the sun from sun.direction). The sky's clock is time + time_s.
   std::string time;

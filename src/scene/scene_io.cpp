@@ -19,6 +19,7 @@
 #include "nephele/exposure.h"
 #include "nephele_embedded.h"
 #include "scene/scene_fields.h"
+#include "weather/metar_weather.h"
 
 namespace nephele_presets {  // defined by the generated embedded_presets.cpp
 extern const EmbeddedFile kFiles[];
@@ -231,6 +232,15 @@ class SceneReader {
       read_table(*section, *table, scene);
     }
     apply_sun_source(root, scene);
+    // A weather report last: its clouds, wind, haze and time take precedence over the keys.
+    if (!scene.weather.metar.empty()) {
+      try {
+        weather::apply_metar(scene);
+      } catch (const InputError& e) {
+        const toml::node* node = root.at_path("weather.metar").node();
+        fail(node ? node->source() : toml::source_region{}, e.what());
+      }
+    }
     // After every table: the location and the planet's radius may come later in the file.
     for (const GeoPosition& geo : geo_positions)
       scene.voxel_clouds[geo.index].position_m =

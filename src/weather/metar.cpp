@@ -26,7 +26,8 @@ bool matches(const std::string& token, const std::regex& re) {
 
 // "M05" -> -5, "12" -> 12.
 float signed_temperature(const std::string& text) {
-  return text[0] == 'M' ? -std::stof(text.substr(1)) : std::stof(text);
+  const float value = std::stof(text[0] == 'M' ? text.substr(1) : text);
+  return text[0] == 'M' && value > 0.0f ? -value : value;  // M00: just below 0, shown as 0
 }
 
 const std::regex kStation("[A-Z][A-Z0-9]{3}");
@@ -35,6 +36,7 @@ const std::regex kWind("(\\d{3}|VRB|///)(P?\\d{2,3}|//)(?:G(P?\\d{2,3}))?(KT|MPS
 const std::regex kWindVaries("(\\d{3})V(\\d{3})");
 const std::regex kVisibilityM("(\\d{4})(NDV)?");
 const std::regex kVisibilityMinimum("(\\d{4})(N|NE|E|SE|S|SW|W|NW)");
+const std::regex kVisibilityKm("(\\d{1,2})KM");
 const std::regex kVisibilitySm("([MP])?(\\d{1,2})SM");
 const std::regex kVisibilitySmFraction("([MP])?(\\d)/(\\d{1,2})SM");
 const std::regex kWholeMiles("\\d");
@@ -42,22 +44,30 @@ const std::regex kRvr("R\\d{2}[LCR]?/(?:[PM]?\\d{4}(?:V[PM]?\\d{4})?(?:FT)?(?:/?
 const std::regex kWeather(
     "(-|\\+|VC)?(MI|PR|BC|DR|BL|SH|TS|FZ)?((?:DZ|RA|SN|SG|IC|PL|GR|GS|UP|BR|FG|FU|VA|DU|SA|HZ|"
     "PY|PO|SQ|FC|SS|DS)*)");
-// "///CB": an automatic station's CB or TCU whose cover and base it cannot tell.
-const std::regex kCloud("(FEW|SCT|BKN|OVC|///)(\\d{3}|///)?(CB|TCU|///)?");
+// "///CB": an automatic station's CB or TCU whose cover and base it cannot tell. Some
+// national variants name every layer's genus (FEW025SC, BKN090AC).
+const std::regex kCloud(
+    "(FEW|SCT|BKN|OVC|///)(\\d{3}|///)?(CB|TCU|///|CU|SC|ST|NS|AS|AC|CI|CS|CC)?");
 const std::regex kVerticalVisibility("VV(\\d{3}|///)");
 const std::regex kTemperature("(M?\\d{2}|//|XX)/(M?\\d{2}|//|XX)?");
 const std::regex kPressure("([QA])(\\d{4}|////)");
 const std::regex kRecent(
     "RE((?:MI|PR|BC|DR|BL|SH|TS|FZ)?(?:DZ|RA|SN|SG|IC|PL|GR|GS|UP|BR|FG|FU|VA|"
     "DU|SA|HZ|PY|PO|SQ|FC|SS|DS)*)");
-// Runway state (EUR: R24/190095, R88/CLRD70, R24/SNOCLO), sea state (W15/S3, W12/H14) and
-// the military colour states.
-const std::regex kRunwayState("R\\d{2}[LCR]?/(?:[0-9/]{6}|CLRD[0-9/]{2})|R/SNOCLO|SNOCLO");
+// Runway state (EUR: R24/190095, R88/CLRD70, R24/SNOCLO, and without the R of the older
+// form: 88CLRD95, 24190095), sea state (W15/S3, W12/H14), the sea-level pressure some
+// stations add (QFF1011), Australia's rainfall (RF00.2/001.4) and the military colour states.
+const std::regex kRunwayState(
+    "R\\d{2}[LCR]?/[A-Z0-9/]+|R/SNOCLO|SNOCLO|\\d{2}(?:[0-9/]{6}|CLRD[0-9/]{2})");
+const std::regex kOtherSupplementary("QFF\\d{4}|RF\\d{2}\\.\\d/\\d{3}\\.\\d");
 const std::regex kSea("W(?:M?\\d{2}|//)/(?:S[0-9/]|H[0-9/]{1,3})");
 const std::regex kColour("(?:BLACK)?(?:BLU|WHT|GRN|YLO1|YLO2|YLO|AMB|RED)\\+?");
 
-bool is_trend_start(const std::string& t) {
-  return t == "NOSIG" || t == "BECMG" || t == "TEMPO";
+// NOSIG, BECMG and TEMPO; Australia's trend forecast also begins with INTER, or with FMhhmm
+// where no trend has begun (within BECMG or TEMPO, FMhhmm is the change's time).
+bool is_trend_start(const std::string& t, bool in_trend) {
+  return t == "NOSIG" || t == "BECMG" || t == "TEMPO" || t == "INTER" ||
+         (!in_trend && std::regex_match(t, std::regex("FM\\d{4}")));
 }
 
 struct Parser {
@@ -137,7 +147,14 @@ struct Parser {
         v.minimum_m = std::stof(m[1]);
         v.minimum_direction = m[2];
         ++i;
+      } else if (more() && matches(token(), kVisibilityM, m) && !m[2].matched &&
+                 std::stof(m[1]) < v.distance_m) {  // a minimum without its direction
+        v.minimum_m = std::stof(m[1]);
+        ++i;
       }
+    } else if (matches(t, kVisibilityKm, m)) {
+      v.distance_m = std::stof(m[1]) * 1000.0f;
+      ++i;
     } else if (matches(t, kVisibilitySm, m)) {
       v.statute_miles = true;
       v.distance_m = std::stof(m[2]) * kStatuteMileM;
@@ -268,7 +285,8 @@ struct Parser {
       r.wind_shear.push_back(group);
       return true;
     }
-    if (matches(t, kRunwayState) || matches(t, kSea) || matches(t, kColour)) {
+    if (matches(t, kRunwayState) || matches(t, kSea) || matches(t, kColour) ||
+        matches(t, kOtherSupplementary)) {
       r.supplementary.push_back(t);
       ++i;
       return true;
@@ -280,7 +298,7 @@ struct Parser {
   void trend() {
     std::string text = token();
     ++i;
-    while (more() && !is_trend_start(token()) && token() != "RMK") {
+    while (more() && !is_trend_start(token(), true) && token() != "RMK") {
       text += " " + token();
       ++i;
     }
@@ -334,13 +352,13 @@ struct Parser {
     };
     constexpr size_t kStages = sizeof(stages) / sizeof(stages[0]);
     size_t stage = 0;
-    if (more() && token() == "NIL") {
-      r.nil = true;
-      ++i;
-      if (more()) fail("nothing after NIL (no report)");
-      return;
-    }
     while (more()) {
+      if (token() == "NIL" && stage <= 1) {  // no report (after AUTO or COR, if any)
+        r.nil = true;
+        ++i;
+        if (more()) fail("nothing after NIL (no report)");
+        return;
+      }
       if (token() == "RMK") {
         ++i;
         std::string text;
@@ -348,7 +366,7 @@ struct Parser {
         r.remarks = text;
         return;
       }
-      if (is_trend_start(token())) {
+      if (is_trend_start(token(), !r.trends.empty())) {
         trend();
         stage = kStages;  // nothing of the observation after a trend
         continue;
@@ -454,7 +472,8 @@ std::string describe(const MetarReport& r) {
              : ", visibility " + std::string(v.less_than ? "under " : "") +
                    format("%.0f", v.distance_m) + " m" + (v.at_least ? " or more" : "") +
                    (v.minimum_m
-                        ? " (" + format("%.0f", *v.minimum_m) + " m " + v.minimum_direction + ")"
+                        ? " (" + format("%.0f", *v.minimum_m) + " m" +
+                              (v.minimum_direction.empty() ? "" : " " + v.minimum_direction) + ")"
                         : "");
   }
   for (const MetarWeather& w : r.weather) s += ", " + w.text;

@@ -6,12 +6,17 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "nephele/error.h"
 
 using nephele::InputError;
+using nephele::weather::MetarCloud;
 using nephele::weather::MetarReport;
+using nephele::weather::MetarVisibility;
+using nephele::weather::MetarWeather;
+using nephele::weather::MetarWind;
 using nephele::weather::parse_metar;
 
 TEST(Metar, TheIssuesReportDecodesGroupByGroup) {
@@ -130,4 +135,139 @@ TEST(Metar, MalformedReportsNameTheGroup) {
   EXPECT_NE(message("EDDF 271150Z NIL 24015KT").find("nothing after NIL"), std::string::npos);
   EXPECT_NE(message("EDDF 271150Z 24015KT 9999 12/06 Q1008 WS").find("a runway after WS"),
             std::string::npos);
+}
+
+namespace {
+// The fields of a report as the corpus states them (tests/data/metar_reports.json).
+nlohmann::json expect_fields(const MetarReport& r) {
+  nlohmann::json e;
+  e["kind"] = r.speci ? "SPECI" : "METAR";
+  e["station"] = r.station;
+  char t[16];
+  std::snprintf(t, sizeof(t), "%02d%02d%02dZ", r.day, r.hour, r.minute);
+  e["time"] = t;
+  if (r.automatic) e["auto"] = true;
+  if (r.corrected) e["cor"] = true;
+  if (r.nil) {
+    e["nil"] = true;
+    return e;
+  }
+  if (r.wind) {
+    const MetarWind& w = *r.wind;
+    std::string s;
+    if (w.missing)
+      s = "missing";
+    else {
+      char b[64];
+      std::snprintf(b, sizeof(b), "%s %g%s",
+                    w.variable ? "VRB" : std::to_string(w.direction_deg).c_str(), w.speed,
+                    w.above ? "+" : "");
+      s = b;
+      if (w.gust) {
+        std::snprintf(b, sizeof(b), " G%g", *w.gust);
+        s += b;
+      }
+      s += " " + w.unit;
+      if (w.varies_from_deg)
+        s += " " + std::to_string(*w.varies_from_deg) + "V" + std::to_string(*w.varies_to_deg);
+    }
+    e["wind"] = s;
+  }
+  if (r.visibility) {
+    const MetarVisibility& v = *r.visibility;
+    if (v.cavok)
+      e["visibility"] = "CAVOK";
+    else if (v.missing)
+      e["visibility"] = "missing";
+    else {
+      char b[64];
+      std::snprintf(b, sizeof(b), "%s%.0f m%s", v.less_than ? "<" : "", v.distance_m,
+                    v.at_least ? "+" : "");
+      std::string s = b;
+      if (v.minimum_m) {
+        std::snprintf(b, sizeof(b), " min %.0f m%s%s", *v.minimum_m,
+                      v.minimum_direction.empty() ? "" : " ", v.minimum_direction.c_str());
+        s += b;
+      }
+      e["visibility"] = s;
+    }
+  }
+  if (!r.runway_visual_range.empty()) e["rvr"] = r.runway_visual_range.size();
+  nlohmann::json wx = nlohmann::json::array();
+  for (const MetarWeather& w : r.weather) {
+    std::string s = w.intensity + w.descriptor;
+    for (auto& p : w.phenomena) s += p;
+    if (w.text == "//") s = "//";
+    wx.push_back(s);
+  }
+  if (!wx.empty()) e["weather"] = wx;
+  nlohmann::json cl = nlohmann::json::array();
+  for (const MetarCloud& c : r.clouds)
+    cl.push_back(c.cover + " " +
+                 (c.base_ft ? std::to_string(*c.base_ft) + " ft" : std::string("///")) +
+                 (c.type.empty() ? "" : " " + c.type));
+  if (!cl.empty()) e["clouds"] = cl;
+  if (r.sky_obscured)
+    e["vertical_visibility_ft"] = r.vertical_visibility_ft
+                                      ? nlohmann::json(*r.vertical_visibility_ft)
+                                      : nlohmann::json("///");
+  if (!r.no_cloud.empty()) e["no_cloud"] = r.no_cloud;
+  if (r.temperature_c) e["temperature_c"] = *r.temperature_c;
+  if (r.dew_point_c) e["dew_point_c"] = *r.dew_point_c;
+  if (r.qnh_hpa) e["qnh_hpa"] = *r.qnh_hpa;
+  if (r.altimeter_inhg) e["altimeter_inhg"] = std::round(*r.altimeter_inhg * 100.0) / 100.0;
+  if (!r.recent_weather.empty()) {
+    nlohmann::json a = nlohmann::json::array();
+    for (auto& w : r.recent_weather) a.push_back(w.text);
+    e["recent"] = a;
+  }
+  if (!r.wind_shear.empty()) e["wind_shear"] = r.wind_shear;
+  if (!r.supplementary.empty()) e["supplementary"] = r.supplementary;
+  if (!r.trends.empty()) e["trends"] = r.trends;
+  if (!r.remarks.empty()) e["remarks"] = r.remarks;
+  return e;
+}
+}  // namespace
+
+// The corpus: every real report's fields exactly as expected, and the malformed ones refused
+// naming the group.
+TEST(Metar, RealReportsFromEveryContinentParseExactly) {
+  std::ifstream file(NEPHELE_SOURCE_DIR "/tests/data/metar_reports.json");
+  ASSERT_TRUE(file) << "tests/data/metar_reports.json";
+  const nlohmann::json corpus = nlohmann::json::parse(file);
+  std::map<std::string, int> continents;
+  int parsed = 0, refused = 0;
+  for (const nlohmann::json& entry : corpus) {
+    const std::string raw = entry["raw"];
+    ASSERT_FALSE(entry["source"].get<std::string>().empty()) << raw;
+    if (entry.contains("error")) {
+      try {
+        parse_metar(raw);
+        ADD_FAILURE() << "accepted a malformed report: " << raw;
+      } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).find("metar: " + entry["error"].get<std::string>() +
+                                             ": expected"),
+                  0u)
+            << raw << "\n"
+            << e.what();
+      }
+      ++refused;
+      continue;
+    }
+    MetarReport r;
+    try {
+      r = parse_metar(raw);
+    } catch (const InputError& e) {
+      ADD_FAILURE() << raw << "\n" << e.what();
+      continue;
+    }
+    EXPECT_EQ(expect_fields(r), entry["expect"]) << raw << "\ngot " << expect_fields(r).dump();
+    ++continents[entry["continent"]];
+    ++parsed;
+  }
+  EXPECT_GE(parsed, 60);
+  EXPECT_EQ(refused, 5);
+  EXPECT_GE(continents.size(), 5u);
+  for (const char* c : {"Europe", "North America", "South America", "Asia", "Africa", "Oceania"})
+    EXPECT_GE(continents[c], 5) << c;
 }
