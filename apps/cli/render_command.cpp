@@ -1,7 +1,6 @@
 #include "render_command.h"
 
 #include <CLI/CLI.hpp>
-
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +19,7 @@
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
 #include "progress.h"
+#include "weather/metar_weather.h"
 
 namespace nephele::cli {
 
@@ -398,7 +398,11 @@ int run_render(const RenderOptions& options) {
                      "own layers (the mean and its variance)");
   if (options.reference) return run_reference(scene, options);
   const Sequence seq = plan_sequence(scene, options);
-  if (options.verbose) std::cerr << "# resolved scene\n" << scene_to_toml(scene);
+  if (options.verbose) {
+    std::cerr << "# resolved scene\n" << scene_to_toml(scene);
+    for (const std::string& line : weather::describe_metar(scene))
+      std::cerr << "# " << line << "\n";
+  }
 
   const bool stats_to_stdout = options.stats_json == kStandardOutput;
   const ExrPixels exr = options.exr_float ? ExrPixels::kFloat : ExrPixels::kHalf;

@@ -17,6 +17,7 @@
 #include "nephele/scene_io.h"
 #include "scene/scene_fields.h"
 #include "voxel/voxel_grid.h"
+#include "weather/metar_weather.h"
 
 namespace nephele::cli {
 namespace {
@@ -671,6 +672,17 @@ Scene resolve_scene(const SceneFlags& flags) {
   apply_sun_angles(flags, scene);
   apply_legacy_light(flags, scene);
   apply_fov_form(flags, scene);
+  // --metar last: the report's layers, wind, haze and time take precedence, on --time's date.
+  for (const auto& [key, value] : flags.table_values)
+    if (key == "weather.metar") {
+      try {
+        weather::apply_metar(scene);
+      } catch (const InputError& e) {
+        std::string what = e.what();
+        if (what.starts_with("weather.metar: ")) what = what.substr(15);
+        fail("--metar", scene.weather.metar, what);
+      }
+    }
   // A sun flag places the sun; otherwise a --time does.
   if (flags.sun_dir || flags.sun_elevation_deg || flags.sun_azimuth_deg)
     scene.sun.from_time = false;

@@ -258,7 +258,8 @@ const std::vector<Section>& scene_sections() {
          {FIELD(weather, metar,
                 "a METAR or SPECI report (\"EDDF 271150Z 24015KT 9999 FEW025 SCT040 12/06 "
                 "Q1008\"): its clouds, wind, visibility, weather and time set the scene's when it "
-                "is loaded; \"\" = none")},
+                "is loaded; \"\" = none",
+                {}, {}, "metar")},
          {}},
         {"location",
          {FIELD(location, lat_deg, "latitude, north positive", closed(-90, 90)),

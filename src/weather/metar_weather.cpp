@@ -73,8 +73,9 @@ bool is_sheet(Genus genus) {
   return genus == Genus::Cirrus || genus == Genus::Cirrostratus || genus == Genus::Cirrocumulus;
 }
 
-// The depth of a genus' clouds (m), from its base.
-float cloud_depth_m(Genus genus, float type, float base_m) {
+// The depth of a genus' clouds (m), from its base: a fair-weather cumulus deeper the more of
+// the sky it covers (humilis to mediocris).
+float cloud_depth_m(Genus genus, float type, float base_m, const Cover& cover) {
   if (genus == Genus::Cumulonimbus) return std::max(9000.0f, base_m + 6000.0f) - base_m;
   if (type > 0.8f) return 4000.0f;  // towering cumulus
   switch (genus) {
@@ -85,7 +86,7 @@ float cloud_depth_m(Genus genus, float type, float base_m) {
     case Genus::Altocumulus:
       return 600.0f;
     default:
-      return 1500.0f;  // cumulus
+      return cover.max <= 2 ? 800.0f : cover.max <= 4 ? 1200.0f : 1500.0f;  // cumulus
   }
 }
 
@@ -129,7 +130,7 @@ Group group_of(const MetarCloud& c, std::optional<float> convective_base_m) {
     g.genus = convective ? Genus::Cumulus : Genus::Stratocumulus;
   }
   g.type = c.type == "TCU" ? kTowerType : genus_type(g.genus);
-  g.top_m = g.base_m + cloud_depth_m(g.genus, g.type, g.base_m);
+  g.top_m = g.base_m + cloud_depth_m(g.genus, g.type, g.base_m, g.cover);
   return g;
 }
 
@@ -216,10 +217,9 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
     }
   }
   // Two volumetric layers today: a cumulonimbus spans the others; otherwise the two nearest
-  // layers are drawn as one until two are left, and layers whose shells would overlap too.
+  // layers are drawn as one until two are left, and layers whose clouds overlap too.
   const auto overlapping = [](const Group& low, const Group& high) {
-    return shell_for(low.type, low.base_m, low.top_m).y >
-           shell_for(high.type, high.base_m, high.top_m).x;
+    return low.top_m > high.base_m;
   };
   const bool cumulonimbus = std::any_of(volumetric.begin(), volumetric.end(), [](const Group& g) {
     return g.genus == Genus::Cumulonimbus;
@@ -259,6 +259,13 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
     layer = cloud_layer(g, oktas, layer.density);
     out.layers.push_back(
         {g.text, slots[k], g.genus, g.type, g.base_m, g.top_m, g.cover.drawn, oktas});
+  }
+  if (volumetric.size() == 2 && s.low.top_m > s.high.base_m) {
+    // The shells hold more than the clouds (a cumulus' top fifth, an altocumulus' lowest
+    // 30%): they meet half way between the low clouds' tops and the high clouds' bases.
+    const float meet_m = 0.5f * (volumetric[0].top_m + volumetric[1].base_m);
+    s.low.top_m = std::min(s.low.top_m, meet_m);
+    s.high.base_m = std::max(s.high.base_m, meet_m);
   }
   if (volumetric.size() < 2) {  // no high layer: keep it clear of the low one
     s.high.base_m = std::max(s.high.base_m, s.low.top_m);
