@@ -59,6 +59,47 @@ float checked_type(const std::string& name, const CloudLayer& layer, const Genus
   return float(i) / float(N - 1);
 }
 
+// The sky covered (the dome's share with cloud T < 0.5, FrameStats::sky_cover_fraction) by a
+// layer's clouds.coverage, measured at 48 x 32 on lavapipe (stop 77, `nephele render
+// --stats-json` with the default scene's seed and the high layer and the cirrus off) for each
+// genus in the shell a report gives it (coverage_for_oktas).
+constexpr float kCoverages[] = {0.0f,  0.30f, 0.35f, 0.40f, 0.45f, 0.50f,
+                                0.55f, 0.60f, 0.65f, 0.70f, 0.80f, 1.0f};
+constexpr size_t kCoverageSteps = std::size(kCoverages);
+struct CoverCurve {
+  float type;
+  float sky[kCoverageSteps];
+};
+constexpr CoverCurve kCoverCurves[] = {
+    {0.0f, {0, 0.0020f, 0.0217f, 0.0957f, 0.2061f, 0.3599f, 0.7144f, 0.9360f, 0.9978f, 1, 1, 1}},
+    {0.25f, {0, 0.0029f, 0.0251f, 0.1121f, 0.2512f, 0.5022f, 0.7019f, 0.9043f, 0.9924f, 1, 1, 1}},
+    {0.5f,
+     {0, 0.0034f, 0.0222f, 0.1069f, 0.2454f, 0.4380f, 0.6372f, 0.8174f, 0.9424f, 0.9902f, 1, 1}},
+    {0.75f,
+     {0, 0.0037f, 0.0239f, 0.0886f, 0.2241f, 0.4272f, 0.6406f, 0.8364f, 0.9436f, 0.9854f, 1, 1}},
+    {0.875f, {0, 0.0525f, 0.1794f, 0.3660f, 0.5981f, 0.8374f, 0.9705f, 1, 1, 1, 1, 1}},
+    {1.0f, {0, 0.1619f, 0.4778f, 0.7522f, 0.9172f, 0.9895f, 1, 1, 1, 1, 1, 1}},
+};
+
+// The sky covered at `coverage` for `type`: each genus' curve, linear in coverage between its
+// measured steps and in type between genera.
+float sky_cover(float coverage, float type) {
+  const auto curve = [coverage](const CoverCurve& c) {
+    const float x = std::clamp(coverage, 0.0f, 1.0f);
+    size_t k = 1;
+    while (k + 1 < kCoverageSteps && kCoverages[k] < x) ++k;
+    const float t = (x - kCoverages[k - 1]) / (kCoverages[k] - kCoverages[k - 1]);
+    return c.sky[k - 1] + std::clamp(t, 0.0f, 1.0f) * (c.sky[k] - c.sky[k - 1]);
+  };
+  const float x = std::clamp(type, 0.0f, 1.0f);
+  size_t k = 1;
+  while (k + 1 < std::size(kCoverCurves) && kCoverCurves[k].type < x) ++k;
+  const CoverCurve& a = kCoverCurves[k - 1];
+  const CoverCurve& b = kCoverCurves[k];
+  const float t = (x - a.type) / (b.type - a.type);
+  return curve(a) + t * (curve(b) - curve(a));
+}
+
 // The two volumetric layers (CloudParams, HighCloudParams) as a state's layer, and back.
 template <typename Params>
 CloudLayer volumetric_layer(const Params& p) {
@@ -66,21 +107,40 @@ CloudLayer volumetric_layer(const Params& p) {
           p.type,
           p.bottom_altitude_m,
           p.top_altitude_m,
-          8.0f * p.coverage,
+          oktas_for_coverage(p.coverage, p.type),
           p.density,
           0.0f};
 }
 
+// A layer's coverage is left exactly as it is when its oktas are the ones it gives.
 template <typename Params>
 void set_volumetric_layer(Params& p, const CloudLayer& layer, float type) {
+  if (type != p.type || layer.coverage_oktas != oktas_for_coverage(p.coverage, p.type))
+    p.coverage = coverage_for_oktas(layer.coverage_oktas, type);
   p.type = type;
   p.bottom_altitude_m = layer.base_m;
   p.top_altitude_m = layer.top_m;
-  p.coverage = layer.coverage_oktas / 8.0f;
   p.density = layer.density;
 }
 
 }  // namespace
+
+float oktas_for_coverage(float coverage, float type) {
+  return coverage >= 1.0f ? 8.0f : std::min(8.0f * sky_cover(coverage, type), 7.999f);
+}
+
+float coverage_for_oktas(float oktas, float type) {
+  if (oktas <= 0.0f) return 0.0f;
+  if (oktas >= 8.0f) return 1.0f;  // overcast: no hole
+  // The least coverage that covers the share (the curves rise, then stay at 1): bisection.
+  const float share = oktas / 8.0f;
+  float lo = 0.0f, hi = 1.0f;
+  for (int i = 0; i < 40; ++i) {
+    const float mid = 0.5f * (lo + hi);
+    (sky_cover(mid, type) < share ? lo : hi) = mid;
+  }
+  return hi;
+}
 
 const char* to_string(Genus genus) {
   switch (genus) {

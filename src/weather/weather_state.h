@@ -73,10 +73,22 @@ float visibility_m(const AtmosphereParams& atmosphere);
 float clear_air_visibility_m(const AtmosphereParams& atmosphere);
 constexpr float kMinVisibilityM = 400.0f;  // Mie extinction 0.0098/m: validation's 0.01 limit
 
+// A volumetric layer's clouds.coverage for `oktas` of the sky covered, seen from the ground,
+// for clouds of `type` (clouds.type's scale), and back: the procedural field's coverage is a
+// threshold on the weather map, and the sky it covers rises steeply from none at 0.3 to all
+// of it at 0.6-0.7, sooner for deep clouds whose sides fill the view. Measured (the dome's
+// sky cover, 4096 directions) for each genus in the shell a report gives it: stratus
+// 150-1970 m, stratocumulus 460-1890, altocumulus 2010-3440, cumulus 1220-2720, towering
+// cumulus 910-5900, cumulonimbus 910-9000; between genera the curves blend. 8 oktas is a
+// coverage of 1: a closed deck without holes.
+float coverage_for_oktas(float oktas, float type);
+float oktas_for_coverage(float coverage, float type);
+
 // The state today's scene describes.
 WeatherState weather_state(const Scene& scene);
 // Writes the state into the scene's clouds, high clouds, cirrus and atmosphere (the Mie term
-// keeps its albedo). Throws InputError naming the field ("weather.low.genus = cirrus: ...")
+// keeps its albedo; the volumetric layers' coverage from their oktas by coverage_for_oktas, the
+// sheet's as oktas / 8). Throws InputError naming the field ("weather.low.genus = cirrus: ...")
 // for a genus the layer cannot draw, oktas outside [0, 8], a base at or above a top, winds
 // not increasing in altitude, a visibility outside what the atmosphere holds; the scene is
 // unchanged then. validate_scene checks the result as for any scene.

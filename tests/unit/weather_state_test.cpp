@@ -36,7 +36,8 @@ TEST(WeatherState, OktasGenusAndWindsByAltitude) {
   state.sheet = {Genus::Cirrostratus, -1.0f, 9500.0f, 9500.0f, 2.0f, 0.0f, 0.5f};
   state.wind = {{0.0f, {2.0f, 0.0f}}, {1000.0f, {10.0f, 0.0f}}, {10000.0f, {40.0f, 10.0f}}};
   apply_weather(state, scene);
-  EXPECT_FLOAT_EQ(scene.clouds.coverage, 0.75f);
+  // 6 oktas of stratocumulus: a coverage of 0.56 (the measured curve: 0.50 covers half the sky).
+  EXPECT_NEAR(scene.clouds.coverage, 0.562f, 0.002f);
   EXPECT_FLOAT_EQ(scene.clouds.type, 0.25f);  // stratocumulus on clouds.type's scale
   EXPECT_FLOAT_EQ(scene.cirrus.type, 0.5f);
   EXPECT_FLOAT_EQ(scene.cirrus.coverage, 0.25f);
@@ -44,13 +45,32 @@ TEST(WeatherState, OktasGenusAndWindsByAltitude) {
   EXPECT_NEAR(scene.clouds.wind_shear_mps.x, 10.0f + 800.0f / 9000.0f * 30.0f - 8.4f, 1e-4f);
   EXPECT_NEAR(scene.cirrus.wind_mps.y, 9.5f / 10.0f * 10.0f - 1.0f / 9.0f * 0.5f, 0.1f);
   validate_scene(scene);
-  EXPECT_EQ(weather_state(scene).low.coverage_oktas, 6.0f);
+  EXPECT_NEAR(weather_state(scene).low.coverage_oktas, 6.0f, 1e-3f);
   EXPECT_EQ(weather_state(scene).low.genus, Genus::Stratocumulus);
   EXPECT_EQ(weather_state(scene).wind.size(), 4u);  // the layers' winds are one profile
   // A type between genera is kept, and named by the nearest genus.
   scene.clouds.type = 0.7f;
   EXPECT_EQ(weather_state(scene).low.genus, Genus::Cumulus);
   EXPECT_EQ(weather_state(scene).low.type, 0.7f);
+}
+
+// Oktas and coverage: the measured curves, inverted exactly; deep clouds cover the sky sooner;
+// 8 oktas a closed deck.
+TEST(WeatherState, OktasMapOntoTheMeasuredCoverage) {
+  for (float type : {0.0f, 0.25f, 0.4f, 0.75f, 0.9f, 1.0f})
+    for (float oktas = 0.5f; oktas < 8.0f; oktas += 0.5f) {
+      const float coverage = coverage_for_oktas(oktas, type);
+      EXPECT_NEAR(oktas_for_coverage(coverage, type), oktas, 1e-3f) << type << " " << oktas;
+      EXPECT_GT(coverage, coverage_for_oktas(oktas - 0.5f, type));
+    }
+  // Cumulus: 1.5 oktas between the measured 0.40 (0.089 of the sky) and 0.45 (0.224).
+  EXPECT_NEAR(coverage_for_oktas(1.5f, 0.75f), 0.4366f, 0.001f);
+  EXPECT_NEAR(coverage_for_oktas(6.0f, 0.75f), 0.58f, 0.01f);
+  EXPECT_LT(coverage_for_oktas(3.5f, 1.0f), coverage_for_oktas(3.5f, 0.75f) - 0.1f);
+  EXPECT_EQ(coverage_for_oktas(8.0f, 0.0f), 1.0f);
+  EXPECT_EQ(coverage_for_oktas(0.0f, 0.5f), 0.0f);
+  EXPECT_EQ(oktas_for_coverage(1.0f, 0.5f), 8.0f);
+  EXPECT_LT(oktas_for_coverage(0.99f, 0.5f), 8.0f);
 }
 
 // Koschmieder: the visibility sets the haze's extinction, and reads back as itself.
