@@ -254,13 +254,6 @@ const std::vector<Section>& scene_sections() {
                     closed(-1e6, 1e6)),
           TOP_FIELD(noise_seed, "seeds the noise textures and the procedural weather map")},
          {"preset"}},
-        {"weather",
-         {FIELD(weather, metar,
-                "a METAR or SPECI report (\"EDDF 271150Z 24015KT 9999 FEW025 SCT040 12/06 "
-                "Q1008\"): its clouds, wind, visibility, weather and time set the scene's when it "
-                "is loaded; \"\" = none",
-                {}, {}, "metar")},
-         {}},
         {"location",
          {FIELD(location, lat_deg, "latitude, north positive", closed(-90, 90)),
           FIELD(location, lon_deg, "longitude, east positive", closed(-180, 360)),
@@ -499,6 +492,13 @@ const std::vector<Section>& scene_sections() {
                 "auto exposure's adaptation in sequences and the viewer (EV/s); 0 = at once",
                 closed(0, 1e6))},
          {"exposure"}},
+        {"weather",
+         {FIELD(weather, metar,
+                "a METAR or SPECI report (\"EDDF 271150Z 24015KT 9999 FEW025 SCT040 12/06 "
+                "Q1008\"): its clouds, wind, visibility, weather and time set the scene's when it "
+                "is loaded; \"\" = none",
+                {}, {}, "metar")},
+         {}},
         {"conditions",
          {FIELD(conditions, mode,
                 "off, artist (keyframes instead of the physical sky and lights) or overlay "
