@@ -51,9 +51,6 @@ const std::regex kCloud(
 const std::regex kVerticalVisibility("VV(\\d{3}|///)");
 const std::regex kTemperature("(M?\\d{2}|//|XX)/(M?\\d{2}|//|XX)?");
 const std::regex kPressure("([QA])(\\d{4}|////)");
-const std::regex kRecent(
-    "RE((?:MI|PR|BC|DR|BL|SH|TS|FZ)?(?:DZ|RA|SN|SG|IC|PL|GR|GS|UP|BR|FG|FU|VA|"
-    "DU|SA|HZ|PY|PO|SQ|FC|SS|DS)*)");
 // Runway state (EUR: R24/190095, R88/CLRD70, R24/SNOCLO, and without the R of the older
 // form: 88CLRD95, 24190095), sea state (W15/S3, W12/H14), the sea-level pressure some
 // stations add (QFF1011), Australia's rainfall (RF00.2/001.4) and the military colour states.
@@ -62,12 +59,36 @@ const std::regex kRunwayState(
 const std::regex kOtherSupplementary("QFF\\d{4}|RF\\d{2}\\.\\d/\\d{3}\\.\\d");
 const std::regex kSea("W(?:M?\\d{2}|//)/(?:S[0-9/]|H[0-9/]{1,3})");
 const std::regex kColour("(?:BLACK)?(?:BLU|WHT|GRN|YLO1|YLO2|YLO|AMB|RED)\\+?");
+const std::regex kTrendFrom("FM\\d{4}");
+const std::regex kWindShearRunway("(R|RWY)\\d{2}[LCR]?");
+const std::regex kCorrection("CC[A-Z]");
+
+// A weather group's code ("+SHRA"; recent weather's after its RE, which takes no intensity)
+// as written in `text`; none when it is not one. A descriptor alone is present weather only
+// as TS (a thunderstorm) or, in the vicinity, SH.
+std::optional<MetarWeather> weather_group(const std::string& code, const std::string& text,
+                                          bool recent) {
+  std::smatch m;
+  if (!std::regex_match(code, m, kWeather) || (!m[2].matched && m[3].length() == 0))
+    return std::nullopt;
+  if (recent ? m[1].matched : m[3].length() == 0 && m[2] != "TS" && !(m[1] == "VC" && m[2] == "SH"))
+    return std::nullopt;
+  MetarWeather w{m[1], m[2], {}, text};
+  const std::string p = m[3];
+  for (size_t k = 0; k < p.size(); k += 2) w.phenomena.push_back(p.substr(k, 2));
+  return w;
+}
+
+// A speed in `unit` (KT, MPS or KMH) in m/s.
+float to_mps(float speed, const std::string& unit) {
+  return to_mps(speed, unit);
+}
 
 // NOSIG, BECMG and TEMPO; Australia's trend forecast also begins with INTER, or with FMhhmm
 // where no trend has begun (within BECMG or TEMPO, FMhhmm is the change's time).
 bool is_trend_start(const std::string& t, bool in_trend) {
   return t == "NOSIG" || t == "BECMG" || t == "TEMPO" || t == "INTER" ||
-         (!in_trend && std::regex_match(t, std::regex("FM\\d{4}")));
+         (!in_trend && std::regex_match(t, kTrendFrom));
 }
 
 struct Parser {
@@ -187,20 +208,15 @@ struct Parser {
   }
 
   bool present_weather() {
-    std::smatch m;
     const std::string& t = token();
     if (t == "//") {
       r.weather.push_back({"", "", {}, t});
       ++i;
       return true;
     }
-    if (!matches(t, kWeather, m) || (!m[2].matched && m[3].length() == 0)) return false;
-    // A descriptor alone is TS (a thunderstorm) or, in the vicinity, SH.
-    if (m[3].length() == 0 && m[2] != "TS" && !(m[1] == "VC" && m[2] == "SH")) return false;
-    MetarWeather w{m[1], m[2], {}, t};
-    const std::string p = m[3];
-    for (size_t k = 0; k < p.size(); k += 2) w.phenomena.push_back(p.substr(k, 2));
-    r.weather.push_back(w);
+    const std::optional<MetarWeather> w = weather_group(t, t, false);
+    if (!w) return false;
+    r.weather.push_back(*w);
     ++i;
     return true;
   }
@@ -252,21 +268,13 @@ struct Parser {
   }
 
   bool supplementary() {
-    std::smatch m;
     const std::string& t = token();
-    if (matches(t, kRecent, m) && m[1].length() > 0) {
-      MetarWeather w{"", "", {}, t};
-      std::smatch d;
-      const std::string rest = m[1];
-      if (matches(rest, kWeather, d)) {
-        w.descriptor = d[2];
-        const std::string p = d[3];
-        for (size_t k = 0; k < p.size(); k += 2) w.phenomena.push_back(p.substr(k, 2));
+    if (t.starts_with("RE") && t.size() > 2)
+      if (const std::optional<MetarWeather> w = weather_group(t.substr(2), t, true)) {
+        r.recent_weather.push_back(*w);
+        ++i;
+        return true;
       }
-      r.recent_weather.push_back(w);
-      ++i;
-      return true;
-    }
     if (t == "WS") {  // WS R27, WS RWY27, WS ALL RWY
       std::string group = t;
       ++i;
@@ -276,7 +284,7 @@ struct Parser {
         if (!more() || token() != "RWY") fail("RWY after WS ALL (wind shear on all runways)");
         group += " RWY";
         ++i;
-      } else if (more() && std::regex_match(token(), std::regex("(R|RWY)\\d{2}[LCR]?"))) {
+      } else if (more() && std::regex_match(token(), kWindShearRunway)) {
         group += " " + token();
         ++i;
       } else {
@@ -390,7 +398,7 @@ struct Parser {
     const std::string& t = token();
     if (t == "AUTO") {
       r.automatic = true;
-    } else if (t == "COR" || std::regex_match(t, std::regex("CC[A-Z]"))) {
+    } else if (t == "COR" || std::regex_match(t, kCorrection)) {
       r.corrected = true;
     } else {
       return false;
@@ -414,7 +422,7 @@ float MetarWind::speed_mps() const {
 
 std::optional<float> MetarWind::gust_mps() const {
   if (!gust) return std::nullopt;
-  return unit == "MPS" ? *gust : unit == "KMH" ? *gust / 3.6f : *gust * kKnotMps;
+  return to_mps(*gust, unit);
 }
 
 bool MetarWeather::has(std::string_view phenomenon) const {

@@ -47,32 +47,6 @@ struct Group {
   Cover cover;
 };
 
-float genus_type(Genus genus) {
-  switch (genus) {
-    case Genus::Stratus:
-      return 0.0f;
-    case Genus::Stratocumulus:
-      return 0.25f;
-    case Genus::Altocumulus:
-      return 0.5f;
-    case Genus::Cumulus:
-      return 0.75f;
-    case Genus::Cumulonimbus:
-      return 1.0f;
-    case Genus::Cirrus:
-      return 0.0f;
-    case Genus::Cirrostratus:
-      return 0.5f;
-    case Genus::Cirrocumulus:
-      return 1.0f;
-  }
-  return 0.75f;
-}
-
-bool is_sheet(Genus genus) {
-  return genus == Genus::Cirrus || genus == Genus::Cirrostratus || genus == Genus::Cirrocumulus;
-}
-
 // The depth of a genus' clouds (m), from its base: a fair-weather cumulus deeper the more of
 // the sky it covers (humilis to mediocris).
 float cloud_depth_m(Genus genus, float type, float base_m, const Cover& cover) {
@@ -209,7 +183,7 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
   std::vector<Group> volumetric;
   std::optional<Group> sheet;
   for (const Group& g : groups) {
-    if (!is_sheet(g.genus)) {
+    if (!is_sheet_genus(g.genus)) {
       volumetric.push_back(g);
     } else if (!sheet || g.cover.drawn > sheet->cover.drawn) {
       if (sheet) out.notes.push_back(sheet->text + ": a second cirrus layer, drawn as " + g.text);

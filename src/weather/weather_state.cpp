@@ -56,7 +56,7 @@ float checked_type(const std::string& name, const CloudLayer& layer, const Genus
            "must be in [0, 1], or < 0 for the genus's own");
     return layer.type;
   }
-  return float(i) / float(N - 1);
+  return genus_type(layer.genus);
 }
 
 // The sky covered (the dome's share with cloud T < 0.5, FrameStats::sky_cover_fraction) by a
@@ -124,6 +124,16 @@ void set_volumetric_layer(Params& p, const CloudLayer& layer, float type) {
 }
 
 }  // namespace
+
+float genus_type(Genus genus) {
+  if (const int i = index_of(kVolumetric, genus); i >= 0)
+    return float(i) / float(std::size(kVolumetric) - 1);
+  return float(index_of(kSheet, genus)) / float(std::size(kSheet) - 1);
+}
+
+bool is_sheet_genus(Genus genus) {
+  return index_of(kSheet, genus) >= 0;
+}
 
 float oktas_for_coverage(float coverage, float type) {
   return coverage >= 1.0f ? 8.0f : std::min(8.0f * sky_cover(coverage, type), 7.999f);

@@ -25,6 +25,11 @@ enum class Genus {
   Cirrocumulus,  // the sheet, by cirrus.type
 };
 const char* to_string(Genus genus);
+// A genus' own place on its layer's type scale: clouds.type's (stratus 0 ... cumulonimbus 1)
+// or cirrus.type's (cirrus 0, cirrostratus 0.5, cirrocumulus 1).
+float genus_type(Genus genus);
+// Whether the cirrus sheet draws it.
+bool is_sheet_genus(Genus genus);
 
 struct CloudLayer {
   Genus genus = Genus::Cumulus;
