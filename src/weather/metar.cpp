@@ -340,23 +340,27 @@ struct Parser {
     // The observation's groups in their order; the repeatable ones may come again.
     struct Stage {
       const char* name;
-      bool (Parser::*consume)();
+      bool (*consume)(Parser&);
       bool repeats;
     };
     const Stage stages[] = {
-        {"AUTO or COR", &Parser::modifier, true},
-        {"the wind (dddffKT, dddffGggKT, VRBffKT, in KT, MPS or KMH)", &Parser::wind, false},
+        {"AUTO or COR", [](Parser& p) { return p.modifier(); }, true},
+        {"the wind (dddffKT, dddffGggKT, VRBffKT, in KT, MPS or KMH)",
+         [](Parser& p) { return p.wind(); }, false},
         {"the visibility (metres as 4 digits, CAVOK, or statute miles: 10SM, 1 1/2SM, M1/4SM)",
-         &Parser::visibility, false},
-        {"the runway visual range (R27L/0600N)", &Parser::runway_visual_range, true},
-        {"present weather (e.g. -SHRA, +TSRA, FZFG, BR, VCSH)", &Parser::present_weather, true},
+         [](Parser& p) { return p.visibility(); }, false},
+        {"the runway visual range (R27L/0600N)", [](Parser& p) { return p.runway_visual_range(); },
+         true},
+        {"present weather (e.g. -SHRA, +TSRA, FZFG, BR, VCSH)",
+         [](Parser& p) { return p.present_weather(); }, true},
         {"cloud (FEW, SCT, BKN or OVC with the base in hundreds of feet, CB or TCU; VVhhh; NSC, "
          "NCD, SKC, CLR)",
-         &Parser::clouds, true},
-        {"the temperature and dew point (12/06, M02/M05)", &Parser::temperature, false},
-        {"the pressure (Q1013 or A2992)", &Parser::pressure, true},
-        {"recent weather (RERA), wind shear (WS R27), runway or sea state", &Parser::supplementary,
-         true},
+         [](Parser& p) { return p.clouds(); }, true},
+        {"the temperature and dew point (12/06, M02/M05)",
+         [](Parser& p) { return p.temperature(); }, false},
+        {"the pressure (Q1013 or A2992)", [](Parser& p) { return p.pressure(); }, true},
+        {"recent weather (RERA), wind shear (WS R27), runway or sea state",
+         [](Parser& p) { return p.supplementary(); }, true},
     };
     constexpr size_t kStages = sizeof(stages) / sizeof(stages[0]);
     size_t stage = 0;
@@ -381,7 +385,7 @@ struct Parser {
       }
       bool taken = false;
       for (size_t s = stage; s < kStages && !taken; ++s)
-        if ((this->*stages[s].consume)()) {
+        if (stages[s].consume(*this)) {
           taken = true;
           stage = stages[s].repeats ? s : s + 1;
         }
