@@ -7,10 +7,11 @@
 #
 # media_inc.glsl: compose.comp's media, from the modules' folders. Each module folder that holds
 # a NAME_medium.glsl (src/render/modules/NAME/) adds a medium: its file defines
-#   vec4 NAME_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light)
+#   vec4 NAME_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light, out float depth_m)
 # (rgb the light it adds in front of a layer at distance_m, 0 for the sky, per unit of the key
 # light's illuminance; a its transmittance; cloud_light the clouds' mean diffuse transmittance
-# to the ground), and media_in_front composes them front to back in the folders' order; and
+# to the ground; depth_m the opacity-weighted distance of its light, where compose dims it by
+# the air in front), and media_in_front composes them front to back in the folders' order; and
 #   vec2 NAME_surface_light(vec3 pos)
 # the share of the sun's (x) and the sky's (y) light it lets reach a surface at pos, which
 # media_surface_light multiplies.
@@ -96,7 +97,7 @@ function(nephele_media_registry modules_dir out)
   set(calls "")
   set(surface_calls "")
   foreach(name IN LISTS media)
-    string(APPEND calls "  m = media_then(m, ${name}(eye, dir, distance_m, cloud_light));\n")
+    string(APPEND calls "  m = media_then(m, ${name}(eye, dir, distance_m, cloud_light, d), depth_m, d);\n")
     string(REGEX REPLACE "_medium$" "" base ${name})
     string(APPEND surface_calls "  light *= ${base}_surface_light(pos);\n")
   endforeach()
@@ -105,15 +106,29 @@ function(nephele_media_registry modules_dir out)
 #define NEPHELE_MEDIA_INC
 
 ${includes}
-// Two media along the same stretch of a ray, the first in front of the second.
-vec4 media_then(vec4 front, vec4 behind) {
+// Two media along the same stretch of a ray, the first in front of the second; `depth_m` the
+// first's opacity-weighted distance, made the two's.
+vec4 media_then(vec4 front, vec4 behind, inout float depth_m, float behind_depth_m) {
+  float w_front = 1.0f - front.a;
+  float w_behind = front.a * (1.0f - behind.a);
+  depth_m = w_front + w_behind > 0.0f
+                ? (w_front * depth_m + w_behind * behind_depth_m) / (w_front + w_behind)
+                : 0.0f;
   return vec4(front.rgb + front.a * behind.rgb, front.a * behind.a);
 }
 
-// Every medium between the eye and a layer at distance_m along dir (0: the sky).
-vec4 media_in_front(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
+// Every medium between the eye and a layer at distance_m along dir (0: the sky), and their
+// opacity-weighted distance (depth_m), where the air in front of them dims their light.
+vec4 media_in_front(vec3 eye, vec3 dir, float distance_m, float cloud_light, out float depth_m) {
   vec4 m = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  depth_m = 0.0f;
+  float d = 0.0f;
 ${calls}  return m;
+}
+
+vec4 media_in_front(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
+  float depth_m;
+  return media_in_front(eye, dir, distance_m, cloud_light, depth_m);
 }
 
 // The share of the sun's (x) and of the sky's (y) light that every medium lets reach a surface

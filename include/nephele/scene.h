@@ -280,6 +280,22 @@ struct GroundFogParams {
   float softness_m = 40.0f;   // the density fades out over this much below the top (m)
 };
 
+// Rain and snow (render/modules/precipitation, docs/precipitation.md): what falls from the low
+// cloud layer (clouds.bottom_altitude_m) to the ground, or evaporates on the way (virga). Seen
+// from afar as shafts under the precipitating clouds, as a medium whose extinction follows the
+// rate by an empirical law (rain: Marshall-Palmer's drop sizes; snow, drizzle and sleet: their
+// particles' area per mass and fall speed), so the visibility falls with the rate.
+struct PrecipitationParams {
+  float rate_mm_per_h = 0.0f;  // liquid-water equivalent (mm/h), [0, 200]; 0 = none
+  std::string kind = "rain";   // "rain", "drizzle", "snow" or "sleet" (wet snow)
+  // The lowest height it reaches above the ground (m): 0 = the ground; above it, virga that
+  // thins out over the lower half of its fall.
+  float bottom_m = 0.0f;
+  // True: shafts under the precipitating clouds (the weather map's storm cells, and wherever
+  // the layer is nearly closed); false: an even curtain under the whole layer.
+  bool shafts = true;
+};
+
 struct QualityParams {
   MarchMode mode = MarchMode::Default;
   int primary_steps = 64;  // [1, 1024] steps through the cloud layer
@@ -571,6 +587,7 @@ struct Scene {
   DropletParams droplets;
   CirrusParams cirrus;
   GroundFogParams ground_fog;
+  PrecipitationParams precipitation;
   QualityParams quality;
   OutputParams output;
   LocationParams location;

@@ -53,6 +53,8 @@ namespace {
 #include "common/preetham_inc.glsl"
 #include "common/sky_view_inc.glsl"
 #include "common/clouds_inc.glsl"
+#include "common/precipitation_inc.glsl"
+#include "common/slab_light_inc.glsl"
 #include "common/light_volume_inc.glsl"
 #include "common/voxel_inc.glsl"
 #include "common/particle_inc.glsl"

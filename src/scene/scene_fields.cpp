@@ -336,6 +336,17 @@ const std::vector<Section>& scene_sections() {
                 "the density fades to 0 over this height below the top; 0 = a hard top",
                 closed(0, 1e5), {}, "ground-fog-softness-m")},
          {}},
+        {"precipitation",
+         {FIELD(precipitation, rate_mm_per_h,
+                "liquid-water equivalent falling from the low layer; 0 = none", closed(0, 200), {},
+                "precipitation-mm-per-h"),
+          FIELD(precipitation, kind, "what falls", {}, {"rain", "drizzle", "snow", "sleet"},
+                "precipitation-kind"),
+          FIELD(precipitation, bottom_m,
+                "the lowest height it reaches; 0 = the ground, above it virga", closed(0, 1e5)),
+          FIELD(precipitation, shafts,
+                "shafts under the precipitating clouds; false: an even curtain under the layer")},
+         {}},
         {"clouds",
          {FIELD(clouds, model,
                 "nephele (its noise clouds) or a classical model of seed 004 drawing the same "
@@ -890,10 +901,23 @@ std::string allowed_text(const Field& field) {
 std::string_view unit_of(std::string_view name) {
   // Longest suffixes first: "_ev_per_s" before "_s", "_per_m3" before "_m3".
   static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
-      {"_ev_per_s", "EV/s"}, {"_per_m3", "1/m^3"}, {"_g_m3", "g/m^3"}, {"_um", "um"},
-      {"_per_m", "1/m"},     {"_cd_m2", "cd/m^2"}, {"_mps", "m/s"},    {"_lux", "lux"},
-      {"_deg", "deg"},       {"_rad", "rad"},      {"_km", "km"},      {"_mm", "mm"},
-      {"_sr", "sr"},         {"_ev", "EV"},        {"_m", "m"},        {"_s", "s"}};
+      {"_ev_per_s", "EV/s"},
+      {"_per_m3", "1/m^3"},
+      {"_g_m3", "g/m^3"},
+      {"_um", "um"},
+      {"_mm_per_h", "mm/h"},
+      {"_per_m", "1/m"},
+      {"_cd_m2", "cd/m^2"},
+      {"_mps", "m/s"},
+      {"_lux", "lux"},
+      {"_deg", "deg"},
+      {"_rad", "rad"},
+      {"_km", "km"},
+      {"_mm", "mm"},
+      {"_sr", "sr"},
+      {"_ev", "EV"},
+      {"_m", "m"},
+      {"_s", "s"}};
   for (const auto& [suffix, unit] : kSuffixes)
     if (name.size() > suffix.size() && name.ends_with(suffix)) return unit;
   return "";

@@ -302,6 +302,13 @@ void check_clouds(const Checker& check, const CloudParams& clouds) {
   }
 }
 
+// Virga ends below the base it falls from.
+void check_precipitation(const Checker& check, const Scene& scene) {
+  if (scene.precipitation.rate_mm_per_h > 0.0f)
+    check.below("precipitation.bottom_m", scene.precipitation.bottom_m, "clouds.bottom_altitude_m",
+                scene.clouds.bottom_altitude_m);
+}
+
 // The cloud layer must lie inside the atmosphere the sky is integrated over.
 void check_layers(const Checker& check, const Scene& scene) {
   float atmosphere_top_m = scene.atmosphere.atmosphere_height_km * 1000.0f;
@@ -496,6 +503,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_high_clouds(check, scene.high_clouds, scene.clouds);
   check_cirrus(check, scene.cirrus, scene);
   check_layers(check, scene);
+  check_precipitation(check, scene);
   check_quality(check, scene.quality);
   check_output(check, scene.output);
   check_voxel_clouds(check, scene.voxel_clouds);

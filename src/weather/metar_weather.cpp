@@ -81,7 +81,7 @@ glm::vec2 shell_for(float type, float base_m, float top_m) {
 Group group_of(const MetarCloud& c, std::optional<float> convective_base_m) {
   Group g;
   g.text = c.cover + (c.base_ft ? [&] {
-    char digits[8];
+    char digits[16];
     std::snprintf(digits, sizeof(digits), "%03d", *c.base_ft / 100);
     return std::string(digits);
   }() : std::string("///")) + c.type;
@@ -148,6 +148,16 @@ float rate_mm_per_h(const MetarWeather& w) {
   return 0.0f;
 }
 
+// What falls: snow (SN, snow grains SG), sleet (ice pellets PL, or rain and snow together),
+// drizzle alone, else rain (RA, hail GR and small hail GS melting as they fall).
+PrecipitationKind precipitation_kind(const MetarWeather& w) {
+  const bool snow = w.has("SN") || w.has("SG");
+  if (w.has("PL") || (snow && w.has("RA"))) return PrecipitationKind::Sleet;
+  if (snow) return PrecipitationKind::Snow;
+  if (w.has("DZ") && !w.has("RA") && !w.has("GR") && !w.has("GS"))
+    return PrecipitationKind::Drizzle;
+  return PrecipitationKind::Rain;
+}
 }  // namespace
 
 ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& base) {
@@ -290,8 +300,7 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
     const float rate = rate_mm_per_h(w);
     if (rate > s.precipitation_mm_per_h) {
       s.precipitation_mm_per_h = rate;
-      s.precipitation =
-          w.has("SN") || w.has("SG") ? PrecipitationKind::Snow : PrecipitationKind::Rain;
+      s.precipitation = precipitation_kind(w);
     }
     if (w.descriptor == "TS")
       s.storm_growth = std::max(s.storm_growth, w.intensity == "+" ? 1.0f : 0.7f);

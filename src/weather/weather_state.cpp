@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "nephele/error.h"
+#include "render/modules/precipitation/precipitation.h"
 #include "scene/scene_fields.h"
 
 namespace nephele::weather {
@@ -152,6 +153,22 @@ float coverage_for_oktas(float oktas, float type) {
   return hi;
 }
 
+const char* to_string(PrecipitationKind kind) {
+  switch (kind) {
+    case PrecipitationKind::None:
+      return "none";
+    case PrecipitationKind::Rain:
+      return "rain";
+    case PrecipitationKind::Drizzle:
+      return "drizzle";
+    case PrecipitationKind::Snow:
+      return "snow";
+    case PrecipitationKind::Sleet:
+      return "sleet";
+  }
+  return "unknown";
+}
+
 const char* to_string(Genus genus) {
   switch (genus) {
     case Genus::Stratus:
@@ -198,6 +215,11 @@ float visibility_m(const AtmosphereParams& atmosphere) {
   return kKoschmieder / (atmosphere.rayleigh_scattering_per_m.y + atmosphere.mie_extinction_per_m);
 }
 
+float visibility_m(const Scene& scene) {
+  return kKoschmieder / (kKoschmieder / visibility_m(scene.atmosphere) +
+                         precipitation_sigma_t_per_m(scene.precipitation));
+}
+
 WeatherState weather_state(const Scene& scene) {
   WeatherState state;
   const CloudParams& c = scene.clouds;
@@ -223,8 +245,16 @@ WeatherState weather_state(const Scene& scene) {
                            wind_at(state.wind, h.bottom_altitude_m) == h.wind_mps &&
                            wind_at(state.wind, s.altitude_m) == s.wind_mps;
   if (!one_profile) state.wind.clear();
-  state.visibility_m = visibility_m(scene.atmosphere);
+  state.visibility_m = visibility_m(scene);
   state.storm_growth = c.precipitation;
+  const PrecipitationParams& p = scene.precipitation;
+  if (p.rate_mm_per_h > 0.0f)
+    for (PrecipitationKind kind : {PrecipitationKind::Rain, PrecipitationKind::Drizzle,
+                                   PrecipitationKind::Snow, PrecipitationKind::Sleet})
+      if (p.kind == to_string(kind)) {
+        state.precipitation = kind;
+        state.precipitation_mm_per_h = p.rate_mm_per_h;
+      }
   return state;
 }
 
@@ -245,9 +275,17 @@ void apply_weather(const WeatherState& state, Scene& scene) {
     fail("visibility_m", format_float(state.visibility_m),
          "must be in [" + format_float(kMinVisibilityM) + ", " + format_float(clear_m) +
              "] (the clear air's own, at sea level; fog is thicker than the haze can be)");
-  if (!(state.precipitation_mm_per_h >= 0.0f && state.precipitation_mm_per_h <= 500.0f))
+  if (!(state.precipitation_mm_per_h >= 0.0f && state.precipitation_mm_per_h <= 200.0f))
     fail("precipitation_mm_per_h", format_float(state.precipitation_mm_per_h),
-         "must be in [0, 500]");
+         "must be in [0, 200]");
+  PrecipitationParams precipitation = scene.precipitation;
+  const bool falls =
+      state.precipitation != PrecipitationKind::None && state.precipitation_mm_per_h > 0.0f;
+  precipitation.rate_mm_per_h = falls ? state.precipitation_mm_per_h : 0.0f;
+  if (falls) precipitation.kind = to_string(state.precipitation);
+  if (precipitation.bottom_m >= state.low.base_m) precipitation.bottom_m = 0.0f;
+  // The haze: what the visibility leaves after the precipitation's extinction and the air's.
+  const float precipitation_sigma = precipitation_sigma_t_per_m(precipitation);
 
   CloudParams& c = scene.clouds;
   set_volumetric_layer(c, state.low, low_type);
@@ -266,13 +304,17 @@ void apply_weather(const WeatherState& state, Scene& scene) {
     s.wind_mps = wind_at(state.wind, s.altitude_m);
   }
   // The haze: Mie extinction for the visibility, its single-scattering albedo kept (and left
-  // exactly as it is when the visibility is the one it gives).
+  // exactly as it is when the visibility is the one it gives); none where the precipitation's
+  // law alone hides more than the visibility says.
+  const float visibility_before = visibility_m(scene);
+  const float sigma_before = precipitation_sigma_t_per_m(scene.precipitation);
+  scene.precipitation = precipitation;
   AtmosphereParams& a = scene.atmosphere;
-  if (state.visibility_m == visibility_m(a)) return;
+  if (state.visibility_m == visibility_before && precipitation_sigma == sigma_before) return;
   const float albedo =
       a.mie_extinction_per_m > 0.0f ? a.mie_scattering_per_m / a.mie_extinction_per_m : 0.9f;
-  a.mie_extinction_per_m =
-      std::max(0.0f, kKoschmieder / state.visibility_m - a.rayleigh_scattering_per_m.y);
+  a.mie_extinction_per_m = std::max(0.0f, kKoschmieder / state.visibility_m -
+                                              a.rayleigh_scattering_per_m.y - precipitation_sigma);
   a.mie_scattering_per_m = albedo * a.mie_extinction_per_m;
 }
 

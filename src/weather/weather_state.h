@@ -49,7 +49,9 @@ struct WindLevel {
   glm::vec2 wind_mps{0.0f};  // east, north
 };
 
-enum class PrecipitationKind { None, Rain, Snow };
+// What falls (Scene::precipitation.kind): rain, drizzle, snow or sleet (wet snow, ice pellets).
+enum class PrecipitationKind { None, Rain, Drizzle, Snow, Sleet };
+const char* to_string(PrecipitationKind kind);  // "none", "rain", "drizzle", "snow", "sleet"
 
 struct WeatherState {
   CloudLayer low;                                                                  // Scene::clouds
@@ -59,10 +61,11 @@ struct WeatherState {
   // gives none when the scene's layers' winds are no single profile).
   std::vector<WindLevel> wind;
   // Meteorological visibility at sea level (m): the distance at which a black object's
-  // contrast falls to 2%, sets the haze (Koschmieder: extinction at 550 nm = 3.912 / V).
+  // contrast falls to 2% (Koschmieder: extinction at 550 nm = 3.912 / V), in the rain or snow
+  // as reported: the haze takes what the precipitation's own extinction leaves of it.
   float visibility_m = 200000.0f;
-  // Carried for what draws it (rain and snow); the renderer's cumulonimbus growth
-  // (clouds.precipitation) is `storm_growth`.
+  // What falls from the low layer, at what rate of water (Scene::precipitation); the
+  // renderer's cumulonimbus growth (clouds.precipitation) is `storm_growth`.
   PrecipitationKind precipitation = PrecipitationKind::None;
   float precipitation_mm_per_h = 0.0f;
   float storm_growth = 0.0f;  // clouds.precipitation, [0, 1]
@@ -71,10 +74,11 @@ struct WeatherState {
 // The wind of `levels` at `altitude_m` (zero when there are none).
 glm::vec2 wind_at(const std::vector<WindLevel>& levels, float altitude_m);
 
-// The visibility the scene's haze gives, and the Mie extinction a visibility needs (1/m, at
-// sea level, after the air's own Rayleigh extinction at 550 nm); the visibilities the
+// The visibility the scene's haze and precipitation give, and the Mie extinction a visibility needs
+// (1/m, at sea level, after the air's own Rayleigh extinction at 550 nm); the visibilities the
 // atmosphere can hold are [kMinVisibilityM, clear_air_visibility_m(atmosphere)].
 float visibility_m(const AtmosphereParams& atmosphere);
+float visibility_m(const Scene& scene);  // with the precipitation's extinction
 float clear_air_visibility_m(const AtmosphereParams& atmosphere);
 constexpr float kMinVisibilityM = 400.0f;  // Mie extinction 0.0098/m: validation's 0.01 limit
 

@@ -87,6 +87,18 @@ vec4 air_in_front(vec2 uv, float distance_m) {
                     0.0f);
 }
 
+// The media in front of a layer at `distance_m` (0: the sky; media_in_front) as they are seen
+// through the air in front of them: their light dimmed by the air up to their opacity-weighted
+// distance, and that air's own light, which they do not hide, kept (per unit of the key
+// light's illuminance; a their transmittance). What lies behind, with all the air in front of
+// it, composites as behind * a + rgb.
+vec4 media_through_air(vec2 uv, vec3 eye, vec3 dir, float distance_m, float cloud_light) {
+  float depth_m;
+  vec4 m = media_in_front(eye, dir, distance_m, cloud_light, depth_m);
+  vec4 air = depth_m > 0.0f ? air_in_front(uv, depth_m) : vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  return vec4(m.rgb * air.a + (1.0f - m.a) * air.rgb, m.a);
+}
+
 // The part of the view under the clouds' base, [x, y] (m; y <= x where it has none), and the
 // aerial perspective's in-scattering at its ends (per unit of the key light, as
 // air_in_front's). The aerial perspective counts the clear sky's light there, where the clouds
@@ -178,7 +190,7 @@ void blend_layer(vec4 layer, float layer_m, inout LayerBlend b) {
     vec4 air = air_in_front(b.sky_uv, layer_m);
     vec3 light = layer.rgb * air.a + air.rgb * b.illuminance * layer.a;
     if (WITH_MEDIA) {
-      vec4 m = media_in_front(b.eye, b.dir, layer_m, b.clouds_diffuse);
+      vec4 m = media_through_air(b.sky_uv, b.eye, b.dir, layer_m, b.clouds_diffuse);
       light = light * m.a + layer.a * m.rgb * b.illuminance;
     }
     bool in_front = b.alpha < 1e-3f || layer_m < b.clouds_m;
@@ -362,7 +374,7 @@ void main() {
   // The media (fog) in front of the clouds: the clouds' light through them, and their own light
   // as far as the clouds cover (premultiplied).
   if (WITH_MEDIA && cloud.a < 1.0f) {
-    vec4 m = media_in_front(eye, dir, cloud_b.z * 1000.0f, clouds_diffuse);
+    vec4 m = media_through_air(uv, eye, dir, cloud_b.z * 1000.0f, clouds_diffuse);
     cloud_light = cloud_light * m.a + (1.0f - cloud.a) * m.rgb * illuminance;
   }
   float cirrus_m = WITH_CIRRUS ? cirrus_distance(eye, dir) : 0.0f;
@@ -378,7 +390,7 @@ void main() {
   // The media in front of the surface (the terrain, the host's scene or the ground), else in
   // front of the sky.
   if (WITH_MEDIA) {
-    vec4 m = media_in_front(eye, dir, surface_m, clouds_diffuse);
+    vec4 m = media_through_air(uv, eye, dir, surface_m, clouds_diffuse);
     background = background * m.a + m.rgb;
   }
   // The film layers (dispatch.values.x, render --layers): everything behind the clouds (sky,

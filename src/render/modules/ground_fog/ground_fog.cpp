@@ -5,6 +5,7 @@
 
 #include "render/glsl.h"
 #include "render/gpu_params.h"
+#include "render/media_light.h"
 // The block's one definition and the fog's closed forms, as the shader has them.
 #include "render/modules/ground_fog/ground_fog_gpu_inc.glsl"
 
@@ -41,19 +42,9 @@ void GroundFogModule::prepare(const FramePrepare& frame, FramePlan& plan) {
     const fog::GroundFog f =
         fog::ground_fog_layer(p.base_m, p.top_m, p.softness_m, p.visibility_m, 1.0f);
     block.layer = glm::vec4(f.base_m, f.top_m, f.soft_m, f.sigma_t_per_m);
-    const glm::vec3 up = glm::normalize(glm::vec3(params.camera_pos_m));
-    const float sin_elevation = glm::dot(glm::vec3(params.sun_dir), up);
-    // Per unit of the key light's illuminance: its beam through the atmosphere, and an even
-    // field of the sky's radiance above (ground_sky_light: the sky's irradiance / pi) and the
-    // ground's below (its albedo times the sky's and the sun's irradiance / pi).
-    const glm::vec3 per_unit =
-        1.0f / glm::max(glm::vec3(params.sun_illuminance), glm::vec3(1e-20f));
-    const glm::vec3 sun = glm::vec3(params.sun_transmittance);
-    const glm::vec3 sky = glm::vec3(params.ground_sky_light) * per_unit;
-    const float albedo = params.sky_model.y;
-    const glm::vec3 ground = albedo * (sky + sun * std::max(sin_elevation, 0.0f) / glsl::PI);
-    block.sun = glm::vec4(sun, sin_elevation);
-    block.sky = glm::vec4(0.5f * (sky + ground), kDropletPhaseG);
+    const MediumLight light = medium_light(params);
+    block.sun = light.sun;
+    block.sky = glm::vec4(light.sky, kDropletPhaseG);
   }
   // The keyframes' fog (frame_params.cpp's set_conditions, per unit of the key light's
   // illuminance): its colour, and the distances where it begins and where it is whole.

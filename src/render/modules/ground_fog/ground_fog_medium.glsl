@@ -9,6 +9,7 @@
 #include "common/ground_fog_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/phase_inc.glsl"
+#include "common/slab_light_inc.glsl"
 #include "render/modules/ground_fog/ground_fog_gpu_inc.glsl"
 
 layout(std140, set = 1, binding = 0) uniform GroundFogBlock { GroundFogGpu ground_fog; };
@@ -25,33 +26,25 @@ GroundFog ground_fog_from_block() {
 }
 
 // The light scattered towards the eye per unit of sigma_s inside the fog at altitude z, per
-// unit of the key light's illuminance: the sun's beam through the fog above (its phase
-// function forward-peaked, as water droplets' is); the diffuse light of the sun, as a
-// two-stream slab has it (the clouds' diffuse transmittance, cloud_diffuse_transmittance): going
-// down, what the fog above has scattered on, and going up, what the fog below reflects (a
-// conservative slab reflects what it does not let through), each a flux of mu_sun times the
-// sun's, scattered evenly ((down + up) / 2 pi); the sky's and the ground's light, through the
-// fog above as diffuse light; all dimmed by the clouds' mean diffuse transmittance over the
-// ground around (`cloud_light`).
+// unit of the key light's illuminance (slab_medium_light; the fog's droplets scatter the sun
+// forward), dimmed by the clouds' mean diffuse transmittance over the ground around
+// (`cloud_light`).
 vec3 ground_fog_light(GroundFog f, float altitude_m, float mu, float cloud_light) {
-  float mu_sun = max(ground_fog.sun.w, 0.0f);
   float tau_sun = ground_fog_sun_optical_depth(f, altitude_m, ground_fog.sun.w, frame.radii_m.x);
-  float direct = exp(-tau_sun);
-  float down = cloud_diffuse_transmittance(tau_sun);  // the sun's light reaching z
   float tau_below = f.sigma_t_per_m * ground_fog_cumulative_m(f, altitude_m);
-  float up = down * (1.0f - cloud_diffuse_transmittance(tau_below));
-  float diffuse = (max(down - direct, 0.0f) + up) * mu_sun / (2.0f * PI);
-  float phase = cornette_shanks_phase(ground_fog.sky.w, mu);
   float tau_up = f.sigma_t_per_m * ground_fog_column_above_m(f, altitude_m);
-  vec3 sky = ground_fog.sky.rgb * cloud_diffuse_transmittance(tau_up);
-  return cloud_light * (ground_fog.sun.rgb * (direct * phase + diffuse) + sky);
+  float phase = cornette_shanks_phase(ground_fog.sky.w, mu);
+  return cloud_light * slab_medium_light(ground_fog.sun.rgb, ground_fog.sun.w, ground_fog.sky.rgb,
+                                         phase, CLOUD_DROPLET_G, tau_sun, tau_below, tau_up);
 }
 
 // The fog layer in front of a layer at `distance_m` (0: nothing there, the sky: the ray to
 // where it leaves the fog's top): rgb the light it adds per unit of the key light's
 // illuminance, a its transmittance. `cloud_light`: the clouds' mean diffuse transmittance to
 // the ground.
-vec4 ground_fog_layer_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
+vec4 ground_fog_layer_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light,
+                             out float depth_m) {
+  depth_m = 0.0f;
   if (ground_fog.layer.w <= 0.0f) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
   float radius_m = frame.radii_m.x;
   GroundFog f = ground_fog_from_block();
@@ -74,6 +67,7 @@ vec4 ground_fog_layer_medium(vec3 eye, vec3 dir, float distance_m, float cloud_l
                                      (tau * max(1.0f - transmittance, 1e-30f));
   float z_lit = mix(clamp(z0, f.base_m, f.top_m), clamp(z1, f.base_m, f.top_m), share);
   vec3 light = ground_fog_light(f, z_lit, dot(dir, frame.sun_dir.xyz), cloud_light);
+  depth_m = share * length_m;
   return vec4(f.albedo * (1.0f - transmittance) * light, transmittance);
 }
 
@@ -103,9 +97,10 @@ vec2 ground_fog_surface_light(vec3 pos) {
 }
 
 // The ground fog in front of a layer at `distance_m` (0: the sky): the fog layer in front of
-// the keyframes' fog, each as above.
-vec4 ground_fog_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light) {
-  vec4 front = ground_fog_layer_medium(eye, dir, distance_m, cloud_light);
+// the keyframes' fog, each as above; depth_m the fog layer's (the keyframes' fog stands for the
+// air, in front of it).
+vec4 ground_fog_medium(vec3 eye, vec3 dir, float distance_m, float cloud_light, out float depth_m) {
+  vec4 front = ground_fog_layer_medium(eye, dir, distance_m, cloud_light, depth_m);
   vec4 behind = ground_fog_keyframes_medium(distance_m);
   return vec4(front.rgb + front.a * behind.rgb, front.a * behind.a);
 }

@@ -1,0 +1,99 @@
+// Rain and snow as a medium (render/modules/precipitation): its extinction from the rate by an
+// empirical law, its profile below the cloud base, and where the clouds let it fall. Pure
+// functions, also compiled as C++ (src/render/glsl.h conventions; needs clouds_inc.glsl).
+//
+// Falling particles are large against the wavelength of light. Each takes its geometric
+// cross-section out of a beam by reflection and refraction, and as much again by diffraction
+// (the extinction paradox: efficiency 2); but a drop of a millimetre diffracts within a few
+// hundredths of a degree, which the eye and the image count as unscattered light. Rain and
+// drizzle: efficiency 1. Snow and sleet: the aggregates' small crystals diffract more widely,
+// and efficiency 2 is what the observed visibilities in snow bear out (below). The visibility
+// follows by Koschmieder (3.912 / sigma_t).
+//
+// Rain: Marshall and Palmer (1948), N(D) = N0 exp(-lambda D), N0 = 8000 m^-3 mm^-1,
+// lambda = 4.1 R^-0.21 mm^-1 for a rate R in mm/h; sigma_t = int (pi D^2 / 4) N(D) dD =
+// pi N0 / (2 lambda^3) = 1.82e-4 R^0.63 per m: 21 km of visibility at 1 mm/h, 5 km at 10,
+// 2.2 km at 40 (Atlas 1953 measured 0.25 R^0.63 per km).
+//
+// Drizzle, snow and sleet: a rate R (mm/h of water, R / 3600 kg m^-2 s^-1) carried by
+// particles of cross-section per mass A/m falling at v holds R / (3600 v) kg of them per m^3:
+// sigma_t = Q (A/m) R / (3600 v), Q the efficiency. Spheres of diameter D and density rho
+// have A/m = 3 / (2 rho D):
+//   drizzle: drops of 0.3 mm (5 m^2/kg) falling at 1.2 m/s (Gunn and Kinzer 1949);
+//   dry snow: aggregates of 5 mm at 50 kg/m^3 (6 m^2/kg) falling at 1 m/s (Locatelli and
+//     Hobbs 1974): 1.2 km of visibility at 1 mm/h, 0.4 km at 3 (the US observers' light and
+//     heavy snow; Rasmussen et al. 1999 find a factor of 3 to 10 about it from storm to storm);
+//   sleet (wet snow): 3 mm at 200 kg/m^3 (2.5 m^2/kg) falling at 2 m/s.
+#ifndef NEPHELE_PRECIPITATION_INC
+#define NEPHELE_PRECIPITATION_INC
+
+const int PRECIPITATION_RAIN = 0;
+const int PRECIPITATION_DRIZZLE = 1;
+const int PRECIPITATION_SNOW = 2;
+const int PRECIPITATION_SLEET = 3;
+
+// Extinction (1/m) of precipitation of `kind` at `rate_mm_per_h` (liquid-water equivalent).
+float precipitation_sigma_t_per_m(int kind, float rate_mm_per_h) {
+  float rate = max(rate_mm_per_h, 0.0f);
+  if (rate <= 0.0f) return 0.0f;
+  if (kind == PRECIPITATION_RAIN) {
+    float lambda_per_m = 4100.0f * pow(rate, -0.21f);
+    return 0.5f * 3.14159265f * 8.0e6f / (lambda_per_m * lambda_per_m * lambda_per_m);
+  }
+  float efficiency = kind == PRECIPITATION_DRIZZLE ? 1.0f : 2.0f;
+  float area_per_kg = kind == PRECIPITATION_DRIZZLE ? 5.0f : kind == PRECIPITATION_SNOW ? 6.0f : 2.5f;
+  float fall_mps = kind == PRECIPITATION_DRIZZLE ? 1.2f : kind == PRECIPITATION_SNOW ? 1.0f : 2.0f;
+  return efficiency * area_per_kg * rate / (3600.0f * fall_mps);
+}
+
+// The particles' phase asymmetry, without the diffraction peak counted as unscattered above:
+// drops (reflection and refraction, about 0.8), snow and sleet (ice aggregates, about 0.7).
+// Both scatter nearly without absorbing in visible light (albedo 1).
+float precipitation_phase_g(int kind) {
+  return kind == PRECIPITATION_RAIN || kind == PRECIPITATION_DRIZZLE ? 0.8f : 0.7f;
+}
+
+// The density's profile (0 to 1) at `altitude_m` under a cloud base `top_m`: 1 from the base
+// down to the ground when `bottom_m` is 0; virga otherwise, the particles evaporating as they
+// fall: 1 at the base, thinning linearly over the lower half of the fall to 0 at `bottom_m`.
+// Nothing above the base or below the bottom.
+float precipitation_profile(float altitude_m, float bottom_m, float top_m) {
+  if (altitude_m > top_m || altitude_m < bottom_m) return 0.0f;
+  if (bottom_m <= 0.0f) return 1.0f;
+  return saturate((altitude_m - bottom_m) / max(0.5f * (top_m - bottom_m), 1e-3f));
+}
+
+// The profile's integral from the ground to `altitude_m` (m of density 1): the column below a
+// point, and by difference any stretch of altitudes.
+float precipitation_column_m(float altitude_m, float bottom_m, float top_m) {
+  float z = min(altitude_m, top_m);
+  if (z <= bottom_m) return 0.0f;
+  if (bottom_m <= 0.0f) return z;
+  float ramp_m = max(0.5f * (top_m - bottom_m), 1e-3f);
+  float above_m = z - bottom_m;
+  return above_m <= ramp_m ? 0.5f * above_m * above_m / ramp_m : above_m - 0.5f * ramp_m;
+}
+
+// Where the low layer lets it fall, from its weather map (R coverage, G storm cells) and the
+// layer's coverage and storm growth (clouds.precipitation). Returns (x) the share, 0 to 1:
+// under the storm cells' cumulonimbus cores (y: cloud_storm_cell from half to wholly a
+// cumulonimbus), and under a deck: a layer of coverage 0.6 to 0.8 and more (broken to
+// overcast: nimbostratus, the closed decks of stratus and stratocumulus) where it is nearly
+// closed (a local coverage from 0.55 to 0.85). Not from the fair-weather cumulus of a
+// scattered layer, however dense its clusters.
+vec2 precipitation_shaft_share(float weather_coverage, float weather_storm, float coverage,
+                               float storm_growth) {
+  float core = smoothstep(0.5f, 1.0f, cloud_storm_cell(weather_storm, storm_growth).x);
+  float deck = smoothstep(0.55f, 0.85f, cloud_local_coverage(weather_coverage, coverage)) *
+               smoothstep(0.6f, 0.8f, coverage);
+  return vec2(max(core, deck), core);
+}
+
+// The light in a shaft, as a share of what the clouds around let through on average: under a
+// storm's core (`core` 1), whose cloud above is hundreds deep in optical depth and passes a
+// tenth or less of that, the shaft is lit mostly from its sides: a quarter of it.
+float precipitation_core_light(float core) {
+  return 1.0f - 0.75f * core;
+}
+
+#endif

@@ -1,0 +1,42 @@
+// The precipitation module (docs/precipitation.md): rain, drizzle, snow and sleet falling from
+// the low cloud layer, seen as shafts under the precipitating clouds or an even curtain, a
+// medium between the eye and every layer of compose.comp and of the stars
+// (precipitation_medium.glsl) that lowers the visibility by the rate. It owns its parameters
+// (Scene::precipitation), its uniform block (descriptor set 1, "PrecipitationBlock") and no
+// pass: compose and the stars read the block. The frame knows it only through the registry
+// (render_module.h).
+#pragma once
+
+#include <memory>
+#include <string_view>
+
+#include "gpu/kernel.h"
+#include "nephele/scene.h"
+#include "render/render_module.h"
+
+namespace nephele {
+
+// PRECIPITATION_RAIN ... of common/precipitation_inc.glsl for precipitation.kind's name; -1
+// for anything else.
+int precipitation_kind(std::string_view name);
+// The precipitation's extinction (1/m) under a shaft, and the visibility it leaves (m,
+// Koschmieder: 3.912 / sigma_t; infinite without it).
+float precipitation_sigma_t_per_m(const PrecipitationParams& p);
+float precipitation_visibility_m(const PrecipitationParams& p);
+
+class PrecipitationModule : public RenderModule {
+ public:
+  explicit PrecipitationModule(const ModuleContext& context);
+  // This frame's precipitation (its fall from the clouds' base, extinction and light) into the
+  // uniform block of the frame's slot, bound for the frame; plan.media when it falls.
+  void prepare(const FramePrepare& frame, FramePlan& plan) override;
+  void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
+
+ private:
+  gpu::DescriptorSet& set_;
+  gpu::Buffer blocks_[gpu::kFramesInFlight + 1];  // one a slot: a frame in flight reads its own
+};
+
+std::unique_ptr<RenderModule> make_precipitation_module(const ModuleContext& context);
+
+}  // namespace nephele

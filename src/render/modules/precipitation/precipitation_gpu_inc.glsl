@@ -1,0 +1,24 @@
+// The precipitation's uniform block (PrecipitationModule, set 1 "PrecipitationBlock"): one
+// definition, included by its medium's GLSL and by C++ (precipitation.cpp).
+#ifndef NEPHELE_PRECIPITATION_GPU_INC
+#define NEPHELE_PRECIPITATION_GPU_INC
+
+#ifdef __cplusplus
+namespace nephele::gpu {
+using glm::vec4;
+#endif
+
+struct PrecipitationGpu {
+  vec4 fall;  // x the lowest height it reaches, y the cloud base it falls from (m above the
+              // ground), z sigma_t where it is densest (1/m; 0: none), w the particles' phase g
+  vec4 sun;   // rgb the sunlight at the top per unit of the key light's illuminance, w the sine
+              // of the sun's elevation (media_light.h)
+  vec4 sky;   // rgb the sky's and the ground's light as an even field, per unit of the key
+              // light's illuminance; w 1 shafts under the precipitating clouds, 0 an even curtain
+};
+
+#ifdef __cplusplus
+}  // namespace nephele::gpu
+#endif
+
+#endif

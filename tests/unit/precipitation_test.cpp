@@ -1,0 +1,147 @@
+// Rain and snow as a medium (shaders/common/precipitation_inc.glsl, the precipitation module's
+// parameters): the extinction against an independent integration of Marshall and Palmer's drop
+// sizes and against the visibilities observers report for snow, the profile's column against
+// numerical integration, and where the clouds let it fall.
+#include "render/modules/precipitation/precipitation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "nephele/scene.h"
+#include "render/glsl.h"
+
+namespace {
+
+namespace g = nephele::glsl;
+constexpr double kKoschmieder = 3.912;
+
+// sigma_t = the drops' cross-section per volume (efficiency 1: their diffraction counted as
+// unscattered), integrating Marshall-Palmer's N(D) (m^-3 per mm of diameter) numerically in
+// double: an independent statement of the closed form.
+double marshall_palmer_sigma_t(double rate_mm_per_h) {
+  const double n0 = 8000.0;                                    // m^-3 mm^-1
+  const double lambda = 4.1 * std::pow(rate_mm_per_h, -0.21);  // mm^-1
+  double sum = 0.0;
+  const double step_mm = 1e-4;
+  for (double d = 0.5 * step_mm; d < 60.0; d += step_mm) {
+    const double d_m = d * 1e-3;
+    sum += 3.14159265358979 * d_m * d_m / 4.0 * n0 * std::exp(-lambda * d) * step_mm;
+  }
+  return sum;
+}
+
+nephele::PrecipitationParams falling(const char* kind, float rate) {
+  nephele::PrecipitationParams p;
+  p.kind = kind;
+  p.rate_mm_per_h = rate;
+  return p;
+}
+
+TEST(Precipitation, RainExtinctionIsMarshallPalmers) {
+  for (float rate : {0.5f, 2.0f, 10.0f, 50.0f}) {
+    const double expected = marshall_palmer_sigma_t(rate);
+    EXPECT_NEAR(g::precipitation_sigma_t_per_m(g::PRECIPITATION_RAIN, rate), expected,
+                1e-3 * expected)
+        << rate << " mm/h";
+  }
+  // What a driver sees: some 5 km in heavy rain (10 mm/h), 20 km in light rain; and within
+  // a third of Atlas' (1953) measured 0.25 R^0.63 per km.
+  EXPECT_NEAR(nephele::precipitation_visibility_m(falling("rain", 10.0f)), 5030.0, 50.0);
+  EXPECT_GT(nephele::precipitation_visibility_m(falling("rain", 1.0f)), 20000.0f);
+  for (float rate : {1.0f, 10.0f, 50.0f}) {
+    const double atlas = 0.25e-3 * std::pow(rate, 0.63);
+    EXPECT_NEAR(g::precipitation_sigma_t_per_m(g::PRECIPITATION_RAIN, rate), atlas, atlas / 3.0);
+  }
+}
+
+// Snow hides far more than rain of the same water: the US observers' classes (light snow 1 km
+// or more, heavy a quarter mile, 400 m, or less) at the rates Rasmussen et al. (1999) measured
+// with them (light under 1 mm/h, heavy 2.5 mm/h or more).
+TEST(Precipitation, SnowVisibilityFollowsTheObservedClasses) {
+  EXPECT_GT(nephele::precipitation_visibility_m(falling("snow", 0.8f)), 1000.0f);
+  EXPECT_LT(nephele::precipitation_visibility_m(falling("snow", 3.0f)), 402.0f);
+  for (float rate : {0.5f, 1.0f, 4.0f}) {
+    const float snow = nephele::precipitation_visibility_m(falling("snow", rate));
+    EXPECT_LT(snow, 0.25f * nephele::precipitation_visibility_m(falling("rain", rate))) << rate;
+    // Sleet (wet, denser, faster flakes) and drizzle lie between.
+    EXPECT_GT(nephele::precipitation_visibility_m(falling("sleet", rate)), snow);
+  }
+  // Linear in the rate: the particles' number grows with the flux at a fixed size and speed.
+  EXPECT_NEAR(nephele::precipitation_visibility_m(falling("snow", 1.0f)) /
+                  nephele::precipitation_visibility_m(falling("snow", 2.0f)),
+              2.0, 1e-4);
+  EXPECT_NEAR(nephele::precipitation_visibility_m(falling("snow", 1.0f)), kKoschmieder / 3.333e-3,
+              2.0);
+}
+
+TEST(Precipitation, NoneWithoutARateOrAKnownKind) {
+  EXPECT_EQ(nephele::precipitation_sigma_t_per_m(falling("rain", 0.0f)), 0.0f);
+  EXPECT_EQ(nephele::precipitation_sigma_t_per_m(falling("hail", 5.0f)), 0.0f);
+  EXPECT_EQ(nephele::precipitation_kind("hail"), -1);
+  EXPECT_TRUE(std::isinf(nephele::precipitation_visibility_m(falling("rain", 0.0f))));
+  for (const char* kind : {"rain", "drizzle", "snow", "sleet"})
+    EXPECT_GT(nephele::precipitation_sigma_t_per_m(falling(kind, 1.0f)), 0.0f) << kind;
+}
+
+// The column is the profile's integral: a midpoint rule for rain that reaches the ground and
+// for virga that evaporates 600 m above it.
+TEST(Precipitation, TheColumnIsTheProfilesIntegral) {
+  const float top = 1500.0f;
+  for (float bottom : {0.0f, 600.0f}) {
+    double sum = 0.0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      const float z = top * (i + 0.5f) / n;
+      sum += g::precipitation_profile(z, bottom, top) * top / n;
+      if (i % 20000 == 0) {
+        EXPECT_NEAR(g::precipitation_column_m(z, bottom, top), sum, 0.1 + 1e-4 * sum) << z;
+      }
+    }
+    EXPECT_NEAR(g::precipitation_column_m(top, bottom, top), sum, 1e-3 * sum) << bottom;
+    EXPECT_EQ(g::precipitation_column_m(top + 500.0f, bottom, top),
+              g::precipitation_column_m(top, bottom, top));
+  }
+  // Virga: none below its bottom, all of it at the base, half-way up its fall still thinning.
+  EXPECT_EQ(g::precipitation_profile(500.0f, 600.0f, top), 0.0f);
+  EXPECT_EQ(g::precipitation_profile(1400.0f, 600.0f, top), 1.0f);
+  EXPECT_NEAR(g::precipitation_profile(800.0f, 600.0f, top), 0.444f, 1e-3);
+  EXPECT_EQ(g::precipitation_profile(1600.0f, 0.0f, top), 0.0f);  // above the base
+}
+
+// It falls under the storm cells' cores and under a nearly closed deck, not from fair-weather
+// cumulus between them; a core's shaft is lit by a quarter of the clouds' mean light.
+TEST(Precipitation, ItFallsUnderStormCoresAndClosedDecks) {
+  // A scattered layer (coverage 0.4) away from storm cells: none; nor from its densest
+  // clusters (the map's coverage 1).
+  EXPECT_EQ(g::precipitation_shaft_share(0.5f, 0.0f, 0.4f, 0.0f).x, 0.0f);
+  EXPECT_EQ(g::precipitation_shaft_share(1.0f, 0.0f, 0.4f, 0.0f).x, 0.0f);
+  // An overcast (coverage 1) everywhere, from no core; a broken layer (0.6) not yet.
+  EXPECT_EQ(g::precipitation_shaft_share(0.0f, 0.0f, 1.0f, 0.0f), glm::vec2(1.0f, 0.0f));
+  EXPECT_EQ(g::precipitation_shaft_share(1.0f, 0.0f, 0.6f, 0.0f).x, 0.0f);
+  // A storm cell's core (g 0.5 at full growth) under the same scattered layer: all of it; the
+  // cell's rim (g 0.3, where the towers are half cumulonimbus) none yet; no growth, none.
+  EXPECT_EQ(g::precipitation_shaft_share(0.5f, 0.5f, 0.4f, 1.0f), glm::vec2(1.0f, 1.0f));
+  EXPECT_EQ(g::precipitation_shaft_share(0.5f, 0.3f, 0.4f, 1.0f).x, 0.0f);
+  const float between = g::precipitation_shaft_share(0.5f, 0.4f, 0.4f, 1.0f).x;
+  EXPECT_GT(between, 0.3f);
+  EXPECT_LT(between, 0.7f);
+  EXPECT_EQ(g::precipitation_shaft_share(0.5f, 0.5f, 0.4f, 0.0f).x, 0.0f);
+  EXPECT_EQ(g::precipitation_core_light(0.0f), 1.0f);
+  EXPECT_EQ(g::precipitation_core_light(1.0f), 0.25f);
+}
+
+// The slab's light: with nothing around, the sun's beam by the phase and the sky's light; deep
+// inside, the beam gone and the diffuse light what a two-stream slab passes on.
+TEST(Precipitation, TheSlabsLightIsTheBeamTheDiffuseLightAndTheSky) {
+  const glm::vec3 sun(1.0f), sky(0.1f, 0.2f, 0.3f);
+  const glm::vec3 clear = g::slab_medium_light(sun, 0.5f, sky, 0.3f, 0.85f, 0.0f, 0.0f, 0.0f);
+  EXPECT_NEAR(clear.x, 0.3f + 0.1f, 1e-6f);
+  EXPECT_NEAR(clear.z, 0.3f + 0.3f, 1e-6f);
+  const glm::vec3 deep = g::slab_medium_light(sun, 0.5f, sky, 0.3f, 0.85f, 40.0f, 0.0f, 20.0f);
+  const float down = 1.0f / (1.0f + 0.75f * 0.15f * 40.0f);
+  EXPECT_NEAR(deep.x, down * 0.5f / (2.0f * 3.14159265f) + 0.1f / (1.0f + 0.75f * 0.15f * 20.0f),
+              1e-5f);
+}
+
+}  // namespace
