@@ -130,16 +130,27 @@ Scene seed_lit_scene(const Scene& scene) {
   return s;
 }
 
+Scene heavy_rain_scene(const Scene& scene) {
+  Scene s = scene;
+  s.precipitation.kind = "rain";
+  s.precipitation.rate_mm_per_h = 20.0f;
+  s.precipitation.bottom_m = 0.0f;
+  s.precipitation.shafts = false;
+  return s;
+}
+
 nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& options,
                                 const Scene& base, const RealtimeSettings& f) {
-  // Five renderers, one history each: the still camera (`renderer`), the flight, the seed's
-  // algorithm, the still camera lit as the seed lights clouds (seed_lit_scene) and the same
-  // on the droplets (seed_lighting_scene). Their timed frames are interleaved, so a slow spell
-  // of a shared machine falls on all alike and the ratios between them hold.
+  // Six renderers, one history each: the still camera (`renderer`), the flight, the seed's
+  // algorithm, the still camera lit as the seed lights clouds (seed_lit_scene), the same on
+  // the droplets (seed_lighting_scene) and in heavy rain (heavy_rain_scene). Their timed frames are
+  // interleaved, so a slow spell of a shared machine falls on all alike and the ratios between them
+  // hold.
   Renderer flight(options);
   Renderer seed_renderer(options);
   Renderer seed_lit_renderer(options);
   Renderer seed_lighting_renderer(options);
+  Renderer rain_renderer(options);
   Renderer reference(options);
   const int cycle = base.quality.march_stride * base.quality.march_stride;
   nlohmann::json out;
@@ -168,8 +179,9 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   // The still camera lit as the seed lights clouds.
   Scene seed_lit = still_camera(seed_lit_renderer, seed_lit_scene(base));
   Scene seed_lighting = still_camera(seed_lighting_renderer, seed_lighting_scene(base));
+  Scene rain = still_camera(rain_renderer, heavy_rain_scene(base));
 
-  Timing still, moving, seed, lit_by_seed, lighting_of_seed;
+  Timing still, moving, seed, lit_by_seed, lighting_of_seed, in_rain;
   const int frames = std::max(f.static_frames, f.moving_frames);
   const int seed_every = std::max(1, frames / 8);  // eight of the seed's slow frames
   for (int i = 0; i < frames; ++i) {
@@ -190,6 +202,10 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
     if (i % 2 == 1 && i < f.static_frames) {  // the frames between
       seed_lighting.time_s += 2.0f * f.frame_dt_s;
       lighting_of_seed.add(seed_lighting_renderer.render_next(seed_lighting, false).stats);
+    }
+    if (i < f.static_frames) {
+      rain.time_s += f.frame_dt_s;
+      in_rain.add(rain_renderer.render_next(rain, false).stats);
     }
     if (f.on_step) f.on_step();
   }
@@ -224,6 +240,8 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   out["height"] = base.output.height;
   still.write(out, "static");
   moving.write(out, "moving");
+  in_rain.write(out, "rain");
+  out["cost_of_rain"] = in_rain.median_wall() / still.median_wall();
   out["baseline_ms"] = seed.median_wall();
   out["baseline_fps"] = 1000.0 / seed.median_wall();
   out["speedup_vs_baseline"] = seed.median_wall() / still.median_wall();

@@ -13,7 +13,7 @@
 // Rain: Marshall and Palmer (1948), N(D) = N0 exp(-lambda D), N0 = 8000 m^-3 mm^-1,
 // lambda = 4.1 R^-0.21 mm^-1 for a rate R in mm/h; sigma_t = int (pi D^2 / 4) N(D) dD =
 // pi N0 / (2 lambda^3) = 1.82e-4 R^0.63 per m: 21 km of visibility at 1 mm/h, 5 km at 10,
-// 2.2 km at 40 (Atlas 1953 measured 0.25 R^0.63 per km).
+// 2.1 km at 40 (Atlas 1953 measured 0.25 R^0.63 per km).
 //
 // Drizzle, snow and sleet: a rate R (mm/h of water, R / 3600 kg m^-2 s^-1) carried by
 // particles of cross-section per mass A/m falling at v holds R / (3600 v) kg of them per m^3:

@@ -463,9 +463,9 @@ TEST_F(CliTest, BenchQuickWritesCsvJsonAndPlot) {
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_EQ(rows, 2 * (3 + 3 + 2));  // two modes x (density, coverage, resolution sweeps)
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(path("bench/bench.json")));
-  for (const char* key :
-       {"static_fps", "moving_fps", "baseline_fps", "speedup_vs_baseline", "seed_lit_ms",
-        "cost_vs_seed_lit", "seed_lighting_ms", "cost_vs_seed_lighting"})
+  for (const char* key : {"static_fps", "moving_fps", "baseline_fps", "speedup_vs_baseline",
+                          "seed_lit_ms", "cost_vs_seed_lit", "seed_lighting_ms",
+                          "cost_vs_seed_lighting", "cost_of_rain", "rain_p99_ms"})
     EXPECT_GT(j[key].get<double>(), 0.0) << key;
   // Errors against the high-step reference: small but not exactly zero.
   for (const char* key : {"static_error", "moving_error"}) {

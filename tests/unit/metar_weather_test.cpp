@@ -99,6 +99,17 @@ TEST(MetarWeather, ThunderstormsRainSnowAndFog) {
   EXPECT_EQ(snow.state.precipitation, PrecipitationKind::Snow);
   EXPECT_LT(snow.state.precipitation_mm_per_h, 1.0f);
   EXPECT_EQ(snow.state.visibility_m, 4000.0f);
+  // Drizzle, sleet (rain and snow together, or ice pellets), showers of heavy rain.
+  EXPECT_EQ(weather_of("EGLL 180750Z 22011KT 3000 -DZ OVC004 09/09 Q1012").state.precipitation,
+            PrecipitationKind::Drizzle);
+  EXPECT_EQ(weather_of("CYUL 180750Z 05012KT 2SM -RASN OVC010 01/00 A2990").state.precipitation,
+            PrecipitationKind::Sleet);
+  EXPECT_EQ(weather_of("CYUL 180750Z 05012KT 2SM PL OVC010 M01/M02 A2990").state.precipitation,
+            PrecipitationKind::Sleet);
+  const ReportWeather showers =
+      weather_of("LFPG 180750Z 27015KT 4000 +SHRA SCT020CB BKN030 14/11 Q1002");
+  EXPECT_EQ(showers.state.precipitation, PrecipitationKind::Rain);
+  EXPECT_EQ(showers.state.precipitation_mm_per_h, 16.0f);
   // Showers in the vicinity are not here.
   EXPECT_EQ(weather_of("ENBR 180750Z 22011KT 9999 VCSH FEW018 06/04 Q0988").state.precipitation,
             PrecipitationKind::None);

@@ -8,7 +8,9 @@
 
 #include <cmath>
 
+#include "nephele/error.h"
 #include "nephele/scene.h"
+#include "nephele/scene_io.h"
 #include "render/glsl.h"
 
 namespace {
@@ -82,6 +84,31 @@ TEST(Precipitation, NoneWithoutARateOrAKnownKind) {
   EXPECT_TRUE(std::isinf(nephele::precipitation_visibility_m(falling("rain", 0.0f))));
   for (const char* kind : {"rain", "drizzle", "snow", "sleet"})
     EXPECT_GT(nephele::precipitation_sigma_t_per_m(falling(kind, 1.0f)), 0.0f) << kind;
+}
+
+// Virga that would end at or above the base it falls from is refused in one line naming both;
+// a kind outside the four too.
+TEST(Precipitation, AVirgaBelowItsBaseAndAKnownKind) {
+  nephele::Scene scene;
+  scene.precipitation.rate_mm_per_h = 2.0f;
+  scene.precipitation.bottom_m = scene.clouds.bottom_altitude_m;
+  try {
+    nephele::validate_scene(scene);
+    ADD_FAILURE() << "virga ending at its base accepted";
+  } catch (const nephele::InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "precipitation.bottom_m = 1500: must be below clouds.bottom_altitude_m (1500)");
+  }
+  scene.precipitation.bottom_m = 0.0f;
+  scene.precipitation.kind = "hail";
+  try {
+    nephele::validate_scene(scene);
+    ADD_FAILURE() << "hail accepted";
+  } catch (const nephele::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("precipitation.kind = \"hail\""), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"snow\""), std::string::npos) << e.what();
+  }
 }
 
 // The column is the profile's integral: a midpoint rule for rain that reaches the ground and

@@ -92,6 +92,41 @@ TEST(WeatherState, VisibilityInMetresSetsTheHaze) {
   EXPECT_NEAR(clear_air_visibility_m(Scene{}.atmosphere), 288540.0f, 100.0f);
 }
 
+// Rain in the state falls in the scene, and the visibility stays the one stated: the haze
+// takes what the rain's own extinction leaves of it (a report's visibility is seen through
+// the rain); where the rain alone hides more, the haze is none. Read back, the state is the
+// same.
+TEST(WeatherState, PrecipitationFallsAndTheVisibilityIncludesIt) {
+  Scene scene{};
+  WeatherState state = weather_state(scene);
+  EXPECT_EQ(state.precipitation, PrecipitationKind::None);
+  state.precipitation = PrecipitationKind::Rain;
+  state.precipitation_mm_per_h = 10.0f;  // heavy rain: 5 km by itself
+  state.visibility_m = 3000.0f;
+  apply_weather(state, scene);
+  EXPECT_EQ(scene.precipitation.kind, "rain");
+  EXPECT_EQ(scene.precipitation.rate_mm_per_h, 10.0f);
+  EXPECT_NEAR(visibility_m(scene), 3000.0f, 3.0f);
+  EXPECT_GT(visibility_m(scene.atmosphere), 6000.0f);  // the haze alone: what the rain leaves
+  validate_scene(scene);
+  const WeatherState back = weather_state(scene);
+  EXPECT_EQ(back.precipitation, PrecipitationKind::Rain);
+  EXPECT_EQ(back.precipitation_mm_per_h, 10.0f);
+  EXPECT_NEAR(back.visibility_m, 3000.0f, 3.0f);
+  // Snow at 3 mm/h hides more than 2 km of visibility says: no haze left, the snow's own.
+  state.precipitation = PrecipitationKind::Snow;
+  state.precipitation_mm_per_h = 3.0f;
+  state.visibility_m = 2000.0f;
+  apply_weather(state, scene);
+  EXPECT_EQ(scene.atmosphere.mie_extinction_per_m, 0.0f);
+  EXPECT_LT(visibility_m(scene), 400.0f);
+  // None: the rate falls to 0, the kind stays as it was.
+  state.precipitation = PrecipitationKind::None;
+  apply_weather(state, scene);
+  EXPECT_EQ(scene.precipitation.rate_mm_per_h, 0.0f);
+  EXPECT_NEAR(visibility_m(scene), 2000.0f, 2.0f);
+}
+
 TEST(WeatherState, WhatALayerCannotDrawIsOneLineAndChangesNothing) {
   const Scene original{};
   Scene scene = original;

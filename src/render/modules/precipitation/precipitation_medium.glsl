@@ -42,7 +42,9 @@ float precipitation_tau_above(float share, float altitude_m) {
 // of sigma_s (`phase` the phase function's value towards it), a its sigma_t (1/m).
 vec4 precipitation_at(vec3 pos, float phase) {
   float bottom_m = precipitation.fall.x, top_m = precipitation.fall.y;
-  float altitude_m = length(pos) - frame.radii_m.x;
+  // The samples lie on the ray's stretch under the base; the ends on the base's sphere may
+  // come out a little above it in float (half a metre at the planet's radius).
+  float altitude_m = min(length(pos) - frame.radii_m.x, top_m);
   vec2 shaft = precipitation_share_at(pos);
   float sigma = precipitation.fall.z * shaft.x * precipitation_profile(altitude_m, bottom_m, top_m);
   float tau_up = precipitation_tau_above(shaft.x, altitude_m);
