@@ -18,6 +18,7 @@
 #include "scene/scene_fields.h"
 #include "voxel/voxel_grid.h"
 #include "weather/metar_weather.h"
+#include "weather/weather_state.h"
 
 namespace nephele::cli {
 namespace {
@@ -683,6 +684,23 @@ Scene resolve_scene(const SceneFlags& flags) {
         fail("--metar", scene.weather.metar, what);
       }
     }
+  // Then --wind-from-deg, --wind-speed-kt or -mps and --visibility-m, over a report; the
+  // message names the flags.
+  try {
+    weather::apply_weather_keys(scene);
+  } catch (const InputError& e) {
+    std::string what = e.what();
+    for (const auto& [key, flag] :
+         {std::pair<std::string, std::string>{"weather.wind_from_deg", "--wind-from-deg"},
+          {"weather.wind_speed_kt", "--wind-speed-kt"},
+          {"weather.wind_speed_mps", "--wind-speed-mps"},
+          {"weather.visibility_m", "--visibility-m"}})
+      for (size_t at; (at = what.find(key)) != std::string::npos;) {
+        const bool assigned = what.compare(at + key.size(), 3, " = ") == 0;
+        what.replace(at, key.size() + (assigned ? 3 : 0), assigned ? flag + " " : flag);
+      }
+    throw InputError(what);
+  }
   // A sun flag places the sun; otherwise a --time does.
   if (flags.sun_dir || flags.sun_elevation_deg || flags.sun_azimuth_deg)
     scene.sun.from_time = false;

@@ -370,8 +370,17 @@ struct LocationParams {
 // groups, wind, visibility, present weather and day and time set the clouds' layers, the
 // winds, the haze, the storm growth and the time of day on the scene's date. They take
 // precedence over the same keys of the other tables (docs/weather-reports.md).
+//
+// Or, as a report gives them (applied after the report, over it): the wind at the ground, from
+// where it blows (deg clockwise from north) at a speed in knots or m/s (one of the two), which
+// sets every layer's wind by a 1/7 power law (1.93 times it at 1 km and above); and the
+// visibility (m), which sets the haze (what any rain or snow leaves of it).
 struct WeatherReportParams {
-  std::string metar;  // "" = none
+  std::string metar;             // "" = none
+  float wind_from_deg = -1.0f;   // [0, 360]; -1 = not given
+  float wind_speed_kt = -1.0f;   // [0, 400]; -1 = not given
+  float wind_speed_mps = -1.0f;  // [0, 200]; -1 = not given
+  float visibility_m = 0.0f;     // [400, 3e5]; 0 = not given
 };
 
 // The artist-driven time of day and weather of seed 003, section 4 (nephele/conditions.h):

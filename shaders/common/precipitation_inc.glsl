@@ -96,4 +96,31 @@ float precipitation_core_light(float core) {
   return 1.0f - 0.75f * core;
 }
 
+// The march's steps, and the froxels' slices (one more: the ray's start).
+const int PRECIPITATION_STEPS = 24;
+// A storm's shafts stand out from 100 km away and more; beyond, the haze has taken them.
+const float PRECIPITATION_MAX_RANGE_M = 150000.0f;
+
+// Where sample k (0 to PRECIPITATION_STEPS) of a ray lies (m along it). The samples lie on
+// fixed horizontal distances from the eye, r_k = range (k / n)^2, so that every pixel of a
+// column of the image samples the same vertical shafts at the same places and they stand as
+// columns (fractions of each ray's own stretch gave each row its own places: a moire across
+// the shafts). Those outside the ray's stretch fall on its ends: a short ray up through the
+// shafts is taken in one step. The last is the stretch's end.
+float precipitation_sample_t(int k, vec2 stretch, float horizontal) {
+  if (k >= PRECIPITATION_STEPS) return stretch.y;
+  float u = float(k) / float(PRECIPITATION_STEPS);
+  return clamp(PRECIPITATION_MAX_RANGE_M * u * u / horizontal, stretch.x, stretch.y);
+}
+
+// The (fractional) sample at `t_m` along a ray: sample k's place is at or before it, k + 1's
+// after (precipitation_sample_t's inverse, continuous where the samples are apart).
+float precipitation_sample_at(float t_m, vec2 stretch, float horizontal) {
+  float k = floor(float(PRECIPITATION_STEPS) * sqrt(max(t_m * horizontal, 0.0f) / PRECIPITATION_MAX_RANGE_M));
+  k = clamp(k, 0.0f, float(PRECIPITATION_STEPS - 1));
+  float ta = precipitation_sample_t(int(k), stretch, horizontal);
+  float tb = precipitation_sample_t(int(k) + 1, stretch, horizontal);
+  return k + (tb > ta ? saturate((t_m - ta) / (tb - ta)) : 1.0f);
+}
+
 #endif

@@ -508,7 +508,19 @@ const std::vector<Section>& scene_sections() {
                 "a METAR or SPECI report (\"EDDF 271150Z 24015KT 9999 FEW025 SCT040 12/06 "
                 "Q1008\"): its clouds, wind, visibility, weather and time set the scene's when it "
                 "is loaded; \"\" = none",
-                {}, {}, "metar")},
+                {}, {}, "metar"),
+          FIELD(weather, wind_from_deg,
+                "the ground's wind blows from this direction (clockwise from north), with one of "
+                "the speeds below: every layer's wind, 1.93 times it at 1 km; -1 = not given",
+                or_off(-1, closed(0, 360)), {}, "wind-from-deg"),
+          FIELD(weather, wind_speed_kt, "the ground's wind speed in knots; -1 = not given",
+                or_off(-1, closed(0, 400)), {}, "wind-speed-kt"),
+          FIELD(weather, wind_speed_mps, "the ground's wind speed in m/s; -1 = not given",
+                or_off(-1, closed(0, 200)), {}, "wind-speed-mps"),
+          FIELD(weather, visibility_m,
+                "the meteorological visibility at the ground: sets the haze (what rain or snow "
+                "leaves of it); 0 = not given",
+                or_off(0, closed(400, 3e5)), {}, "visibility-m")},
          {}},
         {"conditions",
          {FIELD(conditions, mode,

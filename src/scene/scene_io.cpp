@@ -20,6 +20,7 @@
 #include "nephele_embedded.h"
 #include "scene/scene_fields.h"
 #include "weather/metar_weather.h"
+#include "weather/weather_state.h"
 
 namespace nephele_presets {  // defined by the generated embedded_presets.cpp
 extern const EmbeddedFile kFiles[];
@@ -240,6 +241,14 @@ class SceneReader {
         const toml::node* node = root.at_path("weather.metar").node();
         fail(node ? node->source() : toml::source_region{}, e.what());
       }
+    }
+    // Then the wind and the visibility as a report gives them, over it.
+    try {
+      weather::apply_weather_keys(scene);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      const toml::node* node = root.at_path(what.substr(0, what.find(' '))).node();
+      fail(node ? node->source() : toml::source_region{}, what);
     }
     // After every table: the location and the planet's radius may come later in the file.
     for (const GeoPosition& geo : geo_positions)

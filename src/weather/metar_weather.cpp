@@ -271,12 +271,11 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
     const float speed = report.wind->speed_mps();
     glm::vec2 towards(0.0f);
     if (!report.wind->variable) {
-      const float a = glm::radians(float(report.wind->direction_deg));
-      towards = -glm::vec2(std::sin(a), std::cos(a));
+      towards = wind_towards(float(report.wind->direction_deg));
     } else if (!s.wind.empty() && glm::length(s.wind.front().wind_mps) > 0.0f) {
       towards = glm::normalize(s.wind.front().wind_mps);  // variable: the scene's direction
     }
-    s.wind = {{0.0f, speed * towards}, {1000.0f, speed * std::pow(100.0f, 1.0f / 7.0f) * towards}};
+    s.wind = surface_wind_levels(towards, speed);
   }
 
   // The visibility sets the haze; 10 km or more keeps a clearer scene's.

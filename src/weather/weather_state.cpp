@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/trigonometric.hpp>
 #include <iterator>
 
 #include "nephele/error.h"
@@ -220,6 +221,16 @@ float visibility_m(const Scene& scene) {
                          precipitation_sigma_t_per_m(scene.precipitation));
 }
 
+glm::vec2 wind_towards(float from_deg) {
+  const float a = glm::radians(from_deg);
+  return -glm::vec2(std::sin(a), std::cos(a));
+}
+
+std::vector<WindLevel> surface_wind_levels(glm::vec2 towards, float speed_mps) {
+  return {{0.0f, speed_mps * towards},
+          {1000.0f, speed_mps * std::pow(100.0f, 1.0f / 7.0f) * towards}};
+}
+
 WeatherState weather_state(const Scene& scene) {
   WeatherState state;
   const CloudParams& c = scene.clouds;
@@ -316,6 +327,31 @@ void apply_weather(const WeatherState& state, Scene& scene) {
   a.mie_extinction_per_m = std::max(0.0f, kKoschmieder / state.visibility_m -
                                               a.rayleigh_scattering_per_m.y - precipitation_sigma);
   a.mie_scattering_per_m = albedo * a.mie_extinction_per_m;
+}
+
+void apply_weather_keys(Scene& scene) {
+  const WeatherReportParams& w = scene.weather;
+  const bool direction = w.wind_from_deg >= 0.0f;
+  const bool knots = w.wind_speed_kt >= 0.0f, mps = w.wind_speed_mps >= 0.0f;
+  if (!direction && !knots && !mps && w.visibility_m <= 0.0f) return;
+  if (knots && mps)
+    throw InputError("weather.wind_speed_kt = " + format_float(w.wind_speed_kt) +
+                     ": give the speed once, in knots or in m/s (weather.wind_speed_mps = " +
+                     format_float(w.wind_speed_mps) + ")");
+  if (direction && !knots && !mps)
+    throw InputError("weather.wind_from_deg = " + format_float(w.wind_from_deg) +
+                     ": needs a speed, weather.wind_speed_kt or weather.wind_speed_mps");
+  if (!direction && (knots || mps))
+    throw InputError(std::string(knots ? "weather.wind_speed_kt = " : "weather.wind_speed_mps = ") +
+                     format_float(knots ? w.wind_speed_kt : w.wind_speed_mps) +
+                     ": needs the direction it blows from, weather.wind_from_deg");
+  WeatherState state = weather_state(scene);
+  if (direction) {
+    const float speed_mps = knots ? w.wind_speed_kt * 0.514444f : w.wind_speed_mps;
+    state.wind = surface_wind_levels(wind_towards(w.wind_from_deg), speed_mps);
+  }
+  if (w.visibility_m > 0.0f) state.visibility_m = w.visibility_m;
+  apply_weather(state, scene);  // its errors name weather.visibility_m, as the key is named
 }
 
 }  // namespace nephele::weather

@@ -93,6 +93,12 @@ constexpr float kMinVisibilityM = 400.0f;  // Mie extinction 0.0098/m: validatio
 float coverage_for_oktas(float oktas, float type);
 float oktas_for_coverage(float coverage, float type);
 
+// The wind at the ground, `speed_mps` blowing from `from_deg` (clockwise from north), as
+// levels: at the ground, and 1.93 times it at 1 km and above (a 1/7 power law up to the
+// clouds). `towards` the unit vector it blows to (east, north).
+glm::vec2 wind_towards(float from_deg);
+std::vector<WindLevel> surface_wind_levels(glm::vec2 towards, float speed_mps);
+
 // The state today's scene describes.
 WeatherState weather_state(const Scene& scene);
 // Writes the state into the scene's clouds, high clouds, cirrus and atmosphere (the Mie term
@@ -102,5 +108,11 @@ WeatherState weather_state(const Scene& scene);
 // not increasing in altitude, a visibility outside what the atmosphere holds; the scene is
 // unchanged then. validate_scene checks the result as for any scene.
 void apply_weather(const WeatherState& state, Scene& scene);
+
+// [weather]'s wind and visibility keys (WeatherReportParams) onto the scene's layers' winds and
+// haze, after its report; nothing when none is given. Throws InputError naming the key for a
+// direction without a speed, a speed without a direction or both speeds; the scene is
+// unchanged then.
+void apply_weather_keys(Scene& scene);
 
 }  // namespace nephele::weather

@@ -222,3 +222,23 @@ TEST_F(CliInputs, VerboseReportsPeakResidentMemory) {
   EXPECT_GT(std::stoi(m[1]), 20);
   EXPECT_LT(std::stoi(m[1]), 4096);
 }
+
+namespace {
+
+// The weather as a report gives it on the command line: a wind's direction without a speed, two
+// speeds, rain that would end above its cloud base; each one line naming the flags, exit 2,
+// nothing written.
+TEST_F(CliInputs, WeatherFlagsAreRefusedNamingThem) {
+  const std::string out = path("x.png");
+  expect_refused(kTiny + std::string("--wind-from-deg 240 -o ") + out,
+                 {"--wind-from-deg 240", "needs a speed, --wind-speed-kt or --wind-speed-mps"});
+  expect_refused(
+      kTiny + std::string("--wind-from-deg 240 --wind-speed-kt 5 --wind-speed-mps 3 -o ") + out,
+      {"--wind-speed-kt 5", "(--wind-speed-mps 3)"});
+  expect_refused(
+      kTiny + std::string("--precipitation-kind hail --precipitation-mm-per-h 2 -o ") + out,
+      {"--precipitation-kind", "hail", "\"snow\""});
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <glm/vec2.hpp>
 
 #include "nephele/error.h"
 #include "nephele/scene.h"
@@ -156,6 +158,43 @@ TEST(Precipitation, ItFallsUnderStormCoresAndClosedDecks) {
   EXPECT_EQ(g::precipitation_shaft_share(0.5f, 0.5f, 0.4f, 0.0f).x, 0.0f);
   EXPECT_EQ(g::precipitation_core_light(0.0f), 1.0f);
   EXPECT_EQ(g::precipitation_core_light(1.0f), 0.25f);
+}
+
+// The march's samples on fixed horizontal distances, and their inverse, which compose uses to
+// read the froxels at its own distance: sample k's place gives k back, a distance between two
+// samples lies between their indices, and the samples outside a ray's stretch fall on its
+// ends (a steep ray up through the rain: one step).
+TEST(Precipitation, TheSamplesPlacesAndTheirInverse) {
+  for (float horizontal : {1.0f, 0.5f, 0.05f}) {
+    const glm::vec2 stretch(
+        0.0f, std::min(150000.0f, 1500.0f / std::sqrt(1.0f - horizontal * horizontal + 1e-12f)));
+    float last = -1.0f;
+    for (int k = 0; k <= g::PRECIPITATION_STEPS; ++k) {
+      const float t = g::precipitation_sample_t(k, stretch, horizontal);
+      EXPECT_GE(t, last) << k;
+      EXPECT_GE(t, stretch.x);
+      EXPECT_LE(t, stretch.y);
+      last = t;
+    }
+    EXPECT_EQ(g::precipitation_sample_t(g::PRECIPITATION_STEPS, stretch, horizontal), stretch.y);
+    for (float u : {0.01f, 0.2f, 0.5f, 0.9f, 1.0f}) {
+      const float t = u * stretch.y;
+      const float k = g::precipitation_sample_at(t, stretch, horizontal);
+      const int k0 = std::min(int(k), g::PRECIPITATION_STEPS - 1);
+      EXPECT_LE(g::precipitation_sample_t(k0, stretch, horizontal), t + 1e-3f * t) << horizontal;
+      EXPECT_GE(g::precipitation_sample_t(k0 + 1, stretch, horizontal), t - 1e-3f * t)
+          << horizontal;
+    }
+  }
+  // Horizontal rays: sample k lies 150 km (k / 24)^2 away; its own place gives k back.
+  const glm::vec2 far(0.0f, 150000.0f);
+  for (int k : {1, 5, 12, 23})
+    EXPECT_NEAR(g::precipitation_sample_at(g::precipitation_sample_t(k, far, 1.0f), far, 1.0f), k,
+                1e-3);
+  // Straight up through 1.5 km of rain: one step from the eye to the base.
+  const glm::vec2 up(0.0f, 1500.0f);
+  EXPECT_EQ(g::precipitation_sample_t(1, up, 1e-4f), 1500.0f);
+  EXPECT_NEAR(g::precipitation_sample_at(750.0f, up, 1e-4f), 0.5f, 1e-4);
 }
 
 // The slab's light: with nothing around, the sun's beam by the phase and the sky's light; deep

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
 
@@ -125,6 +129,46 @@ TEST(WeatherState, PrecipitationFallsAndTheVisibilityIncludesIt) {
   apply_weather(state, scene);
   EXPECT_EQ(scene.precipitation.rate_mm_per_h, 0.0f);
   EXPECT_NEAR(visibility_m(scene), 2000.0f, 2.0f);
+}
+
+// The wind as a report gives it, from where it blows in degrees at a speed in knots or m/s,
+// and the visibility in metres, as [weather] keys: every layer's wind from the ground's by the
+// 1/7 power law, the haze from the visibility; a direction without a speed, a speed without a
+// direction or two speeds refused naming the key.
+TEST(WeatherState, WindAndVisibilityKeysAsAReportGivesThem) {
+  const Scene scene = parse_scene_toml(
+      "[weather]\nwind_from_deg = 240\nwind_speed_kt = 15\nvisibility_m = 8000\n", "w.toml");
+  validate_scene(scene);
+  const float speed = 15.0f * 0.514444f * 1.93f;  // at 1 km and above
+  // From the south-west, towards the north-east: east and north both positive, east larger.
+  const glm::vec2 towards(std::sin(glm::radians(60.0f)), std::cos(glm::radians(60.0f)));
+  EXPECT_NEAR(scene.clouds.wind_mps.x, speed * towards.x, 0.02f);
+  EXPECT_NEAR(scene.clouds.wind_mps.y, speed * towards.y, 0.02f);
+  EXPECT_NEAR(scene.high_clouds.wind_mps.x, speed * towards.x, 0.02f);
+  EXPECT_NEAR(glm::length(scene.clouds.wind_shear_mps), 0.0f, 1e-4f);
+  EXPECT_NEAR(visibility_m(scene), 8000.0f, 1.0f);
+  const Scene mps =
+      parse_scene_toml("[weather]\nwind_from_deg = 240\nwind_speed_mps = 7.71666\n", "w.toml");
+  EXPECT_NEAR(glm::distance(mps.clouds.wind_mps, scene.clouds.wind_mps), 0.0f, 1e-3f);
+  const auto error_of = [](const std::string& toml) -> std::string {
+    try {
+      parse_scene_toml(toml, "w.toml");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error_of("[weather]\nwind_from_deg = 240\n"),
+            "w.toml:2:17: weather.wind_from_deg = 240: needs a speed, weather.wind_speed_kt or "
+            "weather.wind_speed_mps");
+  EXPECT_EQ(error_of("[weather]\nwind_speed_kt = 15\n"),
+            "w.toml:2:17: weather.wind_speed_kt = 15: needs the direction it blows from, "
+            "weather.wind_from_deg");
+  EXPECT_EQ(error_of("[weather]\nwind_from_deg = 240\nwind_speed_kt = 15\nwind_speed_mps = 7\n"),
+            "w.toml:3:17: weather.wind_speed_kt = 15: give the speed once, in knots or in m/s "
+            "(weather.wind_speed_mps = 7)");
+  EXPECT_NE(error_of("[weather]\nvisibility_m = 100\n").find("weather.visibility_m = 100"),
+            std::string::npos);
 }
 
 TEST(WeatherState, WhatALayerCannotDrawIsOneLineAndChangesNothing) {

@@ -9,15 +9,16 @@ void ComposeModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
                                                        frame.plan.layers, frame.plan.media);
   graph.add_pass("compose",
                  {"atmosphere", "sky_view", "cloud_layer", "ground_light", "shafts", "layers",
-                  "terrain", "reference_sky", FrameGraph::kView},
+                  "terrain", "reference_sky", "media", FrameGraph::kView},
                  {"color"}, [this, variant, layer = frame.plan.film_layer](VkCommandBuffer cmd) {
                    pass_compose(cmd, state_, variant, layer);
                  });
-  graph.add_pass("stars",
-                 {"color", "cloud_layer", "layers", "terrain", "atmosphere", FrameGraph::kView},
-                 {"color"}, [this, layer = frame.plan.film_layer](VkCommandBuffer cmd) {
-                   pass_stars(cmd, state_, layer);
-                 });
+  graph.add_pass(
+      "stars",
+      {"color", "cloud_layer", "layers", "terrain", "atmosphere", "media", FrameGraph::kView},
+      {"color"}, [this, layer = frame.plan.film_layer](VkCommandBuffer cmd) {
+        pass_stars(cmd, state_, layer);
+      });
 }
 
 void DisplayModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

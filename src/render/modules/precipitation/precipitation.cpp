@@ -36,13 +36,35 @@ float precipitation_visibility_m(const PrecipitationParams& p) {
   return sigma > 0.0f ? kKoschmieder / sigma : std::numeric_limits<float>::infinity();
 }
 
-PrecipitationModule::PrecipitationModule(const ModuleContext& context) : set_(context.set) {
+namespace {
+// The slices: the march's start and each of its samples (precipitation_field_inc.glsl).
+constexpr uint32_t kSlices = uint32_t(precip::PRECIPITATION_STEPS) + 1;
+
+gpu::Texture froxel_texture(gpu::Context& ctx, uint32_t w, uint32_t h, VkFormat format) {
+  return gpu::Texture(ctx, w, h, kSlices, format, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+}
+}  // namespace
+
+PrecipitationModule::PrecipitationModule(const ModuleContext& context)
+    : ctx_(context.ctx),
+      set_(context.set),
+      froxels_(froxel_texture(ctx_, 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT)),
+      depth_(froxel_texture(ctx_, 1, 1, VK_FORMAT_R16_SFLOAT)) {
   for (gpu::Buffer& b : blocks_) {
     b = gpu::Buffer(context.ctx, sizeof(gpu::PrecipitationGpu), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     std::memset(b.data(), 0, sizeof(gpu::PrecipitationGpu));  // none
   }
-  // compose.comp and stars.comp declare the block whether or not a frame has any: always bound.
+  // compose.comp and stars.comp declare the block and the froxels whether or not a frame has
+  // any: always bound.
   set_.bind_module_buffer(kBlockName, blocks_[0], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  bind_froxels();
+}
+
+void PrecipitationModule::bind_froxels() {
+  set_.bind_module_storage_image("precipitation_froxels_out", froxels_);
+  set_.bind_module_storage_image("precipitation_depth_out", depth_);
+  set_.bind_module_sampled_image("precipitation_froxels", froxels_);
+  set_.bind_module_sampled_image("precipitation_depth", depth_);
 }
 
 void PrecipitationModule::prepare(const FramePrepare& frame, FramePlan& plan) {
@@ -50,21 +72,39 @@ void PrecipitationModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   const float top_m = frame.scene.clouds.bottom_altitude_m;
   gpu::PrecipitationGpu block{};
   const float sigma = precipitation_sigma_t_per_m(p);
-  const bool falls = sigma > 0.0f && p.bottom_m < top_m;
-  if (falls) {
+  falls_ = sigma > 0.0f && p.bottom_m < top_m;
+  if (falls_) {
     block.fall = glm::vec4(p.bottom_m, top_m, sigma,
                            precip::precipitation_phase_g(precipitation_kind(p.kind)));
     const MediumLight light = medium_light(frame.params);
     block.sun = light.sun;
     block.sky = glm::vec4(light.sky, p.shafts ? 1.0f : 0.0f);
+    const uint32_t w =
+        uint32_t((frame.width + kPrecipitationDownsample - 1) / kPrecipitationDownsample);
+    const uint32_t h =
+        uint32_t((frame.height + kPrecipitationDownsample - 1) / kPrecipitationDownsample);
+    if (froxels_.width() != w || froxels_.height() != h) {
+      ctx_.wait_queue_idle();  // a frame in flight may still read the old ones
+      froxels_ = froxel_texture(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT);
+      depth_ = froxel_texture(ctx_, w, h, VK_FORMAT_R16_SFLOAT);
+      bind_froxels();
+    }
   }
   std::memcpy(blocks_[frame.slot].data(), &block, sizeof(block));
   set_.bind_module_buffer(kBlockName, blocks_[frame.slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-  plan.media = plan.media || falls;
+  plan.media = plan.media || falls_;
 }
 
-void PrecipitationModule::add_passes(FrameGraph&, const FrameSetup&) {
-  // No pass: compose reads the block as one of its media.
+void PrecipitationModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
+  graph.import("media");  // read by compose and the stars whether or not it falls
+  if (!falls_) return;
+  graph.add_pass("precipitation", {"weather_map", FrameGraph::kView}, {"media"},
+                 [this, timer = frame.timer](VkCommandBuffer cmd) {
+                   if (!kernel_)
+                     kernel_ = std::make_unique<gpu::Kernel>(ctx_, set_, "precipitation.comp.spv");
+                   gpu::dispatch(cmd, *kernel_, timer(), "precipitation", froxels_.width(),
+                                 froxels_.height(), 1, 8, 8, 1);
+                 });
 }
 
 std::unique_ptr<RenderModule> make_precipitation_module(const ModuleContext& context) {

@@ -2,9 +2,10 @@
 // the low cloud layer, seen as shafts under the precipitating clouds or an even curtain, a
 // medium between the eye and every layer of compose.comp and of the stars
 // (precipitation_medium.glsl) that lowers the visibility by the rate. It owns its parameters
-// (Scene::precipitation), its uniform block (descriptor set 1, "PrecipitationBlock") and no
-// pass: compose and the stars read the block. The frame knows it only through the registry
-// (render_module.h).
+// (Scene::precipitation), its uniform block (descriptor set 1, "PrecipitationBlock") and one
+// pass (precipitation.comp) that marches it along the view's rays into froxels at an eighth
+// of the image's resolution, which compose and the stars read ("media"). The frame knows it
+// only through the registry (render_module.h).
 #pragma once
 
 #include <memory>
@@ -24,17 +25,28 @@ int precipitation_kind(std::string_view name);
 float precipitation_sigma_t_per_m(const PrecipitationParams& p);
 float precipitation_visibility_m(const PrecipitationParams& p);
 
+// The froxels' texels per image pixel along each axis: one per 8 x 8 block.
+constexpr int kPrecipitationDownsample = 8;
+
 class PrecipitationModule : public RenderModule {
  public:
   explicit PrecipitationModule(const ModuleContext& context);
   // This frame's precipitation (its fall from the clouds' base, extinction and light) into the
-  // uniform block of the frame's slot, bound for the frame; plan.media when it falls.
+  // uniform block of the frame's slot, bound for the frame, and the froxels sized for the
+  // image; plan.media when it falls.
   void prepare(const FramePrepare& frame, FramePlan& plan) override;
+  // The froxels' pass ("precipitation", writing "media") when it falls.
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
  private:
+  void bind_froxels();
+
+  gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
   gpu::Buffer blocks_[gpu::kFramesInFlight + 1];  // one a slot: a frame in flight reads its own
+  gpu::Texture froxels_, depth_;         // (light, transmittance) and summed depth by sample
+  std::unique_ptr<gpu::Kernel> kernel_;  // made when first recorded
+  bool falls_ = false;
 };
 
 std::unique_ptr<RenderModule> make_precipitation_module(const ModuleContext& context);
