@@ -71,3 +71,16 @@ def test_scene_parameters_give_each_key_its_range_unit_and_default():
     assert params["clouds.weather_evolution_s"]["off"] == 0.0
     assert params["atmosphere.model"]["allowed"] == ["hillaire", "preetham", "reference"]
     assert params["time"]["min"] is None
+
+
+def test_rain_and_snow_from_python():
+    params = {p["key"]: p for p in nephele.scene_parameters()}
+    assert params["precipitation.rate_mm_per_h"]["unit"] == "mm/h"
+    assert params["precipitation.kind"]["allowed"] == '"rain", "drizzle", "snow" or "sleet"'
+    pixel_luminance = lambda im: im[..., :3] @ np.array([0.2126, 0.7152, 0.0722])
+    deck = {"clouds.coverage": 0.9, "camera.view_dir": [0.0, 1.0, 0.1]}
+    dry = nephele.render(width=24, height=16, scene=deck)
+    snow = nephele.render(width=24, height=16, scene={**deck, "precipitation.kind": "snow",
+                                                      "precipitation.rate_mm_per_h": 3.0})
+    # Heavy snow, 400 m of visibility: the deck and the ground behind a grey veil.
+    assert np.std(pixel_luminance(snow)) < 0.5 * np.std(pixel_luminance(dry))
