@@ -18,14 +18,9 @@
 //
 // Fog droplets (micrometres, in visible light) scatter almost without absorbing: a
 // single-scattering albedo of about 1. Pure functions, also compiled as C++ (src/render/glsl.h
-// conventions; needs math_inc.glsl's saturate).
+// conventions; needs math_inc.glsl's saturate and KOSCHMIEDER).
 #ifndef NEPHELE_GROUND_FOG_INC
 #define NEPHELE_GROUND_FOG_INC
-
-// Koschmieder's constant -ln(0.02) = 3.912: an object at the visibility V is seen with 2% of
-// its contrast, exp(-sigma_t V) = 0.02 (the threshold at 550 nm; src/weather/weather_state.cpp
-// sets the haze with the same constant).
-const float KOSCHMIEDER = 3.912f;
 
 struct GroundFog {
   float base_m;         // altitude of the layer's bottom (m above mean sea level)

@@ -87,6 +87,11 @@ vec2 camera_pixel(vec3 forward, vec3 right, vec3 up, float tan_half_fov, float a
 }
 
 // Interleaved gradient noise (Jimenez 2014): a per-pixel value in [0, 1) for ray jitter.
+// Koschmieder's constant -ln(0.02) = 3.912: an object at the visibility V is seen with 2% of
+// its contrast, exp(-sigma_t V) = 0.02 (the threshold at 550 nm). The fog, the haze, rain and
+// snow, and the host's visibility all convert with it.
+const float KOSCHMIEDER = 3.912f;
+
 float interleaved_gradient_noise(float x, float y) {
   return fract(52.9829189f * fract(0.06711056f * x + 0.00583715f * y));
 }

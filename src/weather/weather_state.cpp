@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include "nephele/error.h"
+#include "render/glsl.h"
 #include "render/modules/precipitation/precipitation.h"
 #include "scene/scene_fields.h"
 
@@ -14,8 +15,6 @@ namespace nephele::weather {
 namespace {
 
 using scene_detail::format_float;
-
-constexpr float kKoschmieder = 3.912f;  // -ln(0.02): the 2% contrast threshold
 
 // The volumetric genera in the order of clouds.type's scale (0, 0.25, ... 1), and the sheet's
 // in cirrus.type's (0, 0.5, 1).
@@ -209,16 +208,17 @@ glm::vec2 wind_at(const std::vector<WindLevel>& levels, float altitude_m) {
 
 float clear_air_visibility_m(const AtmosphereParams& atmosphere) {
   // The air's own extinction at 550 nm: the Rayleigh coefficients' green channel.
-  return kKoschmieder / atmosphere.rayleigh_scattering_per_m.y;
+  return glsl::KOSCHMIEDER / atmosphere.rayleigh_scattering_per_m.y;
 }
 
 float visibility_m(const AtmosphereParams& atmosphere) {
-  return kKoschmieder / (atmosphere.rayleigh_scattering_per_m.y + atmosphere.mie_extinction_per_m);
+  return glsl::KOSCHMIEDER /
+         (atmosphere.rayleigh_scattering_per_m.y + atmosphere.mie_extinction_per_m);
 }
 
 float visibility_m(const Scene& scene) {
-  return kKoschmieder / (kKoschmieder / visibility_m(scene.atmosphere) +
-                         precipitation_sigma_t_per_m(scene.precipitation));
+  return glsl::KOSCHMIEDER / (glsl::KOSCHMIEDER / visibility_m(scene.atmosphere) +
+                              precipitation_sigma_t_per_m(scene.precipitation));
 }
 
 glm::vec2 wind_towards(float from_deg) {
@@ -324,7 +324,7 @@ void apply_weather(const WeatherState& state, Scene& scene) {
   if (state.visibility_m == visibility_before && precipitation_sigma == sigma_before) return;
   const float albedo =
       a.mie_extinction_per_m > 0.0f ? a.mie_scattering_per_m / a.mie_extinction_per_m : 0.9f;
-  a.mie_extinction_per_m = std::max(0.0f, kKoschmieder / state.visibility_m -
+  a.mie_extinction_per_m = std::max(0.0f, glsl::KOSCHMIEDER / state.visibility_m -
                                               a.rayleigh_scattering_per_m.y - precipitation_sigma);
   a.mie_scattering_per_m = albedo * a.mie_extinction_per_m;
 }

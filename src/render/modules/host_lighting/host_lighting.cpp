@@ -13,7 +13,6 @@ namespace {
 
 // Meteorological visibility: the distance where a black object's contrast against the horizon
 // falls to 2% (Koschmieder): -ln 0.02 / sigma_t.
-constexpr float kKoschmieder = 3.912f;
 // sin 3 degrees: cloud_shadow_map.comp's SHADOW_MAP_MIN_LIGHT_Z.
 constexpr float kShadowMapMinLightZ = 0.0523f;
 
@@ -70,7 +69,7 @@ HostLighting host_lighting(const Scene& scene, const SkyLights& lights, const gl
   out.cloud_sigma_t_per_m = device[0].z;
   out.inside_cloud = out.cloud_sigma_t_per_m > 0.0f;
   const float sigma_t = camera_air_sigma_t(scene).g + out.cloud_sigma_t_per_m;
-  out.visibility_m = sigma_t > 0.0f ? kKoschmieder / sigma_t : 1.0e9f;
+  out.visibility_m = sigma_t > 0.0f ? glsl::KOSCHMIEDER / sigma_t : 1.0e9f;
   return out;
 }
 

@@ -15,7 +15,6 @@ namespace {
 namespace precip = nephele::glsl;
 
 constexpr const char* kBlockName = "PrecipitationBlock";
-constexpr float kKoschmieder = 3.912f;  // -ln(0.02): the visibility's contrast threshold
 }  // namespace
 
 int precipitation_kind(std::string_view name) {
@@ -33,7 +32,7 @@ float precipitation_sigma_t_per_m(const PrecipitationParams& p) {
 
 float precipitation_visibility_m(const PrecipitationParams& p) {
   const float sigma = precipitation_sigma_t_per_m(p);
-  return sigma > 0.0f ? kKoschmieder / sigma : std::numeric_limits<float>::infinity();
+  return sigma > 0.0f ? glsl::KOSCHMIEDER / sigma : std::numeric_limits<float>::infinity();
 }
 
 namespace {
