@@ -11,7 +11,7 @@ PACKAGES=(
   libgtest-dev libnova-dev libgdal-dev
   libopenvdb-dev libnanovdb-dev libtinyobjloader-dev libboost-iostreams-dev
   libglfw3-dev libimgui-dev xvfb xauth python3-matplotlib
-  pybind11-dev python3-dev python3-numpy python3-pytest
+  pybind11-dev python3-dev python3-numpy python3-pytest libeccodes-dev
 )
 
 missing=()

@@ -4,6 +4,8 @@
 #ifndef NEPHELE_CIRRUS_INC
 #define NEPHELE_CIRRUS_INC
 
+#include "forecast_inc.glsl"
+
 // Vertical optical depth of the sheet at the planet-frame point p on it. Cirrus: the base
 // noise stretched 8x along the wind into streaks, with finer fibres, in patches tens of
 // kilometres across; cirrostratus: a smooth
@@ -20,7 +22,7 @@ float cirrus_optical_depth(vec3 p) {
   float cells = textureLod(base_noise, vec3(xy / 3000.0f, 0.45f), 0.0f).a * mix(0.6f, 1.1f, patches);
   vec3 w = cirrus_genus_weights(frame.cirrus.z);
   float field = dot(w, vec3(streaks, veil, cells));
-  float coverage = frame.cirrus.y;
+  float coverage = frame.cirrus.y * forecast_share(vec2(p)).z;  // a forecast's, fixed to the ground
   float density = coverage > 0.0f ? saturate(remap(field, 1.0f - coverage, 1.0f, 0.0f, 1.0f)) : 0.0f;
   return frame.cirrus.w * density;
 }

@@ -17,6 +17,8 @@
 // one's grids was 1.8% off its own (up to 8% in a pixel), and the suite's 40 x 25 views were lit
 // with the detail all but averaged away. With the cells' level: the suite 99.9 -> 98.9 points
 // (inside a cloud 12.8 -> 10.2%); with the finest level 104.0 (docs/validation.md).
+#include "forecast_inc.glsl"
+
 #ifndef NOISE_DETAIL_FOOTPRINT_M
 #define NOISE_DETAIL_FOOTPRINT_M(pos) (distance(pos, vec3(frame.camera_pos_m)) * frame.cloud_shape.x)
 #endif
@@ -94,7 +96,10 @@ vec2 noise_density_pair(vec3 pos) {
   // storm cells: G), which turns the cells' cores into cumulonimbus and spreads an anvil over
   // the cells.
   vec2 cell = cloud_storm_cell(weather.g, layer.shape.w);
-  vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, layer.shape.x),
+  // A forecast's share of the layer's coverage where pos is, fixed to the ground.
+  vec4 forecast = forecast_share(vec2(pos));
+  float layer_coverage = layer.shape.x * (radius_m >= frame.cloud_layers[1].radii_m.x ? forecast.y : forecast.x);
+  vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, layer_coverage),
                                          saturate(layer.shape.z + weather.b - 0.5f), cell.x);
   float type = coverage_type.y;
   // The genus' extinction at field 1 as a share of cloud_shape.z (droplets_inc.glsl; 1 with the

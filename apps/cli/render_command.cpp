@@ -19,6 +19,7 @@
 #include "nephele/output_file.h"
 #include "nephele/scene_io.h"
 #include "progress.h"
+#include "weather/grib.h"
 #include "weather/metar_weather.h"
 
 namespace nephele::cli {
@@ -402,6 +403,7 @@ int run_render(const RenderOptions& options) {
     std::cerr << "# resolved scene\n" << scene_to_toml(scene);
     for (const std::string& line : weather::describe_metar(scene))
       std::cerr << "# " << line << "\n";
+    for (const std::string& line : weather::describe_grib(scene)) std::cerr << "# " << line << "\n";
   }
 
   const bool stats_to_stdout = options.stats_json == kStandardOutput;

@@ -17,6 +17,7 @@
 #include "nephele/scene_io.h"
 #include "scene/scene_fields.h"
 #include "voxel/voxel_grid.h"
+#include "weather/grib.h"
 #include "weather/metar_weather.h"
 #include "weather/weather_state.h"
 
@@ -682,6 +683,19 @@ Scene resolve_scene(const SceneFlags& flags) {
         std::string what = e.what();
         if (what.starts_with("weather.metar: ")) what = what.substr(15);
         fail("--metar", scene.weather.metar, what);
+      }
+    }
+  // Then --grib's forecast, over a report.
+  for (const auto& [key, value] : flags.table_values)
+    if (key == "weather.grib") {
+      try {
+        weather::apply_grib(scene);
+      } catch (const InputError& e) {
+        std::string what = e.what();
+        if (const size_t at = what.find("': ");
+            what.starts_with("weather.grib '") && at != std::string::npos)
+          what.erase(0, at + 3);
+        fail("--grib", scene.weather.grib, what);
       }
     }
   // Then --wind-from-deg, --wind-speed-kt or -mps and --visibility-m, over a report; the

@@ -377,6 +377,9 @@ struct LocationParams {
 // visibility (m), which sets the haze (what any rain or snow leaves of it).
 struct WeatherReportParams {
   std::string metar;             // "" = none
+  // A forecast's file (GRIB2 or GRIB1): its cloud cover around the location, valid nearest the
+  // scene's time (its own when the scene has none), applied after the report; "" = none.
+  std::string grib;
   float wind_from_deg = -1.0f;   // [0, 360]; -1 = not given
   float wind_speed_kt = -1.0f;   // [0, 400]; -1 = not given
   float wind_speed_mps = -1.0f;  // [0, 200]; -1 = not given

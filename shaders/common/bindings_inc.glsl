@@ -169,5 +169,9 @@ layout(std430, set = 0, binding = 75) buffer PathCountsBlock {
   uint path_violations;
   uint path_limited;
 };
+// A forecast's cloud cover around the observer (weather/grib.h, forecast_texels; 1 x 1 white
+// without one): r the low layer's, g the high volumetric layer's and b the cirrus sheet's
+// coverage as a share of the layer's own; read by forecast_inc.glsl.
+layout(set = 0, binding = 76) uniform sampler2D forecast_cover;
 
 #endif

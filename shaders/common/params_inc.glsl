@@ -182,6 +182,10 @@ struct FrameParams {
   // and the later state (weather_blend.comp).
   ivec4 weather_build;
   vec4 weather_blend;
+  // A forecast's cover around the observer (binding forecast_cover; weather/grib.h), fixed to
+  // the ground: x its texture's scale (1/m; 0 without a forecast), y half a texel (the reads stay
+  // on the map, holding its edge beyond it); zw unused.
+  vec4 forecast;
   // The frame of the sky-view LUT and aerial-perspective volume being built (as sky_view_up
   // and sky_view_forward are the frame of the pair read; render/modules/sky_view/sky_view.h).
   vec4 sky_view_build_up;

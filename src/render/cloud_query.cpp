@@ -21,6 +21,7 @@
 #include "render/frame_params.h"
 #include "render/frame_renderer_impl.h"
 #include "render/glsl.h"
+#include "weather/grib.h"
 
 namespace nephele {
 
@@ -32,6 +33,8 @@ struct CloudQuery::Data {
   // for the procedural map.
   std::vector<glm::u8vec4> weather_file;
   int weather_width = 0, weather_height = 0;
+  // A forecast's cover (weather.grib), as the device holds it (forecast_texels); empty without.
+  std::vector<std::array<uint8_t, 4>> forecast;
 };
 
 namespace cloud_cpu {
@@ -97,6 +100,7 @@ thread_local const sampler3D* base_now = nullptr;
 thread_local const sampler3D* detail_now = nullptr;
 thread_local const sampler2D* weather_now = nullptr;
 thread_local const sampler2D* curl_now = nullptr;
+thread_local const sampler2D* forecast_now = nullptr;
 constexpr int MARCH_MODE = 0;
 constexpr bool WITH_FLOW = true;
 
@@ -105,6 +109,7 @@ constexpr bool WITH_FLOW = true;
 #define detail_noise (*detail_now)
 #define weather_map (*weather_now)
 #define curl_noise (*curl_now)
+#define forecast_cover (*forecast_now)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
 #include "noise_density_inc.glsl"
@@ -114,6 +119,7 @@ constexpr bool WITH_FLOW = true;
 #undef detail_noise
 #undef weather_map
 #undef curl_noise
+#undef forecast_cover
 
 }  // namespace cloud_cpu
 
@@ -154,6 +160,17 @@ class Field {
         detail_size};
     curl_ = {[&, curl_size](int x, int y) { return data_.curl[size_t(y * curl_size + x)]; },
              curl_size, curl_size};
+    // As the weather module binds it: 1 x 1 white without a forecast.
+    const int side = data.forecast.empty() ? 1 : weather::kForecastMapSize;
+    forecast_ = {[&, side](int x, int y) {
+                   if (data_.forecast.empty()) return glm::vec4(1.0f);
+                   const auto& t = data_.forecast[size_t(y * side + x)];
+                   return cloud_cpu::unorm8(glm::u8vec4(t[0], t[1], t[2], t[3]));
+                 },
+                 side, side};
+    if (!data.forecast.empty())
+      params_.forecast =
+          glm::vec4(0.5f / weather::kForecastHalfExtentM, 0.5f / float(side), 0.0f, 0.0f);
     if (!data.weather_file.empty()) {
       weather_ = {
           [&](int x, int y) {
@@ -178,6 +195,7 @@ class Field {
     cloud_cpu::detail_now = &detail_;
     cloud_cpu::weather_now = &weather_;
     cloud_cpu::curl_now = &curl_;
+    cloud_cpu::forecast_now = &forecast_;
     return cloud_cpu::noise_density_pair(planet_from_enu(data_.scene, enu_m));
   }
   float extinction_per_m() const { return params_.cloud_shape.z; }
@@ -210,7 +228,7 @@ class Field {
   const CloudQuery::Data& data_;
   gpu::FrameParams params_{};
   cloud_cpu::sampler3D base_, detail_;
-  cloud_cpu::sampler2D weather_, curl_;
+  cloud_cpu::sampler2D weather_, curl_, forecast_;
   long long step_ = 0;
   float share_ = 0.0f;
   std::unordered_map<long long, glm::vec4> weather_cache_;
@@ -290,6 +308,8 @@ CloudQuery FrameRenderer::Impl::cloud_query(const Scene& scene) {
   read(f.noise.base(), 4, data->base);
   read(f.noise.detail(), 4, data->detail);
   read(f.noise.curl(), 16, data->curl);
+  if (!scene.weather.grib.empty())
+    data->forecast = weather::forecast_texels(*weather::grib_cover(scene), scene);
   if (!scene.clouds.weather_map.empty()) {
     // As the device holds it (weather.cpp): read_weather_map's 8-bit RGBA (its errors one line
     // naming clouds.weather_map), rows from the south.

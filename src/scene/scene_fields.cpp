@@ -509,6 +509,12 @@ const std::vector<Section>& scene_sections() {
                 "Q1008\"): its clouds, wind, visibility, weather and time set the scene's when it "
                 "is loaded; \"\" = none",
                 {}, {}, "metar"),
+          FIELD(
+              weather, grib,
+              "a GRIB2 (or GRIB1) forecast's path: its total, low, medium and high cloud cover "
+              "(and cover on pressure levels) around location.lat_deg, lon_deg, valid nearest the "
+              "scene's time, set the layers and where they cover, fixed to the ground; \"\" = none",
+              {}, {}, "grib"),
           FIELD(weather, wind_from_deg,
                 "the ground's wind blows from this direction (clockwise from north), with one of "
                 "the speeds below: every layer's wind, 1.93 times it at 1 km; -1 = not given",

@@ -19,6 +19,7 @@
 #include "nephele/exposure.h"
 #include "nephele_embedded.h"
 #include "scene/scene_fields.h"
+#include "weather/grib.h"
 #include "weather/metar_weather.h"
 #include "weather/weather_state.h"
 
@@ -239,6 +240,15 @@ class SceneReader {
         weather::apply_metar(scene);
       } catch (const InputError& e) {
         const toml::node* node = root.at_path("weather.metar").node();
+        fail(node ? node->source() : toml::source_region{}, e.what());
+      }
+    }
+    // Then a forecast's cloud cover (its layers over the report's).
+    if (!scene.weather.grib.empty()) {
+      try {
+        weather::apply_grib(scene);
+      } catch (const InputError& e) {
+        const toml::node* node = root.at_path("weather.grib").node();
         fail(node ? node->source() : toml::source_region{}, e.what());
       }
     }
@@ -465,6 +475,7 @@ class SceneReader {
     if (key == "clouds.weather_map")
       scene.clouds.weather_map = resolve_path(scene.clouds.weather_map);
     if (key == "lab.grid") scene.lab.grid = resolve_path(scene.lab.grid);
+    if (key == "weather.grib") scene.weather.grib = resolve_path(scene.weather.grib);
   }
 
   // A relative path in a file is relative to the file's folder.
@@ -688,7 +699,8 @@ std::vector<std::pair<std::string, std::string>> scene_input_files(const Scene& 
       {"clouds.weather_map", scene.clouds.weather_map},
       {"terrain.file", scene.terrain.file},
       {"terrain.albedo_map", scene.terrain.albedo_map},
-      {"lab.grid", scene.lab.grid}};
+      {"lab.grid", scene.lab.grid},
+      {"weather.grib", scene.weather.grib}};
   for (size_t i = 0; i < scene.voxel_clouds.size(); ++i)
     files.emplace_back("voxel_clouds[" + std::to_string(i) + "].file", scene.voxel_clouds[i].file);
   std::erase_if(files, [](const auto& f) { return f.second.empty(); });

@@ -64,20 +64,6 @@ float cloud_depth_m(Genus genus, float type, float base_m, const Cover& cover) {
   }
 }
 
-// The scene's shell [bottom, top] (m) in which clouds of `type` fill [base, top]: each type
-// fills its own part of the shell's height (clouds_inc.glsl's profiles: a stratus the lowest
-// fifth, an altocumulus a band in the middle), so the shell is set from where they are.
-glm::vec2 shell_for(float type, float base_m, float top_m) {
-  const float x = std::clamp(type, 0.0f, 1.0f) * float(glsl::CLOUD_GENERA - 1);
-  const int lo = std::min(int(x), glsl::CLOUD_GENERA - 2);
-  const float rise =
-      glm::mix(glsl::cloud_genus_profile(lo).x, glsl::cloud_genus_profile(lo + 1).x, x - float(lo));
-  const float fill_top = glsl::cloud_type_top(type);
-  const float height = (top_m - base_m) / (fill_top - rise);
-  const float bottom = std::max(base_m - rise * height, 0.0f);
-  return {bottom, bottom + height};
-}
-
 Group group_of(const MetarCloud& c, std::optional<float> convective_base_m) {
   Group g;
   g.text = c.cover + (c.base_ft ? [&] {
@@ -130,7 +116,7 @@ CloudLayer cloud_layer(const Group& g, float own_oktas, float density) {
   CloudLayer layer;
   layer.genus = g.genus;
   layer.type = g.type == genus_type(g.genus) ? -1.0f : g.type;
-  const glm::vec2 shell = shell_for(g.type, g.base_m, g.top_m);
+  const glm::vec2 shell = cloud_shell_m(g.type, g.base_m, g.top_m);
   layer.base_m = shell.x;
   layer.top_m = shell.y;
   layer.coverage_oktas = own_oktas;

@@ -354,4 +354,18 @@ void apply_weather_keys(Scene& scene) {
   apply_weather(state, scene);  // its errors name weather.visibility_m, as the key is named
 }
 
+// The scene's shell [bottom, top] (m) in which clouds of `type` fill [base, top]: each type
+// fills its own part of the shell's height (clouds_inc.glsl's profiles: a stratus the lowest
+// fifth, an altocumulus a band in the middle), so the shell is set from where they are.
+glm::vec2 cloud_shell_m(float type, float base_m, float top_m) {
+  const float x = std::clamp(type, 0.0f, 1.0f) * float(glsl::CLOUD_GENERA - 1);
+  const int lo = std::min(int(x), glsl::CLOUD_GENERA - 2);
+  const float rise =
+      glm::mix(glsl::cloud_genus_profile(lo).x, glsl::cloud_genus_profile(lo + 1).x, x - float(lo));
+  const float fill_top = glsl::cloud_type_top(type);
+  const float height = (top_m - base_m) / (fill_top - rise);
+  const float bottom = std::max(base_m - rise * height, 0.0f);
+  return {bottom, bottom + height};
+}
+
 }  // namespace nephele::weather

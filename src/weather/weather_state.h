@@ -93,6 +93,10 @@ constexpr float kMinVisibilityM = 400.0f;  // Mie extinction 0.0098/m: validatio
 float coverage_for_oktas(float oktas, float type);
 float oktas_for_coverage(float coverage, float type);
 
+// The scene's shell [bottom, top] (m, above the ground) in which clouds of `type` (clouds.type's
+// scale) fill [base_m, top_m]: each type fills its own part of the shell's height.
+glm::vec2 cloud_shell_m(float type, float base_m, float top_m);
+
 // The wind at the ground, `speed_mps` blowing from `from_deg` (clockwise from north), as
 // levels: at the ground, and 1.93 times it at 1 km and above (a 1/7 power law up to the
 // clouds). `towards` the unit vector it blows to (east, north).

@@ -147,8 +147,8 @@ TEST(Bindings, APassSeesExactlyTheBindingsItsShaderUses) {
 // Compose reads what it blends through a fixed set of samplers: the layers besides the
 // volumetric clouds (the surfaces, the particle clouds, those to come) are layers of one
 // array (render/image_layers.h), so that a new layer adds none. (base_noise: the cirrus;
-// weather_map: where the rain falls over a surface.) The media's own samplers are theirs, in
-// set 1, by name.
+// weather_map: where the rain falls over a surface; forecast_cover: both, under a forecast.) The
+// media's own samplers are theirs, in set 1, by name.
 TEST(Bindings, ComposeReadsItsLayersThroughOneArray) {
   std::set<std::string> samplers, module_samplers;
   for (const ShaderBinding& b : reflect_embedded("compose.comp.spv", VK_SHADER_STAGE_COMPUTE_BIT)) {
@@ -158,10 +158,10 @@ TEST(Bindings, ComposeReadsItsLayersThroughOneArray) {
     else
       module_samplers.insert(b.name);
   }
-  EXPECT_EQ(samplers,
-            (std::set<std::string>{"sky_view_lut", "clouds_a", "clouds_b", "transmittance_lut",
-                                   "aerial_perspective", "reference_sky", "ground_light",
-                                   "light_shafts", "base_noise", "layers", "weather_map"}));
+  EXPECT_EQ(samplers, (std::set<std::string>{
+                          "sky_view_lut", "clouds_a", "clouds_b", "transmittance_lut",
+                          "aerial_perspective", "reference_sky", "ground_light", "light_shafts",
+                          "base_noise", "layers", "weather_map", "forecast_cover"}));
   EXPECT_EQ(module_samplers,
             (std::set<std::string>{"precipitation_froxels", "precipitation_depth"}));
 }

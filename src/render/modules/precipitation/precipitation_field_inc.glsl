@@ -11,6 +11,7 @@
 #include "common/clouds_inc.glsl"
 #include "common/precipitation_inc.glsl"
 #include "common/slab_light_inc.glsl"
+#include "forecast_inc.glsl"
 #include "render/modules/precipitation/precipitation_gpu_inc.glsl"
 
 layout(std140, set = 1, binding = 1) uniform PrecipitationBlock { PrecipitationGpu precipitation; };
@@ -24,7 +25,8 @@ vec2 precipitation_share_at(vec3 pos) {
   CloudLayerGpu layer = frame.cloud_layers[0];
   vec2 ground_xy = vec2(pos) - vec2(layer.wind);
   vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + vec2(layer.radii_m.z, layer.radii_m.w) + 0.5f, 0.0f);
-  return precipitation_shaft_share(weather.r, weather.g, layer.shape.x, layer.shape.w);
+  return precipitation_shaft_share(weather.r, weather.g, layer.shape.x * forecast_share(vec2(pos)).x,
+                                   layer.shape.w);
 }
 
 // The optical depth from `altitude_m` up to the cloud base through a shaft of share `share`.

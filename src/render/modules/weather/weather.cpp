@@ -6,6 +6,7 @@
 
 #include "image/input_images.h"
 #include "nephele/error.h"
+#include "weather/grib.h"
 
 namespace nephele {
 
@@ -28,9 +29,50 @@ WeatherModule::WeatherModule(gpu::Context& ctx, gpu::DescriptorSet& set)
       build_kernel_(ctx, set, "weather.comp.spv"),
       blend_kernel_(ctx, set, "weather_blend.comp.spv"),
       states_(ctx, kWeatherMapSize, kWeatherMapSize, 3, VK_FORMAT_R8G8B8A8_UNORM),
-      map_(ctx, kWeatherMapSize, kWeatherMapSize, 1, kBlendedFormat) {
+      map_(ctx, kWeatherMapSize, kWeatherMapSize, 1, kBlendedFormat),
+      forecast_(ctx, 1, 1, 1, VK_FORMAT_R8G8B8A8_UNORM) {
   set_.bind_storage_image(gpu::kWeatherStates, states_);
   set_.bind_image(gpu::kWeatherMapOut, gpu::kWeatherMap, map_);
+  upload_forecast({{255, 255, 255, 255}}, 1);
+  forecast_key_ = "none";
+}
+
+// A forecast of another size replaces the texture once the frames in flight that read it have
+// completed.
+void WeatherModule::upload_forecast(const std::vector<std::array<uint8_t, 4>>& texels,
+                                    uint32_t side) {
+  if (forecast_.width() != side) {
+    ctx_.wait_queue_idle();
+    forecast_ = gpu::Texture(ctx_, side, side, 1, VK_FORMAT_R8G8B8A8_UNORM);
+  }
+  set_.bind_sampled_image(gpu::kForecastCover, forecast_);
+  gpu::Buffer staging(ctx_, VkDeviceSize(texels.size() * 4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  std::memcpy(staging.data(), texels.data(), texels.size() * 4);
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
+    gpu::full_barrier(cmd);  // after the frames in flight that read it
+    forecast_.record_upload(cmd, staging);
+  });
+}
+
+// The forecast's texels depend on the file, the place, the time and the layers' coverage and
+// types (forecast_texels): uploaded again only when one of them changes.
+void WeatherModule::prepare_forecast(const Scene& scene, gpu::FrameParams& params) {
+  params.forecast = glm::vec4(0.0f);
+  if (scene.weather.grib.empty()) {
+    if (forecast_key_ != "none") upload_forecast({{255, 255, 255, 255}}, 1);
+    forecast_key_ = "none";
+    return;
+  }
+  const std::shared_ptr<const weather::GribCover> cover = weather::grib_cover(scene);
+  char key[256];
+  std::snprintf(key, sizeof(key), "%p|%.6g|%.6g|%.6g|%.6g|%.6g",
+                static_cast<const void*>(cover.get()), scene.clouds.coverage, scene.clouds.type,
+                scene.high_clouds.coverage, scene.high_clouds.type, scene.cirrus.coverage);
+  if (forecast_key_ != key)
+    upload_forecast(weather::forecast_texels(*cover, scene), uint32_t(weather::kForecastMapSize));
+  forecast_key_ = key;
+  params.forecast = glm::vec4(0.5f / weather::kForecastHalfExtentM,
+                              0.5f / float(weather::kForecastMapSize), 0.0f, 0.0f);
 }
 
 double WeatherModule::weather_time(const Scene& scene) {
@@ -81,6 +123,7 @@ void WeatherModule::check_device_limit(const std::string& path, int width, int h
 }
 
 void WeatherModule::prepare(const Scene& scene, gpu::FrameParams& params) {
+  prepare_forecast(scene, params);
   build_steps_ = build_rows_ = 0;
   blend_ = false;
   if (!scene.clouds.weather_map.empty()) {

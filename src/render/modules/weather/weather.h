@@ -4,11 +4,15 @@
 // gpu::WEATHER_STEPS (360, shaders/common/params_inc.glsl) are computed ahead into one of
 // three layers (weather.comp, the next one a band of rows a frame over kWeatherBuildFrames),
 // and the map is blended between the two around the scene's time (weather_blend.comp), so it
-// changes smoothly and never all at once.
+// changes smoothly and never all at once. A GRIB forecast's cover around the observer
+// (weather.grib: weather/grib.h) is uploaded once too, into the texture forecast_cover, which
+// scales each layer's coverage where it is, fixed to the ground.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gpu/kernel.h"
 #include "nephele/scene.h"
@@ -43,6 +47,8 @@ class WeatherModule : public RenderModule {
 
  private:
   void upload_png(const std::string& path);
+  void prepare_forecast(const Scene& scene, gpu::FrameParams& params);
+  void upload_forecast(const std::vector<std::array<uint8_t, 4>>& texels, uint32_t side);
   void check_device_limit(const std::string& path, int width, int height) const;
 
   gpu::Context& ctx_;
@@ -51,6 +57,8 @@ class WeatherModule : public RenderModule {
   // Three states: steps k, k + 1 (blended) and k + 2 (being computed), at layer step mod 3.
   gpu::Texture states_;
   gpu::Texture map_;                           // the blended (or uploaded) map
+  gpu::Texture forecast_;                      // a forecast's cover, or 1 x 1 white
+  std::string forecast_key_;                   // what it holds
   std::optional<long long> step_in_layer_[3];  // which step each layer holds, when complete
   std::optional<uint32_t> seed_;               // the noise seed of the states
   std::string map_key_;                        // what the map holds: a file, or a blend
