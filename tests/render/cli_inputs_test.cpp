@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/grib_files.h"
 #include "support/process_run.h"
 
 namespace fs = std::filesystem;
@@ -238,6 +239,21 @@ TEST_F(CliInputs, WeatherFlagsAreRefusedNamingThem) {
   expect_refused(
       kTiny + std::string("--precipitation-kind hail --precipitation-mm-per-h 2 -o ") + out,
       {"--precipitation-kind", "hail", "\"snow\""});
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// A forecast that cannot serve: one line naming --grib, the file and why; nothing written.
+TEST_F(CliInputs, ForecastFilesAreRefusedNamingTheFlag) {
+  const std::string out = path("x.png");
+  const std::string notes = path("notes.grib2");
+  std::ofstream(notes) << "not a forecast\n";
+  expect_refused(kTiny + std::string("--grib ") + notes + " -o " + out,
+                 {"--grib", "holds no GRIB message"});
+  const std::string europe = path("europe.grib2");
+  nephele::test::write_grib(europe, {{.short_name = "lcc"}});  // 30-60 N, 10 W-30 E
+  expect_refused(
+      kTiny + std::string("--grib ") + europe + " --lat-deg -33.9 --lon-deg 151.2 -o " + out,
+      {"--grib", "does not cover the observer at latitude -33.9000, longitude 151.2000"});
   EXPECT_FALSE(fs::exists(out));
 }
 
