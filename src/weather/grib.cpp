@@ -10,6 +10,7 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <tuple>
 
 #include "nephele/error.h"
 #include "nephele/sky.h"
@@ -425,9 +426,10 @@ float greatest(const GribCover& cover, int field) {
 
 WeatherState weather_from_grib(const GribCover& cover, const WeatherState& base, float ground_m) {
   WeatherState s = base;
+  std::optional<glm::vec2> low_clouds_m, high_clouds_m;  // where each layer's clouds are
   const auto volumetric = [&](CloudLayer& layer, int field, Genus genus, glm::vec2 cloud_m,
-                              float from_m, float to_m) {
-    if (!cover.has[size_t(field)]) return;
+                              float from_m, float to_m) -> std::optional<glm::vec2> {
+    if (!cover.has[size_t(field)]) return std::nullopt;
     const float most = greatest(cover, field);
     layer.genus = genus;
     layer.type = -1.0f;
@@ -436,13 +438,26 @@ WeatherState weather_from_grib(const GribCover& cover, const WeatherState& base,
     const glm::vec2 shell = cloud_shell_m(genus_type(genus), span.x, span.y);
     layer.base_m = shell.x;
     layer.top_m = shell.y;
+    return span;
   };
   const bool low_deck = greatest(cover, kLowCover) >= 0.625f;
-  volumetric(s.low, kLowCover, low_deck ? Genus::Stratocumulus : Genus::Cumulus,
-             low_deck ? glm::vec2(1000.0f, 1800.0f) : glm::vec2(1200.0f, 2700.0f), 0.0f,
-             kMiddleFromM);
-  volumetric(s.high, kMediumCover, Genus::Altocumulus, glm::vec2(3500.0f, 4500.0f), kMiddleFromM,
-             kHighFromM);
+  low_clouds_m = volumetric(s.low, kLowCover, low_deck ? Genus::Stratocumulus : Genus::Cumulus,
+                            low_deck ? glm::vec2(1000.0f, 1800.0f) : glm::vec2(1200.0f, 2700.0f),
+                            0.0f, kMiddleFromM);
+  high_clouds_m = volumetric(s.high, kMediumCover, Genus::Altocumulus, glm::vec2(3500.0f, 4500.0f),
+                             kMiddleFromM, kHighFromM);
+  if (s.low.top_m > s.high.base_m) {
+    if (low_clouds_m && high_clouds_m) {
+      // The shells hold more than the clouds: they meet half way between the low clouds' tops
+      // and the high clouds' bases (as a report's layers do, metar_weather.cpp).
+      const float meet_m = 0.5f * (low_clouds_m->y + high_clouds_m->x);
+      s.low.top_m = std::min(s.low.top_m, meet_m);
+      s.high.base_m = std::max(s.high.base_m, meet_m);
+    } else {
+      s.high.base_m = s.low.top_m;  // clear of the low layer
+    }
+    s.high.top_m = std::max(s.high.top_m, s.high.base_m + 1000.0f);
+  }
   if (cover.has[kHighCover]) {
     const float most = greatest(cover, kHighCover);
     s.sheet.genus = most >= 0.75f ? Genus::Cirrostratus : Genus::Cirrus;
@@ -450,7 +465,8 @@ WeatherState weather_from_grib(const GribCover& cover, const WeatherState& base,
     s.sheet.coverage_oktas = 8.0f * most;
     const glm::vec2 span =
         levels_span(cover, ground_m, kHighFromM, 20000.0f).value_or(glm::vec2(9000.0f));
-    s.sheet.base_m = s.sheet.top_m = std::max(0.5f * (span.x + span.y), s.high.top_m);
+    s.sheet.base_m = s.sheet.top_m =
+        std::max({0.5f * (span.x + span.y), s.high.top_m, s.low.top_m});
   }
   return s;
 }
@@ -510,6 +526,18 @@ std::vector<std::string> describe_grib(const Scene& scene) {
   for (const auto& [altitude_m, c] : cover->profile) {
     std::snprintf(text, sizeof(text), "  cover %.0f%% at %.0f m (pressure level)", 100.0 * c,
                   double(altitude_m));
+    lines.push_back(text);
+  }
+  // The layers drawn, as the scene holds them after apply_grib.
+  const WeatherState state = weather_state(scene);
+  for (const auto& [slot, layer, field] : {std::tuple{"low", &state.low, kLowCover},
+                                           {"high", &state.high, kMediumCover},
+                                           {"sheet", &state.sheet, kHighCover}}) {
+    if (!cover->has[size_t(field)]) continue;
+    std::snprintf(text, sizeof(text),
+                  "  %s layer: %s, %.0f-%.0f m above the ground, up to %.1f oktas", slot,
+                  to_string(layer->genus), double(layer->base_m), double(layer->top_m),
+                  double(layer->coverage_oktas));
     lines.push_back(text);
   }
   if (cover->box_covered < 1.0f) {

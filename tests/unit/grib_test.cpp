@@ -103,6 +103,25 @@ TEST_F(Grib, TotalCoverAloneIsTheLowLayers) {
   EXPECT_EQ(s.high.coverage_oktas, 0.0f);
 }
 
+// Without levels each genus takes its own altitudes; a deck's shell and an altocumulus' would
+// overlap, and meet half way instead, so that the scene is valid.
+TEST_F(Grib, LayersWithoutLevelsDoNotOverlap) {
+  const std::string file = path("front.grib2");
+  write_grib(file, {{.short_name = "lcc", .value = [](double, double) { return 0.95; }},
+                    {.short_name = "mcc", .value = [](double, double) { return 0.6; }},
+                    {.short_name = "hcc", .value = [](double, double) { return 0.7; }}});
+  const GribCover c = read_grib_cover(file, kLat, kLon, std::nullopt, kRadiusM);
+  const WeatherState s = weather_from_grib(c, WeatherState{}, 0.0f);
+  EXPECT_EQ(s.low.genus, Genus::Stratocumulus);
+  EXPECT_LE(s.low.top_m, s.high.base_m);
+  EXPECT_GT(s.low.top_m, 1800.0f);    // the deck's clouds, to 1,800 m, stay in its shell
+  EXPECT_LT(s.high.base_m, 3500.0f);  // and the altocumulus' from 3,500 m in its
+  EXPECT_GE(s.sheet.base_m, s.high.top_m);
+  Scene scene;
+  EXPECT_NO_THROW(apply_weather(s, scene));
+  EXPECT_NO_THROW(validate_scene(scene));
+}
+
 TEST_F(Grib, TheFieldsValidNearestTheScenesTimeAreRead) {
   const std::string file = path("steps.grib2");
   std::vector<GribField> fields;
