@@ -115,6 +115,26 @@ TEST(Precipitation, AVirgaBelowItsBaseAndAKnownKind) {
 
 // The column is the profile's integral: a midpoint rule for rain that reaches the ground and
 // for virga that evaporates 600 m above it.
+// Rain falls at its median volume diameter's speed (Gunn and Kinzer 1949 measured 4.03 m/s for
+// a 1 mm drop and 6.49 m/s for a 2 mm one); the wind carries it sideways by 7/8 of the cloud
+// base's wind over that speed, so that a shaft leans downwind.
+TEST(Precipitation, ItFallsAtTheDropsSpeedAndLeansWithTheWind) {
+  // Marshall-Palmer's D0 = 3.67 / lambda is 1 mm at 1.70 mm/h and 2 mm at 46 mm/h.
+  const auto rate_for_d0 = [](double d0_mm) {
+    return float(std::pow(d0_mm * 4.1 / 3.67, 1.0 / 0.21));
+  };
+  EXPECT_NEAR(g::precipitation_fall_mps(g::PRECIPITATION_RAIN, rate_for_d0(1.0)), 4.03f, 0.12f);
+  EXPECT_NEAR(g::precipitation_fall_mps(g::PRECIPITATION_RAIN, rate_for_d0(2.0)), 6.49f, 0.2f);
+  EXPECT_FLOAT_EQ(g::precipitation_fall_mps(g::PRECIPITATION_SNOW, 1.0f), 1.0f);
+  // Snow in a 10 m/s wind at the base drifts 8.75 m per metre of fall; rain at 10 mm/h, 1.6.
+  const glm::vec2 snow = g::precipitation_drift_slope(glm::vec2(10.0f, 0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(snow.x, 8.75f);
+  EXPECT_FLOAT_EQ(snow.y, 0.0f);
+  const float rain_fall = g::precipitation_fall_mps(g::PRECIPITATION_RAIN, 10.0f);
+  EXPECT_NEAR(g::precipitation_drift_slope(glm::vec2(0.0f, 10.0f), rain_fall).y, 8.75f / 5.33f,
+              0.02f);
+}
+
 TEST(Precipitation, TheColumnIsTheProfilesIntegral) {
   const float top = 1500.0f;
   for (float bottom : {0.0f, 600.0f}) {

@@ -78,6 +78,11 @@ void PrecipitationModule::prepare(const FramePrepare& frame, FramePlan& plan) {
     const MediumLight light = medium_light(frame.params);
     block.sun = light.sun;
     block.sky = glm::vec4(light.sky, p.shafts ? 1.0f : 0.0f);
+    const int kind = precipitation_kind(p.kind);
+    block.drift = glm::vec4(
+        precip::precipitation_drift_slope(frame.scene.clouds.wind_mps,
+                                          precip::precipitation_fall_mps(kind, p.rate_mm_per_h)),
+        0.0f, 0.0f);
     const uint32_t w =
         uint32_t((frame.width + kPrecipitationDownsample - 1) / kPrecipitationDownsample);
     const uint32_t h =

@@ -18,14 +18,17 @@ layout(std140, set = 1, binding = 1) uniform PrecipitationBlock { PrecipitationG
 
 // Where it falls at `pos` (planet frame, m): x its share, 0 to 1, y how far it falls from a
 // storm's core (precipitation_shaft_share): the shafts under the low layer's precipitating
-// clouds, read from its weather map where the layer's base lies over pos, moved by the wind as
-// the clouds' bases are (clouds.comp); (1, 0) for an even curtain.
+// clouds, read from its weather map where the layer's base was over the particles at pos when
+// they left it (upwind, by the drift over their fall), moved by the wind as the clouds' bases
+// are (clouds.comp); (1, 0) for an even curtain.
 vec2 precipitation_share_at(vec3 pos) {
   if (precipitation.sky.w == 0.0f) return vec2(1.0f, 0.0f);
   CloudLayerGpu layer = frame.cloud_layers[0];
-  vec2 ground_xy = vec2(pos) - vec2(layer.wind);
+  float fallen_m = max(precipitation.fall.y - (length(pos) - frame.radii_m.x), 0.0f);
+  vec2 left_xy = vec2(pos) - vec2(precipitation.drift) * fallen_m;
+  vec2 ground_xy = left_xy - vec2(layer.wind);
   vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + vec2(layer.radii_m.z, layer.radii_m.w) + 0.5f, 0.0f);
-  return precipitation_shaft_share(weather.r, weather.g, layer.shape.x * forecast_share(vec2(pos)).x,
+  return precipitation_shaft_share(weather.r, weather.g, layer.shape.x * forecast_share(left_xy).x,
                                    layer.shape.w);
 }
 

@@ -15,6 +15,8 @@ struct PrecipitationGpu {
               // of the sun's elevation (media_light.h)
   vec4 sky;   // rgb the sky's and the ground's light as an even field, per unit of the key
               // light's illuminance; w 1 shafts under the precipitating clouds, 0 an even curtain
+  vec4 drift;  // xy how far the wind carries it sideways per metre of fall (east, north:
+               // precipitation_drift_slope); zw unused
 };
 
 #ifdef __cplusplus
