@@ -1,14 +1,12 @@
 #include "gallery.h"
 
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
-
-#include <optional>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "label.h"
 #include "nephele/error.h"
@@ -20,6 +18,7 @@
 #include "progress.h"
 #include "render_command.h"
 #include "sample_stats.h"
+#include "weather/metar_weather.h"
 
 namespace nephele::cli {
 
@@ -110,6 +109,10 @@ void add_gallery_flags(CLI::App& cmd, GalleryOptions& options) {
                  "sky-cover presets, clear to overcast, stratus, storm, cirrus, sunset, then the "
                  "particle clouds'); not with --classic")
       ->delimiter(',');
+  cmd.add_option("--metar", options.metar,
+                 "a file of METAR or SPECI reports, one a line ('#' comments): a tile for each, "
+                 "the default scene under the report, labelled with the report, the oktas measured "
+                 "and the oktas it reports; not with --classic or --presets");
   cmd.add_flag("--classic", options.classic,
                "the classical cloud models of seed 004 (blinn, gardner cumulus, stratus and cirrus, gardner-quadrics, kajiya, nishita) "
                "and nephele's own on one scene, each labelled with its frame time on this device");
@@ -118,6 +121,43 @@ void add_gallery_flags(CLI::App& cmd, GalleryOptions& options) {
                  "an animation frame) to this file, or to standard output with -");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
   add_progress_flags(cmd, options.progress, options.quiet);
+}
+
+std::vector<MetarTile> metar_gallery_tiles(const std::string& path, int tile_width,
+                                           int tile_height) {
+  std::ifstream in(path);
+  if (!in) throw InputError("--metar " + shorten_path_for_message(path) + ": cannot be read");
+  std::vector<MetarTile> tiles;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::string report = line.substr(first, line.find_last_not_of(" \t\r=") + 1 - first);
+    MetarTile tile{number, report, load_preset("default")};
+    tile.scene.output.width = tile_width;
+    tile.scene.output.height = tile_height;
+    tile.scene.weather.metar = report;
+    try {
+      const weather::MetarReport parsed = weather::parse_metar(report);
+      const weather::ReportWeather drawn =
+          weather::weather_from_metar(parsed, weather::weather_state(tile.scene));
+      tile.oktas_min = drawn.oktas_min;
+      tile.oktas_max = drawn.oktas_max;
+      weather::apply_metar(tile.scene);
+      validate_scene(tile.scene);
+    } catch (const InputError& e) {
+      std::string what = e.what();
+      if (what.starts_with("weather.metar: ")) what = what.substr(15);
+      throw InputError("--metar " + shorten_path_for_message(path) + " line " +
+                       std::to_string(number) + ": " + what);
+    }
+    tiles.push_back(std::move(tile));
+    if (tiles.size() > 256)
+      throw InputError("--metar " + shorten_path_for_message(path) + ": more than 256 reports");
+  }
+  if (tiles.empty())
+    throw InputError("--metar " + shorten_path_for_message(path) + ": holds no report");
+  return tiles;
 }
 
 int run_gallery(const GalleryOptions& options) {
@@ -134,6 +174,10 @@ int run_gallery(const GalleryOptions& options) {
     throw InputError("--json " + options.json + ": only with --classic (the models' frame times)");
   if (options.classic && !options.presets.empty())
     throw InputError("--presets: not with --classic (its tiles are the classical models)");
+  if (!options.metar.empty() && (options.classic || !options.presets.empty()))
+    throw InputError("--metar " + options.metar + ": not with " +
+                     (options.classic ? "--classic" : "--presets") +
+                     " (its tiles are the reports)");
   if (!options.json.empty()) {
     check_output_file(options.json, "--json", true);
     check_distinct_outputs({{"--output", options.output}, {"--json", options.json}});
@@ -141,7 +185,14 @@ int run_gallery(const GalleryOptions& options) {
 
   std::vector<std::string> names;
   std::vector<Scene> scenes;  // all checked before the first is rendered
-  if (options.classic) {
+  std::vector<MetarTile> reports;
+  if (!options.metar.empty()) {
+    reports = metar_gallery_tiles(options.metar, options.tile_width, options.tile_height);
+    for (const MetarTile& tile : reports) {
+      names.push_back(tile.report);
+      scenes.push_back(tile.scene);
+    }
+  } else if (options.classic) {
     for (ClassicTile& tile : classic_gallery_tiles(options.tile_width, options.tile_height)) {
       names.push_back(tile.name);
       scenes.push_back(std::move(tile.scene));
@@ -194,7 +245,21 @@ int run_gallery(const GalleryOptions& options) {
       const double ms = animation_frame_ms(renderer, scene);
       models[names[i]] = ms;
       std::snprintf(label, sizeof label, "%s  %.1f ms", names[i].c_str(), ms);
-    } else if (const auto& p = frame.stats.particle_clouds)  // the sky cover counts volumetric clouds
+    } else if (!reports.empty()) {  // the report on one line, the oktas on the next
+      std::snprintf(label, sizeof label, "measured %d/8 (%.2f), reported %d-%d",
+                    sky_cover_oktas(cover), cover, reports[i].oktas_min, reports[i].oktas_max);
+      std::string report = names[i];
+      while (report.size() > 4 && label_width(report, scale) > options.tile_width)
+        report = report.substr(0, report.size() - 4) + "...";
+      draw_label(gallery, x0, y0, report, scale);
+      draw_label(gallery, x0, y0 + 12 * scale, label, scale);
+      progress.clear();
+      if (options.verbose)
+        std::fprintf(stderr, "nephele: gallery %s: %s\n", names[i].c_str(), label);
+      progress.advance();
+      continue;
+    } else if (const auto& p =
+                   frame.stats.particle_clouds)  // the sky cover counts volumetric clouds
       std::snprintf(label, sizeof label, "%s  %d impostors", names[i].c_str(), p->impostors);
     else
       std::snprintf(label, sizeof label, "%s  %d/8 (%.2f)", names[i].c_str(),

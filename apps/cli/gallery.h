@@ -42,12 +42,24 @@ struct GalleryOptions {
   int tile_width = 400, tile_height = 250, columns = 3;
   std::vector<std::string> presets;  // the tiles, in order; empty: the sky-cover presets, then
                                      // the particle ones
+  std::string metar;  // a file of METAR or SPECI reports, one a line: a tile each instead
   std::string device;
   bool verbose = false;
   bool validation = false;
   bool progress = false;  // progress on standard error even when it is not a terminal
   bool quiet = false;     // no progress
 };
+
+// The reports of a --metar file: one a line, blank lines and lines from '#' skipped, a final
+// '=' dropped. Throws InputError naming the file and line for one that cannot be read.
+struct MetarTile {
+  int line = 0;
+  std::string report;
+  Scene scene;                       // the default scene under the report
+  int oktas_min = 0, oktas_max = 0;  // the sky cover it reports
+};
+std::vector<MetarTile> metar_gallery_tiles(const std::string& path, int tile_width,
+                                           int tile_height);
 
 void add_gallery_flags(CLI::App& cmd, GalleryOptions& options);
 int run_gallery(const GalleryOptions& options);

@@ -115,6 +115,41 @@ TEST_F(CliTest, GalleryRendersThePresetsInOneImage) {
   EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
+// `gallery --metar FILE`: a tile per report, labelled with the oktas measured and reported; a
+// report that cannot be read is refused naming its line, and nothing is written.
+TEST_F(CliTest, GalleryMetarShowsEveryReportWithItsOktas) {
+  const std::string reports = path("reports.txt"), out = path("metar.png");
+  std::ofstream(reports) << "# two reports\n"
+                            "EDDF 271150Z 24015KT CAVOK 12/06 Q1008=\n"
+                            "\n"
+                            "EGLL 271150Z 22010KT 6000 OVC008 10/09 Q1002\n";
+  const CliRun r = run_cli("gallery --metar " + reports +
+                           " --columns 2 --tile-width 48 --tile-height 32 --verbose -o " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(
+      r.output.find("EDDF 271150Z 24015KT CAVOK 12/06 Q1008: measured 0/8 (0.00), reported 0-0"),
+      std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(
+                "EGLL 271150Z 22010KT 6000 OVC008 10/09 Q1002: measured 8/8 (1.00), reported 8-8"),
+            std::string::npos)
+      << r.output;
+  int w = 0, h = 0, n = 0;
+  ASSERT_TRUE(stbi_info(out.c_str(), &w, &h, &n));
+  EXPECT_EQ(w, 2 * 48 + 4);
+  EXPECT_EQ(h, 32);
+  std::ofstream(reports) << "EDDF 271150Z 24015KT CAVOK 12/06 Q1008\n"
+                            "# then one that is not\n"
+                            "EGLL 271150Z 22010KT 6000 OVC00 10/09 Q1002\n";
+  const CliRun bad = run_cli("gallery --metar " + reports + " -o " + path("bad.png"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("line 3: metar: group 5 \"OVC00\""), std::string::npos) << bad.output;
+  const CliRun both = run_cli("gallery --metar " + reports + " --classic -o " + path("bad.png"));
+  EXPECT_EQ(both.status, 2);
+  EXPECT_NE(both.output.find("not with --classic"), std::string::npos) << both.output;
+  EXPECT_FALSE(fs::exists(path("bad.png")));
+}
+
 // `gallery --classic`: the classical models and nephele's on one scene, each with its frame
 // time in the labels and the JSON; --json only with --classic, and nothing written then.
 TEST_F(CliTest, GalleryClassicShowsEveryModelWithItsFrameTime) {
