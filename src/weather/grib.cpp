@@ -490,7 +490,11 @@ std::vector<std::array<uint8_t, 4>> forecast_texels(const GribCover& cover, cons
             ? share(coverage_for_oktas(8.0f * c[kMediumCover], scene.high_clouds.type),
                     scene.high_clouds.coverage)
             : 1.0f;
-    const float sheet = cover.has[kHighCover] ? share(c[kHighCover], scene.cirrus.coverage) : 1.0f;
+    const float sheet =
+        cover.has[kHighCover]
+            ? share(sheet_coverage_for_oktas(8.0f * c[kHighCover], scene.cirrus.type),
+                    scene.cirrus.coverage)
+            : 1.0f;
     texels[k] = {unorm(low), unorm(high), unorm(sheet), 255};
   }
   return texels;

@@ -101,6 +101,86 @@ float sky_cover(float coverage, float type) {
   return curve(a) + t * (curve(b) - curve(a));
 }
 
+// The sky covered by the cirrus sheet's cirrus.coverage at the default optical depth (0.3) and
+// altitude (9 km), measured as the volumetric curves are (stop 79) for each sheet genus: a
+// cirrostratus veil covers the dome from a coverage of 0.2 (near the horizon its slant optical
+// depth passes the dome's threshold, 0.69, everywhere), cirrus streaks from 0.6-0.7.
+struct SheetCurve {
+  std::vector<std::pair<float, float>> points;  // (coverage, sky covered), increasing
+};
+const SheetCurve kSheetCurves[] = {
+    {{{0, 0},
+      {0.2f, 0},
+      {0.25f, 0.009f},
+      {0.3f, 0.0537f},
+      {0.35f, 0.1914f},
+      {0.4f, 0.3857f},
+      {0.45f, 0.5649f},
+      {0.5f, 0.7017f},
+      {0.55f, 0.8125f},
+      {0.6f, 0.8828f},
+      {0.65f, 0.9277f},
+      {0.7f, 0.9619f},
+      {0.8f, 0.9932f},
+      {0.9f, 0.9985f},
+      {1, 1}}},  // cirrus
+    {{{0, 0},
+      {0.02f, 0},
+      {0.04f, 0.0037f},
+      {0.06f, 0.0354f},
+      {0.08f, 0.0972f},
+      {0.1f, 0.2278f},
+      {0.12f, 0.418f},
+      {0.14f, 0.6206f},
+      {0.16f, 0.8174f},
+      {0.18f, 0.9277f},
+      {0.2f, 0.9824f},
+      {0.3f, 1},
+      {1, 1}}},  // cirrostratus
+    {{{0, 0},
+      {0.3f, 0.008f},
+      {0.35f, 0.0208f},
+      {0.4f, 0.0586f},
+      {0.45f, 0.1289f},
+      {0.5f, 0.2388f},
+      {0.55f, 0.3782f},
+      {0.6f, 0.5417f},
+      {0.65f, 0.7004f},
+      {0.7f, 0.8286f},
+      {0.75f, 0.9204f},
+      {0.8f, 0.9619f},
+      {0.85f, 0.9861f},
+      {0.9f, 0.9963f},
+      {1, 1}}},  // cirrocumulus
+};
+
+float sheet_sky_cover(float coverage, float type) {
+  const auto curve = [x = std::clamp(coverage, 0.0f, 1.0f)](const SheetCurve& c) {
+    size_t k = 1;
+    while (k + 1 < c.points.size() && c.points[k].first < x) ++k;
+    const auto [x0, y0] = c.points[k - 1];
+    const auto [x1, y1] = c.points[k];
+    return y0 + std::clamp((x - x0) / (x1 - x0), 0.0f, 1.0f) * (y1 - y0);
+  };
+  const float x = std::clamp(type, 0.0f, 1.0f) * 2.0f;  // cirrus 0, cirrostratus 1, cirrocumulus 2
+  const int k = std::min(int(x), 1);
+  return curve(kSheetCurves[k]) +
+         (x - float(k)) * (curve(kSheetCurves[k + 1]) - curve(kSheetCurves[k]));
+}
+
+// The least coverage whose sky cover reaches oktas / 8 (the curves rise, then stay at 1).
+float coverage_reaching(float oktas, float type, float (*cover)(float, float)) {
+  if (oktas <= 0.0f) return 0.0f;
+  if (oktas >= 8.0f) return 1.0f;  // overcast: no hole
+  const float share = oktas / 8.0f;
+  float lo = 0.0f, hi = 1.0f;
+  for (int i = 0; i < 40; ++i) {
+    const float mid = 0.5f * (lo + hi);
+    (cover(mid, type) < share ? lo : hi) = mid;
+  }
+  return hi;
+}
+
 // The two volumetric layers (CloudParams, HighCloudParams) as a state's layer, and back.
 template <typename Params>
 CloudLayer volumetric_layer(const Params& p) {
@@ -141,16 +221,15 @@ float oktas_for_coverage(float coverage, float type) {
 }
 
 float coverage_for_oktas(float oktas, float type) {
-  if (oktas <= 0.0f) return 0.0f;
-  if (oktas >= 8.0f) return 1.0f;  // overcast: no hole
-  // The least coverage that covers the share (the curves rise, then stay at 1): bisection.
-  const float share = oktas / 8.0f;
-  float lo = 0.0f, hi = 1.0f;
-  for (int i = 0; i < 40; ++i) {
-    const float mid = 0.5f * (lo + hi);
-    (sky_cover(mid, type) < share ? lo : hi) = mid;
-  }
-  return hi;
+  return coverage_reaching(oktas, type, sky_cover);
+}
+
+float oktas_for_sheet_coverage(float coverage, float type) {
+  return coverage >= 1.0f ? 8.0f : std::min(8.0f * sheet_sky_cover(coverage, type), 7.999f);
+}
+
+float sheet_coverage_for_oktas(float oktas, float type) {
+  return coverage_reaching(oktas, type, sheet_sky_cover);
 }
 
 const char* to_string(PrecipitationKind kind) {
@@ -238,8 +317,13 @@ WeatherState weather_state(const Scene& scene) {
   const HighCloudParams& h = scene.high_clouds;
   state.high = volumetric_layer(h);
   const CirrusParams& s = scene.cirrus;
-  state.sheet = {nearest(kSheet, s.type), s.type, s.altitude_m,   s.altitude_m,
-                 8.0f * s.coverage,       0.0f,   s.optical_depth};
+  state.sheet = {nearest(kSheet, s.type),
+                 s.type,
+                 s.altitude_m,
+                 s.altitude_m,
+                 oktas_for_sheet_coverage(s.coverage, s.type),
+                 0.0f,
+                 s.optical_depth};
   std::vector<WindLevel> levels = {{c.bottom_altitude_m, c.wind_mps},
                                    {c.top_altitude_m, c.wind_mps + c.wind_shear_mps},
                                    {h.bottom_altitude_m, h.wind_mps},
@@ -306,7 +390,10 @@ void apply_weather(const WeatherState& state, Scene& scene) {
   CirrusParams& s = scene.cirrus;
   s.type = sheet_type;
   s.altitude_m = state.sheet.base_m;
-  s.coverage = state.sheet.coverage_oktas / 8.0f;
+  // Left exactly as it is when its oktas are the ones it gives.
+  if (sheet_type != s.type ||
+      state.sheet.coverage_oktas != oktas_for_sheet_coverage(s.coverage, s.type))
+    s.coverage = sheet_coverage_for_oktas(state.sheet.coverage_oktas, sheet_type);
   s.optical_depth = state.sheet.optical_depth;
   if (!state.wind.empty()) {
     c.wind_mps = wind_at(state.wind, c.bottom_altitude_m);

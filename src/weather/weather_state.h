@@ -92,6 +92,11 @@ constexpr float kMinVisibilityM = 400.0f;  // Mie extinction 0.0098/m: validatio
 // coverage of 1: a closed deck without holes.
 float coverage_for_oktas(float oktas, float type);
 float oktas_for_coverage(float coverage, float type);
+// The same for the cirrus sheet's cirrus.coverage and type (cirrus 0, cirrostratus 0.5,
+// cirrocumulus 1), measured at its default optical depth (0.3): a cirrostratus veil covers the
+// whole dome from a coverage of 0.2.
+float sheet_coverage_for_oktas(float oktas, float type);
+float oktas_for_sheet_coverage(float coverage, float type);
 
 // The scene's shell [bottom, top] (m, above the ground) in which clouds of `type` (clouds.type's
 // scale) fill [base_m, top_m]: each type fills its own part of the shell's height.

@@ -229,7 +229,8 @@ TEST_F(Grib, ASceneFileTakesItsLayersAndTimeFromTheForecast) {
   EXPECT_EQ(scene.weather.grib, file);  // relative to the scene's folder
   EXPECT_EQ(scene.time, "2026-12-03T12:00:00Z");
   EXPECT_NEAR(oktas_for_coverage(scene.clouds.coverage, scene.clouds.type), 4.0f, 0.05f);
-  EXPECT_NEAR(scene.cirrus.coverage, 0.9f, 0.01f);
+  EXPECT_EQ(scene.cirrus.type, 0.5f);  // 7.2 oktas: a cirrostratus veil
+  EXPECT_NEAR(oktas_for_sheet_coverage(scene.cirrus.coverage, scene.cirrus.type), 7.2f, 0.01f);
   // The texels scale each layer to the forecast's own: 1 where it is greatest.
   const auto texels = forecast_texels(*grib_cover(scene), scene);
   EXPECT_EQ(texels[texels.size() / 2][0], 255);

@@ -44,7 +44,9 @@ TEST(WeatherState, OktasGenusAndWindsByAltitude) {
   EXPECT_NEAR(scene.clouds.coverage, 0.562f, 0.002f);
   EXPECT_FLOAT_EQ(scene.clouds.type, 0.25f);  // stratocumulus on clouds.type's scale
   EXPECT_FLOAT_EQ(scene.cirrus.type, 0.5f);
-  EXPECT_FLOAT_EQ(scene.cirrus.coverage, 0.25f);
+  // 2 oktas of cirrostratus: a quarter of the sky, between the measured 0.10 (0.228 of it) and
+  // 0.12 (0.418).
+  EXPECT_NEAR(scene.cirrus.coverage, 0.1023f, 0.0005f);
   EXPECT_FLOAT_EQ(scene.clouds.wind_mps.x, 8.4f);  // 800 m: 80% of the way from 2 to 10
   EXPECT_NEAR(scene.clouds.wind_shear_mps.x, 10.0f + 800.0f / 9000.0f * 30.0f - 8.4f, 1e-4f);
   EXPECT_NEAR(scene.cirrus.wind_mps.y, 9.5f / 10.0f * 10.0f - 1.0f / 9.0f * 0.5f, 0.1f);
@@ -75,6 +77,17 @@ TEST(WeatherState, OktasMapOntoTheMeasuredCoverage) {
   EXPECT_EQ(coverage_for_oktas(0.0f, 0.5f), 0.0f);
   EXPECT_EQ(oktas_for_coverage(1.0f, 0.5f), 8.0f);
   EXPECT_LT(oktas_for_coverage(0.99f, 0.5f), 8.0f);
+  // The sheet's own curves: a cirrostratus veil covers the dome at a fifth of the coverage that
+  // cirrus streaks or cirrocumulus cells need.
+  for (float type : {0.0f, 0.25f, 0.5f, 0.8f, 1.0f})
+    for (float oktas = 0.5f; oktas < 8.0f; oktas += 0.5f) {
+      const float coverage = sheet_coverage_for_oktas(oktas, type);
+      EXPECT_NEAR(oktas_for_sheet_coverage(coverage, type), oktas, 1e-3f) << type << " " << oktas;
+      EXPECT_GT(coverage, sheet_coverage_for_oktas(oktas - 0.5f, type));
+    }
+  EXPECT_NEAR(sheet_coverage_for_oktas(6.0f, 0.5f), 0.1531f, 0.001f);  // BKN cirrostratus
+  EXPECT_NEAR(sheet_coverage_for_oktas(4.0f, 0.0f), 0.4319f, 0.001f);  // SCT cirrus
+  EXPECT_EQ(sheet_coverage_for_oktas(8.0f, 0.5f), 1.0f);
 }
 
 // Koschmieder: the visibility sets the haze's extinction, and reads back as itself.
