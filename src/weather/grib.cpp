@@ -246,6 +246,10 @@ const char* cover_field_name(int field) {
 
 GribCover read_grib_cover(const std::string& path, double lat_deg, double lon_deg,
                           std::optional<double> jd_ut, double planet_radius_m) {
+  // A regular file only: a device (/dev/zero) or a pipe would be read for ever.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    refuse(path, "is not a regular file");
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) refuse(path, "cannot be read");
   codes_context_set_logging_proc(codes_context_get_default(), quiet);

@@ -211,6 +211,10 @@ TEST_F(Grib, FilesThatCannotServeAreRefusedInOneLine) {
   std::ofstream(text) << "METAR EDDF 271150Z 24015KT 9999 FEW025 12/06 Q1008\n";
   EXPECT_NE(refusal(text).find("holds no GRIB message"), std::string::npos) << refusal(text);
   EXPECT_NE(refusal(path("missing.grib2")).find("cannot be read"), std::string::npos);
+  // A device or a folder is not read (ecCodes would read /dev/zero for ever).
+  EXPECT_NE(refusal("/dev/zero").find("is not a regular file"), std::string::npos)
+      << refusal("/dev/zero");
+  EXPECT_NE(refusal(dir_.string()).find("is not a regular file"), std::string::npos);
   // Each a single line naming the file's key.
   for (const std::string& why : {away, none, refusal(text)}) {
     EXPECT_EQ(why.find('\n'), std::string::npos) << why;
