@@ -294,6 +294,12 @@ struct PrecipitationParams {
   // True: shafts under the precipitating clouds (the weather map's storm cells, and wherever
   // the layer is nearly closed); false: an even curtain under the whole layer.
   bool shafts = true;
+  // True: the particles near the camera (within about 15 m) are drawn one by one, rain as
+  // streaks, snow as flakes, falling at their speed with the wind (precipitation_layer.glsl).
+  bool particles = true;
+  // The camera's shutter time (s), [0, 0.1]: how long the particles are drawn out into
+  // streaks; 0 freezes them.
+  float shutter_s = 0.02f;
 };
 
 struct QualityParams {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/trigonometric.hpp>
 #include <glm/vec2.hpp>
 
 #include "nephele/error.h"
@@ -228,6 +229,46 @@ TEST(Precipitation, TheSlabsLightIsTheBeamTheDiffuseLightAndTheSky) {
   const float down = 1.0f / (1.0f + 0.75f * 0.15f * 40.0f);
   EXPECT_NEAR(deep.x, down * 0.5f / (2.0f * 3.14159265f) + 0.1f / (1.0f + 0.75f * 0.15f * 20.0f),
               1e-5f);
+}
+
+// The particles drawn near the camera stand for the medium: as many of them per m^3 as carry
+// its extinction. Rain at 5 mm/h: Marshall and Palmer's median volume diameter (1.26 mm), and
+// the drops of that size that carry the integrated cross-section; snow at 1 mm/h: 85 flakes of
+// 5 mm (twice their area each, the efficiency).
+TEST(Precipitation, TheNearParticlesCarryTheMediumsExtinction) {
+  const double d0_m = 3.67 / (4.1 * std::pow(5.0, -0.21)) * 1e-3;
+  EXPECT_NEAR(g::precipitation_particle_m(g::PRECIPITATION_RAIN, 5.0f), d0_m, 1e-3 * d0_m);
+  const double drops = marshall_palmer_sigma_t(5.0) / (0.25 * M_PI * d0_m * d0_m);
+  EXPECT_NEAR(g::precipitation_particles_per_m3(g::PRECIPITATION_RAIN, 5.0f), drops, 0.01 * drops);
+  EXPECT_NEAR(drops, 406.0, 5.0);
+  EXPECT_NEAR(g::precipitation_particles_per_m3(g::PRECIPITATION_SNOW, 1.0f), 84.9, 0.5);
+  // None without a rate.
+  EXPECT_EQ(g::precipitation_particles_per_m3(g::PRECIPITATION_RAIN, 0.0f), 0.0f);
+}
+
+// A streak's opacity in a pixel: a drop of 1.25 mm streaked 9 cm, 5 m away in a 900-pixel,
+// 60-degree image (6.4 mm a pixel) covers its cross-section over the streak's length and the
+// pixel's width: 0.21%; half a metre away, over its own width (the pixel is narrower); a
+// frozen flake larger than the pixel covers the disc's share of its square, pi / 4.
+TEST(Precipitation, AStreaksOpacityIsItsShareOfThePixelAndTheShutter) {
+  const float pixel_m = 5.0f * 2.0f * std::tan(glm::radians(30.0f)) / 900.0f;
+  const double area = 0.25 * M_PI * 1.25e-3 * 1.25e-3;
+  EXPECT_NEAR(g::precipitation_streak_opacity(1.25e-3f, 0.09f, pixel_m), area / (0.09125 * pixel_m),
+              1e-6);
+  EXPECT_NEAR(g::precipitation_streak_opacity(1.25e-3f, 0.09f, 0.1f * pixel_m),
+              area / (0.09125 * 1.25e-3), 1e-6);
+  EXPECT_NEAR(g::precipitation_streak_opacity(5e-3f, 0.0f, 1e-3f), 0.25 * M_PI, 1e-6);
+}
+
+// The wind that carries the particles near the camera: the base's by the 1/7 power law, the
+// same everywhere above the base, and taken from 2 m below that.
+TEST(Precipitation, TheWindNearTheGroundFollowsThePowerLaw) {
+  const glm::vec2 base(12.0f, -4.0f);
+  const glm::vec2 at_2m = g::precipitation_wind_at(base, 2.0f, 400.0f);
+  EXPECT_NEAR(at_2m.x, 12.0 * std::pow(2.0 / 400.0, 1.0 / 7.0), 1e-4);
+  EXPECT_NEAR(at_2m.y, -4.0 * std::pow(2.0 / 400.0, 1.0 / 7.0), 1e-4);
+  EXPECT_EQ(g::precipitation_wind_at(base, 0.0f, 400.0f), at_2m);
+  EXPECT_EQ(g::precipitation_wind_at(base, 900.0f, 400.0f), base);
 }
 
 }  // namespace

@@ -1,6 +1,10 @@
 #include "render/modules/precipitation/precipitation.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <limits>
 
 #include "render/glsl.h"
@@ -38,6 +42,44 @@ float precipitation_visibility_m(const PrecipitationParams& p) {
 namespace {
 // The slices: the march's start and each of its samples (precipitation_field_inc.glsl).
 constexpr uint32_t kSlices = uint32_t(precip::PRECIPITATION_STEPS) + 1;
+
+// The falling grid's period, in cells: the hash repeats after it (wider than twice the range).
+constexpr int kNearPeriodCells = 128;
+// The range the particles are drawn to (m): beyond, the froxels' medium alone.
+constexpr float kNearRangeM = 15.0f;
+
+// The particles near the camera (precipitation_layer.glsl) into `block`: the camera's place in
+// a grid that falls with them (at `fall_mps`, carried by the wind at the camera's height), its
+// cells' size and how many particles each one drawn stands for. False when the camera is not in
+// it.
+bool near_particles(const Scene& scene, float fall_mps, gpu::PrecipitationGpu& block) {
+  const PrecipitationParams& p = scene.precipitation;
+  const glm::vec3 eye_m = scene.camera.position_m;
+  const float base_m = scene.clouds.bottom_altitude_m;
+  if (eye_m.z < p.bottom_m || eye_m.z > base_m) return false;
+  const glm::vec3 velocity_mps(
+      precip::precipitation_wind_at(scene.clouds.wind_mps, eye_m.z, base_m), -fall_mps);
+  const int kind = precipitation_kind(p.kind);
+  const float d_m = precip::precipitation_particle_m(kind, p.rate_mm_per_h);
+  const glm::vec3 streak_m = velocity_mps * p.shutter_s;
+  const bool flutters = kind == precip::PRECIPITATION_SNOW || kind == precip::PRECIPITATION_SLEET;
+  const float flutter_m = flutters ? 0.08f : 0.0f;
+  // A cell holds its particle's whole streak and flutter, with room to spare.
+  const float cell_m = std::max(0.5f, 2.0f * (glm::length(streak_m) + d_m + 2.0f * flutter_m));
+  // The camera in the grid, in double: the planet frame's float cannot hold a centimetre.
+  const double period_m = double(kNearPeriodCells) * cell_m;
+  glm::dvec3 q = glm::dvec3(eye_m) - glm::dvec3(velocity_mps) * double(scene.time_s);
+  q -= period_m * glm::floor(q / period_m);
+  block.near = glm::vec4(glm::vec3(q), cell_m);
+  block.streak = glm::vec4(streak_m, d_m);
+  const float per_cell =
+      precip::precipitation_particles_per_m3(kind, p.rate_mm_per_h) * cell_m * cell_m * cell_m;
+  // Snow and sleet sway a few centimetres each way, about twice a second.
+  const double phase_rad =
+      std::fmod(double(scene.time_s) * 2.0 * 3.14159265358979 * 2.0, 2.0 * 3.14159265358979);
+  block.particles = glm::vec4(per_cell, kNearRangeM, flutter_m, float(phase_rad));
+  return per_cell > 0.0f;
+}
 
 gpu::Texture froxel_texture(gpu::Context& ctx, uint32_t w, uint32_t h, VkFormat format) {
   return gpu::Texture(ctx, w, h, kSlices, format, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
@@ -79,10 +121,11 @@ void PrecipitationModule::prepare(const FramePrepare& frame, FramePlan& plan) {
     block.sun = light.sun;
     block.sky = glm::vec4(light.sky, p.shafts ? 1.0f : 0.0f);
     const int kind = precipitation_kind(p.kind);
-    block.drift = glm::vec4(
-        precip::precipitation_drift_slope(frame.scene.clouds.wind_mps,
-                                          precip::precipitation_fall_mps(kind, p.rate_mm_per_h)),
-        0.0f, 0.0f);
+    const float fall_mps = precip::precipitation_fall_mps(kind, p.rate_mm_per_h);
+    const glm::vec2 drift =
+        precip::precipitation_drift_slope(frame.scene.clouds.wind_mps, fall_mps);
+    block.drift = glm::vec4(drift, 0.0f, 0.0f);
+    near_ = p.particles && near_particles(frame.scene, fall_mps, block);
     const uint32_t w =
         uint32_t((frame.width + kPrecipitationDownsample - 1) / kPrecipitationDownsample);
     const uint32_t h =
@@ -97,6 +140,7 @@ void PrecipitationModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   std::memcpy(blocks_[frame.slot].data(), &block, sizeof(block));
   set_.bind_module_buffer(kBlockName, blocks_[frame.slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   plan.media = plan.media || falls_;
+  plan.layers = plan.layers || (falls_ && near_);
 }
 
 void PrecipitationModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {

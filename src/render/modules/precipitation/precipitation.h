@@ -47,6 +47,7 @@ class PrecipitationModule : public RenderModule {
   gpu::Texture froxels_, depth_;         // (light, transmittance) and summed depth by sample
   std::unique_ptr<gpu::Kernel> kernel_;  // made when first recorded
   bool falls_ = false;
+  bool near_ = false;  // the camera is in it: its particles are drawn (precipitation_layer.glsl)
 };
 
 std::unique_ptr<RenderModule> make_precipitation_module(const ModuleContext& context);

@@ -17,6 +17,14 @@ struct PrecipitationGpu {
               // light's illuminance; w 1 shafts under the precipitating clouds, 0 an even curtain
   vec4 drift;  // xy how far the wind carries it sideways per metre of fall (east, north:
                // precipitation_drift_slope); zw unused
+  // The particles near the camera (precipitation_layer.glsl), each in a cell of a grid that
+  // falls with them: one drawn stands for particles.x of them.
+  vec4 near;       // xyz the camera in the falling grid (m, planet axes, wrapped to its period),
+                   // w the cells' size (m); 0: none drawn
+  vec4 streak;     // xyz how far a particle moves over the shutter (m, planet axes), w its
+                   // diameter (m)
+  vec4 particles;  // x how many each stands for, y the range they are drawn to (m), z the
+                   // flutter's amplitude (m; snow), w its phase (rad, from the time)
 };
 
 #ifdef __cplusplus
