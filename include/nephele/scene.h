@@ -302,6 +302,16 @@ struct PrecipitationParams {
   float shutter_s = 0.02f;
 };
 
+// Lightning in the cumulonimbus cells of the low layer (render/modules/lightning,
+// docs/lightning.md): in-cloud flashes that light the cloud from inside, and cloud-to-ground
+// strokes, branching bolts that flicker and light the clouds, the ground and the rain. The same
+// seed and time give the same flashes.
+struct LightningParams {
+  float flashes_per_min = 0.0f;  // a storm cell's flashes a minute, [0, 30]; 0 = none
+  float ground_share = 0.25f;    // the share of them that strike the ground, [0, 1]
+  uint32_t seed = 1;             // where and when they flash
+};
+
 struct QualityParams {
   MarchMode mode = MarchMode::Default;
   int primary_steps = 64;  // [1, 1024] steps through the cloud layer
@@ -606,6 +616,7 @@ struct Scene {
   CirrusParams cirrus;
   GroundFogParams ground_fog;
   PrecipitationParams precipitation;
+  LightningParams lightning;
   QualityParams quality;
   OutputParams output;
   LocationParams location;

@@ -20,6 +20,18 @@ float remap(float v, float lo, float hi, float new_lo, float new_hi) {
   return new_lo + (v - lo) / (hi - lo) * (new_hi - new_lo);
 }
 
+// Where a ray from the origin along unit `dir` passes closest to the segment from `a` to
+// a + e (relative to the ray's origin): x the distance along the ray (>= 0), y how far it
+// misses the segment, z the segment's parameter there, in [0, 1].
+vec3 ray_segment_closest(vec3 dir, vec3 a, vec3 e) {
+  float b = dot(dir, e), c = dot(e, e), da = dot(dir, a), ea = dot(e, a);
+  float det = c - b * b;
+  float u = det > 1e-10f * c ? clamp((b * da - ea) / det, 0.0f, 1.0f) : 0.0f;
+  vec3 p = a + e * u;
+  float t = max(dot(dir, p), 0.0f);
+  return vec3(t, length(p - dir * t), u);
+}
+
 // Ray-sphere intersection (seed 000, 2.1-2.5): the roots t0 <= t1 of
 // |origin + t dir - centre|^2 = r^2 for a sphere centred at the origin, dir a unit vector.
 // Written in the numerically stable form (Haines et al., Ray Tracing Gems ch. 7): the

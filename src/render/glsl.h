@@ -54,6 +54,7 @@ namespace {
 #include "common/sky_view_inc.glsl"
 #include "common/clouds_inc.glsl"
 #include "common/precipitation_inc.glsl"
+#include "common/lightning_inc.glsl"
 #include "common/slab_light_inc.glsl"
 #include "common/light_volume_inc.glsl"
 #include "common/voxel_inc.glsl"

@@ -352,6 +352,13 @@ const std::vector<Section>& scene_sections() {
                 "the camera's shutter time that draws the particles out into streaks; 0 = frozen",
                 closed(0, 0.1))},
          {}},
+        {"lightning",
+         {FIELD(lightning, flashes_per_min, "a cumulonimbus cell's flashes a minute; 0 = none",
+                closed(0, 30), {}, "lightning-per-min"),
+          FIELD(lightning, ground_share, "the share of the flashes that strike the ground",
+                closed(0, 1)),
+          FIELD(lightning, seed, "where and when the flashes strike")},
+         {}},
         {"clouds",
          {FIELD(clouds, model,
                 "nephele (its noise clouds) or a classical model of seed 004 drawing the same "

@@ -181,11 +181,12 @@ struct LayerBlend {
 
 // One translucent layer (premultiplied radiance and opacity at its distance layer_m) in depth
 // order with the volumetric clouds: the air and the media in front of it dim its light and add
-// their own as far as it covers, and it goes in front of the clouds or behind them. Hidden
+// their own as far as it covers, and it goes in front of the clouds or behind them (a layer
+// of light alone, as the lightning's, hides nothing: a = 0). Hidden
 // behind the surface. A loop of at most one trip, as the cirrus' below, whose cost only the
 // variant without layers saves.
 void blend_layer(vec4 layer, float layer_m, inout LayerBlend b) {
-  for (int i = 0; i < (layer.a > 1e-4f ? 1 : 0); ++i) {
+  for (int i = 0; i < (layer.a > 1e-4f || layer.r + layer.g + layer.b > 0.0f ? 1 : 0); ++i) {
     if (b.surface_m > 0.0f && layer_m > b.surface_m) break;  // behind the terrain
     vec4 air = air_in_front(b.sky_uv, layer_m);
     vec3 light = layer.rgb * air.a + air.rgb * b.illuminance * layer.a;

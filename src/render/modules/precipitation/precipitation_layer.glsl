@@ -10,7 +10,8 @@
 // sees it by the share of its area and the exposure it covers (precipitation_streak_opacity),
 // fading with the distance from the segment over the larger of the particle's and the pixel's
 // width. A particle's light is the medium's in-scattered light where the camera is (it scatters
-// what reaches it as the medium does, nearly without absorbing), under the clouds' shade.
+// what reaches it as the medium does, nearly without absorbing), under the clouds' shade, and
+// the lightning's.
 // GLSL only; the includer includes bindings_inc.glsl.
 #ifndef NEPHELE_PRECIPITATION_LAYER
 #define NEPHELE_PRECIPITATION_LAYER
@@ -38,15 +39,11 @@ vec2 precipitation_particle_seen(ivec3 cell, vec3 origin_m, vec3 dir, float pixe
   now.xy += flutter_m * vec2(sin(phase), cos(1.3f * phase));
   // The closest approach of the ray (from the eye) and the segment now - u streak, u in [0, 1].
   vec3 e = -streak;
-  float b = dot(dir, e), c = dot(e, e), dw = dot(dir, now), ew = dot(e, now);
-  float det = c - b * b;
-  float u = det > 1e-10f ? saturate((b * dw - ew) / det) : 0.0f;
-  vec3 p = now + e * u;
-  float t = max(dot(dir, p), 0.0f);
-  float miss_m = length(p - dir * t);
+  vec3 closest = ray_segment_closest(dir, now, e);
+  float t = closest.x, miss_m = closest.y;
   float footprint_m = pixel_rad * t;
   float width_m = max(d_m, footprint_m);
-  float across_m = length(e - dir * b);  // the streak's length across the view
+  float across_m = length(e - dir * dot(dir, e));  // the streak's length across the view
   float opacity = precipitation.particles.x *
                   precipitation_streak_opacity(d_m, across_m, footprint_m) *
                   saturate(1.0f - miss_m / width_m);
@@ -93,8 +90,13 @@ vec4 precipitation_layer(vec2 uv, out float distance_m) {
   distance_m = depth_m / alpha;
   // The light of a particle where the camera is: the medium's (per unit of sigma_s and of the
   // key light), under the clouds' mean shade.
-  vec3 light = precipitation_at(eye).rgb * texelFetch(ground_light, ivec2(0), 0).r;
-  return vec4(alpha * light * frame.sun_illuminance.rgb, alpha);
+  vec3 light = precipitation_at(eye).rgb * texelFetch(ground_light, ivec2(0), 0).r *
+               frame.sun_illuminance.rgb;
+#ifdef NEPHELE_LIGHTNING_LAYER
+  // And the flashes' (lightning_layer.glsl, included before it), scattered evenly.
+  light += LIGHTNING_RGB * lightning_illuminance_lx(eye, vec3(0.0f)) / (4.0f * PI);
+#endif
+  return vec4(alpha * light, alpha);
 }
 
 #endif
