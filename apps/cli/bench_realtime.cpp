@@ -139,11 +139,23 @@ Scene heavy_rain_scene(const Scene& scene) {
   return s;
 }
 
+// A thunderstorm: the heavy rain under storm cells (clouds.precipitation 1) flashing 30
+// times a minute a cell, a third of the flashes to the ground: most frames have a flash in
+// range, and the frame's percentiles show what the flashes cost the worst frames.
+Scene thunderstorm_scene(const Scene& scene) {
+  Scene s = heavy_rain_scene(scene);
+  s.clouds.precipitation = 1.0f;
+  s.lightning.flashes_per_min = 30.0f;
+  s.lightning.ground_share = 0.33f;
+  return s;
+}
+
 nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& options,
                                 const Scene& base, const RealtimeSettings& f) {
-  // Six renderers, one history each: the still camera (`renderer`), the flight, the seed's
+  // Seven renderers, one history each: the still camera (`renderer`), the flight, the seed's
   // algorithm, the still camera lit as the seed lights clouds (seed_lit_scene), the same on
-  // the droplets (seed_lighting_scene) and in heavy rain (heavy_rain_scene). Their timed frames are
+  // the droplets (seed_lighting_scene), in heavy rain (heavy_rain_scene) and in a
+  // thunderstorm (thunderstorm_scene). Their timed frames are
   // interleaved, so a slow spell of a shared machine falls on all alike and the ratios between them
   // hold.
   Renderer flight(options);
@@ -151,6 +163,7 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   Renderer seed_lit_renderer(options);
   Renderer seed_lighting_renderer(options);
   Renderer rain_renderer(options);
+  Renderer storm_renderer(options);
   Renderer reference(options);
   const int cycle = base.quality.march_stride * base.quality.march_stride;
   nlohmann::json out;
@@ -180,8 +193,9 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   Scene seed_lit = still_camera(seed_lit_renderer, seed_lit_scene(base));
   Scene seed_lighting = still_camera(seed_lighting_renderer, seed_lighting_scene(base));
   Scene rain = still_camera(rain_renderer, heavy_rain_scene(base));
+  Scene storm = still_camera(storm_renderer, thunderstorm_scene(base));
 
-  Timing still, moving, seed, lit_by_seed, lighting_of_seed, in_rain;
+  Timing still, moving, seed, lit_by_seed, lighting_of_seed, in_rain, in_storm;
   const int frames = std::max(f.static_frames, f.moving_frames);
   const int seed_every = std::max(1, frames / 8);  // eight of the seed's slow frames
   for (int i = 0; i < frames; ++i) {
@@ -206,6 +220,8 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
     if (i < f.static_frames) {
       rain.time_s += f.frame_dt_s;
       in_rain.add(rain_renderer.render_next(rain, false).stats);
+      storm.time_s += f.frame_dt_s;
+      in_storm.add(storm_renderer.render_next(storm, false).stats);
     }
     if (f.on_step) f.on_step();
   }
@@ -242,6 +258,8 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   moving.write(out, "moving");
   in_rain.write(out, "rain");
   out["cost_of_rain"] = in_rain.median_wall() / still.median_wall();
+  in_storm.write(out, "storm");
+  out["storm_p99_over_median"] = percentile(in_storm.wall_ms, 0.99) / in_storm.median_wall();
   out["baseline_ms"] = seed.median_wall();
   out["baseline_fps"] = 1000.0 / seed.median_wall();
   out["speedup_vs_baseline"] = seed.median_wall() / still.median_wall();

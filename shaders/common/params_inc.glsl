@@ -34,10 +34,13 @@ const int CLOUD_LAYERS = 2;
 // 0 where the ray meets none). LAYER_PARTICLES: the particle clouds, rgb premultiplied
 // radiance, a opacity; LAYER_PARTICLE_DEPTH: x their opacity-weighted distance (km) times the
 // opacity; both drawn into the top-left particle_light.yz share of the layer.
+// LAYER_PRECIPITATION: the rain and snow particles near the camera (precipitation_particles.vert),
+// a their opacity, r their distance (km) times it.
 const int LAYER_SURFACES = 0;
 const int LAYER_PARTICLES = 1;
 const int LAYER_PARTICLE_DEPTH = 2;
-const int IMAGE_LAYERS = 3;
+const int LAYER_PRECIPITATION = 3;
+const int IMAGE_LAYERS = 4;
 
 struct CloudLayerGpu {
   vec4 radii_m;  // x bottom, y top radius (m, planet frame; a layer that is off lies beyond

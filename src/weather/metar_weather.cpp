@@ -124,6 +124,12 @@ CloudLayer cloud_layer(const Group& g, float own_oktas, float density) {
   return layer;
 }
 
+// A storm cell's flashes a minute for a thunderstorm of `intensity` (TS, -TS, +TS): a few a
+// minute in an ordinary storm, ten and more in a severe one.
+float flashes_per_min(const std::string& intensity) {
+  return intensity == "-" ? 2.0f : intensity == "+" ? 15.0f : 6.0f;
+}
+
 // Precipitation (mm/h of water) by kind and intensity: rain light under 2.5, moderate to
 // 7.6, heavy above (the AMS glossary's classes); drizzle a tenth of it; snow as melted water.
 float rate_mm_per_h(const MetarWeather& w) {
@@ -280,6 +286,7 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
   s.precipitation = PrecipitationKind::None;
   s.precipitation_mm_per_h = 0.0f;
   s.storm_growth = 0.0f;
+  s.lightning_per_min = 0.0f;
   for (const MetarWeather& w : report.weather) {
     if (w.intensity == "VC") continue;  // in the vicinity, not here
     const float rate = rate_mm_per_h(w);
@@ -287,8 +294,10 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
       s.precipitation_mm_per_h = rate;
       s.precipitation = precipitation_kind(w);
     }
-    if (w.descriptor == "TS")
+    if (w.descriptor == "TS") {
       s.storm_growth = std::max(s.storm_growth, w.intensity == "+" ? 1.0f : 0.7f);
+      s.lightning_per_min = std::max(s.lightning_per_min, flashes_per_min(w.intensity));
+    }
   }
   if (cumulonimbus) s.storm_growth = std::max(s.storm_growth, 0.4f);
   return out;

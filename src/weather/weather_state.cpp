@@ -342,6 +342,7 @@ WeatherState weather_state(const Scene& scene) {
   if (!one_profile) state.wind.clear();
   state.visibility_m = visibility_m(scene);
   state.storm_growth = c.precipitation;
+  state.lightning_per_min = scene.lightning.flashes_per_min;
   const PrecipitationParams& p = scene.precipitation;
   if (p.rate_mm_per_h > 0.0f)
     for (PrecipitationKind kind : {PrecipitationKind::Rain, PrecipitationKind::Drizzle,
@@ -385,6 +386,7 @@ void apply_weather(const WeatherState& state, Scene& scene) {
   CloudParams& c = scene.clouds;
   set_volumetric_layer(c, state.low, low_type);
   c.precipitation = state.storm_growth;
+  scene.lightning.flashes_per_min = state.lightning_per_min;
   HighCloudParams& h = scene.high_clouds;
   set_volumetric_layer(h, state.high, high_type);
   CirrusParams& s = scene.cirrus;

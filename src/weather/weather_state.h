@@ -69,6 +69,7 @@ struct WeatherState {
   PrecipitationKind precipitation = PrecipitationKind::None;
   float precipitation_mm_per_h = 0.0f;
   float storm_growth = 0.0f;  // clouds.precipitation, [0, 1]
+  float lightning_per_min = 0.0f;  // a storm cell's flashes a minute (lightning.flashes_per_min)
 };
 
 // The wind of `levels` at `altitude_m` (zero when there are none).

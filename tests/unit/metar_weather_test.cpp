@@ -91,6 +91,7 @@ TEST(MetarWeather, ThunderstormsRainSnowAndFog) {
   EXPECT_EQ(storm.layers[0].genus, Genus::Cumulonimbus);
   EXPECT_GE(storm.layers[0].cloud_top_m, 9000.0f);
   EXPECT_EQ(storm.state.storm_growth, 1.0f);  // +TS
+  EXPECT_EQ(storm.state.lightning_per_min, 15.0f);  // a severe storm's flashes
   EXPECT_EQ(storm.state.precipitation, PrecipitationKind::Rain);
   EXPECT_GT(storm.state.precipitation_mm_per_h, 7.6f);   // heavy rain
   EXPECT_EQ(storm.state.visibility_m, kMinVisibilityM);  // 300 m: the haze's least
@@ -98,6 +99,10 @@ TEST(MetarWeather, ThunderstormsRainSnowAndFog) {
   const ReportWeather snow = weather_of("ESSA 180750Z 17009KT 4000 -SN BKN004 00/00 Q0995");
   EXPECT_EQ(snow.state.precipitation, PrecipitationKind::Snow);
   EXPECT_LT(snow.state.precipitation_mm_per_h, 1.0f);
+  EXPECT_EQ(snow.state.lightning_per_min, 0.0f);  // no thunder, no lightning
+  EXPECT_EQ(
+      weather_of("KMIA 180750Z 09010KT 5SM TSRA BKN020CB 27/24 A2990").state.lightning_per_min,
+      6.0f);
   EXPECT_EQ(snow.state.visibility_m, 4000.0f);
   // Drizzle, sleet (rain and snow together, or ice pellets), showers of heavy rain.
   EXPECT_EQ(weather_of("EGLL 180750Z 22011KT 3000 -DZ OVC004 09/09 Q1012").state.precipitation,

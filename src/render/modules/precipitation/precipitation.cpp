@@ -11,6 +11,7 @@
 #include "render/gpu_params.h"
 #include "render/media_light.h"
 // The block's one definition and the medium's pure functions, as the shader has them.
+#include "render/image_layers.h"
 #include "render/modules/precipitation/precipitation_gpu_inc.glsl"
 
 namespace nephele {
@@ -45,8 +46,6 @@ constexpr uint32_t kSlices = uint32_t(precip::PRECIPITATION_STEPS) + 1;
 
 // The falling grid's period, in cells: the hash repeats after it (wider than twice the range).
 constexpr int kNearPeriodCells = 128;
-// The range the particles are drawn to (m): beyond, the froxels' medium alone.
-constexpr float kNearRangeM = 15.0f;
 
 // The particles near the camera (precipitation_layer.glsl) into `block`: the camera's place in
 // a grid that falls with them (at `fall_mps`, carried by the wind at the camera's height), its
@@ -77,7 +76,9 @@ bool near_particles(const Scene& scene, float fall_mps, gpu::PrecipitationGpu& b
   // Snow and sleet sway a few centimetres each way, about twice a second.
   const double phase_rad =
       std::fmod(double(scene.time_s) * 2.0 * 3.14159265358979 * 2.0, 2.0 * 3.14159265358979);
-  block.particles = glm::vec4(per_cell, kNearRangeM, flutter_m, float(phase_rad));
+  // The range they are drawn to (m), within the cube drawn: beyond, the froxels' medium alone.
+  const float range_m = 0.45f * float(gpu::PRECIPITATION_NEAR_SIDE) * cell_m;
+  block.particles = glm::vec4(per_cell, range_m, flutter_m, float(phase_rad));
   return per_cell > 0.0f;
 }
 
@@ -89,6 +90,7 @@ gpu::Texture froxel_texture(gpu::Context& ctx, uint32_t w, uint32_t h, VkFormat 
 PrecipitationModule::PrecipitationModule(const ModuleContext& context)
     : ctx_(context.ctx),
       set_(context.set),
+      layers_(context.layers),
       froxels_(froxel_texture(ctx_, 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT)),
       depth_(froxel_texture(ctx_, 1, 1, VK_FORMAT_R16_SFLOAT)) {
   for (gpu::Buffer& b : blocks_) {
@@ -125,7 +127,15 @@ void PrecipitationModule::prepare(const FramePrepare& frame, FramePlan& plan) {
     const glm::vec2 drift =
         precip::precipitation_drift_slope(frame.scene.clouds.wind_mps, fall_mps);
     block.drift = glm::vec4(drift, 0.0f, 0.0f);
-    near_ = p.particles && near_particles(frame.scene, fall_mps, block);
+    // Drawn by a raster pass: not on a queue without graphics.
+    near_ = p.particles && ctx_.has_graphics() && near_particles(frame.scene, fall_mps, block);
+    if (near_) {
+      layers_.require(frame.width, frame.height);
+      const gpu::FrameParams& f = frame.params;
+      camera_.forward = glm::vec4(glm::vec3(f.camera_forward), f.camera_pos_m.w);
+      camera_.right = glm::vec4(glm::vec3(f.camera_right), f.camera_forward.w);
+      camera_.up = glm::vec4(glm::vec3(f.camera_up), 0.0f);
+    }
     const uint32_t w =
         uint32_t((frame.width + kPrecipitationDownsample - 1) / kPrecipitationDownsample);
     const uint32_t h =
@@ -140,7 +150,6 @@ void PrecipitationModule::prepare(const FramePrepare& frame, FramePlan& plan) {
   std::memcpy(blocks_[frame.slot].data(), &block, sizeof(block));
   set_.bind_module_buffer(kBlockName, blocks_[frame.slot], VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
   plan.media = plan.media || falls_;
-  plan.layers = plan.layers || (falls_ && near_);
 }
 
 void PrecipitationModule::add_passes(FrameGraph& graph, const FrameSetup& frame) {
@@ -153,6 +162,24 @@ void PrecipitationModule::add_passes(FrameGraph& graph, const FrameSetup& frame)
                    gpu::dispatch(cmd, *kernel_, timer(), "precipitation", froxels_.width(),
                                  froxels_.height(), 1, 8, 8, 1);
                  });
+  if (!near_) return;
+  graph.add_pass(
+      "precipitation_particles", {"weather_map", FrameGraph::kView}, {"layers"},
+      [this, timer = frame.timer](VkCommandBuffer cmd) {
+        if (!particles_)
+          particles_ = std::make_unique<gpu::RasterPass>(
+              ctx_, set_, std::vector<VkFormat>{ImageLayers::kFormat}, true,
+              std::vector<gpu::RasterShaders>{
+                  {"precipitation_particles.vert.spv", "precipitation_particles.frag.spv"}});
+        gpu::RasterDraw draw;
+        constexpr uint32_t side = uint32_t(gpu::PRECIPITATION_NEAR_SIDE);
+        draw.vertex_count = 6 * side * side * side;
+        draw.constants = camera_;
+        const glm::uvec2 size(layers_.texture().width(), layers_.texture().height());
+        particles_->record(cmd, timer(), "precipitation_particles",
+                           {layers_.target(gpu::LAYER_PRECIPITATION, int(size.x), int(size.y))},
+                           {draw});
+      });
 }
 
 std::unique_ptr<RenderModule> make_precipitation_module(const ModuleContext& context) {

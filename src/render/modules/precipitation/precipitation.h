@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "gpu/kernel.h"
+#include "gpu/raster.h"
 #include "nephele/scene.h"
 #include "render/render_module.h"
 
@@ -35,7 +36,8 @@ class PrecipitationModule : public RenderModule {
   // uniform block of the frame's slot, bound for the frame, and the froxels sized for the
   // image; plan.media when it falls.
   void prepare(const FramePrepare& frame, FramePlan& plan) override;
-  // The froxels' pass ("precipitation", writing "media") when it falls.
+  // The froxels' pass ("precipitation", writing "media") when it falls, and the particles'
+  // raster pass ("precipitation_particles", into the image layers) when the camera is in it.
   void add_passes(FrameGraph& graph, const FrameSetup& frame) override;
 
  private:
@@ -43,9 +45,12 @@ class PrecipitationModule : public RenderModule {
 
   gpu::Context& ctx_;
   gpu::DescriptorSet& set_;
+  ImageLayers& layers_;
   gpu::Buffer blocks_[gpu::kFramesInFlight + 1];  // one a slot: a frame in flight reads its own
   gpu::Texture froxels_, depth_;         // (light, transmittance) and summed depth by sample
   std::unique_ptr<gpu::Kernel> kernel_;  // made when first recorded
+  std::unique_ptr<gpu::RasterPass> particles_;  // the particles near the camera
+  gpu::DrawConstants camera_{};
   bool falls_ = false;
   bool near_ = false;  // the camera is in it: its particles are drawn (precipitation_layer.glsl)
 };

@@ -8,6 +8,10 @@ namespace nephele::gpu {
 using glm::vec4;
 #endif
 
+// The particles near the camera are drawn in a cube of this many cells a side around the
+// camera's (precipitation_particles.vert), out to 0.45 of the side.
+const int PRECIPITATION_NEAR_SIDE = 40;
+
 struct PrecipitationGpu {
   vec4 fall;  // x the lowest height it reaches, y the cloud base it falls from (m above the
               // ground), z sigma_t where it is densest (1/m; 0: none), w the particles' phase g

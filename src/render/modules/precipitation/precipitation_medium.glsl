@@ -1,11 +1,13 @@
 // Rain and snow as a medium of compose.comp and the stars (media_inc.glsl, generated from the
 // modules' folders): what the precipitation between the eye and a layer at `distance_m` along
 // `dir` does to the layer's light, read from the froxels its pass marched
-// (precipitation.comp) at that distance along the ray, between two of its samples; and the
-// light it lets reach a surface, from the field at the surface.
+// (precipitation.comp) at that distance along the ray, between two of its samples, with the
+// particles near the camera that its raster pass drew in front (precipitation_particles.frag);
+// and the light it lets reach a surface, from the field at the surface.
 #ifndef NEPHELE_PRECIPITATION_MEDIUM
 #define NEPHELE_PRECIPITATION_MEDIUM
 
+#include "layers_inc.glsl"
 #include "render/modules/precipitation/precipitation_field_inc.glsl"
 
 layout(set = 1, binding = 4) uniform sampler3D precipitation_froxels;
@@ -31,7 +33,16 @@ vec4 precipitation_medium(vec3 eye, vec3 dir, float distance_m, float cloud_ligh
   vec4 m = textureLod(precipitation_froxels, at, 0.0f);
   float depth_km = textureLod(precipitation_depth, at, 0.0f).r;
   depth_m = m.a < 1.0f ? 1000.0f * depth_km / (1.0f - m.a) : 0.0f;
-  return vec4(cloud_light * m.rgb, m.a);
+  m.rgb *= cloud_light;
+  // The particles near the camera in front (precipitation_particles.frag), where they are
+  // drawn: their light comes from metres away, no air in front of it.
+  if (precipitation.near.w > 0.0f) {
+    vec4 p = layer_texel(LAYER_PRECIPITATION, ivec2(uv * image));
+    float medium = (1.0f - p.a) * (1.0f - m.a);
+    depth_m *= medium / max(p.a + medium, 1e-6f);
+    m = vec4(p.rgb + (1.0f - p.a) * m.rgb, (1.0f - p.a) * m.a);
+  }
+  return m;
 }
 
 // The share of the sun's (x) and the sky's (y) light that reaches a surface at `pos` through
