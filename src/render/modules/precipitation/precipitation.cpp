@@ -164,7 +164,7 @@ void PrecipitationModule::add_passes(FrameGraph& graph, const FrameSetup& frame)
                  });
   if (!near_) return;
   graph.add_pass(
-      "precipitation_particles", {"weather_map", FrameGraph::kView}, {"layers"},
+      "precipitation_particles", {"weather_map", "media", FrameGraph::kView}, {"layers"},
       [this, timer = frame.timer](VkCommandBuffer cmd) {
         if (!particles_)
           particles_ = std::make_unique<gpu::RasterPass>(

@@ -10,7 +10,7 @@ using glm::vec4;
 
 // The particles near the camera are drawn in a cube of this many cells a side around the
 // camera's (precipitation_particles.vert), out to 0.45 of the side.
-const int PRECIPITATION_NEAR_SIDE = 40;
+const int PRECIPITATION_NEAR_SIDE = 30;
 
 struct PrecipitationGpu {
   vec4 fall;  // x the lowest height it reaches, y the cloud base it falls from (m above the
