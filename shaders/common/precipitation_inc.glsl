@@ -62,7 +62,7 @@ float precipitation_sigma_t_per_m(int kind, float rate_mm_per_h) {
   return efficiency * area_per_kg * rate / (3600.0f * precipitation_fall_mps(kind, rate));
 }
 
-// The particles seen one by one near the camera (precipitation_layer.glsl): each kind by one
+// The particles seen one by one near the camera (precipitation_particles_inc.glsl): each kind by one
 // diameter (m): rain by Marshall and Palmer's median volume diameter D0 = 3.67 / lambda (as its
 // fall speed), drizzle 0.3 mm, snow aggregates 5 mm, sleet 3 mm (the sizes above).
 float precipitation_particle_m(int kind, float rate_mm_per_h) {

@@ -9,9 +9,9 @@
 
 #include "render/glsl.h"
 #include "render/gpu_params.h"
+#include "render/image_layers.h"
 #include "render/media_light.h"
 // The block's one definition and the medium's pure functions, as the shader has them.
-#include "render/image_layers.h"
 #include "render/modules/precipitation/precipitation_gpu_inc.glsl"
 
 namespace nephele {
@@ -47,8 +47,8 @@ constexpr uint32_t kSlices = uint32_t(precip::PRECIPITATION_STEPS) + 1;
 // The falling grid's period, in cells: the hash repeats after it (wider than twice the range).
 constexpr int kNearPeriodCells = 128;
 
-// The particles near the camera (precipitation_layer.glsl) into `block`: the camera's place in
-// a grid that falls with them (at `fall_mps`, carried by the wind at the camera's height), its
+// The particles near the camera (precipitation_particles_inc.glsl) into `block`: the camera's place
+// in a grid that falls with them (at `fall_mps`, carried by the wind at the camera's height), its
 // cells' size and how many particles each one drawn stands for. False when the camera is not in
 // it.
 bool near_particles(const Scene& scene, float fall_mps, gpu::PrecipitationGpu& block) {

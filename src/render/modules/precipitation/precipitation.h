@@ -2,10 +2,11 @@
 // the low cloud layer, seen as shafts under the precipitating clouds or an even curtain, a
 // medium between the eye and every layer of compose.comp and of the stars
 // (precipitation_medium.glsl) that lowers the visibility by the rate. It owns its parameters
-// (Scene::precipitation), its uniform block (descriptor set 1, "PrecipitationBlock") and one
-// pass (precipitation.comp) that marches it along the view's rays into froxels at an eighth
-// of the image's resolution, which compose and the stars read ("media"). The frame knows it
-// only through the registry (render_module.h).
+// (Scene::precipitation), its uniform block (descriptor set 1, "PrecipitationBlock"), a pass
+// (precipitation.comp) that marches it along the view's rays into froxels at an eighth of the
+// image's resolution, which compose and the stars read ("media"), and a raster pass that draws
+// the particles near the camera into an image layer (precipitation_particles.vert), which the
+// medium puts in front. The frame knows it only through the registry (render_module.h).
 #pragma once
 
 #include <memory>
@@ -52,7 +53,8 @@ class PrecipitationModule : public RenderModule {
   std::unique_ptr<gpu::RasterPass> particles_;  // the particles near the camera
   gpu::DrawConstants camera_{};
   bool falls_ = false;
-  bool near_ = false;  // the camera is in it: its particles are drawn (precipitation_layer.glsl)
+  bool near_ =
+      false;  // the camera is in it: its particles are drawn (precipitation_particles.vert)
 };
 
 std::unique_ptr<RenderModule> make_precipitation_module(const ModuleContext& context);

@@ -21,7 +21,7 @@ struct PrecipitationGpu {
               // light's illuminance; w 1 shafts under the precipitating clouds, 0 an even curtain
   vec4 drift;  // xy how far the wind carries it sideways per metre of fall (east, north:
                // precipitation_drift_slope); zw unused
-  // The particles near the camera (precipitation_layer.glsl), each in a cell of a grid that
+  // The particles near the camera (precipitation_particles_inc.glsl), each in a cell of a grid that
   // falls with them: one drawn stands for particles.x of them.
   vec4 near;       // xyz the camera in the falling grid (m, planet axes, wrapped to its period),
                    // w the cells' size (m); 0: none drawn

@@ -1,6 +1,6 @@
 // The precipitation's particles near the camera, shared by their raster pass's shaders
-// (precipitation_particles.vert and .frag; compose reads what they draw in
-// precipitation_layer.glsl).
+// (precipitation_particles.vert and .frag; the medium puts what they draw in front,
+// precipitation_medium.glsl).
 //
 // The particles live in a grid that falls with them (the block's near: the camera's place in
 // it, from the time and their velocity, so a sequence and a re-render agree), one in each cell
