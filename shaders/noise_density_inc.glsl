@@ -18,6 +18,7 @@
 // with the detail all but averaged away. With the cells' level: the suite 99.9 -> 98.9 points
 // (inside a cloud 12.8 -> 10.2%); with the finest level 104.0 (docs/validation.md).
 #include "forecast_inc.glsl"
+#include "weather_map_inc.glsl"
 
 #ifndef NOISE_DETAIL_FOOTPRINT_M
 #define NOISE_DETAIL_FOOTPRINT_M(pos) (distance(pos, vec3(frame.camera_pos_m)) * frame.cloud_shape.x)
@@ -62,7 +63,7 @@ vec2 noise_density_pair(vec3 pos) {
   // The layer's wind, grown with height and leaning the tops downwind (seed 002).
   vec2 ground_xy = vec2(pos) - cloud_wind_offset(vec2(layer.wind), vec2(layer.wind.z, layer.wind.w), vec2(frame.cloud_wind),
                                               frame.cloud_wind.w, frame.cloud_wind.z, h_wind);
-  vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + vec2(layer.radii_m.z, layer.radii_m.w) + 0.5f, 0.0f);
+  vec4 weather = weather_map_at(layer, ground_xy);
   float altitude_m = radius_m - frame.radii_m.x;
   // The shape noise, moved by the flow map's swirls in two phases half a cycle apart (seed
   // 002, 局部流动效果); without a flow, one phase of weight 1 and no displacement. The flow's

@@ -5,15 +5,16 @@
 // place in a storm cell's core (the low layer's weather map, moved by the wind as its clouds
 // are) flashes with the block's chance. The flashes of this slot and the last that are still
 // bright are ranked by how brightly they light the camera, the first LIGHTNING_MAX_FLASHES of
-// them written, and the bolt of the first that strikes the ground: a main channel from the cloud base to the ground
-// that wanders as it falls, and three branches. One workgroup; the same seed and time give the
-// same flashes.
+// them written, and the bolt of the first that strikes the ground: a main channel from the
+// cloud base to the ground that wanders as it falls, and three branches. One workgroup; the
+// same seed and time give the same flashes.
 #extension GL_GOOGLE_include_directive : require
 #include "common/bindings_inc.glsl"
 #include "common/math_inc.glsl"
 #include "common/clouds_inc.glsl"
 #include "common/noise_inc.glsl"
 #include "common/lightning_inc.glsl"
+#include "weather_map_inc.glsl"
 #include "render/modules/lightning/lightning_gpu_inc.glsl"
 
 layout(std140, set = 1, binding = 7) uniform LightningBlock { LightningGpu lightning; };
@@ -40,6 +41,11 @@ vec2 candidate_xy(int c) {
   return (vec2(cell.xy) + h) * lightning.cloud.z;
 }
 
+// Whether the candidate's flash strikes the ground (else it stays in the cloud), and the hash
+// that times it.
+vec3 candidate_timing(int c) { return hash_cell(candidate_cell(c), uint(lightning.slot.y) + 7919u); }
+bool candidate_strikes(int c) { return candidate_timing(c).z < lightning.when.z; }
+
 // A place on the ground's sphere at `altitude_m` over `xy`.
 vec3 planet_at(vec2 xy, float altitude_m) {
   return normalize(vec3(xy, frame.radii_m.x)) * (frame.radii_m.x + altitude_m);
@@ -49,7 +55,7 @@ vec3 planet_at(vec2 xy, float altitude_m) {
 bool in_core(vec2 xy) {
   CloudLayerGpu layer = frame.cloud_layers[0];
   vec2 ground_xy = xy - vec2(layer.wind);
-  vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + vec2(layer.radii_m.z, layer.radii_m.w) + 0.5f, 0.0f);
+  vec4 weather = weather_map_at(layer, ground_xy);
   return cloud_storm_cell(weather.g, layer.shape.w).x >= 0.5f;
 }
 
@@ -58,12 +64,12 @@ float candidate_flux(int c) {
   ivec3 cell = candidate_cell(c);
   uint seed = uint(lightning.slot.y);
   if (hash_cell(cell, seed).z >= lightning.when.y) return 0.0f;
-  vec3 h = hash_cell(cell, seed + 7919u);
+  vec3 h = candidate_timing(c);
   int back = c / PER_SLOT;
   float since_s = float(1 - back) * LIGHTNING_SLOT_S + lightning.when.x - h.x * LIGHTNING_SLOT_S;
   if (since_s <= 0.0f) return 0.0f;
   int strokes = lightning_strokes(h.y);
-  float decay_s = h.z < lightning.when.z ? LIGHTNING_STROKE_S : LIGHTNING_PULSE_S;
+  float decay_s = candidate_strikes(c) ? LIGHTNING_STROKE_S : LIGHTNING_PULSE_S;
   if (since_s > lightning_duration_s(strokes, decay_s, h.y)) return 0.0f;
   if (!in_core(candidate_xy(c))) return 0.0f;
   return lightning_flux_lm(since_s, strokes, decay_s, h.y);
@@ -144,7 +150,7 @@ void main() {
   for (int k = 0; k < LIGHTNING_MAX_FLASHES && chosen[k] >= 0; ++k) {
     int c = chosen[k];
     float flux_lm = flux_of[c];
-    bool to_ground = hash_cell(candidate_cell(c), uint(lightning.slot.y) + 7919u).z < lightning.when.z;
+    bool to_ground = candidate_strikes(c);
     vec2 xy = candidate_xy(c);
     float base_m = lightning.cloud.x, top_m = lightning.cloud.y;
     float u = hash_cell(candidate_cell(c), uint(lightning.slot.y) + 31337u).x;

@@ -10,7 +10,7 @@
 // - the bolt: its channel, a line whose luminous intensity per metre is the flux over 4 pi
 //   and its length, over the larger of its width and the pixel's.
 // The rain near the camera is lit by the flashes too (lightning_illuminance_lx, read by the
-// precipitation's layer). GLSL only; the includer includes bindings_inc.glsl.
+// precipitation's particles, precipitation_particles.frag). GLSL only; the includer includes bindings_inc.glsl.
 #ifndef NEPHELE_LIGHTNING_LAYER
 #define NEPHELE_LIGHTNING_LAYER
 

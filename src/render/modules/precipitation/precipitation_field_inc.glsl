@@ -12,6 +12,7 @@
 #include "common/precipitation_inc.glsl"
 #include "common/slab_light_inc.glsl"
 #include "forecast_inc.glsl"
+#include "weather_map_inc.glsl"
 #include "render/modules/precipitation/precipitation_gpu_inc.glsl"
 
 layout(std140, set = 1, binding = 1) uniform PrecipitationBlock { PrecipitationGpu precipitation; };
@@ -27,7 +28,7 @@ vec2 precipitation_share_at(vec3 pos) {
   float fallen_m = max(precipitation.fall.y - (length(pos) - frame.radii_m.x), 0.0f);
   vec2 left_xy = vec2(pos) - vec2(precipitation.drift) * fallen_m;
   vec2 ground_xy = left_xy - vec2(layer.wind);
-  vec4 weather = textureLod(weather_map, ground_xy * frame.cloud_noise.z + vec2(layer.radii_m.z, layer.radii_m.w) + 0.5f, 0.0f);
+  vec4 weather = weather_map_at(layer, ground_xy);
   return precipitation_shaft_share(weather.r, weather.g, layer.shape.x * forecast_share(left_xy).x,
                                    layer.shape.w);
 }

@@ -32,16 +32,15 @@ void main() {
   vec3 centre_m = (vec3(cell) + 0.5f) * cell_m - precipitation.near.xyz;
   if (length(centre_m) > precipitation.particles.y + cell_m ||
       dot(centre_m, draw.forward.xyz) < -cell_m) {
-    gl_Position = vec4(2.0f, 2.0f, 2.0f, 1.0f);
+    gl_Position = vec4(2.0f, 2.0f, 2.0f, 1.0f);  // outside: the quad is dropped
     return;
   }
   vec3 now = precipitation_particle_now(cell);
   vec3 then = now - precipitation.streak.xyz;
   now_out = now;
   vec4 a = clip_of(now), b = clip_of(then);
-  float range_m = precipitation.particles.y;
-  if (a.z <= 0.0f || b.z <= 0.0f || length(now) > range_m + 1.0f) {
-    gl_Position = vec4(2.0f, 2.0f, 2.0f, 1.0f);  // outside: the quad is dropped
+  if (a.z <= 0.0f || b.z <= 0.0f) {
+    gl_Position = vec4(2.0f, 2.0f, 2.0f, 1.0f);  // too near: the quad is dropped
     return;
   }
   // In normalised device coordinates, pixels of 2 / size.
