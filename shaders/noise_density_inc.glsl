@@ -24,15 +24,18 @@
 #define NOISE_DETAIL_FOOTPRINT_M(pos) (distance(pos, vec3(frame.camera_pos_m)) * frame.cloud_shape.x)
 #endif
 
-// The layer at `radius_m` (FrameParams::cloud_layers): the high one from its bottom up. Both
-// are read at constant indices and selected per lane: an index that differs between lanes
-// would make a CPU device gather every field lane by lane.
+// The layer at `radius_m` (FrameParams::cloud_layers): the one whose band holds it, else layer
+// 0. Every layer is read at a constant index and selected per lane: an index that differs
+// between lanes would make a CPU device gather every field lane by lane.
 CloudLayerGpu cloud_layer_at(float radius_m) {
-  bool high = radius_m >= frame.cloud_layers[1].radii_m.x;
-  CloudLayerGpu low_layer = frame.cloud_layers[0], high_layer = frame.cloud_layers[1];
-  return CloudLayerGpu(high ? high_layer.radii_m : low_layer.radii_m,
-                       high ? high_layer.shape : low_layer.shape,
-                       high ? high_layer.wind : low_layer.wind);
+  CloudLayerGpu layer = frame.cloud_layers[0];
+  for (int k = 1; k < CLOUD_LAYERS; ++k) {
+    CloudLayerGpu other = frame.cloud_layers[k];
+    bool inside = radius_m >= other.band_m.x && radius_m < other.band_m.y;
+    layer = CloudLayerGpu(inside ? other.radii_m : layer.radii_m, inside ? other.shape : layer.shape,
+                          inside ? other.wind : layer.wind, inside ? other.band_m : layer.band_m);
+  }
+  return layer;
 }
 
 // The base noise at ground_xy moved back along the flow by one of its phases (phase: weight,
@@ -99,7 +102,7 @@ vec2 noise_density_pair(vec3 pos) {
   vec2 cell = cloud_storm_cell(weather.g, layer.shape.w);
   // A forecast's share of the layer's coverage where pos is, fixed to the ground.
   vec4 forecast = forecast_share(vec2(pos));
-  float layer_coverage = layer.shape.x * (radius_m >= frame.cloud_layers[1].radii_m.x ? forecast.y : forecast.x);
+  float layer_coverage = layer.shape.x * mix(forecast.x, forecast.y, layer.band_m.z);
   vec2 coverage_type = cloud_precipitate(cloud_local_coverage(weather.r, layer_coverage),
                                          saturate(layer.shape.z + weather.b - 0.5f), cell.x);
   float type = coverage_type.y;

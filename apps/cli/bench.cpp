@@ -145,14 +145,14 @@ void add_bench_flags(CLI::App& cmd, BenchOptions& options) {
   cmd.add_flag("--full-shaders", options.full_shaders,
                "run every pass's full shader rather than the variant compiled for the scene's "
                "features (RendererOptions::feature_variants off): what the variants save");
-  cmd.add_option(
-      "--json", options.json,
-      "write the real-time figures (static_fps, moving_fps, static_p99_ms, "
-      "moving_p99_ms, moving_max_ms, speedup_vs_baseline, cost_vs_seed_lit, "
-      "cost_vs_seed_lighting, cost_of_rain, rain_p99_ms, storm_p99_over_median, static_error, "
-      "moving_error, "
-      "frame_times_ms, device, "
-      "...) to this file, or to standard output with -");
+  cmd.add_option("--json", options.json,
+                 "write the real-time figures (static_fps, moving_fps, static_p99_ms, "
+                 "moving_p99_ms, moving_max_ms, speedup_vs_baseline, cost_vs_seed_lit, "
+                 "cost_vs_seed_lighting, cost_of_rain, rain_p99_ms, storm_p99_over_median, "
+                 "cost_of_three_layers, static_error, "
+                 "moving_error, "
+                 "frame_times_ms, device, "
+                 "...) to this file, or to standard output with -");
   add_device_flags(cmd, options.device, options.verbose, options.validation);
   add_progress_flags(cmd, options.progress, options.quiet);
 }
@@ -176,7 +176,7 @@ void print_realtime(const nlohmann::json& r) {
               r["width"].get<int>(), r["height"].get<int>(),
               r["device"].get<std::string>().c_str(), "", "median", "p95", "p99", "max",
               "fps", "error", "rebuild frames (light volume, weather)");
-  for (const char* series : {"static", "moving", "rain", "storm"}) {
+  for (const char* series : {"static", "moving", "rain", "storm", "layers"}) {
     const std::string p = series;
     if (!r.contains(p + "_ms")) continue;
     char error[16] = "      -";  // not measured (--no-error)
@@ -186,7 +186,8 @@ void print_realtime(const nlohmann::json& r) {
                 p == "static"   ? "still camera"
                 : p == "moving" ? "flying camera"
                 : p == "rain"   ? "in heavy rain"
-                                : "thunderstorm",
+                : p == "storm"  ? "thunderstorm"
+                                : "three layers",
                 r[p + "_ms"].get<double>(), r[p + "_p95_ms"].get<double>(),
                 r[p + "_p99_ms"].get<double>(), r[p + "_max_ms"].get<double>(),
                 r[p + "_fps"].get<double>(), error, r[p + "_light_volume_frames"].get<int>(),
@@ -212,6 +213,11 @@ void print_realtime(const nlohmann::json& r) {
         "  the still camera in a thunderstorm (30 flashes a minute a cell): p99 %.2fx its "
         "median (target <= 2)\n",
         r["storm_p99_over_median"].get<double>());
+  if (r.contains("cost_of_three_layers"))
+    std::printf(
+        "  the still camera under three volumetric layers (two more from [[cloud_layers]]): "
+        "%.2fx its cost (target <= 1.5)\n",
+        r["cost_of_three_layers"].get<double>());
   if (r.contains("flight_from_still")) {
     const std::vector<double> e = r["flight_from_still"].get<std::vector<double>>();
     const size_t worst = size_t(std::max_element(e.begin(), e.end()) - e.begin());

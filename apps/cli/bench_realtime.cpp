@@ -150,12 +150,29 @@ Scene thunderstorm_scene(const Scene& scene) {
   return s;
 }
 
+// Three volumetric layers below the cirrus: the scene's own and two more, as a report gives
+// them (an altocumulus and a higher stratocumulus deck), each covering half the sky.
+Scene three_layer_scene(const Scene& scene) {
+  Scene s = scene;
+  CloudLayerParams alto;
+  alto.genus = "altocumulus";
+  alto.base_m = 4500.0f;
+  alto.top_m = 5100.0f;
+  alto.oktas = 4.0f;
+  CloudLayerParams deck = alto;
+  deck.genus = "stratocumulus";
+  deck.base_m = 6200.0f;
+  deck.top_m = 6800.0f;
+  s.cloud_layers = {alto, deck};
+  return s;
+}
+
 nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& options,
                                 const Scene& base, const RealtimeSettings& f) {
-  // Seven renderers, one history each: the still camera (`renderer`), the flight, the seed's
+  // Eight renderers, one history each: the still camera (`renderer`), the flight, the seed's
   // algorithm, the still camera lit as the seed lights clouds (seed_lit_scene), the same on
-  // the droplets (seed_lighting_scene), in heavy rain (heavy_rain_scene) and in a
-  // thunderstorm (thunderstorm_scene). Their timed frames are
+  // the droplets (seed_lighting_scene), in heavy rain (heavy_rain_scene), in a thunderstorm
+  // (thunderstorm_scene) and under three layers (three_layer_scene). Their timed frames are
   // interleaved, so a slow spell of a shared machine falls on all alike and the ratios between them
   // hold.
   Renderer flight(options);
@@ -164,6 +181,7 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   Renderer seed_lighting_renderer(options);
   Renderer rain_renderer(options);
   Renderer storm_renderer(options);
+  Renderer layers_renderer(options);
   Renderer reference(options);
   const int cycle = base.quality.march_stride * base.quality.march_stride;
   nlohmann::json out;
@@ -194,8 +212,9 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   Scene seed_lighting = still_camera(seed_lighting_renderer, seed_lighting_scene(base));
   Scene rain = still_camera(rain_renderer, heavy_rain_scene(base));
   Scene storm = still_camera(storm_renderer, thunderstorm_scene(base));
+  Scene layers = still_camera(layers_renderer, three_layer_scene(base));
 
-  Timing still, moving, seed, lit_by_seed, lighting_of_seed, in_rain, in_storm;
+  Timing still, moving, seed, lit_by_seed, lighting_of_seed, in_rain, in_storm, under_layers;
   const int frames = std::max(f.static_frames, f.moving_frames);
   const int seed_every = std::max(1, frames / 8);  // eight of the seed's slow frames
   for (int i = 0; i < frames; ++i) {
@@ -222,6 +241,8 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
       in_rain.add(rain_renderer.render_next(rain, false).stats);
       storm.time_s += f.frame_dt_s;
       in_storm.add(storm_renderer.render_next(storm, false).stats);
+      layers.time_s += f.frame_dt_s;
+      under_layers.add(layers_renderer.render_next(layers, false).stats);
     }
     if (f.on_step) f.on_step();
   }
@@ -260,6 +281,8 @@ nlohmann::json measure_realtime(Renderer& renderer, const RendererOptions& optio
   out["cost_of_rain"] = in_rain.median_wall() / still.median_wall();
   in_storm.write(out, "storm");
   out["storm_p99_over_median"] = percentile(in_storm.wall_ms, 0.99) / in_storm.median_wall();
+  under_layers.write(out, "layers");
+  out["cost_of_three_layers"] = under_layers.median_wall() / still.median_wall();
   out["baseline_ms"] = seed.median_wall();
   out["baseline_fps"] = 1000.0 / seed.median_wall();
   out["speedup_vs_baseline"] = seed.median_wall() / still.median_wall();

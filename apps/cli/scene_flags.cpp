@@ -393,6 +393,7 @@ constexpr const char* kVoxelCloudForms =
     "expected FILE@E,N,U or preset:NAME[:SEED]@E,N,U, NAME one of cumulus, cumulus-congestus, "
     "cumulonimbus, cumulus-mesh (e.g. preset:cumulus:7@0,4000,1200)";
 constexpr std::string_view kPresetPrefix = "preset:";
+constexpr const char* kCloudLayerFlag = "--cloud-layer";
 
 // The generated clouds (src/voxel's parse_cloud_preset; validate_scene checks them too, but a
 // wrong name is a malformed spec, told with the accepted forms).
@@ -511,7 +512,7 @@ void apply_sun_angles(const SceneFlags& flags, Scene& scene) {
 // Validation names a parameter by its flag when a flag set it, otherwise by its scene key
 // prefixed with where the scene came from. The voxel clouds from index `first_flag_cloud` on
 // came from --voxel-cloud.
-ParamNamer make_namer(const SceneFlags& flags, size_t first_flag_cloud) {
+ParamNamer make_namer(const SceneFlags& flags, size_t first_flag_cloud, size_t first_flag_layer) {
   std::map<std::string, std::string> flag_of_key;
   for (const FlagSpec& spec : flag_specs())
     if (*spec.key && (flags.*spec.member).has_value()) flag_of_key[spec.key] = spec.flag;
@@ -519,12 +520,16 @@ ParamNamer make_namer(const SceneFlags& flags, size_t first_flag_cloud) {
     flag_of_key[key] = "--" + find_scene_parameter(key)->flag;
   std::string origin =
       flags.scene_file ? *flags.scene_file : "preset '" + flags.preset.value_or("default") + "'";
-  return [flag_of_key, origin, first_flag_cloud](const std::string& key) -> std::string {
+  return [flag_of_key, origin, first_flag_cloud,
+          first_flag_layer](const std::string& key) -> std::string {
     auto found = flag_of_key.find(key);
     if (found != flag_of_key.end()) return found->second;
-    size_t index = 0;  // voxel_clouds[index].name
+    size_t index = 0;  // voxel_clouds[index].name, cloud_layers[index].name
     if (std::sscanf(key.c_str(), "voxel_clouds[%zu]", &index) == 1 && index >= first_flag_cloud)
       return kVoxelCloudFlag;
+    if (std::sscanf(key.c_str(), "cloud_layers[%zu]", &index) == 1 && index >= first_flag_layer)
+      return std::string(kCloudLayerFlag) + " #" + std::to_string(index - first_flag_layer + 1) +
+             " " + key.substr(key.find(']') + 2);
     return origin + ": " + key;
   };
 }
@@ -573,6 +578,33 @@ VoxelCloudParams parse_voxel_cloud_spec(const std::string& spec) {
     cloud.file = source;  // as given: relative to the working folder, like --weather-map
   }
   return cloud;
+}
+
+CloudLayerParams parse_cloud_layer_spec(const std::string& spec) {
+  const auto bad = [&](const std::string& why) {
+    fail(kCloudLayerFlag, spec,
+         why +
+             "; expected GENUS,BASE_M,TOP_M,OKTAS, GENUS one of stratus, stratocumulus, "
+             "altocumulus, cumulus, cumulonimbus (e.g. altocumulus,2500,3200,5)");
+  };
+  std::vector<std::string> parts;
+  for (std::string_view rest = spec;;) {
+    const size_t comma = rest.find(',');
+    parts.emplace_back(rest.substr(0, comma));
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  if (parts.size() != 4) bad(std::to_string(parts.size()) + " comma-separated parts");
+  CloudLayerParams layer;
+  layer.genus = parts[0];
+  float* numbers[] = {&layer.base_m, &layer.top_m, &layer.oktas};
+  for (size_t i = 0; i < 3; ++i) {
+    const std::optional<double> value = to_number(parts[i + 1]);
+    if (!value || !std::isfinite(*value) || std::fabs(*value) > FLT_MAX)
+      bad("'" + parts[i + 1] + "' is not a number");
+    *numbers[i] = static_cast<float>(*value);
+  }
+  return layer;
 }
 
 const SceneParameter* find_scene_parameter(std::string_view key) {
@@ -633,6 +665,17 @@ void add_scene_flags(CLI::App& cmd, SceneFlags& flags) {
          "add a voxel cloud (repeatable): FILE@E,N,U (an OpenVDB .vdb or NanoVDB .nvdb file) or "
          "preset:NAME[:SEED]@E,N,U (a generated cumulus, cumulus-congestus or cumulonimbus, or cumulus-mesh: the shipped mesh baked), "
          "anchored at its base's centre (m: east, north, up); e.g. preset:cumulus:7@0,4000,1200")
+      ->type_name("SPEC")
+      ->allow_extra_args(false)
+      ->group("Scene");
+  cmd.add_option_function<std::vector<std::string>>(
+         kCloudLayerFlag,
+         [&flags](const std::vector<std::string>& values) {
+           flags.cloud_layers.insert(flags.cloud_layers.end(), values.begin(), values.end());
+         },
+         "add a volumetric layer as a report gives it (repeatable, at most 4 with the scene's "
+         "[[cloud_layers]]): GENUS,BASE_M,TOP_M,OKTAS, where its clouds' bases and tops are (m "
+         "above the ground) and the sky it covers; e.g. altocumulus,2500,3200,5")
       ->type_name("SPEC")
       ->allow_extra_args(false)
       ->group("Scene");
@@ -732,7 +775,10 @@ Scene resolve_scene(const SceneFlags& flags) {
                      "): at most " + std::to_string(kMaxVoxelClouds) + " voxel clouds per scene");
   for (const std::string& spec : flags.voxel_clouds)
     scene.voxel_clouds.push_back(parse_voxel_cloud_spec(spec));
-  validate_scene(scene, make_namer(flags, first_flag_cloud));
+  const size_t first_flag_layer = scene.cloud_layers.size();
+  for (const std::string& spec : flags.cloud_layers)
+    scene.cloud_layers.push_back(parse_cloud_layer_spec(spec));
+  validate_scene(scene, make_namer(flags, first_flag_cloud, first_flag_layer));
   return scene;
 }
 

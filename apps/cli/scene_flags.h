@@ -42,6 +42,7 @@ struct SceneFlags {
   // --voxel-cloud SPEC, repeatable: FILE@E,N,U or preset:NAME[:SEED]@E,N,U, each appended to
   // the scene's voxel clouds in the order given.
   std::vector<std::string> voxel_clouds;
+  std::vector<std::string> cloud_layers;  // --cloud-layer GENUS,BASE_M,TOP_M,OKTAS
   // The flags the scene's field table declares (SceneParameter::flag): (key, value) in the
   // order given.
   std::vector<std::pair<std::string, std::string>> table_values;
@@ -50,6 +51,9 @@ struct SceneFlags {
 // One --voxel-cloud SPEC as a voxel cloud (the other fields at their defaults); throws an
 // InputError naming --voxel-cloud, the value and the accepted forms.
 VoxelCloudParams parse_voxel_cloud_spec(const std::string& spec);
+// --cloud-layer's GENUS,BASE_M,TOP_M,OKTAS ("altocumulus,2500,3200,5") as a [[cloud_layers]]
+// table; a malformed one is refused naming the flag (validate_scene checks the values).
+CloudLayerParams parse_cloud_layer_spec(const std::string& spec);
 
 // Every flag that sets one scene key, as (flag, key): ("--coverage", "clouds.coverage").
 std::vector<std::pair<std::string, std::string>> scene_flag_keys();

@@ -45,6 +45,17 @@ std::pair<std::string, std::string> split_key(const std::string& key) {
   if (dot == std::string::npos) return {"", key};
   return {key.substr(0, dot), key.substr(dot + 1)};
 }
+// The rows of an array of tables' keys, with `defaults`' values.
+template <typename T>
+std::string array_rows(const T& defaults, const std::vector<scene_detail::ArrayField<T>>& fields) {
+  std::string md;
+  for (const scene_detail::ArrayField<T>& field : fields)
+    md += "| " + code(field.name) + " | " + cell(scene_detail::unit_of(field.name)) + " | " +
+          cell(scene_detail::allowed_text(field)) + " | " +
+          code(scene_detail::array_field_value_text(defaults, field)) + " |  | " +
+          cell(field.note) + " |\n";
+  return md;
+}
 
 const char* kHeader =
     "| key | unit | allowed | default | flag | meaning |\n"
@@ -99,20 +110,22 @@ std::string scene_reference_markdown() {
   }
 
   md +=
+      "\n## [[cloud_layers]]\n\n"
+      "An array of tables, one per volumetric layer besides `clouds` and `high_clouds` (at most " +
+      std::to_string(kMaxCloudLayers - 2) +
+      "), given as a weather report gives one: the renderer finds the shell and the coverage "
+      "that put its clouds' bases and tops where they are given and cover its oktas. Shells "
+      "that are there may not overlap.\n\n" +
+      kHeader;
+  md += array_rows(CloudLayerParams{}, scene_detail::cloud_layer_fields());
+  md +=
       "\n## [[voxel_clouds]]\n\n"
       "An array of tables, one per voxel cloud (at most " +
       std::to_string(kMaxVoxelClouds) +
       "); `lat_deg`, `lon_deg` and `altitude_m` (all three) may replace `position_m`. "
       "`nephele render --voxel-cloud SPEC` adds one.\n\n" +
       kHeader;
-  const VoxelCloudParams defaults{};
-  for (const scene_detail::VoxelField& field : scene_detail::voxel_cloud_fields()) {
-    const std::string value = scene_detail::voxel_field_value_text(defaults, field);
-    md +=
-        "| " + code(field.name) + " | " + cell(scene_detail::unit_of(field.name)) + " | " +
-        cell(scene_detail::allowed_text(field.range, {}, scene_detail::value_shape(field.access))) +
-        " | " + code(value) + " |  | " + cell(field.note) + " |\n";
-  }
+  md += array_rows(VoxelCloudParams{}, scene_detail::voxel_cloud_fields());
   return md;
 }
 

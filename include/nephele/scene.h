@@ -238,6 +238,25 @@ struct HighCloudParams {
   glm::vec2 wind_mps{15.0f, 4.0f};    // east, north (m/s)
 };
 
+// A further volumetric layer ([[cloud_layers]]), given as a weather report gives one: its genus,
+// where its clouds' bases and tops are, and the sky it covers in oktas. The renderer finds the
+// shell and the coverage that draw it so (weather::cloud_shell_m, coverage_for_oktas). It shares
+// the noise, the lighting and the wind's shear, skew and detail with `clouds`, reads its own
+// part of the weather map, and its shell may overlap no other layer that is there (clouds,
+// high_clouds, the others); the cirrus lies above it.
+struct CloudLayerParams {
+  // "stratus", "stratocumulus", "altocumulus", "cumulus" or "cumulonimbus".
+  std::string genus = "stratocumulus";
+  float base_m = 1000.0f;          // its clouds' bases, above ground, [0, 2e4]
+  float top_m = 1500.0f;           // its clouds' tops, above ground, > base_m
+  float oktas = 4.0f;              // [0, 8]: the sky it covers seen from the ground; 0 = none
+  float density = 0.5f;            // as clouds.density, [0, 1]
+  glm::vec2 wind_mps{8.0f, 2.0f};  // east, north (m/s)
+  bool operator==(const CloudLayerParams&) const = default;
+};
+// The volumetric layers a scene can hold: clouds, high_clouds and kMaxCloudLayers - 2 more.
+constexpr int kMaxCloudLayers = 6;
+
 // How view rays cross the voxel clouds' regions (seed 002, New Three-Phases Raymarching).
 enum class VoxelMarch {
   Plain,       // the noise clouds' adaptive march everywhere (the seed's baseline)
@@ -628,6 +647,7 @@ struct Scene {
   float time_s = 0.0f;       // animation time (s): moves clouds with the wind, [-1e6, 1e6]
   uint32_t noise_seed = 1;   // seeds the noise textures and the procedural weather map
   std::vector<VoxelCloudParams> voxel_clouds;
+  std::vector<CloudLayerParams> cloud_layers;  // at most kMaxCloudLayers - 2
   ParticleCloudParams particle_clouds;
   ClassicCloudParams classic;
   LabParams lab;

@@ -25,7 +25,7 @@ const int LIGHT_VOLUME_LAYERS_UP = 16;
 // The volumetric cloud layers (render/frame_params.cpp fills them): 0 the main (low) layer,
 // 1 the high one. They never overlap; the clouds pass marches one shell from the lowest bottom
 // to the highest top (FrameParams::radii_m.zw) and takes each sample's layer by its altitude.
-const int CLOUD_LAYERS = 2;
+const int CLOUD_LAYERS = 6;  // clouds, high_clouds, [[cloud_layers]] (kMaxCloudLayers)
 
 // The image layers compose blends over the clouds (render/image_layers.h; the bindings layers
 // and layers_out): one 2D array at the frame's size, RGBA 32-bit float, a layer each.
@@ -47,6 +47,9 @@ struct CloudLayerGpu {
                  // the atmosphere); zw where it reads the weather map (offset, in tiles)
   vec4 shape;    // x coverage [0, 1], y density [0, 1], z type [0, 1], w precipitation [0, 1]
   vec4 wind;     // xy its displacement by the wind (wind x time, m); zw its wind (m/s)
+  vec4 band_m;   // x, y the radii (m) between which it is the layer drawn: its shell, less what
+                 // lies nearer a neighbour's clouds (layer 0 wherever no other's is); z its
+                 // forecast share (0 forecast_share's x, 1 its y); w 0
 };
 
 // Voxel clouds (render/modules/voxel_clouds/voxel_clouds.h, shaders/voxel_field_inc.glsl): each cloud's grid

@@ -40,6 +40,7 @@ struct CloudQuery::Data {
 namespace cloud_cpu {
 using namespace glm;
 using namespace nephele::glsl;
+using gpu::CLOUD_LAYERS;
 using gpu::CloudLayerGpu;
 
 float unorm8(uint8_t v) {

@@ -9,6 +9,7 @@
 #include "nephele/scene_io.h"
 #include "nephele/sky.h"
 #include "sky/stars.h"
+#include "weather/weather_state.h"
 
 namespace nephele {
 
@@ -310,31 +311,85 @@ void set_atmosphere(gpu::FrameParams& f, const Scene& scene) {
       scene.atmosphere.angular_multiple_scattering ? glsl::MS_ANGULAR : glsl::MS_ISOTROPIC, 0, 0, 0);
 }
 
+std::vector<VolumetricLayer> volumetric_layers(const Scene& scene) {
+  const CloudParams& c = scene.clouds;
+  std::vector<VolumetricLayer> layers;
+  const glm::vec2 low_m(c.bottom_altitude_m, c.top_altitude_m);
+  // A storm's cells fill the whole shell.
+  layers.push_back(
+      {low_m,
+       c.precipitation > 0.0f ? low_m : weather::clouds_in_shell_m(c.type, c.coverage, low_m),
+       c.coverage, c.density, c.type, c.wind_mps, 0});
+  const HighCloudParams& h = scene.high_clouds;
+  const glm::vec2 high_m(h.bottom_altitude_m, h.top_altitude_m);
+  if (h.coverage > 0.0f)
+    layers.push_back({high_m, weather::clouds_in_shell_m(h.type, h.coverage, high_m), h.coverage,
+                      h.density, h.type, h.wind_mps, 1});
+  for (size_t i = 0; i < scene.cloud_layers.size() && layers.size() < size_t(kMaxCloudLayers);
+       ++i) {
+    const CloudLayerParams& l = scene.cloud_layers[i];
+    if (!(l.oktas > 0.0f)) continue;
+    layers.push_back(
+        {weather::cloud_layer_shell_m(l),
+         {l.base_m, l.top_m},
+         weather::cloud_layer_coverage(l),
+         l.density,
+         weather::genus_type(weather::parse_genus(l.genus).value_or(weather::Genus::Stratocumulus)),
+         l.wind_mps,
+         int(layers.size())});
+  }
+  return layers;
+}
+
 glm::vec2 cloud_shell_m(const Scene& scene) {
-  const float top_m = scene.high_clouds.coverage > 0.0f ? scene.high_clouds.top_altitude_m
-                                                       : scene.clouds.top_altitude_m;
-  return {scene.clouds.bottom_altitude_m, top_m};
+  glm::vec2 shell = {scene.clouds.bottom_altitude_m, scene.clouds.top_altitude_m};
+  for (const VolumetricLayer& l : volumetric_layers(scene))
+    shell = {std::min(shell.x, l.shell_m.x), std::max(shell.y, l.shell_m.y)};
+  return shell;
 }
 
 float cloud_relative_drift_m(const Scene& scene) {
   const CloudParams& c = scene.clouds;
   float speed_mps =
       std::max({glm::length(c.wind_shear_mps), glm::length(c.detail_drift_mps), c.flow_speed_mps});
-  if (scene.high_clouds.coverage > 0.0f)
-    speed_mps = std::max(speed_mps, glm::length(scene.high_clouds.wind_mps - c.wind_mps) +
-                                        glm::length(c.wind_shear_mps));
+  for (const VolumetricLayer& l : volumetric_layers(scene))
+    speed_mps =
+        std::max(speed_mps, glm::length(l.wind_mps - c.wind_mps) + glm::length(c.wind_shear_mps));
   return speed_mps * std::abs(scene.time_s);
 }
 
 namespace {
 
-// The GPU form of a layer; `weather_offset` is where on the weather map it reads (tiles).
-gpu::CloudLayerGpu cloud_layer(float planet_m, float bottom_m, float top_m, float coverage,
-                               float density, float type, float precipitation,
-                               glm::vec2 wind_mps, float time_s, glm::vec2 weather_offset) {
-  return {glm::vec4(planet_m + bottom_m, planet_m + top_m, weather_offset),
-          glm::vec4(coverage, density, type, precipitation),
-          glm::vec4(wind_mps * time_s, wind_mps)};
+// The layers' GPU form. Each reads its own part of the weather map, so that its clouds are not
+// stacked over the others'. Where two shells overlap (a shell holds more than its clouds: a
+// cumulus' top fifth, an altocumulus' lowest 30%), each layer is drawn up to half way between
+// its clouds and the other's. A slot without a layer lies beyond the atmosphere, where no
+// sample reaches.
+void set_cloud_layers(gpu::FrameParams& f, const Scene& scene, float planet_m, float top_m) {
+  const std::vector<VolumetricLayer> layers = volumetric_layers(scene);
+  std::vector<glm::vec2> band(layers.size());
+  for (size_t i = 0; i < layers.size(); ++i) band[i] = layers[i].shell_m;
+  for (size_t i = 0; i < layers.size(); ++i)
+    for (size_t j = 0; j < layers.size(); ++j)
+      if (i != j && layers[i].clouds_m.y <= layers[j].clouds_m.x) {  // i below j
+        const float meet_m = 0.5f * (layers[i].clouds_m.y + layers[j].clouds_m.x);
+        band[i].y = std::min(band[i].y, meet_m);
+        band[j].x = std::max(band[j].x, meet_m);
+      }
+  const float off_m = 2.0f * (top_m - planet_m);
+  for (int k = 0; k < gpu::CLOUD_LAYERS; ++k)
+    f.cloud_layers[k] = {glm::vec4(planet_m + off_m, planet_m + off_m + 1.0f, 0.0f, 0.0f),
+                         glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(planet_m + off_m)};
+  const float precipitation = scene.clouds.precipitation;
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const VolumetricLayer& l = layers[i];
+    const float slot = float(l.slot);
+    f.cloud_layers[l.slot] = {
+        glm::vec4(planet_m + l.shell_m, slot * glm::vec2(0.37f, 0.61f)),
+        glm::vec4(l.coverage, l.density, l.type, l.slot == 0 ? precipitation : 0.0f),
+        glm::vec4(l.wind_mps * scene.time_s, l.wind_mps),
+        glm::vec4(planet_m + band[i], l.slot == 0 ? 0.0f : 1.0f, 0.0f)};
+  }
 }
 
 }  // namespace
@@ -400,18 +455,7 @@ void set_cloud_field(gpu::FrameParams& f, const Scene& scene) {
   const bool own_g = optics.droplets || c.lighting != "seed";
   f.cloud_droplets = glm::vec4(sigma[4] / sigma_max, optics.droplets ? 1.0f : 0.0f, g1,
                                own_g ? g1 : glsl::CLOUD_DROPLET_G);
-  f.cloud_layers[0] = cloud_layer(planet_m, c.bottom_altitude_m, c.top_altitude_m, c.coverage,
-                                  c.density, c.type, c.precipitation, c.wind_mps, scene.time_s,
-                                  glm::vec2(0.0f));
-  // The high layer reads another part of the weather map, so its clouds are not stacked over
-  // the low ones. One that is off lies beyond the atmosphere, where no sample reaches.
-  const HighCloudParams& hi = scene.high_clouds;
-  const bool high = hi.coverage > 0.0f;
-  const float off_m = 2.0f * (top_m - planet_m);
-  f.cloud_layers[1] = cloud_layer(planet_m, high ? hi.bottom_altitude_m : off_m,
-                                  high ? hi.top_altitude_m : off_m + 1.0f, hi.coverage,
-                                  hi.density, hi.type, 0.0f, hi.wind_mps, scene.time_s,
-                                  glm::vec2(0.37f, 0.61f));
+  set_cloud_layers(f, scene, planet_m, top_m);
   f.cloud_wind = glm::vec4(c.wind_shear_mps, c.wind_skew_s, glsl::shear_time_s(scene.time_s));
   f.cloud_detail_wind = glm::vec4(c.detail_drift_mps * scene.time_s, c.curl_distortion_m);
   // The flow map: the curl noise stretched over kFlowMapPeriodM.

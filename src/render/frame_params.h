@@ -102,13 +102,24 @@ void set_atmosphere(gpu::FrameParams& f, const Scene& scene);
 // of this size: eddies about 4 km across (its coarsest octave has 4 cells a tile).
 constexpr float kFlowMapPeriodM = 16000.0f;
 
-// The altitudes (m above ground) of the cloud shell: the main layer's bottom, and the top of
-// the highest volumetric layer that has coverage.
+// A volumetric layer that is there (layer 0, clouds, always), as the renderer draws it: its
+// shell and where its clouds' bases and tops are (m above ground: weather::clouds_in_shell_m
+// for clouds and high_clouds), its coverage, density, type and wind, and its slot in
+// FrameParams::cloud_layers.
+struct VolumetricLayer {
+  glm::vec2 shell_m, clouds_m;
+  float coverage, density, type;
+  glm::vec2 wind_mps;
+  int slot;
+};
+std::vector<VolumetricLayer> volumetric_layers(const Scene& scene);
+// The altitudes (m above ground) of the cloud shell: from the lowest volumetric layer's bottom
+// to the highest's top.
 glm::vec2 cloud_shell_m(const Scene& scene);
 
 // How far (m) the clouds' features have moved since time 0 relative to the main layer's wind
 // frame (the light volume's): the wind's growth at the top, the detail noise's own wind and
-// the high layer's wind. The light volume is rebuilt as this grows.
+// the other layers' winds. The light volume is rebuilt as this grows.
 float cloud_relative_drift_m(const Scene& scene);
 
 // The cloud field's part of the frame parameters (what noise_density_inc.glsl reads: the

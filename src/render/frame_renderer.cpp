@@ -495,7 +495,7 @@ FrameImages FrameRenderer::Impl::record_frame(VkCommandBuffer cmd, const Scene& 
   FramePlan plan;
   plan.classic = scene.clouds.model != CloudModel::Nephele;
   plan.volumetric =
-      !plan.classic && (scene.clouds.coverage > 0.0f || scene.high_clouds.coverage > 0.0f ||
+      !plan.classic && (scene.clouds.coverage > 0.0f || volumetric_layers(scene).size() > 1 ||
                         !scene.voxel_clouds.empty());
   plan.display = options.display;
   FramePrepare prepare{scene, params, slot, still, s.width, s.height, &options, &lights};

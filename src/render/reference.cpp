@@ -115,7 +115,7 @@ gpu::FrameParams FrameRenderer::Impl::planet_reference_params(const Scene& scene
   const auto has_noise = [](const gpu::CloudLayerGpu& l) { return l.shape.x > 0.0f || l.shape.w > 0.0f; };
   if (options.majorant_grid != MajorantGrid::kNone && scene.quality.mode == MarchMode::Default &&
       params.cloud_flow.x == 0.0f &&
-      (has_noise(params.cloud_layers[0]) || has_noise(params.cloud_layers[1]))) {
+      std::any_of(std::begin(params.cloud_layers), std::end(params.cloud_layers), has_noise)) {
     if (noise_bounds_seed != scene.noise_seed) {
       const gpu::Texture& base = noise.base();
       const size_t bytes = size_t(base.width()) * base.height() * base.depth() * 4;

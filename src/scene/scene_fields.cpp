@@ -764,6 +764,34 @@ std::string voxel_cloud_key(size_t index) {
   return std::string(kVoxelCloudsKey) + "[" + std::to_string(index) + "]";
 }
 
+// LAYER_FIELD(oktas, note[, range[, choices]]) is the key oktas of a [[cloud_layers]] table.
+#define LAYER_FIELD(name, note, ...)            \
+  CloudLayerField {                             \
+#name, +[](CloudLayerParams & c) -> auto& { \
+      return c.name;                            \
+    }                                           \
+    , note __VA_OPT__(, ) __VA_ARGS__           \
+  }
+
+const std::vector<CloudLayerField>& cloud_layer_fields() {
+  static const std::vector<CloudLayerField> fields = {
+      LAYER_FIELD(genus, "the clouds drawn", {},
+                  {std::begin(kCloudLayerGenera), std::end(kCloudLayerGenera)}),
+      LAYER_FIELD(base_m, "its clouds' bases above the ground", closed(0, 2e4)),
+      LAYER_FIELD(top_m, "its clouds' tops above the ground, > base_m", closed(0, 2e4)),
+      LAYER_FIELD(oktas, "the sky it covers seen from the ground; 0 = none", closed(0, 8)),
+      LAYER_FIELD(density, "as clouds.density", closed(0, 1)),
+      LAYER_FIELD(wind_mps, "east, north (m/s)", closed(-200, 200)),
+  };
+  return fields;
+}
+
+#undef LAYER_FIELD
+
+std::string cloud_layer_key(size_t index) {
+  return std::string(kCloudLayersKey) + "[" + std::to_string(index) + "]";
+}
+
 bool ends_with_ignoring_case(std::string_view text, std::string_view suffix) {
   if (text.size() < suffix.size()) return false;
   for (size_t i = 0; i < suffix.size(); ++i)
@@ -885,10 +913,6 @@ ValueShape value_shape(const FieldAccess& access) {
   return shape_of<Scene>(access);
 }
 
-ValueShape value_shape(const VoxelFieldAccess& access) {
-  return shape_of<VoxelCloudParams>(access);
-}
-
 bool is_integer_field(const Field& field) {
   return value_shape(field.access) == ValueShape::kInteger;
 }
@@ -963,8 +987,9 @@ std::string field_comment(const Field& field) {
   return comment(allowed_text(field), field.note);
 }
 
-std::string field_comment(const VoxelField& field) {
-  return comment(allowed_text(field.range, {}, value_shape(field.access)), field.note);
+std::string field_comment(const Range& range, const std::vector<std::string_view>& choices,
+                          ValueShape shape, std::string_view note) {
+  return comment(allowed_text(range, choices, shape), note);
 }
 
 }  // namespace scene_detail

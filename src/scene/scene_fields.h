@@ -7,6 +7,8 @@
 #include <glm/vec3.hpp>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -90,22 +92,49 @@ struct Section {
   std::vector<std::string_view> extra_keys;  // keys the reader handles itself
 };
 
-// The keys of one [[voxel_clouds]] table (Scene::voxel_clouds, an array the field table above
-// cannot hold: the reader, the writer and validation go through this list instead).
-using VoxelFieldAccess =
-    std::variant<float& (*)(VoxelCloudParams&), int& (*)(VoxelCloudParams&),
-                 uint32_t& (*)(VoxelCloudParams&), glm::vec2& (*)(VoxelCloudParams&),
-                 glm::vec3& (*)(VoxelCloudParams&), std::string& (*)(VoxelCloudParams&),
-                 bool& (*)(VoxelCloudParams&)>;
+// The keys of one table of an array of tables ([[voxel_clouds]], [[cloud_layers]]: arrays the
+// field table above cannot hold; the reader, the writer and validation go through these lists).
+template <typename T>
+using ArrayFieldAccess =
+    std::variant<float& (*)(T&), int& (*)(T&), uint32_t& (*)(T&), glm::vec2& (*)(T&),
+                 glm::vec3& (*)(T&), std::string& (*)(T&), bool& (*)(T&)>;
 
-struct VoxelField {
+template <typename T>
+struct ArrayField {
   std::string_view name;  // key inside the table, e.g. "density"
-  VoxelFieldAccess access;
+  ArrayFieldAccess<T> access;
   std::string_view note;  // what it means (field_comment adds the range)
   Range range{};
+  std::vector<std::string_view> choices{};  // strings: the only values allowed
 };
-std::string field_comment(const VoxelField& field);
-ValueShape value_shape(const VoxelFieldAccess& access);
+using VoxelField = ArrayField<VoxelCloudParams>;
+using CloudLayerField = ArrayField<CloudLayerParams>;
+
+template <typename T>
+ValueShape value_shape(const ArrayFieldAccess<T>& access) {
+  return std::visit(
+      [](auto get) {
+        using V = std::remove_reference_t<decltype(get(std::declval<T&>()))>;
+        if constexpr (std::is_same_v<V, float>) return ValueShape::kNumber;
+        if constexpr (std::is_same_v<V, int> || std::is_same_v<V, uint32_t>)
+          return ValueShape::kInteger;
+        if constexpr (std::is_same_v<V, glm::vec2>) return ValueShape::kVec2;
+        if constexpr (std::is_same_v<V, glm::vec3>) return ValueShape::kVec3;
+        if constexpr (std::is_same_v<V, std::string>) return ValueShape::kString;
+        return ValueShape::kOther;
+      },
+      access);
+}
+std::string field_comment(const Range& range, const std::vector<std::string_view>& choices,
+                          ValueShape shape, std::string_view note);
+template <typename T>
+std::string field_comment(const ArrayField<T>& field) {
+  return field_comment(field.range, field.choices, value_shape(field.access), field.note);
+}
+template <typename T>
+std::string allowed_text(const ArrayField<T>& field) {
+  return allowed_text(field.range, field.choices, value_shape(field.access));
+}
 
 // The array's top-level key.
 constexpr std::string_view kVoxelCloudsKey = "voxel_clouds";
@@ -115,6 +144,15 @@ const std::vector<VoxelField>& voxel_cloud_fields();
 inline constexpr std::string_view kVoxelCloudGeoKeys[] = {"lat_deg", "lon_deg", "altitude_m"};
 // "voxel_clouds[2]": how messages name cloud i (0-based).
 std::string voxel_cloud_key(size_t index);
+
+// [[cloud_layers]] (Scene::cloud_layers): its key, its tables' fields in the order scene_to_toml
+// writes them, and "cloud_layers[1]", how messages name layer i (0-based).
+constexpr std::string_view kCloudLayersKey = "cloud_layers";
+const std::vector<CloudLayerField>& cloud_layer_fields();
+std::string cloud_layer_key(size_t index);
+// The genera a [[cloud_layers]] table's genus may name.
+inline constexpr std::string_view kCloudLayerGenera[] = {"stratus", "stratocumulus", "altocumulus",
+                                                         "cumulus", "cumulonimbus"};
 
 // Whether `text` ends with `suffix` (given in lower case), ignoring the case of `text`'s letters:
 // file names' extensions ("CLOUD.VDB" ends with ".vdb").
@@ -140,8 +178,10 @@ const Field* find_field(std::string_view key);
 // The field's value as TOML literal text (scene_writer.cpp).
 std::string field_value_text(const Scene& scene, const Field& field);
 
-// A [[voxel_clouds]] field's value as TOML literal text.
-std::string voxel_field_value_text(const VoxelCloudParams& cloud, const VoxelField& field);
+// A field's value in one table of an array of tables as TOML literal text (VoxelCloudParams,
+// CloudLayerParams).
+template <typename T>
+std::string array_field_value_text(const T& item, const ArrayField<T>& field);
 
 // Reads TOML literal text into the field with the scene file's type rules (scene_io.cpp);
 // throws InputError "key = value: what is allowed" and leaves the scene unchanged.

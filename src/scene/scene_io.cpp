@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <span>
 #include <sstream>
 
 #include "nephele/camera_path.h"
@@ -111,7 +112,6 @@ using scene_detail::Field;
 using scene_detail::kMaxKeyParts;
 using scene_detail::line_of_too_deep_key;
 using scene_detail::Section;
-using scene_detail::VoxelField;
 
 // A preset may start from another preset; this bounds the chain (and breaks cycles).
 constexpr int kMaxPresetDepth = 8;
@@ -172,15 +172,8 @@ std::string allowed_keys(const Section& section) {
       if (!nested.name.empty() && nested.name.find('.') == std::string_view::npos)
         names.push_back(std::string("[").append(nested.name).append("]"));
   if (section.name.empty())
-    names.push_back(std::string("[[").append(scene_detail::kVoxelCloudsKey).append("]]"));
-  return join(names);
-}
-
-// Keys allowed in a [[voxel_clouds]] table, for "unknown key" messages.
-std::string allowed_voxel_cloud_keys() {
-  std::vector<std::string> names;
-  for (const VoxelField& field : scene_detail::voxel_cloud_fields()) names.emplace_back(field.name);
-  for (std::string_view geo : scene_detail::kVoxelCloudGeoKeys) names.emplace_back(geo);
+    for (std::string_view array : {scene_detail::kCloudLayersKey, scene_detail::kVoxelCloudsKey})
+      names.push_back(std::string("[[").append(array).append("]]"));
   return join(names);
 }
 
@@ -219,6 +212,10 @@ class SceneReader {
       if (name == "preset") continue;
       if (name == scene_detail::kVoxelCloudsKey) {
         read_voxel_clouds(node, scene, geo_positions);
+        continue;
+      }
+      if (name == scene_detail::kCloudLayersKey) {
+        read_array(node, name, scene_detail::cloud_layer_fields(), {}, scene.cloud_layers);
         continue;
       }
       if (const Field* field = find_field(top, name)) {
@@ -285,34 +282,48 @@ class SceneReader {
   // [[voxel_clouds]]: the file's array replaces a preset's (as any key does).
   void read_voxel_clouds(const toml::node& node, Scene& scene,
                          std::vector<GeoPosition>& geo_positions) const {
-    const std::string array_key(scene_detail::kVoxelCloudsKey);
+    read_array(node, scene_detail::kVoxelCloudsKey, scene_detail::voxel_cloud_fields(),
+               scene_detail::kVoxelCloudGeoKeys, scene.voxel_clouds);
+    const toml::array& array = *node.as_array();
+    for (size_t i = 0; i < array.size(); ++i) {
+      VoxelCloudParams& cloud = scene.voxel_clouds[i];
+      cloud.file = resolve_path(cloud.file);
+      if (std::optional<GeoPosition> geo = read_voxel_cloud_geo(i, *array[i].as_table()))
+        geo_positions.push_back(*geo);
+    }
+  }
+
+  // An array of tables ([[voxel_clouds]], [[cloud_layers]]) into `items`, replacing a preset's
+  // (as any key does); the keys in `own_keys` are left to the caller.
+  template <typename T>
+  void read_array(const toml::node& node, std::string_view key,
+                  const std::vector<scene_detail::ArrayField<T>>& fields,
+                  std::span<const std::string_view> own_keys, std::vector<T>& items) const {
+    const std::string array_key(key);
     const toml::array* array = node.as_array();
     if (!array || !std::all_of(array->begin(), array->end(),
                                [](const toml::node& item) { return item.is_table(); }))
       fail_value(node, array_key, "expected an array of tables [[" + array_key + "]]");
-    scene.voxel_clouds.assign(array->size(), VoxelCloudParams{});
+    items.assign(array->size(), T{});
     for (size_t i = 0; i < array->size(); ++i) {
       const toml::table& table = *(*array)[i].as_table();
-      const std::string prefix = scene_detail::voxel_cloud_key(i);
-      VoxelCloudParams& cloud = scene.voxel_clouds[i];
-      for (const auto& [key, value] : table) {
-        const std::string name(key.str());
+      const std::string prefix = array_key + "[" + std::to_string(i) + "]";
+      for (const auto& [name_key, value] : table) {
+        const std::string name(name_key.str());
         const std::string full_key = prefix + "." + name;
-        if (std::find(std::begin(scene_detail::kVoxelCloudGeoKeys),
-                      std::end(scene_detail::kVoxelCloudGeoKeys),
-                      name) != std::end(scene_detail::kVoxelCloudGeoKeys))
-          continue;  // read_voxel_cloud_geo
-        const auto& fields = scene_detail::voxel_cloud_fields();
+        if (std::find(own_keys.begin(), own_keys.end(), name) != own_keys.end()) continue;
         const auto field = std::find_if(fields.begin(), fields.end(),
-                                        [&](const VoxelField& f) { return f.name == name; });
-        if (field == fields.end())
-          fail(key.source(), "unknown key '" + shorten_for_message(full_key) + "' (allowed in [[" +
-                                 array_key + "]]: " + allowed_voxel_cloud_keys() + ")");
-        std::visit([&](auto access) { read_value(value, full_key, access(cloud)); }, field->access);
+                                        [&](const auto& f) { return f.name == name; });
+        if (field == fields.end()) {
+          std::vector<std::string> names;
+          for (const auto& f : fields) names.emplace_back(f.name);
+          for (std::string_view own : own_keys) names.emplace_back(own);
+          fail(name_key.source(), "unknown key '" + shorten_for_message(full_key) +
+                                      "' (allowed in [[" + array_key + "]]: " + join(names) + ")");
+        }
+        std::visit([&](auto access) { read_value(value, full_key, access(items[i])); },
+                   field->access);
       }
-      cloud.file = resolve_path(cloud.file);
-      if (std::optional<GeoPosition> geo = read_voxel_cloud_geo(i, table))
-        geo_positions.push_back(*geo);
     }
   }
 

@@ -71,13 +71,18 @@ std::string scene_detail::field_value_text(const Scene& scene, const scene_detai
   return text;
 }
 
-std::string scene_detail::voxel_field_value_text(const VoxelCloudParams& cloud,
-                                                const scene_detail::VoxelField& field) {
-  VoxelCloudParams copy = cloud;
+template <typename T>
+std::string scene_detail::array_field_value_text(const T& item,
+                                                 const scene_detail::ArrayField<T>& field) {
+  T copy = item;  // the field table hands out mutable references
   std::string text;
   std::visit([&](auto access) { text = toml_value(access(copy)); }, field.access);
   return text;
 }
+template std::string scene_detail::array_field_value_text(const VoxelCloudParams&,
+                                                          const scene_detail::VoxelField&);
+template std::string scene_detail::array_field_value_text(const CloudLayerParams&,
+                                                          const scene_detail::CloudLayerField&);
 
 // fov_deg is written when it is the form the camera gives its field of view in (the reader
 // refuses fov_deg with a non-zero horizontal_fov_deg or focal_length_mm); the others always, 0
@@ -110,16 +115,21 @@ std::string scene_to_toml(const Scene& scene) {
     }
   }
   // Arrays of tables go last: a [[table]] ends only at the next header.
-  for (VoxelCloudParams cloud : scene.voxel_clouds) {
+  for (const CloudLayerParams& layer : scene.cloud_layers) {
+    out += "\n[[" + std::string(scene_detail::kCloudLayersKey) + "]]\n";
+    for (const scene_detail::CloudLayerField& field : scene_detail::cloud_layer_fields())
+      out += std::string(field.name) + " = " + scene_detail::array_field_value_text(layer, field) +
+             "  # " + scene_detail::field_comment(field) + "\n";
+  }
+  for (const VoxelCloudParams& cloud : scene.voxel_clouds) {
     out += "\n[[" + std::string(scene_detail::kVoxelCloudsKey) + "]]\n";
     for (const scene_detail::VoxelField& field : scene_detail::voxel_cloud_fields()) {
       // The source not used is left out (an empty one reads back as empty anyway).
       if ((field.name == "file" && cloud.file.empty()) ||
           (field.name == "preset" && cloud.preset.empty()))
         continue;
-      std::string line = std::string(field.name) + " = ";
-      std::visit([&](auto access) { line += toml_value(access(cloud)); }, field.access);
-      out += line + "  # " + scene_detail::field_comment(field) + "\n";
+      out += std::string(field.name) + " = " + scene_detail::array_field_value_text(cloud, field) +
+             "  # " + scene_detail::field_comment(field) + "\n";
     }
   }
   return out;

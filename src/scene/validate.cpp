@@ -10,12 +10,13 @@
 #include <type_traits>
 #include <variant>
 
+#include "image/input_images.h"
 #include "nephele/error.h"
 #include "nephele/scene_io.h"
 #include "nephele/sky.h"
 #include "scene/scene_fields.h"
-#include "image/input_images.h"
 #include "terrain/heightfield.h"
+#include "weather/weather_state.h"
 
 namespace nephele {
 namespace {
@@ -255,9 +256,73 @@ struct LayerTop {
   float altitude_m;
 };
 LayerTop highest_layer_top(const Scene& scene) {
+  LayerTop top{"clouds.top_altitude_m", scene.clouds.top_altitude_m};
   if (scene.high_clouds.coverage > 0.0f)
-    return {"high_clouds.top_altitude_m", scene.high_clouds.top_altitude_m};
-  return {"clouds.top_altitude_m", scene.clouds.top_altitude_m};
+    top = {"high_clouds.top_altitude_m", scene.high_clouds.top_altitude_m};
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k;
+    for (int i = 0; i < kMaxCloudLayers - 2; ++i)
+      k.push_back(scene_detail::cloud_layer_key(size_t(i)) + ".top_m");
+    return k;
+  }();
+  for (size_t i = 0; i < scene.cloud_layers.size() && i < keys.size(); ++i)
+    if (scene.cloud_layers[i].oktas > 0.0f && scene.cloud_layers[i].top_m > top.altitude_m)
+      top = {keys[i].c_str(), scene.cloud_layers[i].top_m};
+  return top;
+}
+
+// [[cloud_layers]]: each table's declared rules, its base below its top, and the clouds of
+// those that are there apart from each other and from the shells of clouds and high_clouds.
+void check_cloud_layers(const Checker& check, const Scene& scene) {
+  const std::vector<CloudLayerParams>& layers = scene.cloud_layers;
+  if (layers.size() > size_t(kMaxCloudLayers - 2))
+    check.fail(
+        "cloud_layers", std::to_string(layers.size()) + " layers",
+        "at most " + std::to_string(kMaxCloudLayers - 2) + " besides clouds and high_clouds");
+  struct Span {
+    std::string name;  // as the message says it
+    glm::vec2 m;       // bottom, top above the ground
+    std::string note = "";
+  };
+  // Where the clouds of clouds and high_clouds are in their shells (their genus and coverage
+  // fill part of it); a storm's cells fill all of clouds'.
+  std::vector<Span> taken;
+  const CloudParams& c = scene.clouds;
+  const glm::vec2 low_m(c.bottom_altitude_m, c.top_altitude_m);
+  const char* where = ", where its type and coverage put them in its shell";
+  if (c.precipitation > 0.0f)
+    taken.push_back({"clouds' shell", low_m, ", which its storm cells fill"});
+  else if (c.coverage > 0.0f)
+    taken.push_back(
+        {"clouds' clouds", weather::clouds_in_shell_m(c.type, c.coverage, low_m), where});
+  const HighCloudParams& h = scene.high_clouds;
+  if (h.coverage > 0.0f)
+    taken.push_back(
+        {"high_clouds' clouds",
+         weather::clouds_in_shell_m(h.type, h.coverage, {h.bottom_altitude_m, h.top_altitude_m}),
+         where});
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const std::string prefix = scene_detail::cloud_layer_key(i);
+    CloudLayerParams& fields = const_cast<CloudLayerParams&>(layers[i]);  // read only
+    for (const scene_detail::CloudLayerField& field : scene_detail::cloud_layer_fields())
+      std::visit(
+          [&](auto access) {
+            check_declared(check, prefix + "." + std::string(field.name), access(fields),
+                           field.range, field.choices, scene_detail::allowed_text(field));
+          },
+          field.access);
+    const CloudLayerParams& l = layers[i];
+    check.below(prefix + ".base_m", l.base_m, prefix + ".top_m", l.top_m);
+    if (!(l.oktas > 0.0f)) continue;
+    for (const Span& other : taken)
+      if (l.base_m < other.m.y && other.m.x < l.top_m)
+        check.fail(prefix + ".base_m", format_float(l.base_m),
+                   "its clouds (" + format_float(l.base_m) + "-" + format_float(l.top_m) +
+                       " m) overlap " + other.name + " (" + format_float(std::round(other.m.x)) +
+                       "-" + format_float(std::round(other.m.y)) + " m" + other.note +
+                       "); layers that are there lie apart");
+    taken.push_back({prefix + "'s clouds", {l.base_m, l.top_m}});
+  }
 }
 
 void check_cirrus(const Checker& check, const CirrusParams& cirrus, const Scene& scene) {
@@ -501,6 +566,7 @@ void validate_scene(const Scene& scene, const ParamNamer& display_name) {
   check_atmosphere(check, scene.atmosphere);
   check_clouds(check, scene.clouds);
   check_high_clouds(check, scene.high_clouds, scene.clouds);
+  check_cloud_layers(check, scene);
   check_cirrus(check, scene.cirrus, scene);
   check_layers(check, scene);
   check_precipitation(check, scene);

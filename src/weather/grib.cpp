@@ -439,7 +439,9 @@ WeatherState weather_from_grib(const GribCover& cover, const WeatherState& base,
     layer.type = -1.0f;
     layer.coverage_oktas = 8.0f * most;
     const glm::vec2 span = levels_span(cover, ground_m, from_m, to_m).value_or(cloud_m);
-    const glm::vec2 shell = cloud_shell_m(genus_type(genus), span.x, span.y);
+    const float type = genus_type(genus);
+    const glm::vec2 shell =
+        cloud_shell_m(type, coverage_for_oktas(layer.coverage_oktas, type), span.x, span.y);
     layer.base_m = shell.x;
     layer.top_m = shell.y;
     return span;

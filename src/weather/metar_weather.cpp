@@ -116,7 +116,8 @@ CloudLayer cloud_layer(const Group& g, float own_oktas, float density) {
   CloudLayer layer;
   layer.genus = g.genus;
   layer.type = g.type == genus_type(g.genus) ? -1.0f : g.type;
-  const glm::vec2 shell = cloud_shell_m(g.type, g.base_m, g.top_m);
+  const glm::vec2 shell =
+      cloud_shell_m(g.type, coverage_for_oktas(own_oktas, g.type), g.base_m, g.top_m);
   layer.base_m = shell.x;
   layer.top_m = shell.y;
   layer.coverage_oktas = own_oktas;
@@ -192,25 +193,30 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
       sheet = g;
     }
   }
-  // Two volumetric layers today: a cumulonimbus spans the others; otherwise the two nearest
-  // layers are drawn as one until two are left, and layers whose clouds overlap too.
+  // A cumulonimbus spans the others; otherwise layers whose clouds overlap are drawn as one,
+  // and the two nearest while there are more than the scene holds.
   const auto overlapping = [](const Group& low, const Group& high) {
     return low.top_m > high.base_m;
   };
   const bool cumulonimbus = std::any_of(volumetric.begin(), volumetric.end(), [](const Group& g) {
     return g.genus == Genus::Cumulonimbus;
   });
-  while (volumetric.size() > 1 &&
-         (cumulonimbus || volumetric.size() > 2 || overlapping(volumetric[0], volumetric[1]))) {
+  while (volumetric.size() > 1) {
     size_t k = 0;
     for (size_t j = 1; j + 1 < volumetric.size(); ++j)
       if (volumetric[j + 1].base_m - volumetric[j].top_m <
           volumetric[k + 1].base_m - volumetric[k].top_m)
         k = j;
+    // clouds and the [[cloud_layers]]: high_clouds is left off.
+    const bool too_many = volumetric.size() > size_t(kMaxCloudLayers - 1);
+    if (!cumulonimbus && !too_many && !overlapping(volumetric[k], volumetric[k + 1])) break;
     const Group m = merged(volumetric[k], volumetric[k + 1]);
     out.notes.push_back(
         volumetric[k].text + " and " + volumetric[k + 1].text + ": drawn as one layer (" +
-        (cumulonimbus ? "a cumulonimbus spans them" : "two volumetric layers") + ")");
+        (cumulonimbus ? "a cumulonimbus spans them"
+         : too_many   ? std::to_string(kMaxCloudLayers - 1) + " volumetric layers at most"
+                      : "their clouds overlap") +
+        ")");
     volumetric.erase(volumetric.begin() + long(k), volumetric.begin() + long(k) + 2);
     volumetric.insert(volumetric.begin() + long(k), m);
   }
@@ -224,34 +230,34 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
     below = total;
     return 8.0f * std::clamp(share, 0.0f, 1.0f);
   };
+  // The lowest (or the cumulonimbus) is drawn by clouds, the others by [[cloud_layers]], which
+  // take their clouds' own bases and tops (the renderer draws each layer up to half way to the
+  // next one's clouds, so no shell is cut); high_clouds is left off, clear of the low layer.
   s.low.coverage_oktas = 0.0f;
   s.high.coverage_oktas = 0.0f;
   s.sheet.coverage_oktas = 0.0f;
-  const char* slots[] = {"low", "high"};
+  s.more.clear();
   for (size_t k = 0; k < volumetric.size(); ++k) {
     const Group& g = volumetric[k];
     const float oktas = own(g);
-    CloudLayer& layer = k == 0 ? s.low : s.high;
-    layer = cloud_layer(g, oktas, layer.density);
-    out.layers.push_back(
-        {g.text, slots[k], g.genus, g.type, g.base_m, g.top_m, g.cover.drawn, oktas});
+    std::string slot = "low";
+    if (k == 0)
+      s.low = cloud_layer(g, oktas, s.low.density);
+    else {
+      s.more.push_back({g.genus, -1.0f, g.base_m, g.top_m, oktas, s.low.density, 0.0f});
+      slot = "cloud_layers[" + std::to_string(k - 1) + "]";
+    }
+    out.layers.push_back({g.text, slot, g.genus, g.type, g.base_m, g.top_m, g.cover.drawn, oktas});
   }
-  if (volumetric.size() == 2 && s.low.top_m > s.high.base_m) {
-    // The shells hold more than the clouds (a cumulus' top fifth, an altocumulus' lowest
-    // 30%): they meet half way between the low clouds' tops and the high clouds' bases.
-    const float meet_m = 0.5f * (volumetric[0].top_m + volumetric[1].base_m);
-    s.low.top_m = std::min(s.low.top_m, meet_m);
-    s.high.base_m = std::max(s.high.base_m, meet_m);
-  }
-  if (volumetric.size() < 2) {  // no high layer: keep it clear of the low one
-    s.high.base_m = std::max(s.high.base_m, s.low.top_m);
-    s.high.top_m = std::max(s.high.top_m, s.high.base_m + 1000.0f);
-  }
+  s.high.base_m = std::max(s.high.base_m, s.low.top_m);
+  s.high.top_m = std::max(s.high.top_m, s.high.base_m + 1000.0f);
+  float tops_m = s.low.top_m;  // the volumetric clouds' highest top, under the sheet
+  for (const CloudLayer& l : s.more) tops_m = std::max(tops_m, l.top_m);
   if (sheet) {
     const float oktas = own(*sheet);
     s.sheet.genus = sheet->genus;
     s.sheet.type = -1.0f;
-    s.sheet.base_m = s.sheet.top_m = std::max(sheet->base_m, s.high.top_m);
+    s.sheet.base_m = s.sheet.top_m = std::max(sheet->base_m, tops_m);
     s.sheet.coverage_oktas = oktas;
     out.layers.push_back({sheet->text, "sheet", sheet->genus, -1.0f, sheet->base_m, sheet->base_m,
                           sheet->cover.drawn, oktas});

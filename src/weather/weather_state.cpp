@@ -61,9 +61,13 @@ float checked_type(const std::string& name, const CloudLayer& layer, const Genus
 }
 
 // The sky covered (the dome's share with cloud T < 0.5, FrameStats::sky_cover_fraction) by a
-// layer's clouds.coverage, measured at 48 x 32 on lavapipe (stop 77, `nephele render
+// layer's clouds.coverage, measured at 48 x 32 on lavapipe (stop 81, `nephele render
 // --stats-json` with the default scene's seed and the high layer and the cirrus off) for each
-// genus in the shell a report gives it (coverage_for_oktas).
+// genus with its clouds where a report puts them (stratus 150-550 m, stratocumulus 460-1060,
+// altocumulus 2439-3039, cumulus 1220-2420, towering cumulus 910-4910, cumulonimbus 910-9000),
+// in the shell cloud_shell_m gives at each coverage. A stratus deck at 150 m leaves a sliver of
+// the horizon under it (0.998 at coverage 0.7-0.8, 0.990 at 1; taken as the 0.998 before it,
+// and 1 at 1, where coverage_for_oktas puts 8 oktas).
 constexpr float kCoverages[] = {0.0f,  0.30f, 0.35f, 0.40f, 0.45f, 0.50f,
                                 0.55f, 0.60f, 0.65f, 0.70f, 0.80f, 1.0f};
 constexpr size_t kCoverageSteps = std::size(kCoverages);
@@ -72,14 +76,16 @@ struct CoverCurve {
   float sky[kCoverageSteps];
 };
 constexpr CoverCurve kCoverCurves[] = {
-    {0.0f, {0, 0.0020f, 0.0217f, 0.0957f, 0.2061f, 0.3599f, 0.7144f, 0.9360f, 0.9978f, 1, 1, 1}},
-    {0.25f, {0, 0.0029f, 0.0251f, 0.1121f, 0.2512f, 0.5022f, 0.7019f, 0.9043f, 0.9924f, 1, 1, 1}},
+    {0.0f,
+     {0, 0.0024f, 0.0256f, 0.0955f, 0.2109f, 0.3518f, 0.7905f, 0.9900f, 0.9978f, 0.9983f, 0.9983f,
+      1}},
+    {0.25f, {0, 0.0078f, 0.0564f, 0.1819f, 0.3250f, 0.5928f, 0.7993f, 0.9624f, 0.9988f, 1, 1, 1}},
     {0.5f,
-     {0, 0.0034f, 0.0222f, 0.1069f, 0.2454f, 0.4380f, 0.6372f, 0.8174f, 0.9424f, 0.9902f, 1, 1}},
+     {0, 0.0076f, 0.0503f, 0.1880f, 0.3589f, 0.5557f, 0.7302f, 0.8774f, 0.9705f, 0.9968f, 1, 1}},
     {0.75f,
-     {0, 0.0037f, 0.0239f, 0.0886f, 0.2241f, 0.4272f, 0.6406f, 0.8364f, 0.9436f, 0.9854f, 1, 1}},
-    {0.875f, {0, 0.0525f, 0.1794f, 0.3660f, 0.5981f, 0.8374f, 0.9705f, 1, 1, 1, 1, 1}},
-    {1.0f, {0, 0.1619f, 0.4778f, 0.7522f, 0.9172f, 0.9895f, 1, 1, 1, 1, 1, 1}},
+     {0, 0.0178f, 0.0911f, 0.2502f, 0.4573f, 0.6677f, 0.8381f, 0.9458f, 0.9822f, 0.9988f, 1, 1}},
+    {0.875f, {0, 0.1079f, 0.3269f, 0.5745f, 0.7864f, 0.9348f, 0.9932f, 1, 1, 1, 1, 1}},
+    {1.0f, {0, 0.1802f, 0.5176f, 0.7998f, 0.9409f, 0.9917f, 1, 1, 1, 1, 1, 1}},
 };
 
 // The sky covered at `coverage` for `type`: each genus' curve, linear in coverage between its
@@ -212,6 +218,29 @@ float genus_type(Genus genus) {
   return float(index_of(kSheet, genus)) / float(std::size(kSheet) - 1);
 }
 
+std::optional<Genus> parse_genus(std::string_view name) {
+  for (Genus g : kVolumetric)
+    if (name == to_string(g)) return g;
+  for (Genus g : kSheet)
+    if (name == to_string(g)) return g;
+  return std::nullopt;
+}
+
+// The type a [[cloud_layers]] layer draws its genus at.
+static float cloud_layer_type(const CloudLayerParams& layer) {
+  const std::optional<Genus> genus = parse_genus(layer.genus);
+  return genus && !is_sheet_genus(*genus) ? genus_type(*genus) : genus_type(Genus::Stratocumulus);
+}
+
+glm::vec2 cloud_layer_shell_m(const CloudLayerParams& layer) {
+  return cloud_shell_m(cloud_layer_type(layer), cloud_layer_coverage(layer), layer.base_m,
+                       layer.top_m);
+}
+
+float cloud_layer_coverage(const CloudLayerParams& layer) {
+  return coverage_for_oktas(layer.oktas, cloud_layer_type(layer));
+}
+
 bool is_sheet_genus(Genus genus) {
   return index_of(kSheet, genus) >= 0;
 }
@@ -316,6 +345,9 @@ WeatherState weather_state(const Scene& scene) {
   state.low = volumetric_layer(c);
   const HighCloudParams& h = scene.high_clouds;
   state.high = volumetric_layer(h);
+  for (const CloudLayerParams& l : scene.cloud_layers)
+    state.more.push_back({parse_genus(l.genus).value_or(Genus::Stratocumulus), -1.0f, l.base_m,
+                          l.top_m, l.oktas, l.density, 0.0f});
   const CirrusParams& s = scene.cirrus;
   state.sheet = {nearest(kSheet, s.type),
                  s.type,
@@ -328,6 +360,7 @@ WeatherState weather_state(const Scene& scene) {
                                    {c.top_altitude_m, c.wind_mps + c.wind_shear_mps},
                                    {h.bottom_altitude_m, h.wind_mps},
                                    {s.altitude_m, s.wind_mps}};
+  for (const CloudLayerParams& l : scene.cloud_layers) levels.push_back({l.base_m, l.wind_mps});
   std::stable_sort(levels.begin(), levels.end(), [](const WindLevel& a, const WindLevel& b) {
     return a.altitude_m < b.altitude_m;
   });
@@ -338,7 +371,11 @@ WeatherState weather_state(const Scene& scene) {
   const bool one_profile = wind_at(state.wind, c.bottom_altitude_m) == c.wind_mps &&
                            wind_at(state.wind, c.top_altitude_m) - c.wind_mps == c.wind_shear_mps &&
                            wind_at(state.wind, h.bottom_altitude_m) == h.wind_mps &&
-                           wind_at(state.wind, s.altitude_m) == s.wind_mps;
+                           wind_at(state.wind, s.altitude_m) == s.wind_mps &&
+                           std::all_of(scene.cloud_layers.begin(), scene.cloud_layers.end(),
+                                       [&](const CloudLayerParams& l) {
+                                         return wind_at(state.wind, l.base_m) == l.wind_mps;
+                                       });
   if (!one_profile) state.wind.clear();
   state.visibility_m = visibility_m(scene);
   state.storm_growth = c.precipitation;
@@ -361,6 +398,11 @@ void apply_weather(const WeatherState& state, Scene& scene) {
   const float high_type = checked_type("high", state.high, kVolumetric, volumetric, false);
   const float sheet_type =
       checked_type("sheet", state.sheet, kSheet, "cirrus, cirrostratus or cirrocumulus", true);
+  if (state.more.size() > size_t(kMaxCloudLayers - 2))
+    fail("more", std::to_string(state.more.size()) + " layers",
+         "at most " + std::to_string(kMaxCloudLayers - 2) + " besides low and high");
+  for (size_t i = 0; i < state.more.size(); ++i)
+    checked_type("more[" + std::to_string(i) + "]", state.more[i], kVolumetric, volumetric, false);
   for (size_t i = 1; i < state.wind.size(); ++i)
     if (!(state.wind[i].altitude_m > state.wind[i - 1].altitude_m))
       fail("wind[" + std::to_string(i) + "].altitude_m", format_float(state.wind[i].altitude_m),
@@ -389,6 +431,17 @@ void apply_weather(const WeatherState& state, Scene& scene) {
   scene.lightning.flashes_per_min = state.lightning_per_min;
   HighCloudParams& h = scene.high_clouds;
   set_volumetric_layer(h, state.high, high_type);
+  std::vector<CloudLayerParams> more(state.more.size());
+  for (size_t i = 0; i < more.size(); ++i) {
+    const CloudLayer& from = state.more[i];
+    more[i].genus = to_string(from.genus);
+    more[i].base_m = from.base_m;
+    more[i].top_m = from.top_m;
+    more[i].oktas = from.coverage_oktas;
+    more[i].density = from.density;
+    // A new layer moves with the low one's wind when the state gives no profile.
+    more[i].wind_mps = i < scene.cloud_layers.size() ? scene.cloud_layers[i].wind_mps : c.wind_mps;
+  }
   CirrusParams& s = scene.cirrus;
   s.type = sheet_type;
   s.altitude_m = state.sheet.base_m;
@@ -402,7 +455,9 @@ void apply_weather(const WeatherState& state, Scene& scene) {
     c.wind_shear_mps = wind_at(state.wind, c.top_altitude_m) - c.wind_mps;
     h.wind_mps = wind_at(state.wind, h.bottom_altitude_m);
     s.wind_mps = wind_at(state.wind, s.altitude_m);
+    for (CloudLayerParams& l : more) l.wind_mps = wind_at(state.wind, l.base_m);
   }
+  scene.cloud_layers = std::move(more);
   // The haze: Mie extinction for the visibility, its single-scattering albedo kept (and left
   // exactly as it is when the visibility is the one it gives); none where the precipitation's
   // law alone hides more than the visibility says.
@@ -443,17 +498,72 @@ void apply_weather_keys(Scene& scene) {
   apply_weather(state, scene);  // its errors name weather.visibility_m, as the key is named
 }
 
-// The scene's shell [bottom, top] (m) in which clouds of `type` fill [base, top]: each type
-// fills its own part of the shell's height (clouds_inc.glsl's profiles: a stratus the lowest
-// fifth, an altocumulus a band in the middle), so the shell is set from where they are.
-glm::vec2 cloud_shell_m(float type, float base_m, float top_m) {
-  const float x = std::clamp(type, 0.0f, 1.0f) * float(glsl::CLOUD_GENERA - 1);
-  const int lo = std::min(int(x), glsl::CLOUD_GENERA - 2);
-  const float rise =
-      glm::mix(glsl::cloud_genus_profile(lo).x, glsl::cloud_genus_profile(lo + 1).x, x - float(lo));
-  const float fill_top = glsl::cloud_type_top(type);
-  const float height = (top_m - base_m) / (fill_top - rise);
-  const float bottom = std::max(base_m - rise * height, 0.0f);
+namespace {
+
+// Where each genus' clouds are in its shell (height fractions), by the layer's clouds.coverage:
+// from the lowest to the highest height at which at least a tenth as much of the layer's area
+// is cloud as at its cloudiest height, measured with Renderer::cloud_profile (64 bins of a
+// 2000 m shell, the default scene's seed; bin centres, so within 0.008; the same within a bin
+// for 500 and 8000 m shells). The genus profiles (clouds_inc.glsl) rise from and end at the
+// outer corners of their trapezoids, but the coverage's threshold cuts the weak ends: a
+// cumulus at 0.45 fills 0.07-0.31 of its shell, not 0-0.8, and the more of the sky it covers,
+// the higher its towers reach.
+constexpr float kFillCoverages[] = {0.30f, 0.35f, 0.40f, 0.45f, 0.50f, 0.55f,
+                                    0.60f, 0.70f, 0.80f, 0.90f, 1.00f};
+constexpr size_t kFillSteps = std::size(kFillCoverages);
+struct FillCurve {
+  float type;
+  float bottom[kFillSteps], top[kFillSteps];
+};
+constexpr FillCurve kFillCurves[] = {
+    {0.0f,
+     {.055f, .055f, .055f, .055f, .055f, .039f, .039f, .039f, .039f, .023f, .023f},
+     {.117f, .117f, .117f, .133f, .133f, .133f, .133f, .148f, .164f, .164f, .180f}},
+    {0.25f,
+     {.086f, .086f, .086f, .070f, .070f, .070f, .070f, .055f, .039f, .039f, .039f},
+     {.273f, .273f, .273f, .289f, .289f, .289f, .305f, .320f, .336f, .352f, .352f}},
+    {0.5f,
+     {.414f, .414f, .414f, .414f, .414f, .398f, .398f, .383f, .367f, .352f, .352f},
+     {.586f, .586f, .586f, .586f, .602f, .602f, .617f, .633f, .648f, .648f, .648f}},
+    {0.75f,
+     {.070f, .070f, .070f, .070f, .070f, .055f, .055f, .055f, .039f, .039f, .039f},
+     {.258f, .289f, .289f, .305f, .336f, .367f, .414f, .477f, .555f, .602f, .602f}},
+    {0.875f,
+     {.070f, .070f, .055f, .055f, .055f, .055f, .055f, .039f, .039f, .039f, .039f},
+     {.289f, .336f, .367f, .414f, .445f, .477f, .570f, .680f, .898f, .914f, .914f}},
+    {1.0f,
+     {.055f, .055f, .055f, .055f, .055f, .039f, .039f, .039f, .023f, .023f, .023f},
+     {.914f, .914f, .914f, .914f, .930f, .930f, .930f, .945f, .961f, .961f, .961f}},
+};
+
+}  // namespace
+
+glm::vec2 cloud_fill(float type, float coverage) {
+  const auto at = [x = std::clamp(coverage, kFillCoverages[0], 1.0f)](const FillCurve& c) {
+    size_t k = 1;
+    while (k + 1 < kFillSteps && kFillCoverages[k] < x) ++k;
+    const float t = std::clamp(
+        (x - kFillCoverages[k - 1]) / (kFillCoverages[k] - kFillCoverages[k - 1]), 0.0f, 1.0f);
+    return glm::mix(glm::vec2(c.bottom[k - 1], c.top[k - 1]), glm::vec2(c.bottom[k], c.top[k]), t);
+  };
+  const float x = std::clamp(type, 0.0f, 1.0f);
+  size_t k = 1;
+  while (k + 1 < std::size(kFillCurves) && kFillCurves[k].type < x) ++k;
+  const FillCurve& a = kFillCurves[k - 1];
+  const FillCurve& b = kFillCurves[k];
+  return glm::mix(at(a), at(b), std::clamp((x - a.type) / (b.type - a.type), 0.0f, 1.0f));
+}
+
+glm::vec2 clouds_in_shell_m(float type, float coverage, glm::vec2 shell_m) {
+  return shell_m.x + cloud_fill(type, coverage) * (shell_m.y - shell_m.x);
+}
+
+glm::vec2 cloud_shell_m(float type, float coverage, float base_m, float top_m) {
+  const glm::vec2 fill = cloud_fill(type, coverage);
+  float height = (top_m - base_m) / (fill.y - fill.x);
+  // A shell cannot begin below the ground: then the base is kept, and the tops are lower.
+  if (base_m - fill.x * height < 0.0f) height = base_m / fill.x;
+  const float bottom = std::max(base_m - fill.x * height, 0.0f);
   return {bottom, bottom + height};
 }
 

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <glm/vec2.hpp>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "nephele/scene.h"
@@ -56,6 +58,10 @@ const char* to_string(PrecipitationKind kind);  // "none", "rain", "drizzle", "s
 struct WeatherState {
   CloudLayer low;                                                                  // Scene::clouds
   CloudLayer high{Genus::Altocumulus, -1.0f, 6000.0f, 7000.0f, 0.0f, 0.4f, 0.0f};  // high_clouds
+  // More volumetric layers (Scene::cloud_layers, at most kMaxCloudLayers - 2), each at its
+  // base's wind. Unlike low's and high's (the renderer's shells), their base_m and top_m are
+  // where their clouds' bases and tops are, as a report gives them; their type is the genus'.
+  std::vector<CloudLayer> more;
   CloudLayer sheet{Genus::Cirrus, -1.0f, 9000.0f, 9000.0f, 0.0f, 0.0f, 0.3f};      // cirrus
   // By altitude, increasing. Empty: the scene's winds are left as they are (weather_state
   // gives none when the scene's layers' winds are no single profile).
@@ -99,9 +105,24 @@ float oktas_for_coverage(float coverage, float type);
 float sheet_coverage_for_oktas(float oktas, float type);
 float oktas_for_sheet_coverage(float coverage, float type);
 
-// The scene's shell [bottom, top] (m, above the ground) in which clouds of `type` (clouds.type's
-// scale) fill [base_m, top_m]: each type fills its own part of the shell's height.
-glm::vec2 cloud_shell_m(float type, float base_m, float top_m);
+// Where clouds of `type` (clouds.type's scale) at `coverage` are in their shell: (x) the
+// height fraction of their bases, (y) of their tops (measured; the more of the sky they cover,
+// the more of their genus' profile they fill).
+glm::vec2 cloud_fill(float type, float coverage);
+// The scene's shell [bottom, top] (m, above the ground) in which clouds of `type` at `coverage`
+// have their bases at base_m and their tops at top_m. A shell that would begin below the ground
+// begins at it and keeps the bases; the tops are then lower than asked.
+glm::vec2 cloud_shell_m(float type, float coverage, float base_m, float top_m);
+// Where the clouds of `type` at `coverage` in the shell `shell_m` have their bases and tops (m).
+glm::vec2 clouds_in_shell_m(float type, float coverage, glm::vec2 shell_m);
+
+// The genus named `name` ("stratus", ... "cirrocumulus", to_string's), if any.
+std::optional<Genus> parse_genus(std::string_view name);
+// A [[cloud_layers]] layer's shell [bottom, top] (m above ground; cloud_shell_m for its genus)
+// and its clouds.coverage (coverage_for_oktas); a genus it cannot draw counts as stratocumulus
+// (validation refuses it).
+glm::vec2 cloud_layer_shell_m(const CloudLayerParams& layer);
+float cloud_layer_coverage(const CloudLayerParams& layer);
 
 // The wind at the ground, `speed_mps` blowing from `from_deg` (clockwise from north), as
 // levels: at the ground, and 1.93 times it at 1 km and above (a 1/7 power law up to the

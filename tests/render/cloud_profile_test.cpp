@@ -133,3 +133,72 @@ TEST_F(CloudProfileTest, TheHighLayerKeepsItsOwnRange) {
   s.high_clouds.coverage = 0.0f;
   EXPECT_NEAR(shared_renderer().cloud_profile(s).altitude_m.back(), 4000.0f, 100.0f);
 }
+
+// Four volumetric layers, three of them given as a report gives them ([[cloud_layers]]: genus,
+// where the clouds' bases and tops are, oktas): each draws its clouds between its base and top,
+// the gaps between them stay empty, and a layer without oktas is gone.
+TEST_F(CloudProfileTest, ReportLayersDrawTheirCloudsBetweenTheirBasesAndTops) {
+  Scene s = genus(0.25f);  // stratocumulus, 1500-4000 m
+  s.clouds.bottom_altitude_m = 500.0f;
+  s.clouds.top_altitude_m = 1500.0f;
+  const auto layer = [](const char* genus, float base_m, float top_m, float oktas) {
+    nephele::CloudLayerParams l;
+    l.genus = genus;
+    l.base_m = base_m;
+    l.top_m = top_m;
+    l.oktas = oktas;
+    return l;
+  };
+  s.cloud_layers = {layer("altocumulus", 2500.0f, 3200.0f, 5.0f),
+                    layer("cumulus", 4200.0f, 5600.0f, 3.0f),
+                    layer("stratocumulus", 6500.0f, 7200.0f, 6.0f)};
+  const CloudProfile p = shared_renderer().cloud_profile(s);
+  print("four layers", p);
+  ASSERT_EQ(p.altitude_m.size(), 64u);
+  const float bin_m = p.altitude_m[1] - p.altitude_m[0];
+  // Each given layer's clouds, where a tenth as much of the area is cloud as at the layer's
+  // cloudiest height: from within 10% of its depth (or a bin) of its base to within that of
+  // its top.
+  for (const nephele::CloudLayerParams& l : s.cloud_layers) {
+    SCOPED_TRACE(l.genus);
+    const float slack_m = std::max(0.1f * (l.top_m - l.base_m), bin_m);
+    float lowest = 1e9f, highest = -1e9f, most = 0.0f, densest = 0.0f;
+    const auto near = [&](size_t i) {
+      return p.altitude_m[i] > l.base_m - 600.0f && p.altitude_m[i] < l.top_m + 600.0f;
+    };
+    for (size_t i = 0; i < p.density.size(); ++i)
+      if (near(i)) {
+        most = std::max(most, p.cloud_fraction[i]);
+        densest = std::max(densest, p.density[i]);
+      }
+    for (size_t i = 0; i < p.density.size(); ++i)
+      if (near(i) && p.cloud_fraction[i] >= 0.1f * most) {
+        lowest = std::min(lowest, p.altitude_m[i]);
+        highest = std::max(highest, p.altitude_m[i]);
+      }
+    std::printf("%s: clouds %.0f-%.0f m, given %.0f-%.0f\n", l.genus.c_str(), lowest, highest,
+                l.base_m, l.top_m);
+    EXPECT_GT(densest, 0.001f);
+    EXPECT_NEAR(lowest, l.base_m, slack_m);
+    EXPECT_NEAR(highest, l.top_m, slack_m);
+  }
+  // Between the layers' clouds there is none: between the low layer's and the altocumulus',
+  // the altocumulus' and the cumulus', and the cumulus' (whose last towers fade out by 6 km)
+  // and the stratocumulus'.
+  const float gaps[][2] = {{1000.0f, 2400.0f}, {3350.0f, 4050.0f}, {6100.0f, 6400.0f}};
+  for (const auto& gap : gaps)
+    for (size_t i = 0; i < p.density.size(); ++i)
+      if (p.altitude_m[i] > gap[0] && p.altitude_m[i] < gap[1])
+        EXPECT_EQ(p.density[i], 0.0f) << "at " << p.altitude_m[i] << " m";
+  // A layer without oktas is gone: where the stratocumulus was, under 1% of its density (the
+  // cumulus' shell, now up to its own top, holds its faintest towers).
+  const auto sum_between = [](const CloudProfile& q, float lo_m, float hi_m) {
+    float sum = 0.0f;
+    for (size_t i = 0; i < q.density.size(); ++i)
+      if (q.altitude_m[i] > lo_m && q.altitude_m[i] < hi_m) sum += q.density[i];
+    return sum;
+  };
+  s.cloud_layers[2].oktas = 0.0f;
+  EXPECT_LT(sum_between(shared_renderer().cloud_profile(s), 6500.0f, 7200.0f),
+            0.01f * sum_between(p, 6500.0f, 7200.0f));
+}

@@ -72,6 +72,9 @@ TEST_F(GribRender, TheSkyCoverIsTheForecasts) {
 // Overcast east of a line 30 km east of the observer, clear west of it. The layer's coverage is
 // the overcast's; the map takes it away where the forecast is clear. An hour of a 20 m/s wind
 // (72 km) moves the clouds, not the line: 80 km west the sky stays clear, 100 km east overcast.
+// There the camera, 2 m up in the observer's plane, is 790 m above the curved ground, under a
+// deck whose clouds begin at 1 km: the clear sky 70 km west shows under the deck's edge in the
+// lowest degree of the western sky (1-2% of the dome: 7 oktas, a gap left).
 TEST_F(GribRender, TheForecastStaysOnTheGroundAsTheWindBlows) {
   const double line_lon = kLon + 30e3 / kLonDegM;
   Scene s = forecast_scene([line_lon](double, double lon) { return lon > line_lon ? 1.0 : 0.0; });
@@ -82,7 +85,7 @@ TEST_F(GribRender, TheForecastStaysOnTheGroundAsTheWindBlows) {
     s.camera.position_m = {-80e3f, 0.0f, 2.0f};
     EXPECT_LE(oktas(s), 1) << "west at " << time_s << " s";
     s.camera.position_m = {100e3f, 0.0f, 2.0f};
-    EXPECT_EQ(oktas(s), 8) << "east at " << time_s << " s";
+    EXPECT_GE(oktas(s), 7) << "east at " << time_s << " s";
   }
   // Without the forecast's map the same layer covers the west too.
   s.weather.grib.clear();

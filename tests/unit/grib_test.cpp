@@ -165,15 +165,21 @@ TEST_F(Grib, CoverOnPressureLevelsPlacesTheLayers) {
   // The deck spans 900-850 hPa (988-1457 m) and half-way to 950 and 800 (540, 1949 m): its
   // clouds, in the shell set for a stratocumulus, 440-1849 m above the 100 m ground.
   const glm::vec2 clouds_m(0.5f * (540.0f + 988.0f) - 100.0f, 0.5f * (1457.0f + 1949.0f) - 100.0f);
-  const glm::vec2 shell = cloud_shell_m(genus_type(Genus::Stratocumulus), clouds_m.x, clouds_m.y);
+  const float sc = genus_type(Genus::Stratocumulus), ac = genus_type(Genus::Altocumulus);
+  const glm::vec2 shell =
+      cloud_shell_m(sc, coverage_for_oktas(s.low.coverage_oktas, sc), clouds_m.x, clouds_m.y);
+  // The shells overlap (a stratocumulus deck fills the lowest third of its shell): they meet
+  // half way between the deck's tops and the altocumulus' bases.
+  const glm::vec2 high_clouds_m(0.5f * (4206 + 5574) - 100.0f, 0.5f * (5574 + 7185) - 100.0f);
+  const float meet_m = 0.5f * (clouds_m.y + high_clouds_m.x);
   EXPECT_NEAR(s.low.base_m, shell.x, 40.0f);
-  EXPECT_NEAR(s.low.top_m, shell.y, 40.0f);
+  EXPECT_NEAR(s.low.top_m, std::min(shell.y, meet_m), 40.0f);
   // The altocumulus at 500 hPa (5574 m), half-way to 600 and 400 hPa.
   EXPECT_EQ(s.high.genus, Genus::Altocumulus);
   EXPECT_NEAR(s.high.coverage_oktas, 3.2f, 0.02f);
-  const glm::vec2 high = cloud_shell_m(
-      genus_type(Genus::Altocumulus), 0.5f * (4206 + 5574) - 100.0f, 0.5f * (5574 + 7185) - 100.0f);
-  EXPECT_NEAR(s.high.base_m, high.x, 60.0f);
+  const glm::vec2 high = cloud_shell_m(ac, coverage_for_oktas(s.high.coverage_oktas, ac),
+                                       high_clouds_m.x, high_clouds_m.y);
+  EXPECT_NEAR(s.high.base_m, std::max(high.x, meet_m), 60.0f);
   EXPECT_NEAR(s.high.top_m, high.y, 60.0f);
 }
 

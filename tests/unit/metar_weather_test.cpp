@@ -32,20 +32,34 @@ TEST(MetarWeather, GroupsBecomeLayersWhoseCoverSumsAsReported) {
   const ReportWeather w = weather_of("EDDF 271150Z 24015KT 9999 FEW025 SCT040 BKN080 12/06 Q1008");
   EXPECT_EQ(w.oktas_min, 5);  // BKN: the sky covered up to 8,000 ft
   EXPECT_EQ(w.oktas_max, 7);
-  ASSERT_EQ(w.layers.size(), 2u);  // two volumetric layers: the two cumulus groups drawn as one
+  // Two volumetric layers: the two cumulus groups, whose clouds overlap, drawn as one.
+  ASSERT_EQ(w.layers.size(), 2u);
   EXPECT_EQ(w.layers[0].groups, "FEW025 SCT040");
   EXPECT_EQ(w.layers[0].genus, Genus::Cumulus);  // 6 deg of spread: a convective base at 750 m
   EXPECT_NEAR(w.layers[0].cloud_base_m, 2500 * 0.3048f, 0.5f);
   EXPECT_EQ(w.layers[1].genus, Genus::Altocumulus);
   EXPECT_NEAR(w.layers[1].cloud_base_m, 8000 * 0.3048f, 0.5f);
-  // The high layer covers what the low one leaves: 1 - (1 - 6/8) / (1 - 3.5/8) of the sky.
+  // The next layer covers what the low one leaves: 1 - (1 - 6/8) / (1 - 3.5/8) of the sky.
   EXPECT_NEAR(w.layers[0].own_oktas, 3.5f, 1e-5f);
   EXPECT_NEAR(w.layers[1].own_oktas, 8.0f * (1.0f - 0.25f / 0.5625f), 1e-4f);
   EXPECT_EQ(w.state.low.coverage_oktas, w.layers[0].own_oktas);
-  EXPECT_EQ(w.state.high.coverage_oktas, w.layers[1].own_oktas);
-  // Where the clouds are: the low shell starts at the cumulus base, the shells do not overlap.
-  EXPECT_NEAR(w.state.low.base_m, 762.0f, 0.5f);
-  EXPECT_LE(w.state.low.top_m, w.state.high.base_m);
+  // It is drawn by [[cloud_layers]], as the report gives it; high_clouds stays off.
+  EXPECT_EQ(w.layers[0].slot, "low");
+  EXPECT_EQ(w.layers[1].slot, "cloud_layers[0]");
+  ASSERT_EQ(w.state.more.size(), 1u);
+  EXPECT_EQ(w.state.more[0].coverage_oktas, w.layers[1].own_oktas);
+  EXPECT_EQ(w.state.more[0].genus, Genus::Altocumulus);
+  EXPECT_NEAR(w.state.more[0].base_m, 8000 * 0.3048f, 0.5f);
+  EXPECT_EQ(w.state.high.coverage_oktas, 0.0f);
+  // Where the clouds are: the low shell puts the cumulus' bases at 762 m and its tops at the
+  // SCT040 group's (1219 m + 1200 m).
+  const float cu = genus_type(Genus::Cumulus);
+  const glm::vec2 low_clouds =
+      clouds_in_shell_m(cu, coverage_for_oktas(w.state.low.coverage_oktas, cu),
+                        {w.state.low.base_m, w.state.low.top_m});
+  EXPECT_NEAR(low_clouds.x, 762.0f, 1.0f);
+  EXPECT_NEAR(low_clouds.y, 4000 * 0.3048f + 1200.0f, 1.0f);
+  EXPECT_LE(w.state.low.top_m, w.state.high.base_m);  // high_clouds, off, kept clear of it
   // From 240 deg: towards the north-east, 15 kt at 10 m and about twice it at 1 km.
   ASSERT_EQ(w.state.wind.size(), 2u);
   const glm::vec2 surface = w.state.wind[0].wind_mps;
@@ -55,6 +69,45 @@ TEST(MetarWeather, GroupsBecomeLayersWhoseCoverSumsAsReported) {
   // 9999: ten kilometres or more; a clearer scene keeps its own.
   EXPECT_EQ(w.state.visibility_m, weather_state(Scene{}).visibility_m);
   EXPECT_EQ(w.state.precipitation, PrecipitationKind::None);
+}
+
+// Four groups whose clouds lie apart are four layers: the lowest drawn by clouds, the others
+// by [[cloud_layers]] with the groups' bases, tops and own oktas; a scene holds them, valid,
+// and writes and reads them back. Seven groups are drawn as five, the nearest merged.
+TEST(MetarWeather, SeparateGroupsAreSeparateLayers) {
+  const std::string report = "XXXX 011200Z 00000KT 9999 FEW008 SCT030 BKN080 BKN150 15/05 Q1013";
+  const ReportWeather w = weather_of(report);
+  ASSERT_EQ(w.layers.size(), 4u);
+  const char* slots[] = {"low", "cloud_layers[0]", "cloud_layers[1]", "cloud_layers[2]"};
+  const Genus genera[] = {Genus::Stratocumulus, Genus::Cumulus, Genus::Altocumulus,
+                          Genus::Altocumulus};
+  for (size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(w.layers[k].slot, slots[k]);
+    EXPECT_EQ(w.layers[k].genus, genera[k]);
+  }
+  ASSERT_EQ(w.state.more.size(), 3u);
+  EXPECT_NEAR(w.state.more[2].base_m, 15000 * 0.3048f, 0.5f);
+  EXPECT_NEAR(w.state.more[2].top_m, 15000 * 0.3048f + 600.0f, 0.5f);
+  // BKN080 brings the cover from 3.5 to 6 oktas; BKN150 adds nothing to 6.
+  EXPECT_NEAR(w.state.more[1].coverage_oktas, 8.0f * (1.0f - 0.25f / 0.5625f), 1e-4f);
+  EXPECT_EQ(w.state.more[2].coverage_oktas, 0.0f);
+  Scene scene;
+  scene.weather.metar = "METAR " + report;
+  apply_metar(scene);
+  ASSERT_EQ(scene.cloud_layers.size(), 3u);
+  EXPECT_EQ(scene.cloud_layers[1].genus, "altocumulus");
+  EXPECT_NEAR(scene.cloud_layers[1].base_m, 8000 * 0.3048f, 0.5f);
+  EXPECT_NO_THROW(validate_scene(scene));
+  Scene written = parse_scene_toml(scene_to_toml(scene), "written.toml");
+  EXPECT_EQ(written.cloud_layers, scene.cloud_layers);
+
+  const ReportWeather seven = weather_of(
+      "XXXX 011200Z 00000KT 9999 FEW008 SCT030 SCT060 BKN080 BKN100 BKN150 BKN180 15/05 Q1013");
+  EXPECT_EQ(seven.layers.size(), 5u);
+  bool said = false;
+  for (const std::string& note : seven.notes)
+    said = said || note.find("5 volumetric layers at most") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(MetarWeather, GenusFromHeightCoverAndType) {
@@ -74,9 +127,14 @@ TEST(MetarWeather, GenusFromHeightCoverAndType) {
   // A scattered low layer far below the convective base (25 deg of spread: 3 km) is no cumulus.
   EXPECT_EQ(weather_of("XXXX 011200Z 00000KT 9999 SCT008 30/05 Q1013").layers[0].genus,
             Genus::Stratocumulus);
-  // A stratus fills the lowest fifth of its shell: its shell reaches 4.5 times its depth.
+  // A stratus fills a low part of its shell, a tenth of it: the shell is set so that its
+  // clouds lie 400 ft and 400 m above.
   const ReportWeather stratus = weather_of("XXXX 011200Z 00000KT 9999 OVC004 10/09 Q1013");
-  EXPECT_NEAR(stratus.state.low.top_m - stratus.state.low.base_m, 400.0f / 0.22f, 1.0f);
+  const glm::vec2 shell(stratus.state.low.base_m, stratus.state.low.top_m);
+  EXPECT_GT(shell.y - shell.x, 2000.0f);
+  const glm::vec2 st_clouds = clouds_in_shell_m(0.0f, 1.0f, shell);
+  EXPECT_NEAR(st_clouds.x, 400 * 0.3048f, 1.0f);
+  EXPECT_NEAR(st_clouds.y, 400 * 0.3048f + 400.0f, 1.0f);
   // TCU: a towering cumulus between cumulus and cumulonimbus.
   const ReportWeather tcu = weather_of("XXXX 011200Z 00000KT 9999 SCT030TCU 25/15 Q1013");
   EXPECT_EQ(tcu.layers[0].genus, Genus::Cumulus);

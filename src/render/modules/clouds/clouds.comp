@@ -105,8 +105,9 @@ void main() {
   // Without noise clouds only the voxel clouds' boxes hold anything, and the march spans just
   // them: a lab's grid, or voxel clouds in a clear sky, make a thin shell that a ray along it
   // crosses for kilometres.
-  bool noise_clouds = frame.cloud_layers[0].shape.x > 0.0f || frame.cloud_layers[0].shape.w > 0.0f ||
-                      frame.cloud_layers[1].shape.x > 0.0f || frame.cloud_layers[1].shape.w > 0.0f;
+  bool noise_clouds = false;
+  for (int k = 0; k < CLOUD_LAYERS; ++k)
+    noise_clouds = noise_clouds || frame.cloud_layers[k].shape.x > 0.0f || frame.cloud_layers[k].shape.w > 0.0f;
   if (WITH_VOXELS && frame.voxel_info.x > 0 && !noise_clouds) {
     vec2 boxes = voxel_boxes_segment(eye, dir);
     segment = vec2(max(segment.x, boxes.x), min(segment.y, boxes.y));

@@ -98,12 +98,10 @@ void pt_note_majorant(float sigma, float majorant) {
 float pt_cuts = 0.0f;
 #define PT_NOTE_CUT() pt_cuts += 1.0f
 
-// The shells (radii, m) where clouds can be, each padded by PATH_SHELL_PAD_M: x, y the main
-// layer's, z, w the high layer's (a layer that is off lies beyond the atmosphere); the voxel
-// clouds' boxes lie between path_voxels.y and .z.
-vec4 planet_layer_radii() {
-  return vec4(frame.cloud_layers[0].radii_m.xy, frame.cloud_layers[1].radii_m.xy) +
-         vec4(-PATH_SHELL_PAD_M, PATH_SHELL_PAD_M, -PATH_SHELL_PAD_M, PATH_SHELL_PAD_M);
+// The shell (radii, m) where layer l's clouds can be, padded by PATH_SHELL_PAD_M (a layer that
+// is off lies beyond the atmosphere); the voxel clouds' boxes lie between path_voxels.y and .z.
+vec2 planet_layer_shell(int l) {
+  return frame.cloud_layers[l].radii_m.xy + vec2(-PATH_SHELL_PAD_M, PATH_SHELL_PAD_M);
 }
 
 // A bound on a layer's density field (shape: CloudLayerGpu::shape): twice its density (the
@@ -132,11 +130,10 @@ int planet_grid_bin(float r, vec2 shell) {
 // layer's density; plus the voxel clouds' where their shell holds q.
 float planet_cloud_bound(vec3 q) {
   float r = length(q);
-  vec4 layers = planet_layer_radii();
   ivec2 cell = planet_grid_cell(q.xy);
   float bound = 0.0f;
   for (int l = 0; l < CLOUD_LAYERS; ++l) {
-    vec2 shell = l == 0 ? layers.xy : layers.zw;
+    vec2 shell = planet_layer_shell(l);
     if (r <= shell.x || r >= shell.y) continue;
     bound += cell.x >= 0
                  ? texelFetch(path_majorant, ivec3(cell, l * PATH_GRID_BINS + planet_grid_bin(r, shell)), 0).r
@@ -203,12 +200,13 @@ float planet_next_sphere(vec3 p, vec3 d, float radius, float near) {
 // there), so a segment may begin just before one.
 vec2 planet_majorant_segment(vec3 o, vec3 d, float t) {
   vec3 p = o + d * t;
-  vec4 layers = planet_layer_radii();
   float end = min(planet_next_sphere(p, d, frame.path_voxels.y, 1.0f),
                   planet_next_sphere(p, d, frame.path_voxels.z, 1.0f));
   float r = length(p);
   for (int l = 0; l < CLOUD_LAYERS; ++l) {
-    vec2 shell = l == 0 ? layers.xy : layers.zw;
+    // A layer that is off (the same for every lane) has no spheres to stop at.
+    if (planet_layer_bound(frame.cloud_layers[l].shape) == 0.0f) continue;
+    vec2 shell = planet_layer_shell(l);
     // Inside the shell, the spheres of the bin the ray is in; outside, the shell's own. And
     // a bin further on each side: a sphere within a metre is passed over, and the segment
     // must then end at the next one, not run on across bins its two points do not see.
