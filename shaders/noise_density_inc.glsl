@@ -25,11 +25,13 @@
 #endif
 
 // The layer at `radius_m` (FrameParams::cloud_layers): the one whose band holds it, else layer
-// 0. Every layer is read at a constant index and selected per lane: an index that differs
-// between lanes would make a CPU device gather every field lane by lane.
+// 0. The layers in use are read in turn, the same for every lane, and selected per lane: an
+// index that differs between lanes would make a CPU device gather every field lane by lane.
+// With one layer the loop makes no trip.
 CloudLayerGpu cloud_layer_at(float radius_m) {
   CloudLayerGpu layer = frame.cloud_layers[0];
-  for (int k = 1; k < CLOUD_LAYERS; ++k) {
+  int used = int(frame.cloud_layers[0].band_m.w);
+  for (int k = 1; k < used; ++k) {
     CloudLayerGpu other = frame.cloud_layers[k];
     bool inside = radius_m >= other.band_m.x && radius_m < other.band_m.y;
     layer = CloudLayerGpu(inside ? other.radii_m : layer.radii_m, inside ? other.shape : layer.shape,

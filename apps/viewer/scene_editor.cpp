@@ -17,6 +17,9 @@ std::string SceneEditor::set(const std::string& key, const std::string& value) {
   Scene next = scene_;
   try {
     set_scene_value(next, key, value);
+    // A weather report pasted into weather.metar (or a forecast, a wind or a visibility in a
+    // report's units) is applied as a scene file applies it: its layers, wind, haze and time.
+    if (key.starts_with("weather.")) apply_weather_sources(next);
   } catch (const InputError& error) {
     error_ = error.what();
     error_key_ = key;
@@ -57,6 +60,7 @@ const std::vector<ParameterGroup>& parameter_groups() {
         {"Clouds", {"clouds.", "noise_seed"}},
         {"High clouds", {"high_clouds."}},
         {"Cirrus", {"cirrus."}},
+        {"Weather", {"weather.", "precipitation.", "lightning.", "ground_fog."}},
         {"Particle clouds", {"particle_clouds."}},
         {"Classical cloud models", {"classic."}},
         {"Terrain", {"terrain."}},

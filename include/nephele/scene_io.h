@@ -32,6 +32,12 @@ namespace nephele {
 Scene parse_scene_toml(std::string_view text, const std::string& source_name,
                        const std::string& base_dir = "");
 
+// Applies the scene's weather as reading a scene file does: the report in weather.metar, then
+// the forecast in weather.grib, then the wind and visibility keys of [weather] (its layers,
+// wind, haze and time over the scene's). Throws InputError naming the key; the scene is
+// unchanged then. For a host or a panel that has just set one of them.
+void apply_weather_sources(Scene& scene);
+
 // Reads and parses a scene file; relative paths inside are relative to the file's folder.
 Scene load_scene_file(const std::string& path);
 

@@ -49,7 +49,8 @@ struct CloudLayerGpu {
   vec4 wind;     // xy its displacement by the wind (wind x time, m); zw its wind (m/s)
   vec4 band_m;   // x, y the radii (m) between which it is the layer drawn: its shell, less what
                  // lies nearer a neighbour's clouds (layer 0 wherever no other's is); z its
-                 // forecast share (0 forecast_share's x, 1 its y); w 0
+                 // forecast share (0 forecast_share's x, 1 its y); w (layer 0's) the number
+                 // of slots in use, from 0 on
 };
 
 // Voxel clouds (render/modules/voxel_clouds/voxel_clouds.h, shaders/voxel_field_inc.glsl): each cloud's grid

@@ -390,6 +390,7 @@ void set_cloud_layers(gpu::FrameParams& f, const Scene& scene, float planet_m, f
         glm::vec4(l.wind_mps * scene.time_s, l.wind_mps),
         glm::vec4(planet_m + band[i], l.slot == 0 ? 0.0f : 1.0f, 0.0f)};
   }
+  f.cloud_layers[0].band_m.w = float(layers.size());  // slots 0 to size - 1
 }
 
 }  // namespace

@@ -718,6 +718,14 @@ std::vector<std::pair<std::string, std::string>> scene_input_files(const Scene& 
   return files;
 }
 
+void apply_weather_sources(Scene& scene) {
+  Scene next = scene;
+  weather::apply_metar(next);
+  if (!next.weather.grib.empty()) weather::apply_grib(next);
+  weather::apply_weather_keys(next);
+  scene = std::move(next);
+}
+
 Scene load_scene_file(const std::string& path) {
   const std::string text = scene_detail::read_small_text_file(
       path, "scene file", "it is larger than 1 MiB (scene files are a few KB)");

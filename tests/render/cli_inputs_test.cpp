@@ -242,6 +242,25 @@ TEST_F(CliInputs, WeatherFlagsAreRefusedNamingThem) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// --cloud-layer GENUS,BASE_M,TOP_M,OKTAS: a malformed one, a genus the layer cannot draw and
+// clouds that overlap another layer's are refused in one line naming the flag; nothing written.
+TEST_F(CliInputs, CloudLayerFlagsAreRefusedNamingThem) {
+  const std::string out = path("x.png");
+  expect_refused(kTiny + std::string("--cloud-layer altocumulus,2500,3200 -o ") + out,
+                 {"--cloud-layer altocumulus,2500,3200", "3 comma-separated parts",
+                  "expected GENUS,BASE_M,TOP_M,OKTAS"});
+  expect_refused(kTiny + std::string("--cloud-layer altocumulus,low,3200,4 -o ") + out,
+                 {"--cloud-layer", "'low' is not a number"});
+  expect_refused(kTiny + std::string("--cloud-layer cirrus,7000,7500,2 -o ") + out,
+                 {"--cloud-layer #1 genus cirrus", "\"cumulonimbus\""});
+  expect_refused(kTiny +
+                     std::string("--cloud-layer altocumulus,4500,5000,3 --cloud-layer "
+                                 "cumulus,4800,6000,2 -o ") +
+                     out,
+                 {"--cloud-layer #2 base_m 4800", "overlap cloud_layers[0]'s clouds (4500-5000 m"});
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // A forecast that cannot serve: one line naming --grib, the file and why; nothing written.
 TEST_F(CliInputs, ForecastFilesAreRefusedNamingTheFlag) {
   const std::string out = path("x.png");

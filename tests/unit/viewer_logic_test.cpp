@@ -5,11 +5,11 @@
 
 #include <cmath>
 #include <functional>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <limits>
 #include <numbers>
 #include <set>
-
-#include <glm/geometric.hpp>
 
 #include "camera_control.h"
 #include "dynamic_resolution.h"
@@ -157,6 +157,30 @@ TEST(ViewerSceneEditor, AcceptsValidEditsAndKeepsTheLastValidScene) {
   EXPECT_EQ(editor.scene().time_s, 5.0f);
 }
 
+// A report pasted into the panel's weather.metar sets the sky as a scene file's would: its
+// groups become layers; a report that cannot be read is one line naming the group, and the
+// last valid scene stays.
+TEST(ViewerSceneEditor, APastedReportSetsTheSky) {
+  SceneEditor editor{Scene{}};
+  EXPECT_EQ(
+      editor.set("weather.metar", "\"EDDF 271150Z 24015KT 9999 FEW025 SCT040 BKN080 12/06 Q1008\""),
+      "");
+  const Scene& s = editor.scene();
+  EXPECT_EQ(s.clouds.type, 0.75f);       // FEW025 SCT040: cumulus
+  ASSERT_EQ(s.cloud_layers.size(), 1u);  // BKN080: altocumulus
+  EXPECT_EQ(s.cloud_layers[0].genus, "altocumulus");
+  EXPECT_NEAR(s.cloud_layers[0].base_m, 8000 * 0.3048f, 0.5f);
+  // The wind from 240 deg: towards the east-north-east.
+  EXPECT_NEAR(std::atan2(s.clouds.wind_mps.x, s.clouds.wind_mps.y), glm::radians(60.0f), 1e-3f);
+  const long revision = editor.revision();
+  const std::string error =
+      editor.set("weather.metar", "\"EDDF 271150Z 24015KT 9999 BKN0X0 12/06 Q1008\"");
+  EXPECT_NE(error.find("weather.metar"), std::string::npos) << error;
+  EXPECT_NE(error.find("BKN0X0"), std::string::npos) << error;
+  EXPECT_EQ(editor.revision(), revision);
+  EXPECT_EQ(editor.scene().cloud_layers.size(), 1u);
+}
+
 TEST(ViewerPanel, EveryParameterIsInExactlyOneGroupInTheFilesOrder) {
   std::multiset<std::string> shown;
   std::vector<std::string> titles;
@@ -164,10 +188,12 @@ TEST(ViewerPanel, EveryParameterIsInExactlyOneGroupInTheFilesOrder) {
     titles.push_back(g.title);
     shown.insert(g.keys.begin(), g.keys.end());
   }
-  EXPECT_EQ(titles, (std::vector<std::string>{"Location and time", "Camera", "Sun and moon",
-                                               "Atmosphere and sky model", "Clouds", "High clouds",
-                                               "Cirrus", "Particle clouds", "Classical cloud models",
-                                               "Terrain", "Conditions", "Quality", "Output", "Lab"}));
+  EXPECT_EQ(titles,
+            (std::vector<std::string>{"Location and time", "Camera", "Sun and moon",
+                                      "Atmosphere and sky model", "Clouds", "High clouds", "Cirrus",
+                                      "Weather", "Particle clouds", "Classical cloud models",
+                                      "Terrain", "Conditions", "Quality", "Output", "Lab"}));
+  EXPECT_EQ(parameter_groups()[7].keys.front(), "weather.metar");
   EXPECT_EQ(shown.size(), scene_parameters().size());
   for (const SceneParameter& p : scene_parameters()) EXPECT_EQ(shown.count(p.key), 1u) << p.key;
   EXPECT_EQ(parameter_groups()[0].keys,
