@@ -240,7 +240,7 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
   for (size_t k = 0; k < volumetric.size(); ++k) {
     const Group& g = volumetric[k];
     const float oktas = own(g);
-    std::string slot = "low";
+    std::string slot = "clouds";
     if (k == 0)
       s.low = cloud_layer(g, oktas, s.low.density);
     else {
@@ -259,7 +259,7 @@ ReportWeather weather_from_metar(const MetarReport& report, const WeatherState& 
     s.sheet.type = -1.0f;
     s.sheet.base_m = s.sheet.top_m = std::max(sheet->base_m, tops_m);
     s.sheet.coverage_oktas = oktas;
-    out.layers.push_back({sheet->text, "sheet", sheet->genus, -1.0f, sheet->base_m, sheet->base_m,
+    out.layers.push_back({sheet->text, "cirrus", sheet->genus, -1.0f, sheet->base_m, sheet->base_m,
                           sheet->cover.drawn, oktas});
   }
 
@@ -360,7 +360,7 @@ std::vector<std::string> describe_metar(const Scene& scene) {
   char text[240];
   for (const ReportLayer& l : weather.layers) {
     std::snprintf(text, sizeof(text),
-                  "  %s -> %s layer: %s, clouds %.0f-%.0f m above the station, %.1f oktas of its "
+                  "  %s -> %s: %s, clouds %.0f-%.0f m above the station, %.1f oktas of its "
                   "own (%.1f up to it)",
                   l.groups.c_str(), l.slot.c_str(), to_string(l.genus), l.cloud_base_m,
                   l.cloud_top_m, l.own_oktas, l.total_oktas);

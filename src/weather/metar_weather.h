@@ -18,7 +18,7 @@ namespace nephele::weather {
 // and tops above the station, m) and the sky cover they report.
 struct ReportLayer {
   std::string groups;  // "FEW025", or "SCT040 BKN080" for groups drawn as one layer
-  // The scene's layer that draws it: "low", "high", "cloud_layers[0]" ... or "sheet".
+  // The scene's layer that draws it: "clouds", "cloud_layers[0]" ... or "cirrus".
   std::string slot;
   Genus genus = Genus::Cumulus;
   float type = -1.0f;  // on clouds.type's scale; < 0: the genus's own

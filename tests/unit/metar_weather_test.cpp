@@ -44,7 +44,7 @@ TEST(MetarWeather, GroupsBecomeLayersWhoseCoverSumsAsReported) {
   EXPECT_NEAR(w.layers[1].own_oktas, 8.0f * (1.0f - 0.25f / 0.5625f), 1e-4f);
   EXPECT_EQ(w.state.low.coverage_oktas, w.layers[0].own_oktas);
   // It is drawn by [[cloud_layers]], as the report gives it; high_clouds stays off.
-  EXPECT_EQ(w.layers[0].slot, "low");
+  EXPECT_EQ(w.layers[0].slot, "clouds");
   EXPECT_EQ(w.layers[1].slot, "cloud_layers[0]");
   ASSERT_EQ(w.state.more.size(), 1u);
   EXPECT_EQ(w.state.more[0].coverage_oktas, w.layers[1].own_oktas);
@@ -78,7 +78,7 @@ TEST(MetarWeather, SeparateGroupsAreSeparateLayers) {
   const std::string report = "XXXX 011200Z 00000KT 9999 FEW008 SCT030 BKN080 BKN150 15/05 Q1013";
   const ReportWeather w = weather_of(report);
   ASSERT_EQ(w.layers.size(), 4u);
-  const char* slots[] = {"low", "cloud_layers[0]", "cloud_layers[1]", "cloud_layers[2]"};
+  const char* slots[] = {"clouds", "cloud_layers[0]", "cloud_layers[1]", "cloud_layers[2]"};
   const Genus genera[] = {Genus::Stratocumulus, Genus::Cumulus, Genus::Altocumulus,
                           Genus::Altocumulus};
   for (size_t k = 0; k < 4; ++k) {
@@ -120,7 +120,7 @@ TEST(MetarWeather, GenusFromHeightCoverAndType) {
   EXPECT_EQ(weather_of("XXXX 011200Z 00000KT 9999 SCT100 10/00 Q1013").layers[0].genus,
             Genus::Altocumulus);
   const ReportWeather cirrus = weather_of("XXXX 011200Z 00000KT 9999 SCT250 10/00 Q1013");
-  EXPECT_EQ(cirrus.layers[0].slot, "sheet");
+  EXPECT_EQ(cirrus.layers[0].slot, "cirrus");
   EXPECT_EQ(cirrus.state.sheet.genus, Genus::Cirrus);
   EXPECT_NEAR(cirrus.state.sheet.base_m, 25000 * 0.3048f, 0.5f);
   EXPECT_EQ(cirrus.state.low.coverage_oktas, 0.0f);
