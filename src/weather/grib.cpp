@@ -304,24 +304,38 @@ GribCover read_grib_cover(const std::string& path, double lat_deg, double lon_de
            "on pressure levels) in its " +
                std::to_string(out.messages) + " messages (they hold " + held + ")");
   }
-  // The validity time nearest the scene's (the earliest without one).
+  // The validity times around the scene's: between two, each field is blended linearly in time
+  // (a model's output steps are hours apart, and a sequence must not jump at the half-way
+  // point); before the first or after the last, that one; without a time, the earliest.
   std::set<double> times;
   for (const Message& m : messages) times.insert(m.jd);
   out.valid_times = int(times.size());
-  double chosen = *times.begin();
-  if (jd_ut)
-    for (double t : times)
-      if (std::abs(t - *jd_ut) < std::abs(chosen - *jd_ut)) chosen = t;
-  std::array<const Grid*, kCoverFields> fields{};
-  std::vector<const Message*> levels;
-  for (const Message& m : messages) {
-    if (std::abs(m.jd - chosen) > 1e-6) continue;
-    out.valid_time = m.time;
-    if (m.field == kLevelCover)
-      levels.push_back(&m);
-    else if (!fields[size_t(m.field)])
-      fields[size_t(m.field)] = &m.grid;
+  double t0 = *times.begin(), t1 = t0;
+  if (jd_ut) {
+    const auto after = times.upper_bound(*jd_ut);
+    if (after == times.end()) {
+      t0 = t1 = *times.rbegin();
+    } else if (after != times.begin()) {
+      t1 = *after;
+      t0 = *std::prev(after);
+      out.blend = float((*jd_ut - t0) / (t1 - t0));
+    }
   }
+  struct AtTime {
+    std::array<const Grid*, kCoverFields> fields{};
+    std::vector<const Message*> levels;
+  };
+  AtTime at[2];
+  for (const Message& m : messages)
+    for (int k = 0; k < 2; ++k) {
+      if (std::abs(m.jd - (k == 0 ? t0 : t1)) > 1e-6) continue;
+      (k == 0 ? out.valid_time : out.valid_time_next) = m.time;
+      if (m.field == kLevelCover)
+        at[k].levels.push_back(&m);
+      else if (!at[k].fields[size_t(m.field)])
+        at[k].fields[size_t(m.field)] = &m.grid;
+    }
+  if (out.blend == 0.0f) out.valid_time_next.clear();
   out.grid = grid_description;
   // The observer must be on every field's grid.
   const auto check_covers = [&](const Grid& g) {
@@ -334,19 +348,36 @@ GribCover read_grib_cover(const std::string& path, double lat_deg, double lon_de
       refuse(path, text);
     }
   };
-  for (const Grid* g : fields)
-    if (g) check_covers(*g);
-  for (const Message* m : levels) check_covers(m->grid);
-  // Total cover alone stands for the low layer's.
-  if (fields[kTotalCover] && !fields[kLowCover] && !fields[kMediumCover] && !fields[kHighCover])
-    fields[kLowCover] = fields[kTotalCover];
-  for (int f = 0; f < kCoverFields; ++f) {
-    out.has[size_t(f)] = fields[size_t(f)] != nullptr;
-    if (fields[size_t(f)])
-      out.at_observer[size_t(f)] = sample(*fields[size_t(f)], lat_deg, lon_deg);
+  for (AtTime& a : at) {
+    for (const Grid* g : a.fields)
+      if (g) check_covers(*g);
+    for (const Message* m : a.levels) check_covers(m->grid);
+    // Total cover alone stands for the low layer's.
+    if (a.fields[kTotalCover] && !a.fields[kLowCover] && !a.fields[kMediumCover] &&
+        !a.fields[kHighCover])
+      a.fields[kLowCover] = a.fields[kTotalCover];
   }
-  for (const Message* m : levels)
-    out.profile.emplace_back(standard_altitude_m(m->level_hpa), sample(m->grid, lat_deg, lon_deg));
+  // A field's cover at a place: blended where both times hold it, else the one that does.
+  const float w = out.blend;
+  const auto cover_at = [&](int f, double lat, double lon) {
+    const Grid* a = at[0].fields[size_t(f)];
+    const Grid* b = at[1].fields[size_t(f)];
+    if (a && b && w > 0.0f) return (1.0f - w) * sample(*a, lat, lon) + w * sample(*b, lat, lon);
+    return sample(a ? *a : *b, lat, lon);
+  };
+  std::array<const Grid*, kCoverFields> fields{};
+  for (int f = 0; f < kCoverFields; ++f) {
+    fields[size_t(f)] = at[0].fields[size_t(f)] ? at[0].fields[size_t(f)] : at[1].fields[size_t(f)];
+    out.has[size_t(f)] = fields[size_t(f)] != nullptr;
+    if (fields[size_t(f)]) out.at_observer[size_t(f)] = cover_at(f, lat_deg, lon_deg);
+  }
+  for (const Message* m : at[0].levels) {
+    float cover = sample(m->grid, lat_deg, lon_deg);
+    for (const Message* n : at[1].levels)
+      if (w > 0.0f && n->level_hpa == m->level_hpa)
+        cover = (1.0f - w) * cover + w * sample(n->grid, lat_deg, lon_deg);
+    out.profile.emplace_back(standard_altitude_m(m->level_hpa), cover);
+  }
   std::sort(out.profile.begin(), out.profile.end());
   // The box around the observer, on the tangent plane (equirectangular: within 0.2% at 300 km).
   const int n = kForecastMapSize;
@@ -364,7 +395,7 @@ GribCover read_grib_cover(const std::string& path, double lat_deg, double lon_de
       const double lon = lon_deg + east / (planet_radius_m * cos_lat) * deg;
       auto& texel = out.map[size_t(j) * size_t(n) + size_t(i)];
       for (int f = 0; f < kCoverFields; ++f)
-        if (fields[size_t(f)]) texel[size_t(f)] = sample(*fields[size_t(f)], lat, lon);
+        if (fields[size_t(f)]) texel[size_t(f)] = cover_at(f, lat, lon);
       if (any && covers(*any, lat, lon)) ++inside;
     }
   out.box_covered = float(inside) / float(n * n);
@@ -520,10 +551,14 @@ std::vector<std::string> describe_grib(const Scene& scene) {
   const std::shared_ptr<const GribCover> cover = grib_cover(scene);
   std::vector<std::string> lines;
   char text[320];
+  char blend[96] = "";
+  if (cover->blend > 0.0f)
+    std::snprintf(blend, sizeof(blend), ", %.2f of the way to %s", double(cover->blend),
+                  cover->valid_time_next.c_str());
   std::snprintf(text, sizeof(text),
-                "weather.grib: %s: %d messages, %s; cloud cover valid %s (of %d times)",
+                "weather.grib: %s: %d messages, %s; cloud cover valid %s%s (of %d times)",
                 shorten_path_for_message(cover->path).c_str(), cover->messages, cover->grid.c_str(),
-                cover->valid_time.c_str(), cover->valid_times);
+                cover->valid_time.c_str(), blend, cover->valid_times);
   lines.push_back(text);
   for (int f = 0; f < kCoverFields; ++f) {
     if (!cover->has[size_t(f)]) continue;

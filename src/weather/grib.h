@@ -1,10 +1,10 @@
 // nephele — cloud cover from a GRIB forecast (GRIB2 or GRIB1, read with ecCodes): total, low,
 // medium and high cloud cover, and cloud cover on pressure levels where the file has it, on a
-// regular latitude/longitude (or Gaussian) grid. The fields valid nearest the scene's time are
-// resampled onto a square of the ground centred on the observer (the scene's location), fixed
-// to the ground: a forecast's field neither repeats nor drifts with the wind as the procedural
-// weather map does. The weather state takes the layers from it (weather_from_grib) and the
-// clouds read the map (render/modules/weather).
+// regular latitude/longitude (or Gaussian) grid. The fields valid at the scene's time (blended
+// linearly between the two validity times around it) are resampled onto a square of the ground
+// centred on the observer (the scene's location), fixed to the ground: a forecast's field neither
+// repeats nor drifts with the wind as the procedural weather map does. The weather state takes the
+// layers from it (weather_from_grib) and the clouds read the map (render/modules/weather).
 #pragma once
 
 #include <array>
@@ -30,7 +30,10 @@ const char* cover_field_name(int field);  // "total", "low", "medium", "high"
 
 struct GribCover {
   std::string path;
-  std::string valid_time;  // ISO 8601, UTC: the fields' validity time
+  // ISO 8601, UTC: the fields' validity time, and where the scene's lies between two, the next
+  // one and how far towards it the fields are blended (0 to 1; 0 and "" otherwise).
+  std::string valid_time, valid_time_next;
+  float blend = 0.0f;
   int messages = 0;        // in the file
   int valid_times = 0;     // distinct validity times of cloud cover in the file
   std::array<bool, kCoverFields> has{};
@@ -47,7 +50,8 @@ struct GribCover {
   std::string grid;  // "regular_ll 0.25 x 0.25 deg, 41 x 33 points"
 };
 
-// Reads `path` and resamples the cloud cover valid nearest `jd_ut` (a Julian day; none: the
+// Reads `path` and resamples the cloud cover valid at `jd_ut` (a Julian day: between two
+// validity times, blended linearly; before the first or after the last, that one; none: the
 // earliest in the file) around latitude/longitude (deg) on a sphere of `planet_radius_m`.
 // Throws InputError, one line naming the file and what is wrong: not readable, not GRIB, no
 // cloud cover field (listing what it holds), a grid that is not a regular latitude/longitude

@@ -122,7 +122,7 @@ TEST_F(Grib, LayersWithoutLevelsDoNotOverlap) {
   EXPECT_NO_THROW(validate_scene(scene));
 }
 
-TEST_F(Grib, TheFieldsValidNearestTheScenesTimeAreRead) {
+TEST_F(Grib, TheFieldsAtTheScenesTimeAreBlendedBetweenValidityTimes) {
   const std::string file = path("steps.grib2");
   std::vector<GribField> fields;
   for (long step : {0, 6, 12})
@@ -137,11 +137,26 @@ TEST_F(Grib, TheFieldsValidNearestTheScenesTimeAreRead) {
   };
   EXPECT_EQ(at(std::nullopt).valid_time, "2026-12-03T00:00:00Z");  // none: the earliest
   const double midnight = *julian_day_from_iso8601("2026-12-03T00:00:00Z");
-  const GribCover late = at(midnight + 10.0 / 24.0);  // 10:00: the 12:00 field
-  EXPECT_EQ(late.valid_time, "2026-12-03T12:00:00Z");
-  EXPECT_NEAR(late.at_observer[kLowCover], 0.3, 2e-3);
+  // 10:00: two thirds of the way from the 06:00 field (0.2) to the 12:00 one (0.3), over the
+  // whole map as at the observer.
+  const GribCover late = at(midnight + 10.0 / 24.0);
+  EXPECT_EQ(late.valid_time, "2026-12-03T06:00:00Z");
+  EXPECT_EQ(late.valid_time_next, "2026-12-03T12:00:00Z");
+  EXPECT_NEAR(late.blend, 2.0f / 3.0f, 1e-4f);
+  EXPECT_NEAR(late.at_observer[kLowCover], 0.2 + 0.1 * 2.0 / 3.0, 2e-3);
+  EXPECT_NEAR(late.map[late.map.size() / 3][kLowCover], 0.2 + 0.1 * 2.0 / 3.0, 2e-3);
   EXPECT_EQ(late.valid_times, 3);
-  EXPECT_EQ(at(midnight + 4.0 / 24.0).valid_time, "2026-12-03T06:00:00Z");
+  // At a validity time, that field alone; after the last, the last.
+  const GribCover six = at(midnight + 6.0 / 24.0);
+  EXPECT_EQ(six.valid_time, "2026-12-03T06:00:00Z");
+  EXPECT_EQ(six.blend, 0.0f);
+  EXPECT_NEAR(six.at_observer[kLowCover], 0.2, 2e-3);
+  EXPECT_EQ(at(midnight + 1.0).valid_time, "2026-12-03T12:00:00Z");
+  EXPECT_EQ(at(midnight - 1.0).valid_time, "2026-12-03T00:00:00Z");
+  // A sequence sees the cover change smoothly: a minute moves it by a 360th of the step.
+  const float a = at(midnight + 9.0 / 24.0).at_observer[kLowCover];
+  const float b = at(midnight + 9.0 / 24.0 + 1.0 / 1440.0).at_observer[kLowCover];
+  EXPECT_NEAR(b - a, 0.1f / 360.0f, 2e-5f);
 }
 
 TEST_F(Grib, CoverOnPressureLevelsPlacesTheLayers) {
