@@ -777,7 +777,8 @@ const std::vector<CloudLayerField>& cloud_layer_fields() {
   static const std::vector<CloudLayerField> fields = {
       LAYER_FIELD(genus, "the clouds drawn", {},
                   {std::begin(kCloudLayerGenera), std::end(kCloudLayerGenera)}),
-      LAYER_FIELD(base_m, "its clouds' bases above the ground", closed(0, 2e4)),
+      LAYER_FIELD(base_m, "its clouds' bases above the ground (fog is ground_fog)",
+                  left_open(0, 2e4)),
       LAYER_FIELD(top_m, "its clouds' tops above the ground, > base_m", closed(0, 2e4)),
       LAYER_FIELD(oktas, "the sky it covers seen from the ground; 0 = none", closed(0, 8)),
       LAYER_FIELD(density, "as clouds.density", closed(0, 1)),
@@ -890,23 +891,6 @@ std::string read_small_text_file(const std::string& path, const std::string& wha
   text.resize(size_t(in.gcount()));
   if (text.size() > kMaxBytes) throw InputError(cannot + too_large);
   return text;
-}
-
-// The shape of the value a field of `Owner` (Scene, VoxelCloudParams) refers to.
-template <typename Owner, typename Access>
-static ValueShape shape_of(const Access& access) {
-  return std::visit(
-      [](auto get) {
-        using T = std::remove_reference_t<decltype(get(std::declval<Owner&>()))>;
-        if constexpr (std::is_same_v<T, float>) return ValueShape::kNumber;
-        if constexpr (std::is_same_v<T, int> || std::is_same_v<T, uint32_t>)
-          return ValueShape::kInteger;
-        if constexpr (std::is_same_v<T, glm::vec2>) return ValueShape::kVec2;
-        if constexpr (std::is_same_v<T, glm::vec3>) return ValueShape::kVec3;
-        if constexpr (std::is_same_v<T, std::string>) return ValueShape::kString;
-        return ValueShape::kOther;
-      },
-      access);
 }
 
 ValueShape value_shape(const FieldAccess& access) {

@@ -110,11 +110,12 @@ struct ArrayField {
 using VoxelField = ArrayField<VoxelCloudParams>;
 using CloudLayerField = ArrayField<CloudLayerParams>;
 
-template <typename T>
-ValueShape value_shape(const ArrayFieldAccess<T>& access) {
+// The shape of the value a field of `Owner` (Scene, VoxelCloudParams, ...) refers to.
+template <typename Owner, typename Access>
+ValueShape shape_of(const Access& access) {
   return std::visit(
       [](auto get) {
-        using V = std::remove_reference_t<decltype(get(std::declval<T&>()))>;
+        using V = std::remove_reference_t<decltype(get(std::declval<Owner&>()))>;
         if constexpr (std::is_same_v<V, float>) return ValueShape::kNumber;
         if constexpr (std::is_same_v<V, int> || std::is_same_v<V, uint32_t>)
           return ValueShape::kInteger;
@@ -124,6 +125,10 @@ ValueShape value_shape(const ArrayFieldAccess<T>& access) {
         return ValueShape::kOther;
       },
       access);
+}
+template <typename T>
+ValueShape value_shape(const ArrayFieldAccess<T>& access) {
+  return shape_of<T>(access);
 }
 std::string field_comment(const Range& range, const std::vector<std::string_view>& choices,
                           ValueShape shape, std::string_view note);
