@@ -242,8 +242,9 @@ struct HighCloudParams {
 // where its clouds' bases and tops are, and the sky it covers in oktas. The renderer finds the
 // shell and the coverage that draw it so (weather::cloud_shell_m, coverage_for_oktas). It shares
 // the noise, the lighting and the wind's shear, skew and detail with `clouds`, reads its own
-// part of the weather map, and its shell may overlap no other layer that is there (clouds,
-// high_clouds, the others); the cirrus lies above it.
+// part of the weather map, and its clouds may overlap no other layer's that is there (clouds',
+// high_clouds', the others'; shells may overlap where they hold no cloud); the cirrus lies above
+// it.
 struct CloudLayerParams {
   // "stratus", "stratocumulus", "altocumulus", "cumulus" or "cumulonimbus".
   std::string genus = "stratocumulus";

@@ -272,7 +272,8 @@ LayerTop highest_layer_top(const Scene& scene) {
 }
 
 // [[cloud_layers]]: each table's declared rules, its base below its top, and the clouds of
-// those that are there apart from each other and from the shells of clouds and high_clouds.
+// those that are there apart from each other and from the clouds of clouds and high_clouds
+// (where their type and coverage put them in their shells; all of a storm's shell).
 void check_cloud_layers(const Checker& check, const Scene& scene) {
   const std::vector<CloudLayerParams>& layers = scene.cloud_layers;
   if (layers.size() > size_t(kMaxCloudLayers - 2))
