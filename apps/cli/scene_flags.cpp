@@ -311,16 +311,21 @@ int64_t to_integer(const std::string& flag, const std::string& text, int64_t min
   return value;
 }
 
+// The comma-separated parts of `text` ("a,,b" is three; "" is one, empty), viewing `text`.
+std::vector<std::string_view> split_commas(std::string_view text) {
+  std::vector<std::string_view> parts;
+  for (size_t comma; (comma = text.find(',')) != std::string_view::npos;) {
+    parts.push_back(text.substr(0, comma));
+    text.remove_prefix(comma + 1);
+  }
+  parts.push_back(text);
+  return parts;
+}
+
 // "E,N,U" into `size` floats.
 void to_vector(const std::string& flag, const std::string& text, int size, float* out) {
   static const char* const kComponents[] = {"", "", "E,N", "E,N,U"};
-  std::vector<std::string_view> parts;
-  std::string_view rest = text;
-  for (size_t comma; (comma = rest.find(',')) != std::string_view::npos;) {
-    parts.push_back(rest.substr(0, comma));
-    rest.remove_prefix(comma + 1);
-  }
-  parts.push_back(rest);
+  const std::vector<std::string_view> parts = split_commas(text);
   bool ok = parts.size() == static_cast<size_t>(size);
   for (size_t i = 0; ok && i < parts.size(); ++i) ok = to_number(parts[i]).has_value();
   if (!ok)
@@ -545,13 +550,7 @@ VoxelCloudParams parse_voxel_cloud_spec(const std::string& spec) {
   if (at == std::string::npos) bad("no @E,N,U position");
   const std::string source = spec.substr(0, at), position = spec.substr(at + 1);
   VoxelCloudParams cloud;
-  std::vector<std::string_view> parts;
-  for (std::string_view rest = position;;) {
-    const size_t comma = rest.find(',');
-    parts.push_back(rest.substr(0, comma));
-    if (comma == std::string_view::npos) break;
-    rest.remove_prefix(comma + 1);
-  }
+  const std::vector<std::string_view> parts = split_commas(position);
   if (parts.size() != 3) bad("the position is not 3 comma-separated numbers");
   for (int i = 0; i < 3; ++i) {
     const std::optional<double> value = to_number(parts[size_t(i)]);
@@ -587,13 +586,7 @@ CloudLayerParams parse_cloud_layer_spec(const std::string& spec) {
              "; expected GENUS,BASE_M,TOP_M,OKTAS, GENUS one of stratus, stratocumulus, "
              "altocumulus, cumulus, cumulonimbus (e.g. altocumulus,2500,3200,5)");
   };
-  std::vector<std::string> parts;
-  for (std::string_view rest = spec;;) {
-    const size_t comma = rest.find(',');
-    parts.emplace_back(rest.substr(0, comma));
-    if (comma == std::string_view::npos) break;
-    rest.remove_prefix(comma + 1);
-  }
+  const std::vector<std::string_view> parts = split_commas(spec);
   if (parts.size() != 4) bad(std::to_string(parts.size()) + " comma-separated parts");
   CloudLayerParams layer;
   layer.genus = parts[0];
@@ -601,7 +594,7 @@ CloudLayerParams parse_cloud_layer_spec(const std::string& spec) {
   for (size_t i = 0; i < 3; ++i) {
     const std::optional<double> value = to_number(parts[i + 1]);
     if (!value || !std::isfinite(*value) || std::fabs(*value) > FLT_MAX)
-      bad("'" + parts[i + 1] + "' is not a number");
+      bad("'" + std::string(parts[i + 1]) + "' is not a number");
     *numbers[i] = static_cast<float>(*value);
   }
   return layer;

@@ -728,14 +728,18 @@ const std::vector<Section>& scene_sections() {
 #undef TOP_FIELD
 #undef FIELD
 
-// VOXEL_FIELD(density, note[, range]) is the key density of a [[voxel_clouds]] table.
-#define VOXEL_FIELD(name, note, ...)            \
-  VoxelField {                                  \
-#name, +[](VoxelCloudParams & c) -> auto& { \
-      return c.name;                            \
-    }                                           \
-    , note __VA_OPT__(, ) __VA_ARGS__           \
+// ARRAY_FIELD(T, density, note[, range[, choices]]) is the key density of a table of an array
+// whose tables are T (VoxelCloudParams for [[voxel_clouds]], CloudLayerParams for
+// [[cloud_layers]]).
+#define ARRAY_FIELD(T, name, note, ...) \
+  ArrayField<T> {                       \
+#name, +[](T & c) -> auto& {        \
+      return c.name;                    \
+    }                                   \
+    , note __VA_OPT__(, ) __VA_ARGS__   \
   }
+#define VOXEL_FIELD(...) ARRAY_FIELD(VoxelCloudParams, __VA_ARGS__)
+#define LAYER_FIELD(...) ARRAY_FIELD(CloudLayerParams, __VA_ARGS__)
 
 const std::vector<VoxelField>& voxel_cloud_fields() {
   static const std::vector<VoxelField> fields = {
@@ -758,20 +762,9 @@ const std::vector<VoxelField>& voxel_cloud_fields() {
   return fields;
 }
 
-#undef VOXEL_FIELD
-
 std::string voxel_cloud_key(size_t index) {
   return std::string(kVoxelCloudsKey) + "[" + std::to_string(index) + "]";
 }
-
-// LAYER_FIELD(oktas, note[, range[, choices]]) is the key oktas of a [[cloud_layers]] table.
-#define LAYER_FIELD(name, note, ...)            \
-  CloudLayerField {                             \
-#name, +[](CloudLayerParams & c) -> auto& { \
-      return c.name;                            \
-    }                                           \
-    , note __VA_OPT__(, ) __VA_ARGS__           \
-  }
 
 const std::vector<CloudLayerField>& cloud_layer_fields() {
   static const std::vector<CloudLayerField> fields = {
@@ -788,6 +781,8 @@ const std::vector<CloudLayerField>& cloud_layer_fields() {
 }
 
 #undef LAYER_FIELD
+#undef VOXEL_FIELD
+#undef ARRAY_FIELD
 
 std::string cloud_layer_key(size_t index) {
   return std::string(kCloudLayersKey) + "[" + std::to_string(index) + "]";

@@ -39,6 +39,19 @@ Genus nearest(const Genus (&list)[N], float type) {
   throw InputError("weather." + field + " = " + value + ": " + why);
 }
 
+// Where x lies among n increasing abscissae (x_at(i)): the segment from k - 1 to k (k >= 1) and
+// how far along it, in [0, 1] (held at the ends): the measured curves' linear interpolation.
+struct Bracket {
+  size_t k;
+  float t;
+};
+template <typename At>
+Bracket bracket(size_t n, float x, At x_at) {
+  size_t k = 1;
+  while (k + 1 < n && x_at(k) < x) ++k;
+  return {k, std::clamp((x - x_at(k - 1)) / (x_at(k) - x_at(k - 1)), 0.0f, 1.0f)};
+}
+
 // Checks a layer and returns its position on the type scale of `list`.
 template <size_t N>
 float checked_type(const std::string& name, const CloudLayer& layer, const Genus (&list)[N],
@@ -91,20 +104,15 @@ constexpr CoverCurve kCoverCurves[] = {
 // The sky covered at `coverage` for `type`: each genus' curve, linear in coverage between its
 // measured steps and in type between genera.
 float sky_cover(float coverage, float type) {
-  const auto curve = [coverage](const CoverCurve& c) {
-    const float x = std::clamp(coverage, 0.0f, 1.0f);
-    size_t k = 1;
-    while (k + 1 < kCoverageSteps && kCoverages[k] < x) ++k;
-    const float t = (x - kCoverages[k - 1]) / (kCoverages[k] - kCoverages[k - 1]);
-    return c.sky[k - 1] + std::clamp(t, 0.0f, 1.0f) * (c.sky[k] - c.sky[k - 1]);
+  const Bracket c = bracket(kCoverageSteps, std::clamp(coverage, 0.0f, 1.0f),
+                            [](size_t i) { return kCoverages[i]; });
+  const auto curve = [c](const CoverCurve& g) {
+    return g.sky[c.k - 1] + c.t * (g.sky[c.k] - g.sky[c.k - 1]);
   };
-  const float x = std::clamp(type, 0.0f, 1.0f);
-  size_t k = 1;
-  while (k + 1 < std::size(kCoverCurves) && kCoverCurves[k].type < x) ++k;
-  const CoverCurve& a = kCoverCurves[k - 1];
-  const CoverCurve& b = kCoverCurves[k];
-  const float t = (x - a.type) / (b.type - a.type);
-  return curve(a) + t * (curve(b) - curve(a));
+  const Bracket g = bracket(std::size(kCoverCurves), std::clamp(type, 0.0f, 1.0f),
+                            [](size_t i) { return kCoverCurves[i].type; });
+  const float a = curve(kCoverCurves[g.k - 1]);
+  return a + g.t * (curve(kCoverCurves[g.k]) - a);
 }
 
 // The sky covered by the cirrus sheet's cirrus.coverage at the default optical depth (0.3) and
@@ -162,11 +170,9 @@ const SheetCurve kSheetCurves[] = {
 
 float sheet_sky_cover(float coverage, float type) {
   const auto curve = [x = std::clamp(coverage, 0.0f, 1.0f)](const SheetCurve& c) {
-    size_t k = 1;
-    while (k + 1 < c.points.size() && c.points[k].first < x) ++k;
-    const auto [x0, y0] = c.points[k - 1];
-    const auto [x1, y1] = c.points[k];
-    return y0 + std::clamp((x - x0) / (x1 - x0), 0.0f, 1.0f) * (y1 - y0);
+    const Bracket b = bracket(c.points.size(), x, [&c](size_t i) { return c.points[i].first; });
+    const float y0 = c.points[b.k - 1].second;
+    return y0 + b.t * (c.points[b.k].second - y0);
   };
   const float x = std::clamp(type, 0.0f, 1.0f) * 2.0f;  // cirrus 0, cirrostratus 1, cirrocumulus 2
   const int k = std::min(int(x), 1);
@@ -539,19 +545,15 @@ constexpr FillCurve kFillCurves[] = {
 }  // namespace
 
 glm::vec2 cloud_fill(float type, float coverage) {
-  const auto at = [x = std::clamp(coverage, kFillCoverages[0], 1.0f)](const FillCurve& c) {
-    size_t k = 1;
-    while (k + 1 < kFillSteps && kFillCoverages[k] < x) ++k;
-    const float t = std::clamp(
-        (x - kFillCoverages[k - 1]) / (kFillCoverages[k] - kFillCoverages[k - 1]), 0.0f, 1.0f);
-    return glm::mix(glm::vec2(c.bottom[k - 1], c.top[k - 1]), glm::vec2(c.bottom[k], c.top[k]), t);
+  const Bracket c = bracket(kFillSteps, std::clamp(coverage, kFillCoverages[0], 1.0f),
+                            [](size_t i) { return kFillCoverages[i]; });
+  const auto at = [c](const FillCurve& g) {
+    return glm::mix(glm::vec2(g.bottom[c.k - 1], g.top[c.k - 1]),
+                    glm::vec2(g.bottom[c.k], g.top[c.k]), c.t);
   };
-  const float x = std::clamp(type, 0.0f, 1.0f);
-  size_t k = 1;
-  while (k + 1 < std::size(kFillCurves) && kFillCurves[k].type < x) ++k;
-  const FillCurve& a = kFillCurves[k - 1];
-  const FillCurve& b = kFillCurves[k];
-  return glm::mix(at(a), at(b), std::clamp((x - a.type) / (b.type - a.type), 0.0f, 1.0f));
+  const Bracket g = bracket(std::size(kFillCurves), std::clamp(type, 0.0f, 1.0f),
+                            [](size_t i) { return kFillCurves[i].type; });
+  return glm::mix(at(kFillCurves[g.k - 1]), at(kFillCurves[g.k]), g.t);
 }
 
 glm::vec2 clouds_in_shell_m(float type, float coverage, glm::vec2 shell_m) {
