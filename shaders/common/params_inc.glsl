@@ -22,9 +22,10 @@ const int LIGHT_VOLUME_Z = 32;    // light volume voxels across the cloud layer
 // off the path tracer, with Catmull-Rom 19.2 or 18.4; 16: 17.7).
 const int LIGHT_VOLUME_LAYERS_UP = 16;
 
-// The volumetric cloud layers (render/frame_params.cpp fills them): 0 the main (low) layer,
-// 1 the high one. They never overlap; the clouds pass marches one shell from the lowest bottom
-// to the highest top (FrameParams::radii_m.zw) and takes each sample's layer by its altitude.
+// The volumetric cloud layers (render/frame_params.cpp fills them): 0 the main layer (clouds),
+// then high_clouds when it is there and the [[cloud_layers]] that are, in the slots from 1 on.
+// Their clouds never overlap; the clouds pass marches one shell from the lowest bottom to the
+// highest top (FrameParams::radii_m.zw) and takes each sample's layer by its band.
 const int CLOUD_LAYERS = 6;  // clouds, high_clouds, [[cloud_layers]] (kMaxCloudLayers)
 
 // The image layers compose blends over the clouds (render/image_layers.h; the bindings layers
